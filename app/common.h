@@ -1,0 +1,34 @@
+// SPDX-License-Identifier: Apache-2.0
+// Options and helpers shared by every `rastsim` subcommand.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "config.h"
+#include "scene.h"
+
+namespace rastsim::app {
+
+// --config FILE and repeatable --set section.key=value, on every subcommand.
+struct ConfigOptions {
+  std::string config_path;
+  std::vector<std::string> sets;
+};
+void add_config_options(CLI::App* cmd, ConfigOptions& o);
+// Defaults, then the file, then the overrides in order; validated.
+Config load_config(const ConfigOptions& o);
+
+// Where an OBJ mesh is placed, from the config's [scene] keys.
+ObjPlacement obj_placement(const Config& cfg);
+
+// Writes JSON to a file (pretty, with a trailing newline); "-" means stdout.
+void write_json(const std::string& path, const nlohmann::json& j);
+
+// Each subcommand registers itself; main() calls these in order.
+void register_config(CLI::App& app);
+void register_render(CLI::App& app);
+
+}  // namespace rastsim::app

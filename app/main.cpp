@@ -1,0 +1,25 @@
+// SPDX-License-Identifier: Apache-2.0
+// rastsim: the command-line front end of the reference, timed and RTL models.
+#include <iostream>
+
+#include "common.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "rastsim: cycle-approximate GPU rasterizer model.\n"
+      "Reference (bit-exact, untimed) rendering, configs and scenes; see `rastsim COMMAND --help`."};
+  app.require_subcommand(1);
+  app.set_help_all_flag("--help-all", "Help for every command");
+  rastsim::app::register_config(app);
+  rastsim::app::register_render(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  } catch (const std::exception& e) {
+    // Every input error (config, scene, I/O) arrives here as one line naming its source.
+    std::cerr << "rastsim: error: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}

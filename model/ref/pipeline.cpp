@@ -1,0 +1,116 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "pipeline.h"
+
+#include <chrono>
+
+#include "primitive_assembly.h"
+#include "rop.h"
+#include "setup.h"
+
+namespace rastsim {
+
+nlohmann::json RenderStats::to_json() const {
+  return {
+      {"triangles_in", triangles_in},
+      {"triangles_culled", triangles_culled},
+      {"triangles_zero_area", triangles_zero_area},
+      {"triangles_facing_culled", triangles_facing_culled},
+      {"triangles_out_of_range", triangles_out_of_range},
+      {"triangles_outside_clip", triangles_outside_clip},
+      {"triangles_rasterized", triangles_rasterized},
+      {"tiles_visited", traversal.tiles_visited},
+      {"tiles_rejected", traversal.tiles_rejected},
+      {"tiles_accepted", traversal.tiles_accepted},
+      {"tiles_partial", traversal.tiles_partial},
+      {"pixel_tests", traversal.pixel_tests},
+      {"fragments", traversal.fragments},
+      {"fragments_passed", fragments_passed},
+      {"framebuffer_crc32", framebuffer_crc32},
+      {"wall_seconds", wall_seconds},
+  };
+}
+
+bool apply_state_command(const Command& cmd, RasterState& st, Framebuffer& fb) {
+  return std::visit(
+      [&](const auto& c) -> bool {
+        using C = std::decay_t<decltype(c)>;
+        if constexpr (std::is_same_v<C, CmdViewport>) {
+          const int64_t max_extent = max_viewport_extent(st.coord_format);
+          if (c.width < 1 || c.height < 1 || c.width > st.fb_width || c.height > st.fb_height)
+            throw SceneError(cmd.loc.str() + ": viewport " + std::to_string(c.width) + "x" +
+                             std::to_string(c.height) + " does not fit the " + std::to_string(st.fb_width) +
+                             "x" + std::to_string(st.fb_height) +
+                             " framebuffer (display.width x display.height)");
+          if (c.width > max_extent || c.height > max_extent)
+            throw SceneError(cmd.loc.str() + ": viewport " + std::to_string(c.width) + "x" +
+                             std::to_string(c.height) + " does not fit raster.coord_format " +
+                             st.coord_format.name() + " (largest " + std::to_string(max_extent) + " px)");
+          st.viewport_width = c.width;
+          st.viewport_height = c.height;
+          return true;
+        } else if constexpr (std::is_same_v<C, CmdClear>) {
+          fb.clear_color(c.r, c.g, c.b);
+          return true;
+        } else if constexpr (std::is_same_v<C, CmdClearDepth>) {
+          const auto z = quantize_unorm(c.z, st.depth_bits);
+          if (!z) throw SceneError(cmd.loc.str() + ": clear depth must be in [0, 1]");
+          fb.clear_depth(*z);
+          return true;
+        } else if constexpr (std::is_same_v<C, CmdScissor>) {
+          st.scissor_enabled = c.enabled;
+          st.scissor = {c.x, c.y, c.x + c.width, c.y + c.height};
+          return true;
+        } else {
+          return false;
+        }
+      },
+      cmd.body);
+}
+
+Framebuffer render_scene(const Scene& scene, const RasterState& arch, RenderStats& stats,
+                         const FragmentSink& on_fragment) {
+  const auto t0 = std::chrono::steady_clock::now();
+  RasterState st = arch;
+  Framebuffer fb(st.fb_width, st.fb_height);
+  fb.clear_depth(static_cast<uint32_t>((uint64_t{1} << st.depth_bits) - 1));
+  const int F = st.coord_format.frac_bits;
+  for (const Command& cmd : scene.commands) {
+    if (apply_state_command(cmd, st, fb)) continue;
+    const auto& prims = std::get<CmdPrimitives>(cmd.body);
+    const size_t n = triangle_count(prims);
+    for (size_t k = 0; k < n; ++k) {
+      ++stats.triangles_in;
+      SetupTriangle tri;
+      switch (setup_triangle(assemble_triangle(prims, k), st, cmd.loc, tri)) {
+        case SetupOutcome::Accepted: break;
+        case SetupOutcome::CulledZeroArea:
+          ++stats.triangles_culled;
+          ++stats.triangles_zero_area;
+          continue;
+        case SetupOutcome::CulledBackFace:
+        case SetupOutcome::CulledFrontFace:
+          ++stats.triangles_culled;
+          ++stats.triangles_facing_culled;
+          continue;
+        case SetupOutcome::CulledOutOfRange: ++stats.triangles_out_of_range; continue;
+        case SetupOutcome::CulledOutsideClip: ++stats.triangles_outside_clip; continue;
+      }
+      ++stats.triangles_rasterized;
+      traverse_triangle(tri, st.tile_size, F, stats.traversal, [&](int px, int py) {
+        const Fragment f = interpolate(tri, px, py, F);
+        if (on_fragment) on_fragment(f);
+        if (rop_write(fb, f, st.depth_func, st.depth_write)) ++stats.fragments_passed;
+      });
+    }
+  }
+  stats.framebuffer_crc32 = fb.color_crc32();
+  stats.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return fb;
+}
+
+std::string fragment_trace_line(const Fragment& f) {
+  return std::to_string(f.x) + " " + std::to_string(f.y) + " " + std::to_string(f.z) + " " +
+         std::to_string(f.r) + " " + std::to_string(f.g) + " " + std::to_string(f.b);
+}
+
+}  // namespace rastsim

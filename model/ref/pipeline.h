@@ -1,0 +1,53 @@
+// SPDX-License-Identifier: Apache-2.0
+// The reference pipeline: command stream -> primitive assembly -> setup -> traversal
+// -> interpolation -> ROP, untimed. This is the golden model every other level is
+// compared with (framebuffer CRC and fragment stream).
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "framebuffer.h"
+#include "interpolate.h"
+#include "raster_state.h"
+#include "scene.h"
+#include "traverse.h"
+
+namespace rastsim {
+
+struct RenderStats {
+  uint64_t triangles_in = 0;          // triangles out of primitive assembly
+  uint64_t triangles_culled = 0;      // zero-area + facing culls
+  uint64_t triangles_zero_area = 0;
+  uint64_t triangles_facing_culled = 0;
+  uint64_t triangles_out_of_range = 0;  // raster.out_of_range = cull
+  uint64_t triangles_outside_clip = 0;  // no pixel centre inside viewport/scissor box
+  uint64_t triangles_rasterized = 0;    // reached the tile walker
+  TraversalCounters traversal;
+  uint64_t fragments_passed = 0;        // passed the depth test and were written
+  uint32_t framebuffer_crc32 = 0;
+  double wall_seconds = 0;
+
+  // Every stat under its public name (docs/reference-model.md lists them).
+  nlohmann::json to_json() const;
+};
+
+// Applies a scene's state command (viewport, scissor, clears) to the state and
+// framebuffer; returns false for a primitives command (not state). Throws SceneError
+// naming the command's file:line for a viewport that does not fit.
+bool apply_state_command(const Command& cmd, RasterState& st, Framebuffer& fb);
+
+using FragmentSink = std::function<void(const Fragment&)>;
+
+// Renders a whole scene into a new framebuffer of the display size.
+// `on_fragment`, if set, sees every fragment leaving interpolation, in pipeline order.
+Framebuffer render_scene(const Scene& scene, const RasterState& arch, RenderStats& stats,
+                         const FragmentSink& on_fragment = {});
+
+// One fragment as a line of the shared fragment-trace format: "x y z r g b" (decimal).
+std::string fragment_trace_line(const Fragment& f);
+
+}  // namespace rastsim

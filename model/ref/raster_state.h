@@ -1,0 +1,57 @@
+// SPDX-License-Identifier: Apache-2.0
+// RasterState: the fixed-function state every raster stage reads, built once from the
+// Config (architecture) and updated by scene commands (viewport, scissor, clears).
+#pragma once
+
+#include <cstdint>
+
+#include "config.h"
+#include "fixed_point.h"
+
+namespace rastsim {
+
+enum class FillRule { TopLeft, BottomRight, Inclusive, Exclusive };
+enum class CullMode { None, Back, Front };
+enum class DepthFunc { Never, Less, LEqual, Equal, Greater, GEqual, NotEqual, Always };
+enum class OutOfRange { Error, Cull };
+
+// Half-open pixel rectangle [x0, x1) x [y0, y1).
+struct PixelRect {
+  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  bool empty() const { return x0 >= x1 || y0 >= y1; }
+  int64_t area() const { return empty() ? 0 : int64_t(x1 - x0) * (y1 - y0); }
+  PixelRect intersect(const PixelRect& o) const;
+  bool operator==(const PixelRect&) const = default;
+};
+
+struct RasterState {
+  // Architecture (from the config).
+  FixedFormat coord_format;
+  int tile_size = 16;
+  FillRule fill_rule = FillRule::TopLeft;
+  CullMode cull = CullMode::None;
+  bool front_ccw = true;  // a triangle that appears counter-clockwise on screen is front
+  DepthFunc depth_func = DepthFunc::Always;
+  int depth_bits = 24;
+  bool depth_write = true;
+  OutOfRange out_of_range = OutOfRange::Error;
+  int fb_width = 128, fb_height = 128;  // framebuffer (display) size
+
+  // Scene state (from commands).
+  int viewport_width = 128, viewport_height = 128;
+  bool scissor_enabled = false;
+  PixelRect scissor;
+
+  // Snapping origin: the viewport centre's pixel corner, rounded down.
+  int64_t origin_x() const { return viewport_width / 2; }
+  int64_t origin_y() const { return viewport_height / 2; }
+  // Pixels a primitive may touch: the viewport, clipped to the framebuffer and scissor.
+  PixelRect clip_rect() const;
+};
+
+// Builds the architecture part from a validated config; viewport = display size.
+RasterState raster_state_from_config(const Config& cfg);
+
+const char* to_string(DepthFunc f);
+
+}  // namespace rastsim

@@ -1,0 +1,17 @@
+// SPDX-License-Identifier: Apache-2.0
+// ROP: depth test against the depth buffer, then colour (and depth) write.
+#pragma once
+
+#include "framebuffer.h"
+#include "interpolate.h"
+#include "raster_state.h"
+
+namespace rastsim {
+
+// True when func(fragment_z, stored_z) passes.
+bool depth_test(DepthFunc func, uint32_t fragment_z, uint32_t stored_z);
+
+// Tests and writes one fragment; returns true when it was written.
+bool rop_write(Framebuffer& fb, const Fragment& f, DepthFunc func, bool depth_write);
+
+}  // namespace rastsim
