@@ -8,6 +8,10 @@
 
 namespace rastsim {
 
+// Keys of the timed model (clock, stage latencies/throughputs, FIFO depths), declared in
+// config_schema_timing.cpp next to nothing else.
+void add_timing_params(std::vector<ParamDef>& schema);
+
 namespace {
 
 bool is_power_of_two(const ParamValue& v) {
@@ -62,6 +66,7 @@ std::vector<ParamDef> make_schema() {
        "OBJ placement: tilt of the mesh toward the viewer, after the yaw"});
   add({"scene.obj_fill", T::Float, 0.9, "", 0.01, 4.0, {},
        "OBJ placement: fraction of the smaller viewport side the mesh's bounding sphere spans"});
+  add_timing_params(s);
   return s;
 }
 
