@@ -11,6 +11,8 @@ namespace rastsim {
 // Keys of the timed model (clock, stage latencies/throughputs, FIFO depths), declared in
 // config_schema_timing.cpp next to nothing else.
 void add_timing_params(std::vector<ParamDef>& schema);
+// Keys of video timing, the DAC and scan-out, declared in config_schema_scanout.cpp.
+void add_scanout_params(std::vector<ParamDef>& schema);
 
 namespace {
 
@@ -67,6 +69,7 @@ std::vector<ParamDef> make_schema() {
   add({"scene.obj_fill", T::Float, 0.9, "", 0.01, 4.0, {},
        "OBJ placement: fraction of the smaller viewport side the mesh's bounding sphere spans"});
   add_timing_params(s);
+  add_scanout_params(s);
   return s;
 }
 
