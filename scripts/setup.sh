@@ -1,0 +1,48 @@
+# SPDX-License-Identifier: Apache-2.0
+# Sourced by scripts/demo and scripts/test: install what is missing, configure, build.
+# Safe to run again: installs nothing when every package is present, and the build is
+# incremental (Ninja).
+
+set -euo pipefail
+ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+BUILD="${RASTSIM_BUILD_DIR:-$ROOT/build}"
+JOBS="${RASTSIM_JOBS:-$(nproc)}"
+
+# Debian 12 packages the whole project needs (reference model, SystemC model, RTL
+# simulation, tests, benchmarks, plots). Keep in one place.
+RASTSIM_PACKAGES=(
+  g++ cmake ninja-build pkg-config
+  libsystemc-dev verilator
+  libgtest-dev libbenchmark-dev
+  libtomlplusplus-dev libcli11-dev nlohmann-json3-dev libpng-dev zlib1g-dev
+  python3-matplotlib
+)
+
+install_missing_packages() {
+  local missing=()
+  for p in "${RASTSIM_PACKAGES[@]}"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+  done
+  if [ ${#missing[@]} -eq 0 ]; then
+    return 0
+  fi
+  echo "setup: installing ${missing[*]}"
+  local sudo=""
+  [ "$(id -u)" -eq 0 ] || sudo="sudo"
+  export DEBIAN_FRONTEND=noninteractive
+  $sudo apt-get update -qq
+  $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+}
+
+# configure_and_build BUILD_DIR [extra cmake args...] -- [ninja targets...]
+configure_and_build() {
+  local dir="$1"; shift
+  local cmake_args=() targets=()
+  while [ $# -gt 0 ] && [ "$1" != "--" ]; do cmake_args+=("$1"); shift; done
+  [ $# -gt 0 ] && shift
+  targets=("$@")
+  if [ ! -f "$dir/build.ninja" ]; then
+    cmake -S "$ROOT" -B "$dir" -G Ninja "${cmake_args[@]}"
+  fi
+  ninja -C "$dir" -j "$JOBS" "${targets[@]}"
+}
