@@ -1,0 +1,87 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
+# End-to-end checks of `rastsim render` and `rastsim config` as a user runs them.
+# usage: test_cli.sh RASTSIM_BINARY SOURCE_DIR
+set -u
+BIN="$1"
+SRC="$2"
+TMP="$(mktemp -d)"
+trap 'rm -rf "$TMP"' EXIT
+fails=0 passes=0
+pass() { passes=$((passes + 1)); }
+fail() { echo "FAIL: $*"; fails=$((fails + 1)); }
+
+# expect_error NAME PATTERN -- command...: non-zero exit, one-line error matching PATTERN.
+expect_error() {
+  local name="$1" pattern="$2"; shift 3
+  local out rc
+  out="$("$@" 2>&1 >/dev/null)"; rc=$?
+  if [ $rc -eq 0 ]; then fail "$name: exit 0, expected an error"; return; fi
+  if [ $rc -ge 128 ]; then fail "$name: crashed (rc $rc): $out"; return; fi
+  if ! grep -Eq -- "$pattern" <<<"$out"; then fail "$name: error '$out' does not match '$pattern'"; return; fi
+  pass
+}
+json_field() { /usr/bin/python3 -c "import json,sys; print(json.load(open(sys.argv[1]))[sys.argv[2]])" "$1" "$2"; }
+
+SCENE="$SRC/traces/torus.trace"
+CFG="$SRC/configs/default.toml"
+
+# 1. The demo render writes an image and every documented stat.
+if "$BIN" render --config "$CFG" --scene "$SCENE" --set raster.depth_func=less \
+     -o "$TMP/a.png" --stats "$TMP/a.json" -q; then
+  [ -s "$TMP/a.png" ] && pass || fail "render wrote no PNG"
+  for k in triangles_in triangles_culled tiles_visited tiles_rejected tiles_accepted tiles_partial \
+           pixel_tests fragments framebuffer_crc32 wall_seconds; do
+    json_field "$TMP/a.json" "$k" >/dev/null 2>&1 && pass || fail "stats lack $k"
+  done
+else
+  fail "render of the demo scene failed"
+fi
+
+# 2. The tile size changes the tile counts but never the image.
+crc0=""; tiles_seen=""
+for t in 2 4 8 16 32 64 128; do
+  "$BIN" render --config "$CFG" --scene "$SCENE" --set raster.depth_func=less \
+    --set raster.tile_size=$t --stats "$TMP/t$t.json" -q || { fail "render tile_size=$t"; continue; }
+  crc="$(json_field "$TMP/t$t.json" framebuffer_crc32)"
+  tiles="$(json_field "$TMP/t$t.json" tiles_visited)"
+  [ -z "$crc0" ] && crc0="$crc"
+  [ "$crc" = "$crc0" ] && pass || fail "tile_size=$t changed the image crc ($crc vs $crc0)"
+  tiles_seen="$tiles_seen $tiles"
+done
+[ "$(tr ' ' '\n' <<<"$tiles_seen" | sort -u | grep -c .)" -ge 6 ] && pass || fail "tile counts did not change:$tiles_seen"
+
+# 3. PPM output.
+"$BIN" render --config "$CFG" --scene "$SCENE" -o "$TMP/a.ppm" -q && head -c 2 "$TMP/a.ppm" | grep -q P6 && pass || fail "PPM output"
+
+# 4. Bad input: one clear line naming file, line and what is wrong; never a crash.
+printf '[raster]\ntile_size = 24\n' > "$TMP/bad_range.toml"
+expect_error "tile size not a power of two" "bad_range.toml:2: raster.tile_size = 24 is not allowed.*power of two" -- \
+  "$BIN" render --config "$TMP/bad_range.toml" --scene "$SCENE"
+printf '[raster]\ntile_sise = 16\n' > "$TMP/bad_key.toml"
+expect_error "unknown key" "bad_key.toml:2: unknown key 'raster.tile_sise'" -- \
+  "$BIN" render --config "$TMP/bad_key.toml" --scene "$SCENE"
+printf '[display]\nwidth = "wide"\n' > "$TMP/bad_type.toml"
+expect_error "wrong type" "bad_type.toml:2: display.width must be an integer" -- \
+  "$BIN" render --config "$TMP/bad_type.toml" --scene "$SCENE"
+printf '[display\nwidth = 3\n' > "$TMP/bad_toml.toml"
+expect_error "TOML syntax" "bad_toml.toml:1:" -- "$BIN" render --config "$TMP/bad_toml.toml" --scene "$SCENE"
+expect_error "unknown --set key" "unknown key 'raster.nope'" -- "$BIN" render --scene "$SCENE" --set raster.nope=1
+expect_error "bad --set enum" "raster.cull.*one of none, back, front" -- "$BIN" render --scene "$SCENE" --set raster.cull=sideways
+expect_error "viewport too big for the format" "does not fit in raster.coord_format s7.16" -- \
+  "$BIN" render --scene "$SCENE" --set display.width=400
+printf 'viewport 128 128\ntri 0 0 10 0 0 zz\n' > "$TMP/bad.trace"
+expect_error "malformed trace" "bad.trace:2:" -- "$BIN" render --scene "$TMP/bad.trace"
+printf 'tri 0 0 500 0 0 10\n' > "$TMP/far.trace"
+expect_error "vertex outside the format" "far.trace:1: vertex 1 .*outside the s7.16 coordinate range" -- \
+  "$BIN" render --scene "$TMP/far.trace"
+"$BIN" render --scene "$TMP/far.trace" --set raster.out_of_range=cull --stats "$TMP/far.json" -q && \
+  [ "$(json_field "$TMP/far.json" triangles_out_of_range)" = 1 ] && pass || fail "out_of_range=cull"
+expect_error "missing scene" "" -- "$BIN" render --scene "$TMP/none.trace"
+
+# 5. --help on every command; config --doc lists the keys.
+for c in render config; do "$BIN" $c --help | grep -q -- "--set" && pass || fail "$c --help"; done
+"$BIN" config --doc | grep -q "raster.tile_size" && pass || fail "config --doc"
+
+echo "cli: $passes passed, $fails failed"
+[ $fails -eq 0 ]
