@@ -30,5 +30,7 @@ void write_json(const std::string& path, const nlohmann::json& j);
 // Each subcommand registers itself; main() calls these in order.
 void register_config(CLI::App& app);
 void register_render(CLI::App& app);
+void register_simulate(CLI::App& app);
+void register_sweep(CLI::App& app);
 
 }  // namespace rastsim::app

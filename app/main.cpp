@@ -12,6 +12,8 @@ int main(int argc, char** argv) {
   app.set_help_all_flag("--help-all", "Help for every command");
   rastsim::app::register_config(app);
   rastsim::app::register_render(app);
+  rastsim::app::register_simulate(app);
+  rastsim::app::register_sweep(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

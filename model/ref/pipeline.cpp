@@ -30,6 +30,24 @@ nlohmann::json RenderStats::to_json() const {
   };
 }
 
+bool count_setup_outcome(SetupOutcome o, RenderStats& stats) {
+  switch (o) {
+    case SetupOutcome::Accepted: ++stats.triangles_rasterized; return true;
+    case SetupOutcome::CulledZeroArea:
+      ++stats.triangles_culled;
+      ++stats.triangles_zero_area;
+      return false;
+    case SetupOutcome::CulledBackFace:
+    case SetupOutcome::CulledFrontFace:
+      ++stats.triangles_culled;
+      ++stats.triangles_facing_culled;
+      return false;
+    case SetupOutcome::CulledOutOfRange: ++stats.triangles_out_of_range; return false;
+    case SetupOutcome::CulledOutsideClip: ++stats.triangles_outside_clip; return false;
+  }
+  return false;
+}
+
 bool apply_state_command(const Command& cmd, RasterState& st, Framebuffer& fb) {
   return std::visit(
       [&](const auto& c) -> bool {
@@ -81,21 +99,7 @@ Framebuffer render_scene(const Scene& scene, const RasterState& arch, RenderStat
     for (size_t k = 0; k < n; ++k) {
       ++stats.triangles_in;
       SetupTriangle tri;
-      switch (setup_triangle(assemble_triangle(prims, k), st, cmd.loc, tri)) {
-        case SetupOutcome::Accepted: break;
-        case SetupOutcome::CulledZeroArea:
-          ++stats.triangles_culled;
-          ++stats.triangles_zero_area;
-          continue;
-        case SetupOutcome::CulledBackFace:
-        case SetupOutcome::CulledFrontFace:
-          ++stats.triangles_culled;
-          ++stats.triangles_facing_culled;
-          continue;
-        case SetupOutcome::CulledOutOfRange: ++stats.triangles_out_of_range; continue;
-        case SetupOutcome::CulledOutsideClip: ++stats.triangles_outside_clip; continue;
-      }
-      ++stats.triangles_rasterized;
+      if (!count_setup_outcome(setup_triangle(assemble_triangle(prims, k), st, cmd.loc, tri), stats)) continue;
       traverse_triangle(tri, st.tile_size, F, stats.traversal, [&](int px, int py) {
         const Fragment f = interpolate(tri, px, py, F);
         if (on_fragment) on_fragment(f);

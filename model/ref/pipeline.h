@@ -40,6 +40,10 @@ struct RenderStats {
 // naming the command's file:line for a viewport that does not fit.
 bool apply_state_command(const Command& cmd, RasterState& st, Framebuffer& fb);
 
+// Counts one triangle-setup outcome in the triangle stats (shared with the timed model);
+// returns true when the triangle goes on to traversal.
+bool count_setup_outcome(SetupOutcome o, RenderStats& stats);
+
 using FragmentSink = std::function<void(const Fragment&)>;
 
 // Renders a whole scene into a new framebuffer of the display size.

@@ -1,0 +1,30 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "sc/fine_raster.h"
+
+namespace rastsim::sc {
+
+void FineRaster::body() {
+  TraversalCounters& c = ctx_.render.traversal;
+  for (;;) {
+    const TileItem in = read(in_);
+    if (pass_state(in, out_)) continue;
+    const TileWork& tile = in.work;
+    auto batch = std::make_shared<PixelBatch>();
+    batch->tri = tile.tri;
+    auto emit = [&](int px, int py) { batch->pixels.push_back({px, py}); };
+    uint64_t cost = 0;
+    if (tile.cls == TileClass::Accepted) {
+      fine_raster_accepted(tile.footprint, emit);
+      cost = p_.fine_accepted_tile_cycles;
+    } else {
+      const uint64_t tests = fine_raster_partial(*tile.tri, tile.footprint, frac_bits_, emit);
+      c.pixel_tests += tests;
+      cost = ceil_div(tests, p_.fine_samples_per_cycle);
+    }
+    c.fragments += batch->pixels.size();
+    busy(cost);
+    if (!batch->pixels.empty()) write(out_, PixelItem{nullptr, std::move(batch)});
+  }
+}
+
+}  // namespace rastsim::sc

@@ -1,0 +1,41 @@
+// SPDX-License-Identifier: Apache-2.0
+// Fine raster: per-pixel coverage of partial tiles, whole-footprint emission of
+// accepted ones (ref/traverse.h: fine_raster_partial, fine_raster_accepted).
+//
+// - A partial footprint of A pixels takes ceil(A / fine.samples_per_cycle) cycles; an
+//   accepted footprint takes fine.accepted_tile_cycles (a full mask, no tests).
+// - A tile's covered pixels leave as ONE transaction (a batch, row-major), so no event
+//   exists per pixel; a tile with no covered pixel produces nothing.
+// - Counts pixel_tests and fragments.
+#pragma once
+
+#include <vector>
+
+#include "sc/coarse_raster.h"
+
+namespace rastsim::sc {
+
+struct Pixel {
+  int x = 0, y = 0;
+};
+struct PixelBatch {
+  std::shared_ptr<const SetupTriangle> tri;
+  std::vector<Pixel> pixels;  // covered pixel centres of one tile, row-major
+};
+using PixelItem = Item<std::shared_ptr<const PixelBatch>>;
+
+class FineRaster : public Stage {
+ public:
+  FineRaster(sc_core::sc_module_name name, SimContext& ctx, const RasterState& arch, const TimingParams& p,
+             Link<TileItem>& in, Link<PixelItem>& out)
+      : Stage(name, ctx, 4), frac_bits_(arch.coord_format.frac_bits), p_(p), in_(in), out_(out) {}
+
+ private:
+  void body() override;
+  int frac_bits_;
+  const TimingParams& p_;
+  Link<TileItem>& in_;
+  Link<PixelItem>& out_;
+};
+
+}  // namespace rastsim::sc

@@ -1,0 +1,34 @@
+// SPDX-License-Identifier: Apache-2.0
+// Attribute interpolation: colour and depth of each covered pixel (ref/interpolate.h:
+// interpolate), a tile's batch at a time.
+//
+// - A batch of N pixels takes ceil(N / interp.fragments_per_cycle) cycles; its fragments
+//   are ready for the ROP interp.latency_cycles later (divider pipeline).
+// - Every fragment leaving here goes to the fragment sink, in order: the same stream
+//   (ref/pipeline.h: fragment_trace_line) as the reference model's.
+#pragma once
+
+#include <vector>
+
+#include "ref/interpolate.h"
+#include "sc/fine_raster.h"
+
+namespace rastsim::sc {
+
+using FragmentItem = Item<std::shared_ptr<const std::vector<Fragment>>>;
+
+class Interpolate : public Stage {
+ public:
+  Interpolate(sc_core::sc_module_name name, SimContext& ctx, const RasterState& arch, const TimingParams& p,
+              Link<PixelItem>& in, Link<FragmentItem>& out)
+      : Stage(name, ctx, 5), frac_bits_(arch.coord_format.frac_bits), p_(p), in_(in), out_(out) {}
+
+ private:
+  void body() override;
+  int frac_bits_;
+  const TimingParams& p_;
+  Link<PixelItem>& in_;
+  Link<FragmentItem>& out_;
+};
+
+}  // namespace rastsim::sc

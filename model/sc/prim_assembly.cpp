@@ -1,0 +1,19 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "sc/prim_assembly.h"
+
+#include "ref/primitive_assembly.h"
+
+namespace rastsim::sc {
+
+void PrimAssembly::body() {
+  for (;;) {
+    const CommandItem in = read(in_);
+    if (pass_state(in, out_)) continue;
+    const auto& prims = std::get<CmdPrimitives>(in.work.cmd->body);
+    TriangleItem out{nullptr, AssembledTriangle{assemble_triangle(prims, in.work.index), in.work.cmd}};
+    busy(p_.assembly_cycles_per_triangle);
+    write(out_, std::move(out));
+  }
+}
+
+}  // namespace rastsim::sc

@@ -1,0 +1,33 @@
+// SPDX-License-Identifier: Apache-2.0
+// Primitive assembly: forms each triangle of a list, strip or fan from its vertices
+// (ref/primitive_assembly.h: assemble_triangle, which keeps a strip's winding).
+//
+// - Cost: assembly.cycles_per_triangle per triangle; 1 cycle per state command.
+#pragma once
+
+#include <array>
+
+#include "sc/command_fetch.h"
+
+namespace rastsim::sc {
+
+struct AssembledTriangle {
+  std::array<SceneVertex, 3> v{};
+  const Command* cmd = nullptr;  // the primitives command it came from (for error locations)
+};
+using TriangleItem = Item<AssembledTriangle>;
+
+class PrimAssembly : public Stage {
+ public:
+  PrimAssembly(sc_core::sc_module_name name, SimContext& ctx, const TimingParams& p, Link<CommandItem>& in,
+               Link<TriangleItem>& out)
+      : Stage(name, ctx, 1), p_(p), in_(in), out_(out) {}
+
+ private:
+  void body() override;
+  const TimingParams& p_;
+  Link<CommandItem>& in_;
+  Link<TriangleItem>& out_;
+};
+
+}  // namespace rastsim::sc

@@ -1,0 +1,147 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "sc/raster_pipeline.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdlib>
+
+#include <systemc>
+
+#include "sc/rop.h"
+
+namespace rastsim::sc {
+
+namespace {
+
+// The top module: FIFOs first (stages hold references to them), then the stages.
+struct RasterPipeline : sc_core::sc_module {
+  RasterPipeline(sc_core::sc_module_name name, SimContext& ctx, const Scene& scene, const RasterState& arch,
+                 const TimingParams& p)
+      : sc_module(name),
+        command_fifo("command_fifo", p.fifo_command, ctx.tracing),
+        triangle_fifo("triangle_fifo", p.fifo_triangle, ctx.tracing),
+        setup_fifo("setup_fifo", p.fifo_setup, ctx.tracing),
+        tile_fifo("tile_fifo", p.fifo_tile, ctx.tracing),
+        pixel_fifo("pixel_fifo", p.fifo_pixel, ctx.tracing),
+        fragment_fifo("fragment_fifo", p.fifo_fragment, ctx.tracing),
+        command_fetch("command_fetch", ctx, scene, p, command_fifo),
+        prim_assembly("prim_assembly", ctx, p, command_fifo, triangle_fifo),
+        tri_setup("tri_setup", ctx, arch, p, triangle_fifo, setup_fifo),
+        coarse_raster("coarse_raster", ctx, arch, p, setup_fifo, tile_fifo),
+        fine_raster("fine_raster", ctx, arch, p, tile_fifo, pixel_fifo),
+        interpolate("interpolate", ctx, arch, p, pixel_fifo, fragment_fifo),
+        rop("rop", ctx, arch, p, fragment_fifo) {}
+
+  Link<CommandItem> command_fifo;
+  Link<TriangleItem> triangle_fifo;
+  Link<SetupItem> setup_fifo;
+  Link<TileItem> tile_fifo;
+  Link<PixelItem> pixel_fifo;
+  Link<FragmentItem> fragment_fifo;
+  CommandFetch command_fetch;
+  PrimAssembly prim_assembly;
+  TriSetup tri_setup;
+  CoarseRaster coarse_raster;
+  FineRaster fine_raster;
+  Interpolate interpolate;
+  Rop rop;
+
+  std::vector<Stage*> stages() {
+    return {&command_fetch, &prim_assembly, &tri_setup, &coarse_raster, &fine_raster, &interpolate, &rop};
+  }
+  template <class F>
+  void for_each_fifo(F&& f) {
+    f(command_fifo);
+    f(triangle_fifo);
+    f(setup_fifo);
+    f(tile_fifo);
+    f(pixel_fifo);
+    f(fragment_fifo);
+  }
+};
+
+std::string strip_suffix(std::string path, const std::string& suffix) {
+  if (path.size() > suffix.size() && path.compare(path.size() - suffix.size(), suffix.size(), suffix) == 0)
+    path.resize(path.size() - suffix.size());
+  return path;
+}
+
+}  // namespace
+
+uint64_t fixed_latency_cycles(const TimingParams& p) { return p.fetch_cycles_per_command + 6; }
+
+SimResult simulate_scene(const Scene& scene, const Config& cfg, const SimOptions& opts) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const RasterState arch = raster_state_from_config(cfg);
+  const TimingParams p = TimingParams::from_config(cfg);
+
+  setenv("SC_COPYRIGHT_MESSAGE", "DISABLE", 1);  // before the simulation context exists
+  sc_core::sc_report_handler::set_actions(sc_core::SC_INFO, sc_core::SC_DO_NOTHING);
+
+  SimContext ctx;
+  ctx.tracing = !opts.vcd_path.empty();
+  ctx.stall_seed = opts.stall_seed;
+  ctx.stall_probability = opts.stall_probability;
+  ctx.on_fragment = opts.on_fragment;
+  // Built once and kept: SystemC does not support tearing a design down.
+  static RasterPipeline* top = nullptr;
+  if (top) throw std::logic_error("simulate_scene: SystemC elaborates only once per process");
+  top = new RasterPipeline("pipeline", ctx, scene, arch, p);
+
+  sc_core::sc_trace_file* tf = nullptr;
+  if (ctx.tracing) {
+    tf = sc_core::sc_create_vcd_trace_file(strip_suffix(opts.vcd_path, ".vcd").c_str());
+    tf->set_time_unit(1, sc_core::SC_NS);  // 1 ns = 1 cycle
+    for (Stage* s : top->stages()) sc_core::sc_trace(tf, s->state_signal(), std::string(s->basename()) + ".state");
+    top->for_each_fifo([&](auto& f) { sc_core::sc_trace(tf, f.occupancy(), std::string(f.basename()) + ".occupancy"); });
+  }
+
+  sc_core::sc_start();
+  const sc_core::sc_time end = sc_core::sc_time_stamp();
+  if (tf) sc_core::sc_close_vcd_trace_file(tf);
+  if (!ctx.error.empty()) throw SceneError(ctx.error);
+
+  SimResult r;
+  r.core_mhz = p.core_mhz;
+  r.cycles = ctx.to_cycles(end);
+  uint64_t fill = 0;  // earliest cycle the stage can start: one transaction upstream each
+  for (Stage* s : top->stages()) {
+    s->finish(end);
+    const StageStats& st = s->stats();
+    r.stages.push_back({s->basename(), st.busy, st.stalled, st.starved, st.transactions_in, st.transactions_out});
+    r.cycles_lower_bound = std::max(r.cycles_lower_bound, fill + st.busy);
+    fill += (s == &top->command_fetch) ? p.fetch_cycles_per_command : 1;
+  }
+  top->for_each_fifo([&](auto& f) {
+    r.fifos.push_back({f.basename(), f.depth(), f.writes(), f.reads()});
+    if (f.writes() != f.reads())
+      throw std::logic_error(std::string(f.name()) + ": " + std::to_string(f.writes() - f.reads()) +
+                             " transactions left behind (pipeline deadlock)");
+  });
+  r.render = ctx.render;
+  r.fb = top->rop.framebuffer();
+  r.render.framebuffer_crc32 = r.fb.color_crc32();
+  r.sim_wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  r.render.wall_seconds = r.sim_wall_seconds;
+  return r;
+}
+
+nlohmann::json SimResult::to_json() const {
+  nlohmann::json j = render.to_json();
+  j["cycles"] = cycles;
+  j["cycles_lower_bound"] = cycles_lower_bound;
+  j["core_mhz"] = core_mhz;
+  j["simulated_seconds"] = double(cycles) / (core_mhz * 1e6);
+  j["sim_wall_seconds"] = sim_wall_seconds;
+  j["simulated_cycles_per_second"] = sim_wall_seconds > 0 ? double(cycles) / sim_wall_seconds : 0.0;
+  for (const StageReport& s : stages)
+    j["stages"][s.name] = {{"busy", s.busy},
+                           {"stalled", s.stalled},
+                           {"starved", s.starved},
+                           {"transactions_in", s.transactions_in},
+                           {"transactions_out", s.transactions_out}};
+  for (const FifoReport& f : fifos) j["fifos"][f.name] = {{"depth", f.depth}, {"transactions", f.writes}};
+  return j;
+}
+
+}  // namespace rastsim::sc

@@ -1,0 +1,69 @@
+// SPDX-License-Identifier: Apache-2.0
+// The timed raster pipeline: seven stages joined by six bounded FIFOs, and the one call
+// that elaborates it, runs a scene through it and reports cycles and per-stage stats.
+//
+//   command_fetch -> prim_assembly -> tri_setup -> coarse_raster -> fine_raster
+//                 -> interpolate -> rop (framebuffer)
+//
+// All arithmetic is the reference model's; this layer only adds time. The framebuffer
+// and fragment stream are bit-identical to ref/pipeline.h: render_scene.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "ref/config.h"
+#include "ref/pipeline.h"
+#include "sc/timing_params.h"
+
+namespace rastsim::sc {
+
+struct SimOptions {
+  std::string vcd_path;          // write a VCD of FIFO occupancy and stage state ("" = none)
+  uint64_t stall_seed = 0;       // random stall injection at every FIFO write (tests)
+  double stall_probability = 0;  // 0 = off
+  FragmentSink on_fragment;      // every fragment leaving interpolation, in order
+};
+
+struct StageReport {
+  std::string name;
+  uint64_t busy = 0, stalled = 0, starved = 0;  // cycles; they add up to `cycles`
+  uint64_t transactions_in = 0, transactions_out = 0;
+};
+
+struct FifoReport {
+  std::string name;
+  int depth = 0;
+  uint64_t writes = 0, reads = 0;  // equal after a run: nothing lost or left behind
+};
+
+struct SimResult {
+  Framebuffer fb;
+  RenderStats render;                // the reference model's counters (same names)
+  uint64_t cycles = 0;               // first command to the end of the last transaction
+  uint64_t cycles_lower_bound = 0;   // max over stages of fill latency + busy cycles
+  std::vector<StageReport> stages;   // in pipeline order
+  std::vector<FifoReport> fifos;     // in pipeline order
+  double core_mhz = 0;
+  double sim_wall_seconds = 0;       // elaboration + simulation
+
+  // RenderStats::to_json plus cycles, cycles_lower_bound, simulated_seconds,
+  // sim_wall_seconds, simulated_cycles_per_second, stages.<name>.{busy,...}, fifos.<name>.
+  nlohmann::json to_json() const;
+};
+
+// Cycles one state command needs through the whole pipeline (fetch header plus one
+// cycle in each later stage): what a scene without primitives or clears costs.
+uint64_t fixed_latency_cycles(const TimingParams& p);
+
+// Elaborates the pipeline for `cfg`, runs `scene` through it and returns the result.
+// SystemC allows one elaboration per process: call this once per process (the sweep
+// and the tests run each simulation in a child process). Throws on scene errors with
+// the reference model's message.
+SimResult simulate_scene(const Scene& scene, const Config& cfg, const SimOptions& opts = {});
+
+}  // namespace rastsim::sc

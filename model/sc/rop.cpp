@@ -1,0 +1,32 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "sc/rop.h"
+
+#include "ref/pipeline.h"
+#include "ref/rop.h"
+
+namespace rastsim::sc {
+
+Rop::Rop(sc_core::sc_module_name name, SimContext& ctx, const RasterState& arch, const TimingParams& p,
+         Link<FragmentItem>& in)
+    : Stage(name, ctx, 6), st_(arch), fb_(arch.fb_width, arch.fb_height), p_(p), in_(in) {
+  // As render_scene: the depth buffer starts at the far value.
+  fb_.clear_depth(static_cast<uint32_t>((uint64_t{1} << st_.depth_bits) - 1));
+}
+
+void Rop::body() {
+  for (;;) {
+    const FragmentItem in = read(in_);
+    if (in.state) {
+      apply_state_command(*in.state, st_, fb_);
+      const bool clear = std::holds_alternative<CmdClear>(in.state->body) ||
+                         std::holds_alternative<CmdClearDepth>(in.state->body);
+      busy(clear ? ceil_div(uint64_t(fb_.width) * uint64_t(fb_.height), p_.rop_clear_pixels_per_cycle) : 1);
+      continue;
+    }
+    for (const Fragment& f : *in.work)
+      if (rop_write(fb_, f, st_.depth_func, st_.depth_write)) ++ctx_.render.fragments_passed;
+    busy(ceil_div(in.work->size(), p_.rop_pixels_per_cycle));
+  }
+}
+
+}  // namespace rastsim::sc

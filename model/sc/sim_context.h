@@ -1,0 +1,42 @@
+// SPDX-License-Identifier: Apache-2.0
+// SimContext: what every stage of one simulation shares: the cycle time, the reference
+// model's counters (filled by the stage that owns each), the fragment sink, tracing and
+// stall-injection switches, and the first error raised by any stage.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include <systemc>
+
+#include "ref/pipeline.h"
+
+namespace rastsim::sc {
+
+struct SimContext {
+  // One core clock cycle is one simulated nanosecond; clock.core_mhz only converts cycle
+  // counts to seconds in the stats, so cycle counts are exact integers at any clock.
+  const sc_core::sc_time cycle{1, sc_core::SC_NS};
+
+  bool tracing = false;  // stages update their VCD state signals only when true
+
+  // Random stall injection (tests): before each FIFO write, with this probability, the
+  // writer waits 1..stall_max_cycles extra cycles. Seeded; never changes the image.
+  uint64_t stall_seed = 0;
+  double stall_probability = 0;
+  int stall_max_cycles = 8;
+
+  RenderStats render;       // the same counters as the reference model, stage by stage
+  FragmentSink on_fragment;  // sees each fragment leaving interpolation, in order
+
+  std::string error;  // first error raised in any stage ("" when none)
+
+  uint64_t to_cycles(const sc_core::sc_time& t) const { return t.value() / cycle.value(); }
+  // Records the first error and stops the simulation; simulate_scene rethrows it.
+  void fail(const std::string& what) {
+    if (error.empty()) error = what;
+    sc_core::sc_stop();
+  }
+};
+
+}  // namespace rastsim::sc

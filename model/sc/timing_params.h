@@ -1,0 +1,31 @@
+// SPDX-License-Identifier: Apache-2.0
+// TimingParams: the timed model's view of the config's timing keys
+// (model/ref/config_schema_timing.cpp), read once; no defaults of its own.
+#pragma once
+
+#include <cstdint>
+
+#include "ref/config.h"
+
+namespace rastsim::sc {
+
+struct TimingParams {
+  double core_mhz = 0;
+  uint64_t fetch_cycles_per_command = 0, fetch_vertices_per_cycle = 0;
+  uint64_t assembly_cycles_per_triangle = 0;
+  uint64_t setup_interval = 0, setup_latency = 0;
+  uint64_t coarse_tiles_per_cycle = 0;
+  uint64_t fine_samples_per_cycle = 0, fine_accepted_tile_cycles = 0;
+  uint64_t interp_fragments_per_cycle = 0, interp_latency = 0;
+  uint64_t rop_pixels_per_cycle = 0, rop_clear_pixels_per_cycle = 0;
+  int fifo_command = 0, fifo_triangle = 0, fifo_setup = 0, fifo_tile = 0, fifo_pixel = 0, fifo_fragment = 0;
+
+  // Reads and cross-checks the keys (setup.latency_cycles >= setup.interval_cycles);
+  // throws ConfigError naming the keys.
+  static TimingParams from_config(const Config& cfg);
+};
+
+// ceil(n / per_cycle), the cost of n items through a port of per_cycle items a cycle.
+inline uint64_t ceil_div(uint64_t n, uint64_t per_cycle) { return (n + per_cycle - 1) / per_cycle; }
+
+}  // namespace rastsim::sc

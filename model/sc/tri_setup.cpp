@@ -1,0 +1,22 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "sc/tri_setup.h"
+
+#include "ref/pipeline.h"
+
+namespace rastsim::sc {
+
+void TriSetup::body() {
+  for (;;) {
+    const TriangleItem in = read(in_);
+    if (in.state) apply_state_command(*in.state, st_, no_fb_);  // viewport, scissor
+    if (pass_state(in, out_)) continue;
+    ++ctx_.render.triangles_in;
+    auto tri = std::make_shared<SetupTriangle>();
+    const SetupOutcome outcome = setup_triangle(in.work.v, st_, in.work.cmd->loc, *tri);
+    busy(p_.setup_interval);
+    if (count_setup_outcome(outcome, ctx_.render))
+      write(out_, SetupItem{nullptr, std::move(tri)}, p_.setup_latency - p_.setup_interval);
+  }
+}
+
+}  // namespace rastsim::sc

@@ -1,0 +1,39 @@
+// SPDX-License-Identifier: Apache-2.0
+// Triangle setup: snapping, culling, edge equations and bounding box of one triangle
+// (ref/setup.h: setup_triangle), pipelined.
+//
+// - Keeps its own copy of the raster state; viewport and scissor commands update it as
+//   they pass (ref/pipeline.h: apply_state_command), in program order.
+// - Cost: setup.interval_cycles per triangle (initiation interval); the set-up triangle
+//   is ready for coarse raster setup.latency_cycles after it entered (latency >=
+//   interval). A culled triangle costs the interval and produces nothing.
+// - Counts the triangle stats of the reference model (triangles_in, culled, ...).
+#pragma once
+
+#include <memory>
+
+#include "ref/framebuffer.h"
+#include "ref/raster_state.h"
+#include "ref/setup.h"
+#include "sc/prim_assembly.h"
+
+namespace rastsim::sc {
+
+using SetupItem = Item<std::shared_ptr<const SetupTriangle>>;
+
+class TriSetup : public Stage {
+ public:
+  TriSetup(sc_core::sc_module_name name, SimContext& ctx, const RasterState& arch, const TimingParams& p,
+           Link<TriangleItem>& in, Link<SetupItem>& out)
+      : Stage(name, ctx, 2), st_(arch), p_(p), in_(in), out_(out) {}
+
+ private:
+  void body() override;
+  RasterState st_;
+  Framebuffer no_fb_;  // setup owns no pixels: clears pass through to the ROP
+  const TimingParams& p_;
+  Link<TriangleItem>& in_;
+  Link<SetupItem>& out_;
+};
+
+}  // namespace rastsim::sc
