@@ -9,6 +9,9 @@
 
 namespace rastsim::sc {
 
+// ceil(n / per_cycle), the cost of n items through a port of per_cycle items a cycle.
+inline uint64_t ceil_div(uint64_t n, uint64_t per_cycle) { return (n + per_cycle - 1) / per_cycle; }
+
 struct TimingParams {
   double core_mhz = 0;
   uint64_t fetch_cycles_per_command = 0, fetch_vertices_per_cycle = 0;
@@ -20,12 +23,15 @@ struct TimingParams {
   uint64_t rop_pixels_per_cycle = 0, rop_clear_pixels_per_cycle = 0;
   int fifo_command = 0, fifo_triangle = 0, fifo_setup = 0, fifo_tile = 0, fifo_pixel = 0, fifo_fragment = 0;
 
+  // Entries of the FIFO after a stage with a pipeline latency: the configured depth plus
+  // the transactions in flight inside the stage's pipeline (its pipeline registers),
+  // so that latency costs time but not throughput.
+  int setup_fifo_entries() const { return fifo_setup + int(ceil_div(setup_latency - setup_interval, setup_interval)); }
+  int fragment_fifo_entries() const { return fifo_fragment + int(interp_latency); }
+
   // Reads and cross-checks the keys (setup.latency_cycles >= setup.interval_cycles);
   // throws ConfigError naming the keys.
   static TimingParams from_config(const Config& cfg);
 };
-
-// ceil(n / per_cycle), the cost of n items through a port of per_cycle items a cycle.
-inline uint64_t ceil_div(uint64_t n, uint64_t per_cycle) { return (n + per_cycle - 1) / per_cycle; }
 
 }  // namespace rastsim::sc

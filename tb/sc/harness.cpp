@@ -1,0 +1,163 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "harness.h"
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <random>
+
+#include "ref/primitive_assembly.h"
+
+namespace rastsim::sctest {
+
+nlohmann::json run_isolated(const std::function<nlohmann::json()>& fn) {
+  int fd[2];
+  if (pipe(fd) != 0) return {{"error", "pipe failed"}};
+  std::cout.flush();
+  std::fflush(nullptr);
+  const pid_t pid = fork();
+  if (pid < 0) return {{"error", "fork failed"}};
+  if (pid == 0) {
+    close(fd[0]);
+    std::string out;
+    try {
+      out = fn().dump();
+    } catch (const std::exception& e) {
+      out = nlohmann::json{{"error", e.what()}}.dump();
+    }
+    for (size_t done = 0; done < out.size();) {
+      const ssize_t n = write(fd[1], out.data() + done, out.size() - done);
+      if (n <= 0) break;
+      done += size_t(n);
+    }
+    close(fd[1]);
+    _exit(0);  // no atexit handlers: the parent owns gtest's output
+  }
+  close(fd[1]);
+  std::string in;
+  char buf[65536];
+  for (ssize_t n; (n = read(fd[0], buf, sizeof buf)) > 0;) in.append(buf, size_t(n));
+  close(fd[0]);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || in.empty())
+    return {{"error", "simulation child died (status " + std::to_string(status) + ")"}};
+  return nlohmann::json::parse(in);
+}
+
+nlohmann::json compare_with_reference(const Scene& scene, const Config& cfg, const sc::SimOptions& opts) {
+  std::vector<std::string> ref_frags, sim_frags;
+  RenderStats ref_stats;
+  const Framebuffer ref_fb = render_scene(scene, raster_state_from_config(cfg), ref_stats,
+                                          [&](const Fragment& f) { ref_frags.push_back(fragment_trace_line(f)); });
+  sc::SimOptions o = opts;
+  o.on_fragment = [&](const Fragment& f) { sim_frags.push_back(fragment_trace_line(f)); };
+  const sc::SimResult r = sc::simulate_scene(scene, cfg, o);
+  int64_t first = -1;
+  const size_t n = std::min(ref_frags.size(), sim_frags.size());
+  for (size_t i = 0; i < n && first < 0; ++i)
+    if (ref_frags[i] != sim_frags[i]) first = int64_t(i);
+  if (first < 0 && ref_frags.size() != sim_frags.size()) first = int64_t(n);
+  std::string mismatch;
+  if (first >= 0) {
+    auto at = [&](const std::vector<std::string>& v) { return size_t(first) < v.size() ? v[first] : "(end)"; };
+    mismatch = "ref '" + at(ref_frags) + "' vs sim '" + at(sim_frags) + "'";
+  }
+  nlohmann::json ref_json = ref_stats.to_json(), sim_json = r.render.to_json();
+  ref_json.erase("wall_seconds");
+  sim_json.erase("wall_seconds");
+  return {{"crc_ref", ref_fb.color_crc32()},
+          {"crc_sim", r.fb.color_crc32()},
+          {"depth_equal", ref_fb.depth == r.fb.depth},
+          {"render_stats_equal", ref_json == sim_json},
+          {"fragments_ref", ref_frags.size()},
+          {"fragments_sim", sim_frags.size()},
+          {"first_mismatch", first},
+          {"mismatch", mismatch},
+          {"stats", r.to_json()}};
+}
+
+nlohmann::json simulate_stats(const Scene& scene, const Config& cfg, const sc::SimOptions& opts) {
+  return sc::simulate_scene(scene, cfg, opts).to_json();
+}
+
+namespace {
+SceneVertex random_vertex(std::mt19937_64& rng, int w, int h) {
+  // Up to a quarter of the viewport outside it on each side (clipping, guard band),
+  // some vertices exactly on pixel centres or corners.
+  std::uniform_real_distribution<double> ux(-0.25 * w, 1.25 * w), uy(-0.25 * h, 1.25 * h), u01(0, 1);
+  std::uniform_int_distribution<int> c(0, 255);
+  SceneVertex v;
+  double x = ux(rng), y = uy(rng);
+  if (u01(rng) < 0.2) {
+    x = std::floor(x) + 0.5;
+    y = std::floor(y);
+  }
+  v.x = Q64::from_double(x);
+  v.y = Q64::from_double(y);
+  v.z = u01(rng);
+  v.r = uint8_t(c(rng));
+  v.g = uint8_t(c(rng));
+  v.b = uint8_t(c(rng));
+  return v;
+}
+}  // namespace
+
+Scene random_scene(uint64_t seed, int w, int h, int triangles) {
+  std::mt19937_64 rng(seed);
+  std::uniform_int_distribution<int> pick(0, 99);
+  Scene s;
+  s.source = "random-" + std::to_string(seed);
+  auto add = [&](CommandBody b) { s.commands.push_back({std::move(b), {s.source, int(s.commands.size() + 1)}}); };
+  add(CmdViewport{w, h});
+  add(CmdClear{uint8_t(seed), 32, 64});
+  add(CmdClearDepth{1.0});
+  int made = 0;
+  while (made < triangles) {
+    const int r = pick(rng);
+    if (r < 3) {
+      add(CmdClear{uint8_t(pick(rng)), uint8_t(pick(rng)), 7});
+    } else if (r < 6) {
+      add(CmdScissor{pick(rng) < 50, w / 8, h / 8, w / 2, h / 2});
+    } else if (r < 8) {
+      add(CmdViewport{w - w / 4 + pick(rng) % (w / 4 + 1), h});
+    } else {
+      CmdPrimitives p;
+      p.topology = r < 60 ? Topology::List : r < 80 ? Topology::Strip : Topology::Fan;
+      const int n = 3 + pick(rng) % 6;
+      for (int i = 0; i < n; ++i) p.vertices.push_back(random_vertex(rng, w, h));
+      made += int(triangle_count(p));
+      add(std::move(p));
+    }
+  }
+  return s;
+}
+
+Scene repeat_scene(const Scene& s, int copies) {
+  Scene out;
+  out.source = s.source + " x" + std::to_string(copies);
+  for (int i = 0; i < copies; ++i) out.commands.insert(out.commands.end(), s.commands.begin(), s.commands.end());
+  return out;
+}
+
+std::vector<std::string> shipped_traces() {
+  std::vector<std::string> out;
+  for (const auto& e : std::filesystem::directory_iterator(std::string(RASTSIM_SOURCE_DIR) + "/traces"))
+    if (e.path().extension() == ".trace") out.push_back(e.path().string());
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+Config make_config(const std::vector<std::string>& overrides) {
+  Config cfg;
+  for (const auto& o : overrides) cfg.apply_override(o);
+  cfg.validate();
+  return cfg;
+}
+
+}  // namespace rastsim::sctest

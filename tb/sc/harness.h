@@ -1,0 +1,49 @@
+// SPDX-License-Identifier: Apache-2.0
+// Test harness of the SystemC model.
+//
+// SystemC elaborates once per process, so every simulation runs in a forked child
+// (run_isolated): the child elaborates, simulates, checks against the reference model
+// and sends a JSON summary back through a pipe. The test process itself never
+// elaborates, so one test may run many simulations and the binary also works when run
+// by hand without a --gtest_filter.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "ref/config.h"
+#include "ref/scene.h"
+#include "sc/raster_pipeline.h"
+
+namespace rastsim::sctest {
+
+// Runs fn in a forked child; returns its JSON, or {"error": ...} if it threw or died.
+nlohmann::json run_isolated(const std::function<nlohmann::json()>& fn);
+
+// In a child: simulates `scene` and renders it with the reference model; returns
+// {"crc_ref", "crc_sim", "fragments_ref", "fragments_sim", "first_mismatch" (index of
+// the first differing fragment-trace line, -1 if none), "mismatch" (the two lines),
+// "stats" (SimResult::to_json)}.
+nlohmann::json compare_with_reference(const Scene& scene, const Config& cfg, const sc::SimOptions& opts = {});
+
+// In a child: the stats of one simulation (SimResult::to_json).
+nlohmann::json simulate_stats(const Scene& scene, const Config& cfg, const sc::SimOptions& opts = {});
+
+// A seeded random scene in a W x H viewport: lists, strips and fans of random size and
+// colour, depth, mid-stream clears, a scissor and a viewport change.
+Scene random_scene(uint64_t seed, int width, int height, int triangles);
+
+// `copies` copies of a scene's commands, one after another.
+Scene repeat_scene(const Scene& s, int copies);
+
+// The shipped traces (traces/*.trace), sorted.
+std::vector<std::string> shipped_traces();
+
+// A config of defaults with the given overrides ("key=value").
+Config make_config(const std::vector<std::string>& overrides);
+
+}  // namespace rastsim::sctest

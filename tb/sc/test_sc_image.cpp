@@ -1,0 +1,139 @@
+// SPDX-License-Identifier: Apache-2.0
+// The timed model's image and fragment stream equal the reference model's: shipped
+// traces and random scenes, several tile sizes and coordinate formats, FIFOs of depth
+// 1, and random stall injection.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "harness.h"
+
+namespace rastsim::sctest {
+namespace {
+
+// Checks a compare_with_reference() summary: same image, depth, fragments, counters,
+// and sane timing (cycles >= bound; busy + stalled + starved = cycles per stage).
+void expect_matches_reference(const nlohmann::json& r) {
+  ASSERT_FALSE(r.contains("error")) << r["error"];
+  EXPECT_EQ(r["crc_sim"], r["crc_ref"]);
+  EXPECT_TRUE(r["depth_equal"].get<bool>());
+  EXPECT_TRUE(r["render_stats_equal"].get<bool>()) << r["stats"].dump();
+  EXPECT_EQ(r["fragments_sim"], r["fragments_ref"]);
+  EXPECT_EQ(r["first_mismatch"], -1) << "first differing fragment #" << r["first_mismatch"] << ": "
+                                     << r["mismatch"].get<std::string>();
+  const auto& s = r["stats"];
+  const uint64_t cycles = s["cycles"];
+  EXPECT_GE(cycles, s["cycles_lower_bound"].get<uint64_t>());
+  for (const auto& [name, st] : s["stages"].items()) {
+    SCOPED_TRACE(name);
+    EXPECT_EQ(st["busy"].get<uint64_t>() + st["stalled"].get<uint64_t>() + st["starved"].get<uint64_t>(), cycles);
+  }
+}
+
+// (tile size, coordinate format)
+using Arch = std::tuple<int, std::string>;
+
+class ScImage : public ::testing::TestWithParam<Arch> {
+ protected:
+  Config config(std::vector<std::string> extra = {}) const {
+    extra.push_back("raster.tile_size=" + std::to_string(std::get<0>(GetParam())));
+    extra.push_back("raster.coord_format=" + std::get<1>(GetParam()));
+    return make_config(extra);
+  }
+};
+
+TEST_P(ScImage, RandomScenesMatchReference) {
+  for (uint64_t seed : {1u, 2u, 3u}) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    const Scene scene = random_scene(seed, 128, 96, 60);
+    const Config cfg = config({seed == 2 ? "raster.depth_func=less" : "raster.cull=back"});
+    expect_matches_reference(run_isolated([&] { return compare_with_reference(scene, cfg); }));
+  }
+}
+
+TEST_P(ScImage, ShippedTracesMatchReference) {
+  const auto traces = shipped_traces();
+  ASSERT_FALSE(traces.empty());
+  for (const auto& path : traces) {
+    SCOPED_TRACE(path);
+    Scene scene;
+    try {
+      scene = load_trace(path);
+    } catch (const SceneError& e) {
+      ADD_FAILURE() << e.what();
+      continue;
+    }
+    // A trace's viewport may be larger than the default display: size the display to it.
+    std::vector<std::string> extra{"raster.depth_func=less", "raster.out_of_range=cull"};
+    for (const auto& c : scene.commands)
+      if (const auto* v = std::get_if<CmdViewport>(&c.body)) {
+        extra.push_back("display.width=" + std::to_string(std::max(128, v->width)));
+        extra.push_back("display.height=" + std::to_string(std::max(128, v->height)));
+      }
+    Config cfg;
+    try {
+      cfg = config(extra);
+    } catch (const ConfigError&) {
+      continue;  // the trace's viewport does not fit this coordinate format
+    }
+    expect_matches_reference(run_isolated([&] { return compare_with_reference(scene, cfg); }));
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(TileSizesAndFormats, ScImage,
+                         ::testing::Combine(::testing::Values(4, 8, 16, 64),
+                                            ::testing::Values(std::string("s7.16"), std::string("s11.4"))),
+                         [](const auto& info) {
+                           std::string f = std::get<1>(info.param);
+                           f.erase(std::remove(f.begin(), f.end(), '.'), f.end());
+                           return "Tile" + std::to_string(std::get<0>(info.param)) + "_" + f;
+                         });
+
+TEST(ScFifo, DepthOneNeverLosesOrReorders) {
+  // Every FIFO one entry deep (and no pipeline latency slots): maximal backpressure. Link::read checks the sequence
+  // numbers and simulate_scene checks writes == reads; the fragment stream must match.
+  const Config cfg = make_config({"fifo.command_depth=1", "fifo.triangle_depth=1", "fifo.setup_depth=1",
+                                  "fifo.tile_depth=1", "fifo.pixel_depth=1", "fifo.fragment_depth=1",
+                                  "raster.tile_size=8", "setup.latency_cycles=2", "interp.latency_cycles=0"});
+  const Scene scene = random_scene(11, 128, 128, 80);
+  const auto r = run_isolated([&] { return compare_with_reference(scene, cfg); });
+  expect_matches_reference(r);
+  for (const auto& [name, f] : r["stats"]["fifos"].items()) EXPECT_EQ(f["depth"], 1) << name;
+}
+
+TEST(ScFifo, RandomStallsDoNotChangeImage) {
+  const uint64_t seed = uint64_t(::testing::UnitTest::GetInstance()->random_seed()) * 7919 + 5;
+  std::cout << "stall injection seed " << seed << " (rastsim simulate --stall-seed " << seed << ")\n";
+  const Config cfg = make_config({"raster.tile_size=8", "raster.depth_func=lequal"});
+  const Scene scene = random_scene(12, 128, 128, 80);
+  sc::SimOptions stalls;
+  stalls.stall_seed = seed;
+  stalls.stall_probability = 0.3;
+  const auto calm = run_isolated([&] { return simulate_stats(scene, cfg); });
+  const auto r = run_isolated([&] { return compare_with_reference(scene, cfg, stalls); });
+  expect_matches_reference(r);
+  ASSERT_FALSE(calm.contains("error")) << calm["error"];
+  EXPECT_GT(r["stats"]["cycles"].get<uint64_t>(), calm["cycles"].get<uint64_t>()) << "stalls had no effect";
+}
+
+TEST(ScVcd, TracesFifoOccupancyAndStageState) {
+  const auto path = std::filesystem::temp_directory_path() / ("rastsim_sc_" + std::to_string(getpid()) + ".vcd");
+  sc::SimOptions o;
+  o.vcd_path = path.string();
+  const Scene scene = random_scene(13, 64, 64, 10);
+  const auto r = run_isolated([&] { return simulate_stats(scene, Config{}, o); });
+  ASSERT_FALSE(r.contains("error")) << r["error"];
+  std::ifstream is(path);
+  const std::string vcd((std::istreambuf_iterator<char>(is)), std::istreambuf_iterator<char>());
+  std::filesystem::remove(path);
+  // sc_trace splits "tile_fifo.occupancy" into a scope and a variable.
+  for (const char* scope : {"tile_fifo", "fragment_fifo", "fine_raster", "rop"})
+    EXPECT_NE(vcd.find(std::string("$scope module ") + scope + " $end"), std::string::npos) << scope;
+  EXPECT_NE(vcd.find(" occupancy [31:0]"), std::string::npos);
+  EXPECT_NE(vcd.find(" state [31:0]"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace rastsim::sctest
