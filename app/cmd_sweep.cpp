@@ -1,5 +1,243 @@
 // SPDX-License-Identifier: Apache-2.0
+// `rastsim sweep`: the cross product of scenes and swept config values, each point one
+// `rastsim simulate` child process of this same binary (SystemC elaborates only once a
+// process), run --jobs at a time; one CSV row a point with every swept key and stat.
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <fcntl.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <sstream>
+#include <thread>
+
 #include "common.h"
+
 namespace rastsim::app {
-void register_sweep(CLI::App&) {}
+
+namespace {
+
+struct Axis {
+  std::string key;
+  std::vector<std::string> values;
+};
+
+struct Point {
+  std::string scene;
+  std::vector<std::string> values;  // one per axis
+  std::string stats_path, err_path;
+  int status = -1;                  // exit status; -1 = not run
+  nlohmann::json stats;
+};
+
+Axis parse_axis(const std::string& arg) {
+  const auto eq = arg.find('=');
+  if (eq == std::string::npos || eq == 0 || eq + 1 == arg.size())
+    throw std::runtime_error("--set " + arg + ": expected section.key=value[,value...]");
+  Axis a{arg.substr(0, eq), {}};
+  std::stringstream ss(arg.substr(eq + 1));
+  for (std::string v; std::getline(ss, v, ',');)
+    if (!v.empty()) a.values.push_back(v);
+  return a;
+}
+
+// "stages": {"rop": {"busy": 3}} -> "stages.rop.busy" = 3, in document order.
+void flatten(const nlohmann::json& j, const std::string& prefix, std::vector<std::pair<std::string, nlohmann::json>>& out) {
+  for (const auto& [k, v] : j.items()) {
+    const std::string key = prefix.empty() ? k : prefix + "." + k;
+    if (v.is_object()) flatten(v, key, out);
+    else out.emplace_back(key, v);
+  }
+}
+
+std::string csv_field(const std::string& s) {
+  if (s.find_first_of(",\"\n") == std::string::npos) return s;
+  std::string q = "\"";
+  for (char c : s) q += (c == '"') ? std::string("\"\"") : std::string(1, c);
+  return q + "\"";
+}
+std::string csv_value(const nlohmann::json& v) { return csv_field(v.is_string() ? v.get<std::string>() : v.dump()); }
+
+std::string describe(const Point& p, const std::vector<Axis>& axes) {
+  std::string s = "scene=" + p.scene;
+  for (size_t i = 0; i < axes.size(); ++i) s += " " + axes[i].key + "=" + p.values[i];
+  return s;
+}
+
+std::string last_line(const std::string& path) {
+  std::ifstream is(path);
+  std::string line, last;
+  while (std::getline(is, line))
+    if (!line.empty()) last = line;
+  return last.empty() ? "(no message)" : last;
+}
+
+// Starts `rastsim simulate` for one point; stdout discarded, stderr to the point's file.
+pid_t spawn(const Point& p, const std::vector<Axis>& axes, const ConfigOptions& base) {
+  std::vector<std::string> args{"rastsim", "simulate", "--quiet", "--scene", p.scene, "--stats", p.stats_path};
+  if (!base.config_path.empty()) args.insert(args.end(), {"--config", base.config_path});
+  for (const auto& s : base.sets) args.insert(args.end(), {"--set", s});
+  for (size_t i = 0; i < axes.size(); ++i) args.insert(args.end(), {"--set", axes[i].key + "=" + p.values[i]});
+  const pid_t pid = fork();
+  if (pid != 0) return pid;
+  const int null_fd = open("/dev/null", O_WRONLY);
+  const int err_fd = open(p.err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  if (null_fd >= 0) dup2(null_fd, 1);
+  if (err_fd >= 0) dup2(err_fd, 2);
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  execv("/proc/self/exe", argv.data());
+  _exit(127);
+}
+
+class Progress {
+ public:
+  explicit Progress(size_t total) : total_(total), tty_(isatty(2)) {}
+  void update(size_t done, size_t failed, const std::string& what) {
+    if (tty_) {
+      const int width = 30, filled = int(width * done / std::max<size_t>(total_, 1));
+      std::cerr << "\r[" << std::string(filled, '#') << std::string(width - filled, ' ') << "] " << done << "/"
+                << total_ << (failed ? " (" + std::to_string(failed) + " failed)" : "") << std::flush;
+      if (done == total_) std::cerr << "\n";
+    } else {
+      std::cerr << "sweep: " << done << "/" << total_ << " " << what << "\n";
+    }
+  }
+  bool tty() const { return tty_; }
+
+ private:
+  size_t total_;
+  bool tty_;
+};
+
+}  // namespace
+
+void register_sweep(CLI::App& app) {
+  auto* cmd = app.add_subcommand(
+      "sweep", "Simulate the cross product of scenes and config values in parallel; one CSV row a run");
+  static ConfigOptions base;
+  static std::vector<std::string> scenes, set_args;
+  static std::string out_path;
+  static unsigned jobs = std::max(1u, std::thread::hardware_concurrency());
+  cmd->add_option("--config,-c", base.config_path, "Base architecture config (TOML)")->check(CLI::ExistingFile);
+  cmd->add_option("--scene,-s", scenes, "Scene (repeatable): a trace or an OBJ")->required()->check(CLI::ExistingFile);
+  cmd->add_option("--set", set_args,
+                  "KEY=V1,V2,... sweeps a key over values (repeatable; the sweep is the cross product); "
+                  "KEY=V fixes one")
+      ->type_name("KEY=VALUES")
+      ->allow_extra_args(false);
+  cmd->add_option("--out,-o", out_path, "CSV to write: scene, each swept key, then every stat")->required();
+  cmd->add_option("--jobs,-j", jobs, "Simulations run at once (default: the number of cores)")
+      ->check(CLI::Range(1u, 1024u));
+  cmd->callback([] {
+    // Validate every value up front, so a typo fails before anything runs.
+    std::vector<Axis> axes;
+    for (const auto& s : set_args) {
+      Axis a = parse_axis(s);
+      if (a.values.size() == 1) {
+        base.sets.push_back(a.key + "=" + a.values[0]);
+        continue;
+      }
+      axes.push_back(std::move(a));
+    }
+    const Config cfg = load_config(base);
+    for (const auto& a : axes)
+      for (const auto& v : a.values) {
+        Config c = cfg;
+        c.apply_override(a.key + "=" + v);
+        c.validate();
+      }
+
+    const auto tmp = std::filesystem::temp_directory_path() /
+                     ("rastsim-sweep-" + std::to_string(getpid()));
+    std::filesystem::create_directories(tmp);
+    std::vector<Point> points;
+    for (const auto& scene : scenes) {
+      std::vector<size_t> idx(axes.size(), 0);
+      for (;;) {
+        Point p;
+        p.scene = scene;
+        for (size_t i = 0; i < axes.size(); ++i) p.values.push_back(axes[i].values[idx[i]]);
+        const std::string n = std::to_string(points.size());
+        p.stats_path = (tmp / (n + ".json")).string();
+        p.err_path = (tmp / (n + ".err")).string();
+        points.push_back(std::move(p));
+        size_t i = axes.size();
+        while (i > 0 && ++idx[i - 1] == axes[i - 1].values.size()) idx[--i] = 0;
+        if (i == 0) break;
+      }
+    }
+
+    Progress progress(points.size());
+    std::map<pid_t, size_t> running;
+    size_t next = 0, done = 0, failed = 0;
+    while (done < points.size()) {
+      while (next < points.size() && running.size() < jobs) {
+        running[spawn(points[next], axes, base)] = next;
+        ++next;
+      }
+      int status = 0;
+      const pid_t pid = waitpid(-1, &status, 0);
+      if (pid < 0) throw std::runtime_error("sweep: waitpid failed");
+      const auto it = running.find(pid);
+      if (it == running.end()) continue;
+      Point& p = points[it->second];
+      running.erase(it);
+      ++done;
+      p.status = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+      if (p.status == 0) {
+        std::ifstream is(p.stats_path);
+        p.stats = nlohmann::json::parse(is);
+      } else {
+        ++failed;
+        if (progress.tty()) std::cerr << "\n";
+        std::cerr << "sweep: point " << describe(p, axes) << " failed: " << last_line(p.err_path) << "\n";
+      }
+      progress.update(done, failed, describe(p, axes) + (p.status == 0 ? " ok" : " FAILED"));
+    }
+
+    // Columns: scene, swept keys, status, then every stat (first successful run's order).
+    std::vector<std::string> stat_keys;
+    for (const auto& p : points)
+      if (p.status == 0) {
+        std::vector<std::pair<std::string, nlohmann::json>> flat;
+        flatten(p.stats, "", flat);
+        for (const auto& [k, v] : flat)
+          if (k != "scene") stat_keys.push_back(k);
+        break;
+      }
+    std::ofstream os(out_path);
+    if (!os) throw std::runtime_error(out_path + ": cannot open for writing");
+    os << "scene";
+    for (const auto& a : axes) os << "," << csv_field(a.key);
+    os << ",status";
+    for (const auto& k : stat_keys) os << "," << csv_field(k);
+    os << "\n";
+    for (const auto& p : points) {
+      os << csv_field(p.scene);
+      for (const auto& v : p.values) os << "," << csv_field(v);
+      os << "," << csv_field(p.status == 0 ? "ok" : last_line(p.err_path));
+      std::map<std::string, nlohmann::json> flat_map;
+      if (p.status == 0) {
+        std::vector<std::pair<std::string, nlohmann::json>> flat;
+        flatten(p.stats, "", flat);
+        flat_map.insert(flat.begin(), flat.end());
+      }
+      for (const auto& k : stat_keys) os << "," << (flat_map.count(k) ? csv_value(flat_map[k]) : "");
+      os << "\n";
+    }
+    os.close();
+    std::filesystem::remove_all(tmp);
+    std::cerr << "sweep: wrote " << points.size() << " rows to " << out_path << "\n";
+    if (failed) throw std::runtime_error(std::to_string(failed) + " of " + std::to_string(points.size()) +
+                                         " sweep points failed (see above)");
+  });
+}
+
 }  // namespace rastsim::app
