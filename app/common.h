@@ -32,5 +32,6 @@ void register_config(CLI::App& app);
 void register_render(CLI::App& app);
 void register_simulate(CLI::App& app);
 void register_sweep(CLI::App& app);
+void register_scanout(CLI::App& app);
 
 }  // namespace rastsim::app

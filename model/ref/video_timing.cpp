@@ -110,7 +110,8 @@ VideoTiming video_timing_from_config(const Config& cfg) {
   }
   const int64_t fw = cfg.get_int("display.width"), fh = cfg.get_int("display.height");
   if (fw < t.h_active || fh < t.v_active)
-    throw ConfigError(cfg.origin("display.width") + ": framebuffer display.width x display.height = " +
+    throw ConfigError(cfg.origin(cfg.origin("display.width") != "default" ? "display.width" : "display.timing") +
+                      ": framebuffer display.width x display.height = " +
                       std::to_string(fw) + "x" + std::to_string(fh) + " is smaller than the active area " +
                       std::to_string(t.h_active) + "x" + std::to_string(t.v_active) + " of display.timing = " +
                       name + ": the scan-out would have no pixels for part of the screen");

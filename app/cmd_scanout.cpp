@@ -1,0 +1,162 @@
+// SPDX-License-Identifier: Apache-2.0
+// `rastsim scanout`: render a scene, scan the framebuffer out through the DAC model,
+// decode the signal with the virtual monitor and write the decoded frame and stats.
+// `rastsim export-rtl-scanout`: the scan-out RTL's parameter header from a config.
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
+
+#include "common.h"
+#include "monitor.h"
+#include "pipeline.h"
+#include "scanout.h"
+
+namespace rastsim::app {
+
+namespace {
+
+nlohmann::json timing_json(const VideoTiming& t) {
+  return {{"name", t.name},
+          {"h_active", t.h_active}, {"h_front_porch", t.h_front_porch}, {"h_sync", t.h_sync},
+          {"h_back_porch", t.h_back_porch}, {"h_total", t.h_total},
+          {"v_active", t.v_active}, {"v_front_porch", t.v_front_porch}, {"v_sync", t.v_sync},
+          {"v_back_porch", t.v_back_porch}, {"v_total", t.v_total},
+          {"h_sync_polarity", t.h_sync_positive ? "positive" : "negative"},
+          {"v_sync_polarity", t.v_sync_positive ? "positive" : "negative"},
+          {"pixel_clock_hz", t.pixel_clock_hz}, {"line_rate_hz", t.line_rate_hz()},
+          {"frame_rate_hz", t.frame_rate_hz()}};
+}
+
+// Writes the video signal to .vcd, or to .fst through gtkwave's vcd2fst.
+struct SignalFile {
+  std::string path, vcd_path;
+  std::unique_ptr<VideoVcdWriter> w;
+  SignalFile(const std::string& p, const VideoTiming& t, int bits, long long first, long long count) : path(p) {
+    const bool fst = p.size() > 4 && p.substr(p.size() - 4) == ".fst";
+    vcd_path = fst ? p + ".tmp.vcd" : p;
+    w = std::make_unique<VideoVcdWriter>(vcd_path, t.pixel_clock_hz, bits, first, count);
+  }
+  void close() {
+    w->close();
+    if (vcd_path == path) return;
+    const std::string cmd = "vcd2fst '" + vcd_path + "' '" + path + "' > /dev/null";
+    const int rc = std::system(cmd.c_str());
+    std::remove(vcd_path.c_str());
+    if (rc != 0) throw std::runtime_error(path + ": vcd2fst failed (install gtkwave, or write .vcd)");
+  }
+};
+
+}  // namespace
+
+void register_scanout(CLI::App& app) {
+  auto* cmd = app.add_subcommand(
+      "scanout", "Render a scene, scan it out through the video DAC, decode it with the virtual monitor");
+  static ConfigOptions opts;
+  static std::string scene_path, out_path, signal_path, stats_path, lines_arg;
+  static bool quiet = false;
+  add_config_options(cmd, opts);
+  cmd->add_option("--scene,-s", scene_path, "Scene: a trace (.trace) or a Wavefront OBJ (.obj)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  cmd->add_option("-o,--output", out_path, "Decoded frame to write: .png or .ppm")->required();
+  cmd->add_option("--signal", signal_path,
+                  "Write the video signal (hsync, vsync, blank, codes, levels in V) of the first frame: .vcd or .fst");
+  cmd->add_option("--signal-lines", lines_arg, "Only lines FIRST..FIRST+COUNT-1 of the first frame in --signal")
+      ->type_name("FIRST:COUNT");
+  cmd->add_option("--stats", stats_path, "Write configured and measured timing and the decode check as JSON ('-' for stdout)");
+  cmd->add_flag("--quiet,-q", quiet, "Print only monitor errors");
+  cmd->callback([] {
+    const Config cfg = load_config(opts);
+    const VideoTiming t = video_timing_from_config(cfg);  // faults in the timing keys stop here
+    const Dac dac(dac_config_from_config(cfg));
+    const Scene scene = load_scene(scene_path, obj_placement(cfg));
+    RenderStats rstats;
+    const Framebuffer fb = render_scene(scene, raster_state_from_config(cfg), rstats);
+
+    long long first = 0, count = t.pixels_per_frame();
+    if (!lines_arg.empty()) {
+      int a = 0, n = 0;
+      if (std::sscanf(lines_arg.c_str(), "%d:%d", &a, &n) != 2 || a < 0 || n < 1 || a + n > t.v_total)
+        throw std::runtime_error("--signal-lines " + lines_arg + ": expected FIRST:COUNT within the " +
+                                 std::to_string(t.v_total) + " lines of a frame");
+      first = static_cast<long long>(a) * t.h_total, count = static_cast<long long>(n) * t.h_total;
+    }
+    std::unique_ptr<SignalFile> sig;
+    if (!signal_path.empty()) sig = std::make_unique<SignalFile>(signal_path, t, dac.config().bits, first, count);
+    Monitor mon(t, dac.config());
+    // Two frames: the monitor frames a picture between two vsync leading edges.
+    Scanout(t, dac, fb).run(2, [&](const VideoSample& s) {
+      mon.push(s);
+      if (sig) sig->w->push(s);
+    });
+    if (sig) sig->close();
+    const MonitorResult r = mon.finish();
+    write_image(r.image, out_path);
+
+    // Compare with the framebuffer's visible corner (the active area).
+    long long mismatched = 0;
+    int max_err = 0;
+    bool same = r.locked;
+    for (int y = 0; y < t.v_active && r.locked; ++y)
+      for (int x = 0; x < t.h_active; ++x) {
+        bool diff = false;
+        for (int c = 0; c < 3; ++c) {
+          const int e = std::abs(int(r.image.pixel(x, y)[c]) - int(fb.pixel(x, y)[c]));
+          max_err = std::max(max_err, e);
+          diff |= e != 0;
+        }
+        mismatched += diff;
+      }
+    same = same && mismatched == 0;
+    const VideoTiming& m = r.measured;
+    nlohmann::json j = {
+        {"config", cfg.source_name()}, {"scene", scene_path},
+        {"h_total", m.h_total}, {"v_total", m.v_total}, {"h_sync", m.h_sync}, {"v_sync", m.v_sync},
+        {"h_active", m.h_active}, {"v_active", m.v_active},
+        {"h_front_porch", m.h_front_porch}, {"h_back_porch", m.h_back_porch},
+        {"v_front_porch", m.v_front_porch}, {"v_back_porch", m.v_back_porch},
+        {"line_rate_hz", r.line_rate_hz}, {"frame_rate_hz", r.frame_rate_hz},
+        {"frames_decoded", r.frames_decoded},
+        {"decoded_equals_framebuffer", same}, {"mismatched_pixels", mismatched}, {"max_code_error", max_err},
+        {"no_data_pixels", r.no_data_pixels}, {"monitor_errors", r.errors},
+        {"configured", timing_json(t)},
+        {"dac", {{"bits", dac.config().bits}, {"full_scale_volts", dac.config().full_scale_volts},
+                 {"inl_lsb", dac.config().inl_lsb}, {"dnl_lsb", dac.config().dnl_lsb},
+                 {"lut", cfg.get_string("dac.lut")}}},
+        {"framebuffer_crc32", rstats.framebuffer_crc32}};
+    if (!stats_path.empty()) write_json(stats_path, j);
+    for (const auto& e : r.errors) std::cerr << "scanout: monitor: " << e << "\n";
+    if (!quiet) {
+      char buf[512];
+      std::snprintf(buf, sizeof buf,
+                    "scanout: %s, configured line %.3f kHz, frame %.2f Hz; measured %dx%d total, hsync %d px, "
+                    "vsync %d lines -> line %.3f kHz, frame %.2f Hz; decoded frame %s the framebuffer%s\n",
+                    describe_timing(t).substr(0, describe_timing(t).find(':')).c_str(), t.line_rate_hz() / 1e3,
+                    t.frame_rate_hz(), m.h_total, m.v_total, m.h_sync, m.v_sync, r.line_rate_hz / 1e3,
+                    r.frame_rate_hz, same ? "equals" : "differs from",
+                    same ? "" : (" (" + std::to_string(mismatched) + " pixels, max error " + std::to_string(max_err) + ")").c_str());
+      std::cout << buf;
+    }
+    if (!r.ok()) throw std::runtime_error("virtual monitor: " + std::to_string(r.errors.size()) + " timing errors (above)");
+  });
+
+  auto* exp = app.add_subcommand("export-rtl-scanout",
+                                 "Write the scan-out RTL's parameters (Verilog localparams) from a config");
+  static ConfigOptions eopts;
+  static std::string vh_path;
+  add_config_options(exp, eopts);
+  exp->add_option("-o,--output", vh_path, "Verilog header to write ('-' for stdout)")->required();
+  exp->callback([] {
+    const std::string text = scanout_verilog_params(load_config(eopts));
+    if (vh_path == "-") {
+      std::cout << text;
+      return;
+    }
+    std::ofstream os(vh_path);
+    os << text;
+    if (!os) throw std::runtime_error(vh_path + ": cannot write");
+  });
+}
+
+}  // namespace rastsim::app
