@@ -20,7 +20,7 @@ void add_timing_params(std::vector<ParamDef>& s) {
   // ---- command fetch ----
   add({"fetch.cycles_per_command", T::Int, int64_t{1}, "cycles", 1, 1024, {},
        "Cycles to decode one command header (state command, or the start of a primitive command)"});
-  add({"fetch.vertices_per_cycle", T::Int, int64_t{1}, "vertices/cycle", 1, 64, {},
+  add({"fetch.vertices_per_cycle", T::Int, int64_t{3}, "vertices/cycle", 1, 64, {},
        "Vertex fetch bandwidth; a triangle's new vertices (3 for lists, 1 for strips/fans) take ceil(n / this)"});
   // ---- primitive assembly ----
   add({"assembly.cycles_per_triangle", T::Int, int64_t{1}, "cycles", 1, 1024, {},
