@@ -1,11 +1,69 @@
 // SPDX-License-Identifier: Apache-2.0
 // Keys of video timing (display.timing and the explicit custom-timing keys), the video
 // DAC (dac.*) and the scan-out stage (scanout.*). The preset values live in one table
-// (video_timing.cpp); the custom keys default to the `panel` preset's values from it.
+// below, beside the keys; the custom keys default to the `panel` preset's values.
+// (Self-contained with config.cpp: tools that build only the config sources link it.)
+#include <cstdio>
+
 #include "config.h"
 #include "video_timing.h"
 
 namespace rastsim {
+
+namespace {
+
+VideoTiming make(const char* name, int ha, int hfp, int hs, int hbp, int va, int vfp, int vs, int vbp,
+                 bool hpos, bool vpos, double pclk_hz) {
+  VideoTiming t;
+  t.name = name;
+  t.h_active = ha, t.h_front_porch = hfp, t.h_sync = hs, t.h_back_porch = hbp;
+  t.h_total = ha + hfp + hs + hbp;
+  t.v_active = va, t.v_front_porch = vfp, t.v_sync = vs, t.v_back_porch = vbp;
+  t.v_total = va + vfp + vs + vbp;
+  t.h_sync_positive = hpos, t.v_sync_positive = vpos;
+  t.pixel_clock_hz = pclk_hz;
+  return t;
+}
+
+std::vector<VideoTiming> make_presets() {
+  return {
+      // A small panel matching the default 128x128 viewport: short porches, 160x136
+      // total, pixel clock chosen for exactly 60 Hz (160 * 136 * 60 = 1.3056 MHz).
+      make("panel", 128, 8, 16, 8, 128, 2, 2, 4, false, false, 1.3056e6),
+      // VESA/IBM VGA 640x480 "@60": 25.175 MHz, 800x525, negative syncs.
+      make("vga640x480@60", 640, 16, 96, 48, 480, 10, 2, 33, false, false, 25.175e6),
+      // CEA-861 1280x720p60 (VIC 4): 74.25 MHz, 1650x750, positive syncs.
+      make("720p60", 1280, 110, 40, 220, 720, 5, 5, 20, true, true, 74.25e6),
+      // CEA-861 1920x1080p60 (VIC 16): 148.5 MHz, 2200x1125, positive syncs.
+      make("1080p60", 1920, 88, 44, 148, 1080, 4, 5, 36, true, true, 148.5e6),
+  };
+}
+
+}  // namespace
+
+const std::vector<VideoTiming>& timing_presets() {
+  static const std::vector<VideoTiming> presets = make_presets();
+  return presets;
+}
+
+const VideoTiming* find_timing_preset(const std::string& name) {
+  for (const auto& p : timing_presets())
+    if (p.name == name) return &p;
+  return nullptr;
+}
+
+std::string describe_timing(const VideoTiming& t) {
+  char buf[256];
+  std::snprintf(buf, sizeof buf,
+                "%s: %dx%d active, %dx%d total, porches h %d/%d/%d v %d/%d/%d, %s/%s syncs, %.6g MHz -> "
+                "line %.3f kHz, frame %.2f Hz",
+                t.name.c_str(), t.h_active, t.v_active, t.h_total, t.v_total, t.h_front_porch, t.h_sync,
+                t.h_back_porch, t.v_front_porch, t.v_sync, t.v_back_porch, t.h_sync_positive ? "+" : "-",
+                t.v_sync_positive ? "+" : "-", t.pixel_clock_hz / 1e6, t.line_rate_hz() / 1e3,
+                t.frame_rate_hz());
+  return buf;
+}
+
 
 void add_scanout_params(std::vector<ParamDef>& s) {
   using T = ParamType;

@@ -34,7 +34,8 @@ struct VideoTiming {
   bool operator==(const VideoTiming&) const = default;
 };
 
-// The presets `display.timing` names (not "custom"), in declaration order.
+// The presets `display.timing` names (not "custom"), in declaration order; the table
+// sits beside the keys in config_schema_scanout.cpp.
 const std::vector<VideoTiming>& timing_presets();
 // nullptr when there is no preset of that name.
 const VideoTiming* find_timing_preset(const std::string& name);
