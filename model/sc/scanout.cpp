@@ -1,0 +1,126 @@
+// SPDX-License-Identifier: Apache-2.0
+// Timed scan-out (see scanout.h): a line-fetch thread in the core-clock domain and a
+// display thread in the pixel-clock domain, joined by the line buffer.
+#include "sc/scanout.h"
+
+#include <cmath>
+
+namespace rastsim::sc {
+
+using sc_core::sc_time;
+using sc_core::SC_PS;
+
+ScanoutParams scanout_params_from_config(const Config& cfg, double core_mhz) {
+  ScanoutParams p;
+  p.timing = video_timing_from_config(cfg);
+  p.single_buffered = cfg.get_string("scanout.buffering") == "single";
+  p.line_buffer_lines = static_cast<int>(cfg.get_int("scanout.line_buffer_lines"));
+  p.fetch_px_per_cycle = static_cast<int>(cfg.get_int("scanout.fetch_px_per_cycle"));
+  p.core_hz = core_mhz * 1e6;
+  return p;
+}
+
+namespace {
+uint64_t fetch_cycles(const ScanoutParams& p) {
+  return (p.timing.h_active + p.fetch_px_per_cycle - 1) / p.fetch_px_per_cycle;
+}
+double frame_period_s(const VideoTiming& t) { return double(t.pixels_per_frame()) / t.pixel_clock_hz; }
+}  // namespace
+
+uint64_t scanout_deadline_cycles(const ScanoutParams& p) {
+  const VideoTiming& t = p.timing;
+  if (!p.single_buffered) return static_cast<uint64_t>(std::floor(frame_period_s(t) * p.core_hz));
+  // Line 0 is needed after the vertical blanking; its fetch must have finished by then.
+  const double t0 = double(t.v_total - t.v_active) * t.h_total / t.pixel_clock_hz;
+  const double c = std::floor(t0 * p.core_hz) - double(fetch_cycles(p));
+  return c < 0 ? 0 : static_cast<uint64_t>(c);
+}
+
+nlohmann::json ScanoutReport::to_json() const {
+  return {{"frame_time_cycles", frame_time_cycles}, {"deadline_cycles", deadline_cycles},
+          {"frame_deadline_met", frame_deadline_met}, {"lines_fetched", lines_fetched},
+          {"underrun_lines", underrun_lines}, {"underrun_pixels", underrun_pixels},
+          {"frame_repeated", frame_repeated}, {"pixel_clocks", pixel_clocks},
+          {"frame_period_s", frame_period_s}};
+}
+
+ScanoutModule::ScanoutModule(sc_core::sc_module_name name, const ScanoutParams& p, uint64_t raster_finish_cycles,
+                             const Scanout* ref, SampleSink sink)
+    : sc_module(name), p_(p), line_buffer_("line_buffer", p.line_buffer_lines), ref_(ref), sink_(std::move(sink)) {
+  // Time in ps; the raster finish time is rounded up to the next ps.
+  t_ready_ = sc_time(std::ceil(double(raster_finish_cycles) / p.core_hz * 1e12), SC_PS);
+  report.frame_time_cycles = raster_finish_cycles;
+  report.deadline_cycles = scanout_deadline_cycles(p);
+  report.frame_deadline_met = raster_finish_cycles <= report.deadline_cycles;
+  report.frame_period_s = frame_period_s(p.timing);
+  SC_THREAD(fetch_thread);
+  SC_THREAD(display_thread);
+}
+
+sc_time ScanoutModule::line_start(long long line) const {
+  // Absolute, so per-line rounding never accumulates.
+  return sc_time(std::round(double(line) * p_.timing.h_total / p_.timing.pixel_clock_hz * 1e12), SC_PS);
+}
+
+void ScanoutModule::fetch_thread() {
+  const VideoTiming& t = p_.timing;
+  // Double buffering: the front buffer is complete from t = 0. Single: only at T_r.
+  if (p_.single_buffered) wait(t_ready_);
+  const sc_time fetch = sc_time(std::ceil(double(fetch_cycles(p_)) / p_.core_hz * 1e12), SC_PS);
+  for (int y = 0; y < t.v_active; ++y) {
+    if (y < next_needed_) continue;  // its time has passed: the display sent it blank
+    wait(fetch);
+    line_buffer_.write(y);  // blocks while the line buffer is full
+  }
+}
+
+void ScanoutModule::display_thread() {
+  const VideoTiming& t = p_.timing;
+  const long long blank_lines = t.v_total - t.v_active;
+  // Vertical blanking before the frame: lines v_active .. v_total-1 of the previous one.
+  for (long long l = 0; l < blank_lines; ++l) {
+    if (sink_)
+      for (int h = 0; h < t.h_total; ++h) {
+        wait(sc_time(std::round((double(l) * t.h_total + h) / t.pixel_clock_hz * 1e12), SC_PS) - sc_core::sc_time_stamp());
+        sink_(ref_->sample(h, int(t.v_active + l)));
+      }
+    else
+      wait(line_start(l + 1) - sc_core::sc_time_stamp());
+  }
+  for (int y = 0; y < t.v_total; ++y) {
+    const long long l = blank_lines + y;
+    bool has_data = true;
+    if (y < t.v_active) {
+      // Discard lines fetched too late for their slot, then take this one if it is there.
+      int got = -1;
+      while (line_buffer_.nb_read(got) && got < y) {}
+      next_needed_ = y + 1;
+      has_data = got == y;
+      if (has_data) {
+        ++report.lines_fetched;
+      } else {
+        ++report.underrun_lines;
+        report.underrun_pixels += t.h_active;
+      }
+    }
+    if (sink_)
+      for (int h = 0; h < t.h_total; ++h) {
+        wait(sc_time(std::round((double(l) * t.h_total + h) / t.pixel_clock_hz * 1e12), SC_PS) - sc_core::sc_time_stamp());
+        sink_(ref_->sample(h, y, has_data));
+      }
+    else
+      wait(line_start(l + 1) - sc_core::sc_time_stamp());
+  }
+  report.pixel_clocks = static_cast<uint64_t>(blank_lines + t.v_total) * t.h_total;
+  report.frame_repeated = !p_.single_buffered && !report.frame_deadline_met;
+  sc_core::sc_stop();
+}
+
+ScanoutReport run_scanout(const ScanoutParams& p, uint64_t raster_finish_cycles, const Scanout* ref,
+                          const SampleSink& sink) {
+  ScanoutModule m("scanout", p, raster_finish_cycles, ref, sink);
+  sc_core::sc_start();
+  return m.report;
+}
+
+}  // namespace rastsim::sc
