@@ -573,11 +573,11 @@ TEST(ShiftRightRound, WideValuesMatchDefinition) {
   }
 }
 
-// BUG (fixed_point.cpp, shift_right_round): for shift == 127 the early return assumes
+// Regression, fixed (fixed_point.cpp, shift_right_round): for shift == 127 the early return assumes
 // |v| / 2^shift < 1/2, but |v| < 2^127 only gives < 1, so v in (2^126, 2^127) must round
 // to 1 under NearestEven/HalfUp (and v < -2^126 to -1) while the code returns 0.
-// Unreachable from today's callers (largest shift is 63 in snap_coord).
-TEST(ShiftRightRound, DISABLED_Shift127RoundsValuesAboveHalf) {
+// Unreachable from the current callers (largest shift is 63 in snap_coord).
+TEST(ShiftRightRound, Shift127RoundsValuesAboveHalf) {
   const i128 v = pow2(126) + 1;  // v / 2^127 = 0.5 + 2^-127
   EXPECT_EQ(to_string(shift_right_round(v, 127, Rounding::NearestEven)), "1");
   EXPECT_EQ(to_string(shift_right_round(v, 127, Rounding::HalfUp)), "1");
@@ -640,11 +640,11 @@ TEST(DivRound, WideValuesMatchDefinition) {
   }
 }
 
-// BUG (fixed_point.cpp, div_round): `2 * r` overflows i128 when den > 2^126 (r can be
+// Regression, fixed (fixed_point.cpp, div_round): `2 * r` overflows i128 when den > 2^126 (r can be
 // up to den - 1), which is undefined behaviour and in practice wraps negative, so
 // 2^126 / (2^126 + 1) (~1) rounds to 0; UBSan (RASTSIM_SANITIZE) reports "signed integer
 // overflow" at the `2 * r` comparisons. Unreachable from the pipeline (area2 < 2^66).
-TEST(DivRound, DISABLED_HugeDenominatorDoesNotOverflow) {
+TEST(DivRound, HugeDenominatorDoesNotOverflow) {
   const i128 den = pow2(126) + 1;
   EXPECT_EQ(to_string(div_round(pow2(126), den, Rounding::NearestEven)), "1");
   EXPECT_EQ(to_string(div_round(pow2(126), den, Rounding::HalfUp)), "1");
@@ -740,12 +740,12 @@ TEST(SignedWidth, HandWorkedAndRandom) {
   }
 }
 
-// BUG (fixed_point.h/.cpp, fits_signed/signed_width): values needing all 128 bits make
+// Regression, fixed (fixed_point.h/.cpp, fits_signed/signed_width): values needing all 128 bits make
 // fits_signed(v, 128) compute i128(1) << 127 and negate it (overflow), so it reports
 // false and signed_width goes on to shift by 128 (undefined); in a RelWithDebInfo build
 // the call never returns, and UBSan reports the negation in fits_signed. Unreachable in
 // the model (widths there stay below 70 bits).
-TEST(SignedWidth, DISABLED_FullWidthValues) {
+TEST(SignedWidth, FullWidthValues) {
   EXPECT_EQ(signed_width(pow2(126)), 128);
   EXPECT_EQ(signed_width(-pow2(126) - 1), 128);
 }

@@ -114,9 +114,11 @@ bool Q64::saturated() const {
 
 i128 shift_right_round(i128 v, int shift, Rounding mode) {
   if (shift <= 0) return v << (-shift);
-  if (shift >= 127) {  // |v| < 2^127 <= 2^(shift): the result is 0 or -1
+  if (shift >= 128) {  // |v| <= 2^127 <= 2^(shift-1): |v / 2^shift| <= 1/2
     if (mode == Rounding::Floor) return v < 0 ? -1 : 0;
-    return 0;  // |v| / 2^shift < 1/2 unless v = -2^127, which i128 arithmetic never makes here
+    // Only v = -2^127 with shift 128 is exactly -1/2: HalfUp rounds it to 0 and
+    // NearestEven to the even 0 as well.
+    return 0;
   }
   const i128 floor_q = v >> shift;  // arithmetic shift: floor
   const i128 rem = v - (floor_q << shift);  // in [0, 2^shift)
@@ -138,10 +140,11 @@ i128 div_round(i128 num, i128 den, Rounding mode) {
   if (r < 0) { q -= 1; r += den; }  // floor division, r in [0, den)
   switch (mode) {
     case Rounding::Floor: return q;
-    case Rounding::HalfUp: return 2 * r >= den ? q + 1 : q;
+    // Compare r with den - r rather than 2r with den: 2r overflows for den > 2^126.
+    case Rounding::HalfUp: return r >= den - r ? q + 1 : q;
     case Rounding::NearestEven:
-      if (2 * r > den) return q + 1;
-      if (2 * r < den) return q;
+      if (r > den - r) return q + 1;
+      if (r < den - r) return q;
       return (q & 1) ? q + 1 : q;
   }
   return q;

@@ -62,7 +62,7 @@ enum class Rounding {
 struct Q64 {
   i128 q = 0;
   static constexpr int kFracBits = 64;
-  // Parses a plain decimal "[-+]digits[.digits]" exactly (up to 18 integer and 36
+  // Parses a plain decimal "[-+]digits[.digits]" exactly (".5" and "5." are accepted) (up to 18 integer and 36
   // fraction digits). Throws std::invalid_argument naming the problem.
   static Q64 parse_decimal(std::string_view text);
   // Exact for finite doubles with |v| < 2^62; larger or non-finite values saturate to
@@ -81,6 +81,7 @@ i128 div_round(i128 num, i128 den, Rounding mode);
 
 // True when v fits in a two's-complement field of `bits` bits.
 inline bool fits_signed(i128 v, int bits) {
+  if (bits >= 128) return true;
   const i128 lim = i128(1) << (bits - 1);
   return v >= -lim && v < lim;
 }
