@@ -23,21 +23,13 @@
 #include <string_view>
 
 #include "scene.h"
+#include "scene_text.h"
 
 namespace rastsim {
 
 // The text layer shared with the trace parser, defined in scene_trace.cpp. (It has no
 // header of its own because this change may not add one; see docs/trace-format.md.)
-namespace scene_text {
-using Tokens = std::vector<std::string_view>;
-using LineFn = std::function<void(int line, const Tokens& tokens)>;
-[[noreturn]] void fail(const std::string& file, int line, const std::string& what);
-std::string quote(std::string_view tok);
-std::string read_file(const std::string& path);
-int for_each_line(std::string_view text, const std::string& name, const LineFn& fn);
-std::optional<int64_t> parse_int(std::string_view tok);
-std::optional<double> parse_double(std::string_view tok);
-}  // namespace scene_text
+
 
 namespace {
 
