@@ -32,6 +32,7 @@ void register_config(CLI::App& app);
 void register_render(CLI::App& app);
 void register_simulate(CLI::App& app);
 void register_sweep(CLI::App& app);
+void register_cosim(CLI::App& app), register_export_rtl(CLI::App& app);
 void register_scanout(CLI::App& app);
 
 }  // namespace rastsim::app

@@ -1,0 +1,74 @@
+// SPDX-License-Identifier: Apache-2.0
+// `rastsim cosim`: the verilated RTL (rtl/rast_top.v) on one scene, every fragment
+// compared with the reference model, and its cycle count next to the SystemC model's.
+#include <cmath>
+#include <iostream>
+
+#include "common.h"
+#include "cosim.h"
+#include "sc/raster_pipeline.h"
+
+namespace rastsim::app {
+
+void register_cosim(CLI::App& app) {
+  auto* cmd = app.add_subcommand(
+      "cosim", "Co-simulate the Verilog RTL against the reference model (fragments) and the SystemC model (cycles)");
+  static ConfigOptions opts;
+  static std::string scene_path, stats_path;
+  static cosim::CosimOptions co;
+  static bool no_model = false;
+  static double max_error = -1;
+  add_config_options(cmd, opts);
+  cmd->add_option("--scene,-s", scene_path, "Scene: a trace (.trace) or a Wavefront OBJ (.obj)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--fst", co.fst_path, "Write an FST waveform of the RTL");
+  cmd->add_option("--stats", stats_path,
+                  "Write cycles_rtl, cycles_model, cycle_error, fragments_compared, mismatches, ... as JSON "
+                  "('-' for stdout)");
+  cmd->add_option("--backpressure", co.backpressure,
+                  "Probability that the ROP refuses fragments in a cycle (random, seeded; changes cycles_rtl)")
+      ->check(CLI::Range(0.0, 1.0));
+  cmd->add_option("--seed", co.backpressure_seed, "Seed of the random backpressure");
+  cmd->add_option("--max-error", max_error,
+                  "Fail when |cycles_model - cycles_rtl| / cycles_rtl exceeds this (e.g. 0.05; default: report only)");
+  cmd->add_flag("--no-model", no_model, "Do not run the SystemC model (fragment check only)");
+  cmd->callback([] {
+    const Config cfg = load_config(opts);
+    const Scene scene = load_scene(scene_path, obj_placement(cfg));
+    const cosim::CosimResult r = cosim::run_cosim(scene, cfg, co);
+    nlohmann::json j = {{"config", cfg.source_name()},
+                        {"scene", scene_path},
+                        {"rtl_model", r.rtl_config},
+                        {"cycles_rtl", r.cycles_rtl},
+                        {"fragments_expected", r.fragments_expected},
+                        {"fragments_compared", r.fragments_compared},
+                        {"mismatches", r.mismatches},
+                        {"first_mismatch", r.first_mismatch},
+                        {"backpressure", co.backpressure},
+                        {"seed", co.backpressure_seed},
+                        {"rtl_wall_seconds", r.wall_seconds},
+                        {"rtl_cycles_per_second", r.wall_seconds > 0 ? double(r.cycles_rtl) / r.wall_seconds : 0.0}};
+    std::cout << "cosim: RTL model " << r.rtl_config << ", " << r.triangles << " triangles, " << r.cycles_rtl
+              << " cycles (" << r.wall_seconds << " s wall), " << r.fragments_compared << " fragments compared, "
+              << r.mismatches << " mismatches";
+    if (co.backpressure > 0) std::cout << " (backpressure " << co.backpressure << ", seed " << co.backpressure_seed << ")";
+    std::cout << "\n";
+    if (!r.first_mismatch.empty()) std::cout << "cosim: first mismatch: " << r.first_mismatch << "\n";
+    if (!no_model) {
+      const sc::SimResult m = sc::simulate_scene(scene, cfg);
+      const double err = r.cycles_rtl ? (double(m.cycles) - double(r.cycles_rtl)) / double(r.cycles_rtl) : 0.0;
+      j["cycles_model"] = m.cycles;
+      j["cycle_error"] = err;
+      j["model_wall_seconds"] = m.sim_wall_seconds;
+      std::cout << "cosim: cycles_rtl " << r.cycles_rtl << ", cycles_model " << m.cycles << ", error "
+                << std::round(err * 10000) / 100 << " %\n";
+    }
+    if (!stats_path.empty()) write_json(stats_path, j);
+    if (!no_model && max_error >= 0 && std::abs(j["cycle_error"].get<double>()) > max_error)
+      throw std::runtime_error("cycle error of the SystemC model exceeds " + std::to_string(max_error));
+    if (r.mismatches) throw std::runtime_error(std::to_string(r.mismatches) + " fragment mismatches");
+  });
+}
+
+}  // namespace rastsim::app

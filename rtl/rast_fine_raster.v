@@ -1,0 +1,152 @@
+// SPDX-License-Identifier: Apache-2.0
+// rast_fine_raster: per-pixel coverage of partial tiles, whole masks for accepted
+// tiles (ref: traverse.h fine_raster_partial / fine_raster_accepted; model:
+// model/sc/fine_raster.cpp).
+//
+// - Partial tile: tests SamplesPerCycle pixel centres of the footprint a cycle, in
+//   row-major order, each against the three edges with its bias (E - bias >= 0); a
+//   footprint of A pixels takes ceil(A / SamplesPerCycle) cycles.
+// - Accepted tile: the footprint's mask without tests, in AcceptedTileCycles cycles.
+// - Out: one coverage mask per tile (bit (ly << tile_log2) | lx, pixel (lx, ly) of the
+//   tile, row-major) with the tile's corner pixel; pushed in the tile's last cycle, and
+//   only when some pixel is covered. A marker costs one cycle.
+// - The input is popped in the tile's last cycle: the head is the tile being rastered.
+`default_nettype none
+
+module rast_fine_raster #(
+  parameter int CoordW             = 24,  // N + 1
+  parameter int CoordFrac          = 16,  // F
+  parameter int CoefW              = 25,  // N + 2
+  parameter int EdgeW              = 49,  // 2N + 3
+  parameter int PixelW             = 14,  // pixel index bits
+  parameter int TileLog2Max        = 4,   // largest tile: 2^TileLog2Max pixels square
+  parameter int SamplesPerCycle    = 8,   // coverage tests per cycle
+  parameter int AcceptedTileCycles = 1,   // cycles to emit an accepted tile
+  localparam int TileMax = 1 << TileLog2Max,  // derived: largest tile side
+  localparam int MaskW   = TileMax * TileMax  // derived: coverage mask bits
+) (
+  input  wire logic                 clk_i,          // core clock
+  input  wire logic                 rst_ni,         // asynchronous reset, active low
+  input  wire logic [2:0]           tile_log2_i,    // log2 tile size (static)
+  input  wire logic                 in_valid_i,     // tile or marker at the head
+  output      logic                 in_ready_o,     // pop the head (tile's last cycle)
+  input  wire logic                 in_marker_i,    // head is a marker
+  input  wire logic                 in_accepted_i,  // 1 accepted, 0 partial
+  input  wire logic [4*PixelW-1:0]  in_fp_i,        // footprint {y1, x1, y0, x0}
+  input  wire logic [3*CoefW-1:0]   in_a_i,         // edge a
+  input  wire logic [3*CoefW-1:0]   in_b_i,         // edge b
+  input  wire logic [3*EdgeW-1:0]   in_c_i,         // edge c
+  input  wire logic [2:0]           in_bias_i,      // 1 = bias -1
+  input  wire logic [2*PixelW-1:0]  in_origin_i,    // pixel of raw (0, 0): {y, x}
+  output      logic                 out_valid_o,    // mask or marker out
+  input  wire logic                 out_ready_i,    // pixel FIFO takes it
+  output      logic                 out_marker_o,   // a marker
+  output      logic [MaskW-1:0]     out_mask_o,     // covered pixels of the tile
+  output      logic [2*PixelW-1:0]  out_tile_o,     // the tile's corner pixel {y, x}
+  output      logic                 busy_o          // a tile is in progress
+);
+  localparam int Lanes = SamplesPerCycle;                 // derived
+  localparam int CntW  = $clog2(AcceptedTileCycles + 1);  // derived: countdown bits
+
+  logic [PixelW-1:0] fx0, fy0, fx1, fy1, tile_x, tile_y;
+  assign fx0 = in_fp_i[0 +: PixelW];
+  assign fy0 = in_fp_i[PixelW +: PixelW];
+  assign fx1 = in_fp_i[2*PixelW +: PixelW];
+  assign fy1 = in_fp_i[3*PixelW +: PixelW];
+  assign tile_x = (fx0 >> tile_log2_i) << tile_log2_i;
+  assign tile_y = (fy0 >> tile_log2_i) << tile_log2_i;
+  assign out_tile_o = {tile_y, tile_x};
+
+  logic              active_q;
+  logic [PixelW-1:0] cx_q, cy_q;  // next pixel to test
+  logic [CntW-1:0]   cnt_q;       // accepted tile: cycles left
+  logic [MaskW-1:0]  mask_q;      // partial tile: covered so far
+
+  // ---- Sample lanes: the next SamplesPerCycle pixels of the footprint ----
+  logic [PixelW-1:0] lane_x [Lanes+1], lane_y [Lanes+1];
+  logic [Lanes-1:0]  lane_cov;
+  always_comb begin
+    lane_x[0] = active_q ? cx_q : fx0;
+    lane_y[0] = active_q ? cy_q : fy0;
+    for (int j = 0; j < Lanes; j++) begin
+      if (lane_x[j] + 1'b1 == fx1) begin
+        lane_x[j+1] = fx0;
+        lane_y[j+1] = lane_y[j] + 1'b1;
+      end else begin
+        lane_x[j+1] = lane_x[j] + 1'b1;
+        lane_y[j+1] = lane_y[j];
+      end
+    end
+  end
+
+  for (genvar j = 0; j < Lanes; j++) begin : g_lane
+    logic [CoordW-1:0] sx, sy;
+    logic [2:0]        pass;
+    rast_sample #(.PixelW(PixelW), .CoordW(CoordW), .CoordFrac(CoordFrac)) u_sx (
+      .p_i(lane_x[j]), .origin_i(in_origin_i[0 +: PixelW]), .s_o(sx));
+    rast_sample #(.PixelW(PixelW), .CoordW(CoordW), .CoordFrac(CoordFrac)) u_sy (
+      .p_i(lane_y[j]), .origin_i(in_origin_i[PixelW +: PixelW]), .s_o(sy));
+    for (genvar i = 0; i < 3; i++) begin : g_edge
+      logic signed [EdgeW-1:0] e, e_b;
+      rast_edge_eval #(.CoordW(CoordW), .CoefW(CoefW), .EdgeW(EdgeW)) u_eval (
+        .a_i(in_a_i[i*CoefW +: CoefW]), .b_i(in_b_i[i*CoefW +: CoefW]),
+        .c_i(in_c_i[i*EdgeW +: EdgeW]), .x_i(sx), .y_i(sy), .e_o(e));
+      assign e_b     = e - EdgeW'(in_bias_i[i]);
+      assign pass[i] = !e_b[EdgeW-1];  // E + bias >= 0
+    end
+    assign lane_cov[j] = (lane_y[j] < fy1) && (pass == 3'b111);
+  end
+
+  // ---- Masks: tested lanes of a partial tile, or the whole footprint ----
+  logic [MaskW-1:0] lane_mask, fp_mask;
+  always_comb begin
+    lane_mask = '0;
+    for (int j = 0; j < Lanes; j++)
+      if (lane_cov[j])
+        lane_mask[(TileLog2Max*2)'(((lane_y[j] - tile_y) << tile_log2_i) | (lane_x[j] - tile_x))] = 1'b1;
+    fp_mask = '0;
+    for (int ly = 0; ly < TileMax; ly++)
+      for (int lx = 0; lx < TileMax; lx++)
+        if (tile_x + PixelW'(lx) >= fx0 && tile_x + PixelW'(lx) < fx1 &&
+            tile_y + PixelW'(ly) >= fy0 && tile_y + PixelW'(ly) < fy1 &&
+            (lx >> tile_log2_i) == 0 && (ly >> tile_log2_i) == 0)
+          fp_mask[(TileLog2Max*2)'((ly << tile_log2_i) | lx)] = 1'b1;
+  end
+
+  // ---- Control ----
+  logic [CntW-1:0] left;
+  logic            last, done;
+  assign left = active_q ? cnt_q : CntW'(AcceptedTileCycles);
+  always_comb begin
+    if (in_marker_i)        last = 1'b1;
+    else if (in_accepted_i) last = (left == CntW'(1));
+    else                    last = (lane_y[Lanes] >= fy1);
+  end
+  assign out_marker_o = in_marker_i;
+  assign out_mask_o   = in_accepted_i ? fp_mask : (mask_q | lane_mask);
+  assign out_valid_o  = in_valid_i && last && (in_marker_i || out_mask_o != '0);
+  assign done         = in_valid_i && last && (!out_valid_o || out_ready_i);
+  assign in_ready_o   = done;
+  assign busy_o       = active_q;
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      active_q <= 1'b0;
+      cx_q     <= '0;
+      cy_q     <= '0;
+      cnt_q    <= '0;
+      mask_q   <= '0;
+    end else if (done) begin
+      active_q <= 1'b0;
+      mask_q   <= '0;
+    end else if (in_valid_i && !last) begin
+      active_q <= 1'b1;
+      cx_q     <= lane_x[Lanes];
+      cy_q     <= lane_y[Lanes];
+      cnt_q    <= left - 1'b1;
+      mask_q   <= out_mask_o;
+    end
+  end
+endmodule
+
+`default_nettype wire

@@ -1,0 +1,157 @@
+// SPDX-License-Identifier: Apache-2.0
+// rast_interpolate: colour and depth of each covered pixel (ref: interpolate.cpp;
+// model: model/sc/interpolate.cpp).
+//
+// - Takes a tile's coverage mask and walks its set bits in order (row-major within
+//   the tile), FragmentsPerCycle pixels a cycle: a mask of N pixels takes
+//   ceil(N / FragmentsPerCycle) cycles, a marker one.
+// - Per pixel: the barycentric weights are the edge values at the pixel centre,
+//   w0 = E1, w1 = E2, w2 = E0 (AreaW bits, unsigned, sum area2); each attribute is
+//   round_half_up((w0 a0 + w1 a1 + w2 a2) / area2), one rast_divider per attribute and
+//   lane (quotient 8 bits colour, DepthW depth; numerators ColorNumW / DepthNumW).
+// - Latency register stages (interp.latency_cycles) from a pixel's pick to its
+//   fragment; the whole pipeline stalls while the output is not taken.
+// - The input is popped in the cycle that picks its last pixels.
+`default_nettype none
+
+module rast_interpolate #(
+  parameter int CoordW            = 24,  // N + 1
+  parameter int CoordFrac         = 16,  // F
+  parameter int CoefW             = 25,  // N + 2
+  parameter int EdgeW             = 49,  // 2N + 3
+  parameter int AreaW             = 48,  // 2N + 2
+  parameter int ColorNumW         = 56,  // 2N + 10
+  parameter int DepthNumW         = 72,  // 2N + 2 + D
+  parameter int DepthW            = 24,  // D
+  parameter int PixelW            = 14,  // pixel index bits
+  parameter int TileLog2Max       = 4,   // largest tile: 2^TileLog2Max pixels square
+  parameter int FragmentsPerCycle = 4,   // pixels interpolated per cycle
+  parameter int Latency           = 6,   // pick-to-fragment register stages
+  localparam int MaskW = 1 << (2 * TileLog2Max),  // derived: coverage mask bits
+  localparam int Lanes = FragmentsPerCycle        // derived
+) (
+  input  wire logic                      clk_i,         // core clock
+  input  wire logic                      rst_ni,        // asynchronous reset, active low
+  input  wire logic [2:0]                tile_log2_i,   // log2 tile size (static)
+  input  wire logic                      in_valid_i,    // mask or marker at the head
+  output      logic                      in_ready_o,    // pop the head
+  input  wire logic                      in_marker_i,   // head is a marker
+  input  wire logic [MaskW-1:0]          in_mask_i,     // covered pixels of the tile
+  input  wire logic [2*PixelW-1:0]       in_tile_i,     // tile corner pixel {y, x}
+  input  wire logic [3*CoefW-1:0]        in_a_i,        // edge a
+  input  wire logic [3*CoefW-1:0]        in_b_i,        // edge b
+  input  wire logic [3*EdgeW-1:0]        in_c_i,        // edge c
+  input  wire logic [2*PixelW-1:0]       in_origin_i,   // pixel of raw (0, 0): {y, x}
+  input  wire logic [AreaW-1:0]          in_area2_i,    // doubled area, > 0
+  input  wire logic [3*DepthW-1:0]       in_z_i,        // vertex k depth at [k*DepthW +: DepthW]
+  input  wire logic [3*24-1:0]           in_rgb_i,      // vertex k colour {b, g, r} at [k*24 +: 24]
+  output      logic                      out_valid_o,   // a beat of fragments or a marker
+  input  wire logic                      out_ready_i,   // taken this cycle
+  output      logic                      out_marker_o,  // the beat is a marker
+  output      logic                      out_last_o,    // last beat of a tile's fragments
+  output      logic [Lanes-1:0]          out_lanes_o,   // lane j holds a fragment
+  output      logic [Lanes*PixelW-1:0]   out_x_o,       // lane j pixel x
+  output      logic [Lanes*PixelW-1:0]   out_y_o,       // lane j pixel y
+  output      logic [Lanes*DepthW-1:0]   out_z_o,       // lane j depth
+  output      logic [Lanes*24-1:0]       out_rgb_o,     // lane j colour {b, g, r}
+  output      logic                      busy_o         // a fragment is in flight
+);
+  localparam int IdxW  = 2 * TileLog2Max;              // derived: mask index bits
+  localparam int SideW = 3 + Lanes * (1 + 2 * PixelW);  // derived: side data bits
+
+  logic             en;
+  logic [MaskW-1:0] consumed_q, rem, picked;
+  logic [IdxW-1:0]  idx [Lanes];
+  logic [Lanes-1:0] pick;
+  logic             last_beat;
+
+  // ---- The next Lanes set bits of the mask, lowest first ----
+  always_comb begin
+    int k;
+    rem    = in_mask_i & ~consumed_q;
+    picked = '0;
+    pick   = '0;
+    for (int j = 0; j < Lanes; j++) idx[j] = '0;
+    k = 0;
+    last_beat = 1'b1;
+    for (int i = 0; i < MaskW; i++) begin
+      if (rem[i]) begin
+        if (k < Lanes) begin
+          idx[k]    = IdxW'(i);
+          pick[k]   = 1'b1;
+          picked[i] = 1'b1;
+        end else begin
+          last_beat = 1'b0;
+        end
+        k = k + 1;
+      end
+    end
+  end
+
+  assign en         = !(out_valid_o && !out_ready_i);
+  assign in_ready_o = en && in_valid_i && (in_marker_i || last_beat);
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) consumed_q <= '0;
+    else if (en && in_valid_i && !in_marker_i) consumed_q <= last_beat ? '0 : (consumed_q | picked);
+  end
+
+  // ---- Per lane: pixel, weights, numerators, dividers ----
+  logic [Lanes*PixelW-1:0] lane_x, lane_y;
+  for (genvar j = 0; j < Lanes; j++) begin : g_lane
+    logic [PixelW-1:0]     px, py;
+    logic [CoordW-1:0]     sx, sy;
+    logic signed [EdgeW-1:0] e [3];
+    logic [AreaW-1:0]      w [3];
+    logic [ColorNumW-1:0]  num_c [3];
+    logic [DepthNumW-1:0]  num_z;
+    logic [IdxW-1:0]       mask_lx, lx, ly;
+    assign mask_lx = ~({IdxW{1'b1}} << tile_log2_i);
+    assign lx = idx[j] & mask_lx;
+    assign ly = idx[j] >> tile_log2_i;
+    assign px = in_tile_i[0 +: PixelW] + {{(PixelW - IdxW){1'b0}}, lx};
+    assign py = in_tile_i[PixelW +: PixelW] + {{(PixelW - IdxW){1'b0}}, ly};
+    assign lane_x[j*PixelW +: PixelW] = px;
+    assign lane_y[j*PixelW +: PixelW] = py;
+    rast_sample #(.PixelW(PixelW), .CoordW(CoordW), .CoordFrac(CoordFrac)) u_sx (
+      .p_i(px), .origin_i(in_origin_i[0 +: PixelW]), .s_o(sx));
+    rast_sample #(.PixelW(PixelW), .CoordW(CoordW), .CoordFrac(CoordFrac)) u_sy (
+      .p_i(py), .origin_i(in_origin_i[PixelW +: PixelW]), .s_o(sy));
+    for (genvar i = 0; i < 3; i++) begin : g_edge
+      rast_edge_eval #(.CoordW(CoordW), .CoefW(CoefW), .EdgeW(EdgeW)) u_eval (
+        .a_i(in_a_i[i*CoefW +: CoefW]), .b_i(in_b_i[i*CoefW +: CoefW]),
+        .c_i(in_c_i[i*EdgeW +: EdgeW]), .x_i(sx), .y_i(sy), .e_o(e[i]));
+      // Weight of vertex i is the edge opposite it, edge (i+1)%3: in [0, area2].
+      assign w[i] = AreaW'(e[(i+1)%3]);
+    end
+    // Exact numerators: convex combinations, so they fit without overflow.
+    always_comb begin
+      for (int ch = 0; ch < 3; ch++) begin
+        num_c[ch] = '0;
+        for (int v = 0; v < 3; v++)
+          num_c[ch] = num_c[ch] + ColorNumW'(w[v]) * ColorNumW'(in_rgb_i[v*24 + ch*8 +: 8]);
+      end
+      num_z = '0;
+      for (int v = 0; v < 3; v++) num_z = num_z + DepthNumW'(w[v]) * DepthNumW'(in_z_i[v*DepthW +: DepthW]);
+    end
+    for (genvar ch = 0; ch < 3; ch++) begin : g_color
+      rast_divider #(.NumW(ColorNumW), .DenW(AreaW), .QW(8), .Latency(Latency)) u_div (
+        .clk_i, .en_i(en), .num_i(num_c[ch]), .den_i(in_area2_i), .q_o(out_rgb_o[j*24 + ch*8 +: 8]));
+    end
+    rast_divider #(.NumW(DepthNumW), .DenW(AreaW), .QW(DepthW), .Latency(Latency)) u_div_z (
+      .clk_i, .en_i(en), .num_i(num_z), .den_i(in_area2_i), .q_o(out_z_o[j*DepthW +: DepthW]));
+  end
+
+  // ---- Side data: valid, marker, last, lanes and pixels, delayed like the dividers ----
+  logic             beat;
+  logic [SideW-1:0] side_out;
+  assign beat = in_valid_i && (in_marker_i || (rem != '0));
+  rast_pipe #(.Width(SideW), .Latency(Latency)) u_side (
+    .clk_i, .rst_ni, .en_i(en),
+    .d_i({beat, in_marker_i, last_beat && !in_marker_i, in_marker_i ? '0 : pick, lane_x, lane_y}),
+    .q_o(side_out));
+  assign {out_valid_o, out_marker_o, out_last_o, out_lanes_o, out_x_o, out_y_o} = side_out;
+  assign busy_o = (consumed_q != '0);
+endmodule
+
+`default_nettype wire

@@ -1,0 +1,199 @@
+// SPDX-License-Identifier: Apache-2.0
+// rast_top: the raster pipeline from snapped triangles to shaded fragments.
+//
+//   triangle FIFO -> rast_tri_setup -> setup FIFO (latency) -> rast_coarse_raster
+//     -> tile FIFO -> rast_fine_raster -> pixel FIFO -> rast_interpolate -> fragments
+//
+// - Every parameter comes from the config through the exported header rast_params.vh
+//   (`rastsim export-rtl`, model/ref/rtl_params.cpp): widths of docs/fixed-point.md,
+//   fill rule and cull mode, the timing keys and FIFO depths. The same stages, FIFOs
+//   and timing equations as the SystemC model (docs/microarchitecture.md, docs/rtl.md).
+// - The tile size is a run-time input, 2^tile_log2_i with 1 <= tile_log2_i <=
+//   TileLog2Max, held constant while the pipeline is busy.
+// - Triangles arrive snapped (s.I.F raw, relative to the origin), with the clip
+//   rectangle and origin of the state they were drawn in; a marker (a state command in
+//   order with the triangles) travels through every stage and leaves as a marker beat.
+// - Fragments leave FragmentsPerCycle lanes a beat, a tile's last beat flagged: the
+//   ROP (depth test, framebuffer) is the testbench's memory model.
+`default_nettype none
+
+module rast_top #(
+`include "rast_params.vh"
+) (
+  input  wire logic                                  clk_i,           // core clock
+  input  wire logic                                  rst_ni,          // asynchronous reset, active low
+  input  wire logic [2:0]                            tile_log2_i,     // log2 tile size (static)
+  input  wire logic                                  tri_valid_i,     // a triangle or marker
+  output      logic                                  tri_ready_o,     // taken (triangle FIFO not full)
+  input  wire logic                                  tri_marker_i,    // a marker
+  input  wire logic [CoordW-1:0]                     tri_x0_i,        // vertex 0 x, raw s.I.F
+  input  wire logic [CoordW-1:0]                     tri_y0_i,        // vertex 0 y
+  input  wire logic [CoordW-1:0]                     tri_x1_i,        // vertex 1 x
+  input  wire logic [CoordW-1:0]                     tri_y1_i,        // vertex 1 y
+  input  wire logic [CoordW-1:0]                     tri_x2_i,        // vertex 2 x
+  input  wire logic [CoordW-1:0]                     tri_y2_i,        // vertex 2 y
+  input  wire logic [DepthW-1:0]                     tri_z0_i,        // vertex 0 depth, unorm
+  input  wire logic [DepthW-1:0]                     tri_z1_i,        // vertex 1 depth
+  input  wire logic [DepthW-1:0]                     tri_z2_i,        // vertex 2 depth
+  input  wire logic [23:0]                           tri_rgb0_i,      // vertex 0 colour {b, g, r}
+  input  wire logic [23:0]                           tri_rgb1_i,      // vertex 1 colour
+  input  wire logic [23:0]                           tri_rgb2_i,      // vertex 2 colour
+  input  wire logic [PixelW-1:0]                     tri_clip_x0_i,   // clip rect, half-open px
+  input  wire logic [PixelW-1:0]                     tri_clip_y0_i,   //
+  input  wire logic [PixelW-1:0]                     tri_clip_x1_i,   //
+  input  wire logic [PixelW-1:0]                     tri_clip_y1_i,   //
+  input  wire logic [PixelW-1:0]                     tri_origin_x_i,  // pixel of raw x = 0
+  input  wire logic [PixelW-1:0]                     tri_origin_y_i,  // pixel of raw y = 0
+  output      logic                                  frag_valid_o,    // a fragment beat or marker
+  input  wire logic                                  frag_ready_i,    // taken (ROP backpressure)
+  output      logic                                  frag_marker_o,   // the beat is a marker
+  output      logic                                  frag_last_o,     // last beat of a tile
+  output      logic [InterpFragmentsPerCycle-1:0]    frag_lanes_o,    // lanes holding a fragment
+  output      logic [InterpFragmentsPerCycle*PixelW-1:0] frag_x_o,    // lane j x
+  output      logic [InterpFragmentsPerCycle*PixelW-1:0] frag_y_o,    // lane j y
+  output      logic [InterpFragmentsPerCycle*DepthW-1:0] frag_z_o,    // lane j depth
+  output      logic [InterpFragmentsPerCycle*24-1:0]     frag_rgb_o,  // lane j colour {b, g, r}
+  output      logic                                  idle_o           // no work anywhere but the interpolator pipeline
+);
+  localparam int MaskW = 1 << (2 * TileLog2Max);      // derived: coverage mask bits
+  localparam int AttrW = 3 * DepthW + 3 * 24;         // derived: vertex attributes
+  localparam int EdgesW = 6 * CoefW + 3 * EdgeW + 3;  // derived: a, b, c, bias
+  localparam int TriW  = 1 + 6 * CoordW + 6 * PixelW + AttrW;                      // derived
+  localparam int SetW  = 1 + EdgesW + 4 * PixelW + 2 * PixelW + AreaW + AttrW;     // derived
+  localparam int TileW = 1 + 1 + 4 * PixelW + EdgesW + 2 * PixelW + AreaW + AttrW;  // derived
+  localparam int PixW  = 1 + MaskW + 2 * PixelW + EdgesW - 3 + 2 * PixelW + AreaW + AttrW;  // derived
+
+  // ---- Triangle FIFO (fifo.triangle_depth) ----
+  logic            t_valid, t_ready, t_marker, t_empty;
+  logic [TriW-1:0] t_data;
+  logic [3*CoordW-1:0] t_x, t_y;
+  logic [4*PixelW-1:0] t_clip;
+  logic [2*PixelW-1:0] t_origin;
+  logic [AttrW-1:0]    t_attr;
+  rast_fifo #(.Width(TriW), .Depth(TriangleFifoDepth)) u_triangle_fifo (
+    .clk_i, .rst_ni, .in_valid_i(tri_valid_i), .in_ready_o(tri_ready_o),
+    .in_data_i({tri_marker_i, tri_x2_i, tri_x1_i, tri_x0_i, tri_y2_i, tri_y1_i, tri_y0_i,
+                tri_clip_y1_i, tri_clip_x1_i, tri_clip_y0_i, tri_clip_x0_i, tri_origin_y_i, tri_origin_x_i,
+                tri_z2_i, tri_z1_i, tri_z0_i, tri_rgb2_i, tri_rgb1_i, tri_rgb0_i}),
+    .out_valid_o(t_valid), .out_ready_i(t_ready), .out_data_o(t_data), .empty_o(t_empty));
+  assign {t_marker, t_x, t_y, t_clip, t_origin, t_attr} = t_data;
+
+  // ---- Triangle setup ----
+  logic                s_valid, s_ready, s_marker, s_busy;
+  logic [EdgesW-1:0]   s_edges;
+  logic [3*CoefW-1:0]  s_a, s_b;
+  logic [3*EdgeW-1:0]  s_c;
+  logic [2:0]          s_bias;
+  logic [AreaW-1:0]    s_area2;
+  logic [4*PixelW-1:0] s_bbox;
+  logic [2*PixelW-1:0] s_origin;
+  logic [AttrW-1:0]    s_attr;
+  rast_tri_setup #(
+    .CoordW(CoordW), .CoordFrac(CoordFrac), .CoefW(CoefW), .EdgeW(EdgeW), .AreaW(AreaW),
+    .PixelW(PixelW), .AttrW(AttrW), .FillRule(FillRule), .CullMode(CullMode), .FrontCcw(FrontCcw),
+    .SetupInterval(SetupInterval)
+  ) u_tri_setup (
+    .clk_i, .rst_ni, .in_valid_i(t_valid), .in_ready_o(t_ready), .in_marker_i(t_marker),
+    .in_x_i(t_x), .in_y_i(t_y), .in_clip_i(t_clip), .in_origin_i(t_origin), .in_attr_i(t_attr),
+    .out_valid_o(s_valid), .out_ready_i(s_ready), .out_marker_o(s_marker), .out_a_o(s_a),
+    .out_b_o(s_b), .out_c_o(s_c), .out_bias_o(s_bias), .out_area2_o(s_area2), .out_bbox_o(s_bbox),
+    .out_origin_o(s_origin), .out_attr_o(s_attr), .busy_o(s_busy));
+  assign s_edges = {s_a, s_b, s_c, s_bias};
+
+  // ---- Setup FIFO (fifo.setup_depth; entries wait setup.latency - interval cycles) ----
+  logic                c_valid, c_ready, c_marker, c_empty, c_busy;
+  logic [SetW-1:0]     c_data;
+  logic [EdgesW-1:0]   c_edges;
+  logic [3*CoefW-1:0]  c_a, c_b;
+  logic [3*EdgeW-1:0]  c_c;
+  logic [2:0]          c_bias;
+  logic [4*PixelW-1:0] c_bbox;
+  logic [2*PixelW-1:0] c_origin;
+  logic [AreaW-1:0]    c_area2;
+  logic [AttrW-1:0]    c_attr;
+  rast_fifo #(.Width(SetW), .Depth(SetupFifoDepth), .Latency(SetupLatency - SetupInterval)) u_setup_fifo (
+    .clk_i, .rst_ni, .in_valid_i(s_valid), .in_ready_o(s_ready),
+    .in_data_i({s_marker, s_edges, s_bbox, s_origin, s_area2, s_attr}),
+    .out_valid_o(c_valid), .out_ready_i(c_ready), .out_data_o(c_data), .empty_o(c_empty));
+  assign {c_marker, c_edges, c_bbox, c_origin, c_area2, c_attr} = c_data;
+  assign {c_a, c_b, c_c, c_bias} = c_edges;
+
+  // ---- Coarse raster ----
+  logic                k_valid, k_ready, k_marker, k_accepted;
+  logic [4*PixelW-1:0] k_fp;
+  rast_coarse_raster #(
+    .CoordW(CoordW), .CoordFrac(CoordFrac), .CoefW(CoefW), .EdgeW(EdgeW), .PixelW(PixelW),
+    .TilesPerCycle(CoarseTilesPerCycle)
+  ) u_coarse_raster (
+    .clk_i, .rst_ni, .tile_log2_i, .in_valid_i(c_valid), .in_ready_o(c_ready), .in_marker_i(c_marker),
+    .in_a_i(c_a), .in_b_i(c_b), .in_c_i(c_c), .in_bias_i(c_bias), .in_bbox_i(c_bbox), .in_origin_i(c_origin),
+    .out_valid_o(k_valid), .out_ready_i(k_ready), .out_marker_o(k_marker), .out_accepted_o(k_accepted),
+    .out_fp_o(k_fp), .busy_o(c_busy));
+
+  // ---- Tile FIFO (fifo.tile_depth) ----
+  logic                f_valid, f_ready, f_marker, f_accepted, f_empty, f_busy;
+  logic [TileW-1:0]    f_data;
+  logic [4*PixelW-1:0] f_fp;
+  logic [EdgesW-1:0]   f_edges;
+  logic [3*CoefW-1:0]  f_a, f_b;
+  logic [3*EdgeW-1:0]  f_c;
+  logic [2:0]          f_bias;
+  logic [2*PixelW-1:0] f_origin;
+  logic [AreaW-1:0]    f_area2;
+  logic [AttrW-1:0]    f_attr;
+  rast_fifo #(.Width(TileW), .Depth(TileFifoDepth)) u_tile_fifo (
+    .clk_i, .rst_ni, .in_valid_i(k_valid), .in_ready_o(k_ready),
+    .in_data_i({k_marker, k_accepted, k_fp, c_edges, c_origin, c_area2, c_attr}),
+    .out_valid_o(f_valid), .out_ready_i(f_ready), .out_data_o(f_data), .empty_o(f_empty));
+  assign {f_marker, f_accepted, f_fp, f_edges, f_origin, f_area2, f_attr} = f_data;
+  assign {f_a, f_b, f_c, f_bias} = f_edges;
+
+  // ---- Fine raster ----
+  logic                m_valid, m_ready, m_marker;
+  logic [MaskW-1:0]    m_mask;
+  logic [2*PixelW-1:0] m_tile;
+  rast_fine_raster #(
+    .CoordW(CoordW), .CoordFrac(CoordFrac), .CoefW(CoefW), .EdgeW(EdgeW), .PixelW(PixelW),
+    .TileLog2Max(TileLog2Max), .SamplesPerCycle(FineSamplesPerCycle),
+    .AcceptedTileCycles(FineAcceptedTileCycles)
+  ) u_fine_raster (
+    .clk_i, .rst_ni, .tile_log2_i, .in_valid_i(f_valid), .in_ready_o(f_ready), .in_marker_i(f_marker),
+    .in_accepted_i(f_accepted), .in_fp_i(f_fp), .in_a_i(f_a), .in_b_i(f_b), .in_c_i(f_c),
+    .in_bias_i(f_bias), .in_origin_i(f_origin), .out_valid_o(m_valid), .out_ready_i(m_ready),
+    .out_marker_o(m_marker), .out_mask_o(m_mask), .out_tile_o(m_tile), .busy_o(f_busy));
+
+  // ---- Pixel FIFO (fifo.pixel_depth; one entry = one tile's coverage mask) ----
+  logic                p_valid, p_ready, p_marker, p_empty, p_busy;
+  logic [PixW-1:0]     p_data;
+  logic [MaskW-1:0]    p_mask;
+  logic [2*PixelW-1:0] p_tile, p_origin;
+  logic [3*CoefW-1:0]  p_a, p_b;
+  logic [3*EdgeW-1:0]  p_c;
+  logic [AreaW-1:0]    p_area2;
+  logic [AttrW-1:0]    p_attr;
+  logic [3*DepthW-1:0] p_z;
+  logic [3*24-1:0]     p_rgb;
+  rast_fifo #(.Width(PixW), .Depth(PixelFifoDepth)) u_pixel_fifo (
+    .clk_i, .rst_ni, .in_valid_i(m_valid), .in_ready_o(m_ready),
+    .in_data_i({m_marker, m_mask, m_tile, f_a, f_b, f_c, f_origin, f_area2, f_attr}),
+    .out_valid_o(p_valid), .out_ready_i(p_ready), .out_data_o(p_data), .empty_o(p_empty));
+  assign {p_marker, p_mask, p_tile, p_a, p_b, p_c, p_origin, p_area2, p_attr} = p_data;
+  assign {p_z, p_rgb} = p_attr;
+
+  // ---- Interpolation ----
+  rast_interpolate #(
+    .CoordW(CoordW), .CoordFrac(CoordFrac), .CoefW(CoefW), .EdgeW(EdgeW), .AreaW(AreaW),
+    .ColorNumW(ColorNumW), .DepthNumW(DepthNumW), .DepthW(DepthW), .PixelW(PixelW),
+    .TileLog2Max(TileLog2Max), .FragmentsPerCycle(InterpFragmentsPerCycle), .Latency(InterpLatency)
+  ) u_interpolate (
+    .clk_i, .rst_ni, .tile_log2_i, .in_valid_i(p_valid), .in_ready_o(p_ready), .in_marker_i(p_marker),
+    .in_mask_i(p_mask), .in_tile_i(p_tile), .in_a_i(p_a), .in_b_i(p_b), .in_c_i(p_c),
+    .in_origin_i(p_origin), .in_area2_i(p_area2), .in_z_i(p_z), .in_rgb_i(p_rgb),
+    .out_valid_o(frag_valid_o), .out_ready_i(frag_ready_i), .out_marker_o(frag_marker_o),
+    .out_last_o(frag_last_o), .out_lanes_o(frag_lanes_o), .out_x_o(frag_x_o), .out_y_o(frag_y_o),
+    .out_z_o(frag_z_o), .out_rgb_o(frag_rgb_o), .busy_o(p_busy));
+
+  assign idle_o = t_empty && !s_busy && c_empty && !c_busy && f_empty && !f_busy && p_empty && !p_busy;
+endmodule
+
+`default_nettype wire

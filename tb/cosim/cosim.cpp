@@ -1,0 +1,134 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "cosim.h"
+
+#include <bit>
+#include <stdexcept>
+
+#include "cosim_driver.h"
+#include "pipeline.h"
+#include "primitive_assembly.h"
+#include "setup.h"
+#include "traverse.h"
+
+namespace rastsim::cosim {
+
+namespace {
+
+uint64_t ceil_div(uint64_t n, uint64_t d) { return (n + d - 1) / d; }
+
+// The scene as the testbench's command stream, and the reference model's fragments for
+// the same tile size: the same loop as ref/pipeline.cpp render_scene.
+void build(const Scene& scene, const Config& cfg, int tile_size, TbSetup& s) {
+  RasterState st = raster_state_from_config(cfg);
+  st.tile_size = tile_size;
+  const int F = st.coord_format.frac_bits;
+  const uint64_t cpc = static_cast<uint64_t>(cfg.get_int("fetch.cycles_per_command"));
+  const uint64_t vpc = static_cast<uint64_t>(cfg.get_int("fetch.vertices_per_cycle"));
+  const uint64_t apc = static_cast<uint64_t>(cfg.get_int("assembly.cycles_per_triangle"));
+  const uint64_t clear_ppc = static_cast<uint64_t>(cfg.get_int("rop.clear_pixels_per_cycle"));
+  Framebuffer fb(1, 1);  // state commands need one; the testbench ROP keeps no pixels
+  TraversalCounters counters;
+  for (const Command& cmd : scene.commands) {
+    const auto* prims = std::get_if<CmdPrimitives>(&cmd.body);
+    if (!prims) {
+      apply_state_command(cmd, st, fb);
+      TbItem m;
+      m.kind = TbItem::Marker;
+      m.fetch_cost = cpc;
+      const bool clear = std::holds_alternative<CmdClear>(cmd.body) || std::holds_alternative<CmdClearDepth>(cmd.body);
+      m.rop_cost = clear ? ceil_div(uint64_t(st.fb_width) * uint64_t(st.fb_height), clear_ppc) : 1;
+      s.items.push_back(m);
+      continue;
+    }
+    const size_t n = triangle_count(*prims);
+    if (n == 0) {
+      TbItem e;
+      e.kind = TbItem::Null;
+      e.fetch_cost = cpc;
+      s.items.push_back(e);
+    }
+    for (size_t k = 0; k < n; ++k) {
+      TbItem it;
+      const uint64_t new_vertices = (k == 0 || prims->topology == Topology::List) ? 3 : 1;
+      it.fetch_cost = (k == 0 ? cpc : 0) + ceil_div(new_vertices, vpc);
+      it.assembly_cost = apc;
+      it.tri = static_cast<int>(s.tri_names.size());
+      s.tri_names.push_back(cmd.loc.str() + " triangle " + std::to_string(k));
+      SetupTriangle t;
+      const SetupOutcome o = setup_triangle(assemble_triangle(*prims, k), st, cmd.loc, t);
+      if (o == SetupOutcome::CulledOutOfRange) {
+        // Nothing the RTL can represent: a zero-area triangle costs setup the same.
+        it.x[0] = it.x[1] = it.x[2] = it.y[0] = it.y[1] = it.y[2] = 0;
+      } else {
+        for (int v = 0; v < 3; ++v) {
+          it.x[v] = t.x[v];
+          it.y[v] = t.y[v];
+          it.z[v] = t.z[v];
+          it.rgb[v] = uint32_t(t.rgb[v][0]) | uint32_t(t.rgb[v][1]) << 8 | uint32_t(t.rgb[v][2]) << 16;
+        }
+      }
+      const PixelRect clip = st.clip_rect();
+      it.clip[0] = clip.x0;
+      it.clip[1] = clip.y0;
+      it.clip[2] = clip.x1;
+      it.clip[3] = clip.y1;
+      it.origin[0] = static_cast<int>(st.origin_x());
+      it.origin[1] = static_cast<int>(st.origin_y());
+      s.items.push_back(it);
+      if (o != SetupOutcome::Accepted) continue;
+      traverse_triangle(t, tile_size, F, counters, [&](int px, int py) {
+        s.expected.push_back(Expected{interpolate(t, px, py, F), it.tri});
+      });
+    }
+  }
+}
+
+}  // namespace
+
+std::vector<RtlModelInfo> rtl_models() {
+  std::vector<RtlModelInfo> v;
+  for (const RegistryEntry& e : rtl_registry()) {
+    Config c;
+    c.load_file(std::string(RASTSIM_SOURCE_DIR) + "/configs/" + e.name + ".toml");
+    c.validate();
+    v.push_back({e.name, rtl_params_from_config(c)});
+  }
+  return v;
+}
+
+CosimResult run_cosim(const Scene& scene, const Config& cfg, const CosimOptions& opts) {
+  TbSetup s;
+  s.opts = opts;
+  s.params = rtl_params_from_config(cfg);
+  const int tile = opts.tile_size ? opts.tile_size : static_cast<int>(cfg.get_int("raster.tile_size"));
+  if (tile < 2 || !std::has_single_bit(static_cast<unsigned>(tile)))
+    throw std::runtime_error("tile size " + std::to_string(tile) + " is not a power of two >= 2");
+  s.tile_log2 = std::countr_zero(static_cast<unsigned>(tile));
+  RtlParams wanted = s.params;
+  wanted.tile_log2_max = s.tile_log2;
+  s.cmd_depth = static_cast<int>(cfg.get_int("fifo.command_depth"));
+  s.frag_depth = static_cast<int>(cfg.get_int("fifo.fragment_depth"));
+  s.rop_pixels_per_cycle = static_cast<uint64_t>(cfg.get_int("rop.pixels_per_cycle"));
+
+  const auto models = rtl_models();
+  std::string why_all;
+  for (size_t i = 0; i < models.size(); ++i) {
+    std::string why;
+    if (!rtl_params_compatible(models[i].params, wanted, &why)) {
+      why_all += "\n  " + models[i].name + ": " + why;
+      continue;
+    }
+    s.params = models[i].params;  // the built widths and maximum tile size
+    build(scene, cfg, tile, s);
+    CosimResult r;
+    r.rtl_config = models[i].name;
+    r.fragments_expected = s.expected.size();
+    for (const TbItem& it : s.items) (it.kind == TbItem::Marker ? r.markers : r.triangles) += it.kind != TbItem::Null;
+    rtl_registry()[i].run(s, r);
+    return r;
+  }
+  throw std::runtime_error("no verilated RTL model matches this config (build one by adding it to RAST_RTL_CONFIGS "
+                           "in rtl/CMakeLists.txt):" + why_all);
+}
+
+}  // namespace rastsim::cosim
