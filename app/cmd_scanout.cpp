@@ -11,6 +11,7 @@
 #include "monitor.h"
 #include "pipeline.h"
 #include "scanout.h"
+#include "sc/scanout.h"
 
 namespace rastsim::app {
 
@@ -55,6 +56,7 @@ void register_scanout(CLI::App& app) {
   static ConfigOptions opts;
   static std::string scene_path, out_path, signal_path, stats_path, lines_arg;
   static bool quiet = false;
+  static int64_t raster_cycles = -1;
   add_config_options(cmd, opts);
   cmd->add_option("--scene,-s", scene_path, "Scene: a trace (.trace) or a Wavefront OBJ (.obj)")
       ->required()
@@ -65,6 +67,11 @@ void register_scanout(CLI::App& app) {
   cmd->add_option("--signal-lines", lines_arg, "Only lines FIRST..FIRST+COUNT-1 of the first frame in --signal")
       ->type_name("FIRST:COUNT");
   cmd->add_option("--stats", stats_path, "Write configured and measured timing and the decode check as JSON ('-' for stdout)");
+  cmd->add_option("--raster-cycles", raster_cycles,
+                  "Raster pipeline finish time in core cycles (`rastsim simulate` stats: cycles): run the timed "
+                  "scan-out (model/sc) from the start of vertical blanking at clock.core_mhz, report the deadline "
+                  "check and decode its signal, underruns included")
+      ->check(CLI::NonNegativeNumber);
   cmd->add_flag("--quiet,-q", quiet, "Print only monitor errors");
   cmd->callback([] {
     const Config cfg = load_config(opts);
@@ -85,11 +92,21 @@ void register_scanout(CLI::App& app) {
     std::unique_ptr<SignalFile> sig;
     if (!signal_path.empty()) sig = std::make_unique<SignalFile>(signal_path, t, dac.config().bits, first, count);
     Monitor mon(t, dac.config());
-    // Two frames: the monitor frames a picture between two vsync leading edges.
-    Scanout(t, dac, fb).run(2, [&](const VideoSample& s) {
+    auto sink = [&](const VideoSample& s) {
       mon.push(s);
       if (sig) sig->w->push(s);
-    });
+    };
+    const Scanout scanout(t, dac, fb);
+    nlohmann::json deadline;
+    if (raster_cycles >= 0) {
+      // Timed: vertical blanking, then the frame (one vsync pulse each side of it).
+      const auto p = sc::scanout_params_from_config(cfg, cfg.get_float("clock.core_mhz"));
+      deadline = sc::run_scanout(p, static_cast<uint64_t>(raster_cycles), &scanout, sink).to_json();
+      deadline["buffering"] = cfg.get_string("scanout.buffering");
+      deadline["core_mhz"] = cfg.get_float("clock.core_mhz");
+    } else {
+      scanout.run(2, sink);  // two frames: a picture lies between two vsync leading edges
+    }
     if (sig) sig->close();
     const MonitorResult r = mon.finish();
     write_image(r.image, out_path);
@@ -125,6 +142,7 @@ void register_scanout(CLI::App& app) {
                  {"inl_lsb", dac.config().inl_lsb}, {"dnl_lsb", dac.config().dnl_lsb},
                  {"lut", cfg.get_string("dac.lut")}}},
         {"framebuffer_crc32", rstats.framebuffer_crc32}};
+    if (!deadline.is_null()) j["deadline"] = deadline;
     if (!stats_path.empty()) write_json(stats_path, j);
     for (const auto& e : r.errors) std::cerr << "scanout: monitor: " << e << "\n";
     if (!quiet) {
@@ -137,6 +155,11 @@ void register_scanout(CLI::App& app) {
                     r.frame_rate_hz, same ? "equals" : "differs from",
                     same ? "" : (" (" + std::to_string(mismatched) + " pixels, max error " + std::to_string(max_err) + ")").c_str());
       std::cout << buf;
+      if (!deadline.is_null())
+        std::cout << "scanout: raster finishes at " << deadline["frame_time_cycles"] << " cycles, deadline "
+                  << deadline["deadline_cycles"] << " cycles (" << deadline["buffering"].get<std::string>()
+                  << " buffering): " << (deadline["frame_deadline_met"].get<bool>() ? "met" : "MISSED") << ", "
+                  << deadline["underrun_lines"] << " underrun lines\n";
     }
     if (!r.ok()) throw std::runtime_error("virtual monitor: " + std::to_string(r.errors.size()) + " timing errors (above)");
   });

@@ -118,6 +118,7 @@ void ScanoutModule::display_thread() {
 
 ScanoutReport run_scanout(const ScanoutParams& p, uint64_t raster_finish_cycles, const Scanout* ref,
                           const SampleSink& sink) {
+  sc_core::sc_report_handler::set_actions(sc_core::SC_INFO, sc_core::SC_DO_NOTHING);  // "stopped by user"
   ScanoutModule m("scanout", p, raster_finish_cycles, ref, sink);
   sc_core::sc_start();
   return m.report;
