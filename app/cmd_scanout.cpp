@@ -144,7 +144,6 @@ void register_scanout(CLI::App& app) {
         {"framebuffer_crc32", rstats.framebuffer_crc32}};
     if (!deadline.is_null()) j["deadline"] = deadline;
     if (!stats_path.empty()) write_json(stats_path, j);
-    for (const auto& e : r.errors) std::cerr << "scanout: monitor: " << e << "\n";
     if (!quiet) {
       char buf[512];
       std::snprintf(buf, sizeof buf,
@@ -161,6 +160,8 @@ void register_scanout(CLI::App& app) {
                   << " buffering): " << (deadline["frame_deadline_met"].get<bool>() ? "met" : "MISSED") << ", "
                   << deadline["underrun_lines"] << " underrun lines\n";
     }
+    std::cout.flush();  // the summary first, then the monitor's messages
+    for (const auto& e : r.errors) std::cerr << "scanout: monitor: " << e << "\n";
     if (!r.ok()) throw std::runtime_error("virtual monitor: " + std::to_string(r.errors.size()) + " timing errors (above)");
   });
 
