@@ -4,6 +4,9 @@
 //   triangle FIFO -> rast_tri_setup -> setup FIFO (latency) -> rast_coarse_raster
 //     -> tile FIFO -> rast_fine_raster -> pixel FIFO -> rast_interpolate -> fragments
 //
+//   Each FIFO is followed by a rast_hold: a stage pops its transaction in the first
+//   cycle it works on it (the FIFO slot frees at once, as in the SystemC model).
+//
 // - Every parameter comes from the config through the exported header rast_params.vh
 //   (`rastsim export-rtl`, model/ref/rtl_params.cpp): widths of docs/fixed-point.md,
 //   fill rule and cull mode, the timing keys and FIFO depths. The same stages, FIFOs
@@ -61,6 +64,10 @@ module rast_top #(
   localparam int TriW  = 1 + 6 * CoordW + 6 * PixelW + AttrW;                      // derived
   localparam int SetW  = 1 + EdgesW + 4 * PixelW + 2 * PixelW + AreaW + AttrW;     // derived
   localparam int TileW = 1 + 1 + 4 * PixelW + EdgesW + 2 * PixelW + AreaW + AttrW;  // derived
+  // derived: the setup FIFO also holds the triangles inside setup's latency pipeline,
+  // ceil((latency - interval) / interval) of them (the SystemC model's latency slots,
+  // model/sc/timing_params.h: setup_fifo_entries).
+  localparam int SetupFifoEntries = SetupFifoDepth + (SetupLatency - 1) / SetupInterval;
   localparam int PixW  = 1 + MaskW + 2 * PixelW + EdgesW - 3 + 2 * PixelW + AreaW + AttrW;  // derived
 
   // ---- Triangle FIFO (fifo.triangle_depth) ----
@@ -100,9 +107,10 @@ module rast_top #(
     .out_origin_o(s_origin), .out_attr_o(s_attr), .busy_o(s_busy));
   assign s_edges = {s_a, s_b, s_c, s_bias};
 
-  // ---- Setup FIFO (fifo.setup_depth; entries wait setup.latency - interval cycles) ----
+  // ---- Setup FIFO (fifo.setup_depth + latency slots; entries wait setup.latency - interval cycles) ----
   logic                c_valid, c_ready, c_marker, c_empty, c_busy;
-  logic [SetW-1:0]     c_data;
+  logic                c_fifo_valid, c_fifo_ready;
+  logic [SetW-1:0]     c_data, c_fifo_data;
   logic [EdgesW-1:0]   c_edges;
   logic [3*CoefW-1:0]  c_a, c_b;
   logic [3*EdgeW-1:0]  c_c;
@@ -111,10 +119,13 @@ module rast_top #(
   logic [2*PixelW-1:0] c_origin;
   logic [AreaW-1:0]    c_area2;
   logic [AttrW-1:0]    c_attr;
-  rast_fifo #(.Width(SetW), .Depth(SetupFifoDepth), .Latency(SetupLatency - SetupInterval)) u_setup_fifo (
+  rast_fifo #(.Width(SetW), .Depth(SetupFifoEntries), .Latency(SetupLatency - SetupInterval)) u_setup_fifo (
     .clk_i, .rst_ni, .in_valid_i(s_valid), .in_ready_o(s_ready),
     .in_data_i({s_marker, s_edges, s_bbox, s_origin, s_area2, s_attr}),
-    .out_valid_o(c_valid), .out_ready_i(c_ready), .out_data_o(c_data), .empty_o(c_empty));
+    .out_valid_o(c_fifo_valid), .out_ready_i(c_fifo_ready), .out_data_o(c_fifo_data), .empty_o(c_empty));
+  rast_hold #(.Width(SetW)) u_coarse_hold (
+    .clk_i, .rst_ni, .in_valid_i(c_fifo_valid), .in_ready_o(c_fifo_ready), .in_data_i(c_fifo_data),
+    .out_valid_o(c_valid), .out_ready_i(c_ready), .out_data_o(c_data));
   assign {c_marker, c_edges, c_bbox, c_origin, c_area2, c_attr} = c_data;
   assign {c_a, c_b, c_c, c_bias} = c_edges;
 
@@ -132,7 +143,8 @@ module rast_top #(
 
   // ---- Tile FIFO (fifo.tile_depth) ----
   logic                f_valid, f_ready, f_marker, f_accepted, f_empty, f_busy;
-  logic [TileW-1:0]    f_data;
+  logic                f_fifo_valid, f_fifo_ready;
+  logic [TileW-1:0]    f_data, f_fifo_data;
   logic [4*PixelW-1:0] f_fp;
   logic [EdgesW-1:0]   f_edges;
   logic [3*CoefW-1:0]  f_a, f_b;
@@ -144,7 +156,10 @@ module rast_top #(
   rast_fifo #(.Width(TileW), .Depth(TileFifoDepth)) u_tile_fifo (
     .clk_i, .rst_ni, .in_valid_i(k_valid), .in_ready_o(k_ready),
     .in_data_i({k_marker, k_accepted, k_fp, c_edges, c_origin, c_area2, c_attr}),
-    .out_valid_o(f_valid), .out_ready_i(f_ready), .out_data_o(f_data), .empty_o(f_empty));
+    .out_valid_o(f_fifo_valid), .out_ready_i(f_fifo_ready), .out_data_o(f_fifo_data), .empty_o(f_empty));
+  rast_hold #(.Width(TileW)) u_fine_hold (
+    .clk_i, .rst_ni, .in_valid_i(f_fifo_valid), .in_ready_o(f_fifo_ready), .in_data_i(f_fifo_data),
+    .out_valid_o(f_valid), .out_ready_i(f_ready), .out_data_o(f_data));
   assign {f_marker, f_accepted, f_fp, f_edges, f_origin, f_area2, f_attr} = f_data;
   assign {f_a, f_b, f_c, f_bias} = f_edges;
 
@@ -164,7 +179,8 @@ module rast_top #(
 
   // ---- Pixel FIFO (fifo.pixel_depth; one entry = one tile's coverage mask) ----
   logic                p_valid, p_ready, p_marker, p_empty, p_busy;
-  logic [PixW-1:0]     p_data;
+  logic                p_fifo_valid, p_fifo_ready;
+  logic [PixW-1:0]     p_data, p_fifo_data;
   logic [MaskW-1:0]    p_mask;
   logic [2*PixelW-1:0] p_tile, p_origin;
   logic [3*CoefW-1:0]  p_a, p_b;
@@ -176,7 +192,10 @@ module rast_top #(
   rast_fifo #(.Width(PixW), .Depth(PixelFifoDepth)) u_pixel_fifo (
     .clk_i, .rst_ni, .in_valid_i(m_valid), .in_ready_o(m_ready),
     .in_data_i({m_marker, m_mask, m_tile, f_a, f_b, f_c, f_origin, f_area2, f_attr}),
-    .out_valid_o(p_valid), .out_ready_i(p_ready), .out_data_o(p_data), .empty_o(p_empty));
+    .out_valid_o(p_fifo_valid), .out_ready_i(p_fifo_ready), .out_data_o(p_fifo_data), .empty_o(p_empty));
+  rast_hold #(.Width(PixW)) u_interp_hold (
+    .clk_i, .rst_ni, .in_valid_i(p_fifo_valid), .in_ready_o(p_fifo_ready), .in_data_i(p_fifo_data),
+    .out_valid_o(p_valid), .out_ready_i(p_ready), .out_data_o(p_data));
   assign {p_marker, p_mask, p_tile, p_a, p_b, p_c, p_origin, p_area2, p_attr} = p_data;
   assign {p_z, p_rgb} = p_attr;
 
@@ -193,7 +212,9 @@ module rast_top #(
     .out_last_o(frag_last_o), .out_lanes_o(frag_lanes_o), .out_x_o(frag_x_o), .out_y_o(frag_y_o),
     .out_z_o(frag_z_o), .out_rgb_o(frag_rgb_o), .busy_o(p_busy));
 
-  assign idle_o = t_empty && !s_busy && c_empty && !c_busy && f_empty && !f_busy && p_empty && !p_busy;
+  // A held transaction shows as valid at the stage's input.
+  assign idle_o = t_empty && !s_busy && c_empty && !c_valid && !c_busy && f_empty && !f_valid && !f_busy &&
+                  p_empty && !p_valid && !p_busy;
 endmodule
 
 `default_nettype wire

@@ -107,7 +107,9 @@ CosimResult run_cosim(const Scene& scene, const Config& cfg, const CosimOptions&
   RtlParams wanted = s.params;
   wanted.tile_log2_max = s.tile_log2;
   s.cmd_depth = static_cast<int>(cfg.get_int("fifo.command_depth"));
-  s.frag_depth = static_cast<int>(cfg.get_int("fifo.fragment_depth"));
+  // Plus the batches inside the interpolator's latency (the model's latency slots,
+  // model/sc/timing_params.h: fragment_fifo_entries).
+  s.frag_depth = static_cast<int>(cfg.get_int("fifo.fragment_depth") + cfg.get_int("interp.latency_cycles"));
   s.rop_pixels_per_cycle = static_cast<uint64_t>(cfg.get_int("rop.pixels_per_cycle"));
 
   const auto models = rtl_models();
