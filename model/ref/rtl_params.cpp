@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "rtl_params.h"
+#include "timing_params.h"
 
 #include <bit>
 #include <sstream>
@@ -66,21 +67,19 @@ RtlParams rtl_params_from_config(const Config& cfg) {
   p.fill_rule = static_cast<int>(st.fill_rule);
   p.cull_mode = static_cast<int>(st.cull);
   p.front_ccw = st.front_ccw ? 1 : 0;
-  auto i = [&](const char* key) { return static_cast<int>(cfg.get_int(key)); };
-  p.setup_interval = i("setup.interval_cycles");
-  p.setup_latency = i("setup.latency_cycles");
-  p.coarse_tiles_per_cycle = i("coarse.tiles_per_cycle");
-  p.fine_samples_per_cycle = i("fine.samples_per_cycle");
-  p.fine_accepted_tile_cycles = i("fine.accepted_tile_cycles");
-  p.interp_fragments_per_cycle = i("interp.fragments_per_cycle");
-  p.interp_latency = i("interp.latency_cycles");
-  p.fifo_triangle = i("fifo.triangle_depth");
-  p.fifo_setup = i("fifo.setup_depth");
-  p.fifo_tile = i("fifo.tile_depth");
-  p.fifo_pixel = i("fifo.pixel_depth");
-  if (p.setup_latency < p.setup_interval)
-    throw ConfigError("setup.latency_cycles (" + std::to_string(p.setup_latency) +
-                      ") is less than setup.interval_cycles (" + std::to_string(p.setup_interval) + ")");
+  // The timing keys, read and checked once (timing_params.cpp), as the SystemC model reads them.
+  const TimingParams t = TimingParams::from_config(cfg);
+  p.setup_interval = static_cast<int>(t.setup_interval);
+  p.setup_latency = static_cast<int>(t.setup_latency);
+  p.coarse_tiles_per_cycle = static_cast<int>(t.coarse_tiles_per_cycle);
+  p.fine_samples_per_cycle = static_cast<int>(t.fine_samples_per_cycle);
+  p.fine_accepted_tile_cycles = static_cast<int>(t.fine_accepted_tile_cycles);
+  p.interp_fragments_per_cycle = static_cast<int>(t.interp_fragments_per_cycle);
+  p.interp_latency = static_cast<int>(t.interp_latency);
+  p.fifo_triangle = t.fifo_triangle;
+  p.fifo_setup = t.fifo_setup;
+  p.fifo_tile = t.fifo_tile;
+  p.fifo_pixel = t.fifo_pixel;
   return p;
 }
 

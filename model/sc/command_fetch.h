@@ -14,7 +14,7 @@
 
 #include "ref/scene.h"
 #include "sc/stage.h"
-#include "sc/timing_params.h"
+#include "ref/timing_params.h"
 
 namespace rastsim::sc {
 

@@ -18,7 +18,7 @@
 
 #include "ref/config.h"
 #include "ref/pipeline.h"
-#include "sc/timing_params.h"
+#include "ref/timing_params.h"
 
 namespace rastsim::sc {
 

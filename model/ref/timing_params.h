@@ -1,13 +1,14 @@
 // SPDX-License-Identifier: Apache-2.0
-// TimingParams: the timed model's view of the config's timing keys
-// (model/ref/config_schema_timing.cpp), read once; no defaults of its own.
+// TimingParams: the config's timing keys (config_schema_timing.cpp), read and checked
+// once; no defaults of its own. The SystemC model (model/sc) times its stages with them
+// and the RTL parameter export (rtl_params.cpp) builds the Verilog with the same values.
 #pragma once
 
 #include <cstdint>
 
-#include "ref/config.h"
+#include "config.h"
 
-namespace rastsim::sc {
+namespace rastsim {
 
 // ceil(n / per_cycle), the cost of n items through a port of per_cycle items a cycle.
 inline uint64_t ceil_div(uint64_t n, uint64_t per_cycle) { return (n + per_cycle - 1) / per_cycle; }
@@ -34,4 +35,9 @@ struct TimingParams {
   static TimingParams from_config(const Config& cfg);
 };
 
+}  // namespace rastsim
+
+namespace rastsim::sc {
+using rastsim::ceil_div;
+using rastsim::TimingParams;
 }  // namespace rastsim::sc

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "sc/timing_params.h"
+#include "timing_params.h"
 
-namespace rastsim::sc {
+namespace rastsim {
 
 TimingParams TimingParams::from_config(const Config& cfg) {
   TimingParams p;
@@ -34,4 +34,4 @@ TimingParams TimingParams::from_config(const Config& cfg) {
   return p;
 }
 
-}  // namespace rastsim::sc
+}  // namespace rastsim
