@@ -6,6 +6,7 @@
 #include <iostream>
 
 #include "common.h"
+#include "sc/scanout.h"
 #include "sc/raster_pipeline.h"
 
 namespace rastsim::app {
@@ -48,6 +49,19 @@ void register_simulate(CLI::App& app) {
     nlohmann::json j = r.to_json();
     j["config"] = cfg.source_name();
     j["scene"] = scene_path;
+    // Did the frame finish before scan-out needed it? The analytic deadline of the timed
+    // scan-out (model/sc/scanout.h; its simulation agrees with it, tb/scanout), at the
+    // configured core and pixel clocks. A second SystemC elaboration is not possible in
+    // this process, so the scan-out module itself runs in `rastsim scanout`.
+    try {
+      const sc::ScanoutParams sp = sc::scanout_params_from_config(cfg, cfg.get_float("clock.core_mhz"));
+      const uint64_t deadline = sc::scanout_deadline_cycles(sp);
+      j["frame_time_cycles"] = r.cycles;
+      j["frame_deadline_cycles"] = deadline;
+      j["frame_deadline_met"] = r.cycles <= deadline;
+    } catch (const std::exception& e) {
+      j["frame_deadline_error"] = e.what();
+    }
     if (!stats_path.empty()) write_json(stats_path, j);
     if (!quiet) {
       const sc::StageReport* bottleneck = &r.stages.front();
