@@ -15,8 +15,7 @@
 
 namespace rastsim::app {
 
-namespace {
-
+// Also used by `rastsim monitor` (cmd_monitor.cpp).
 nlohmann::json timing_json(const VideoTiming& t) {
   return {{"name", t.name},
           {"h_active", t.h_active}, {"h_front_porch", t.h_front_porch}, {"h_sync", t.h_sync},
@@ -28,6 +27,20 @@ nlohmann::json timing_json(const VideoTiming& t) {
           {"pixel_clock_hz", t.pixel_clock_hz}, {"line_rate_hz", t.line_rate_hz()},
           {"frame_rate_hz", t.frame_rate_hz()}};
 }
+
+// The monitor's measured timing and verdict as stats keys (also `rastsim monitor`).
+nlohmann::json measured_json(const MonitorResult& r) {
+  const VideoTiming& m = r.measured;
+  return {{"h_total", m.h_total}, {"v_total", m.v_total}, {"h_sync", m.h_sync}, {"v_sync", m.v_sync},
+          {"h_active", m.h_active}, {"v_active", m.v_active},
+          {"h_front_porch", m.h_front_porch}, {"h_back_porch", m.h_back_porch},
+          {"v_front_porch", m.v_front_porch}, {"v_back_porch", m.v_back_porch},
+          {"line_rate_hz", r.line_rate_hz}, {"frame_rate_hz", r.frame_rate_hz},
+          {"frames_decoded", r.frames_decoded}, {"no_data_pixels", r.no_data_pixels},
+          {"monitor_errors", r.errors}};
+}
+
+namespace {
 
 // Writes the video signal to .vcd, or to .fst through gtkwave's vcd2fst.
 struct SignalFile {
@@ -57,15 +70,21 @@ void register_scanout(CLI::App& app) {
   static std::string scene_path, out_path, signal_path, stats_path, lines_arg;
   static bool quiet = false;
   static int64_t raster_cycles = -1;
+  static int signal_frames = 1;
   add_config_options(cmd, opts);
   cmd->add_option("--scene,-s", scene_path, "Scene: a trace (.trace) or a Wavefront OBJ (.obj)")
       ->required()
       ->check(CLI::ExistingFile);
   cmd->add_option("-o,--output", out_path, "Decoded frame to write: .png or .ppm")->required();
   cmd->add_option("--signal", signal_path,
-                  "Write the video signal (hsync, vsync, blank, codes, levels in V) of the first frame: .vcd or .fst");
-  cmd->add_option("--signal-lines", lines_arg, "Only lines FIRST..FIRST+COUNT-1 of the first frame in --signal")
+                  "Write the video signal (hsync, vsync, blank, codes, levels in V) of the first frame (see --signal-frames): .vcd or .fst");
+  auto* lines_opt = cmd->add_option("--signal-lines", lines_arg, "Only lines FIRST..FIRST+COUNT-1 of the first frame in --signal")
       ->type_name("FIRST:COUNT");
+  cmd->add_option("--signal-frames", signal_frames,
+                  "Write the first N frames in --signal (default 1); `rastsim monitor` needs 2 to decode a frame "
+                  "(with --raster-cycles: at most the timed run)")
+      ->check(CLI::PositiveNumber)
+      ->excludes(lines_opt);
   cmd->add_option("--stats", stats_path, "Write configured and measured timing and the decode check as JSON ('-' for stdout)");
   cmd->add_option("--raster-cycles", raster_cycles,
                   "Raster pipeline finish time in core cycles (`rastsim simulate` stats: cycles): run the timed "
@@ -81,7 +100,7 @@ void register_scanout(CLI::App& app) {
     RenderStats rstats;
     const Framebuffer fb = render_scene(scene, raster_state_from_config(cfg), rstats);
 
-    long long first = 0, count = t.pixels_per_frame();
+    long long first = 0, count = signal_frames * t.pixels_per_frame();
     if (!lines_arg.empty()) {
       int a = 0, n = 0;
       if (std::sscanf(lines_arg.c_str(), "%d:%d", &a, &n) != 2 || a < 0 || n < 1 || a + n > t.v_total)
@@ -105,7 +124,7 @@ void register_scanout(CLI::App& app) {
       deadline["buffering"] = cfg.get_string("scanout.buffering");
       deadline["core_mhz"] = cfg.get_float("clock.core_mhz");
     } else {
-      scanout.run(2, sink);  // two frames: a picture lies between two vsync leading edges
+      scanout.run(std::max(2, signal_frames), sink);  // two frames: a picture lies between two vsync leading edges
     }
     if (sig) sig->close();
     const MonitorResult r = mon.finish();
@@ -127,21 +146,15 @@ void register_scanout(CLI::App& app) {
       }
     same = same && mismatched == 0;
     const VideoTiming& m = r.measured;
-    nlohmann::json j = {
+    nlohmann::json j = measured_json(r);
+    j.update({
         {"config", cfg.source_name()}, {"scene", scene_path},
-        {"h_total", m.h_total}, {"v_total", m.v_total}, {"h_sync", m.h_sync}, {"v_sync", m.v_sync},
-        {"h_active", m.h_active}, {"v_active", m.v_active},
-        {"h_front_porch", m.h_front_porch}, {"h_back_porch", m.h_back_porch},
-        {"v_front_porch", m.v_front_porch}, {"v_back_porch", m.v_back_porch},
-        {"line_rate_hz", r.line_rate_hz}, {"frame_rate_hz", r.frame_rate_hz},
-        {"frames_decoded", r.frames_decoded},
         {"decoded_equals_framebuffer", same}, {"mismatched_pixels", mismatched}, {"max_code_error", max_err},
-        {"no_data_pixels", r.no_data_pixels}, {"monitor_errors", r.errors},
         {"configured", timing_json(t)},
         {"dac", {{"bits", dac.config().bits}, {"full_scale_volts", dac.config().full_scale_volts},
                  {"inl_lsb", dac.config().inl_lsb}, {"dnl_lsb", dac.config().dnl_lsb},
                  {"lut", cfg.get_string("dac.lut")}}},
-        {"framebuffer_crc32", rstats.framebuffer_crc32}};
+        {"framebuffer_crc32", rstats.framebuffer_crc32}});
     if (!deadline.is_null()) j["deadline"] = deadline;
     if (!stats_path.empty()) write_json(stats_path, j);
     if (!quiet) {

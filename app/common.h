@@ -33,6 +33,6 @@ void register_render(CLI::App& app);
 void register_simulate(CLI::App& app);
 void register_sweep(CLI::App& app);
 void register_cosim(CLI::App& app), register_export_rtl(CLI::App& app);
-void register_scanout(CLI::App& app);
+void register_scanout(CLI::App& app), register_monitor(CLI::App& app);
 
 }  // namespace rastsim::app
