@@ -136,7 +136,17 @@ i128 shift_right_round(i128 v, int shift, Rounding mode) {
 
 i128 div_round(i128 num, i128 den, Rounding mode) {
   if (den <= 0) throw std::invalid_argument("div_round: denominator must be positive");
-  i128 q = num / den, r = num % den;
+  i128 q, r;
+  if (fits_signed(num, 64) && fits_signed(den, 64)) {
+    // Same result through the 64-bit divider: a 128-bit division is a library call
+    // (__divti3) and dominates per-fragment interpolation when used unconditionally.
+    const int64_t n64 = static_cast<int64_t>(num), d64 = static_cast<int64_t>(den);
+    q = n64 / d64;
+    r = n64 % d64;
+  } else {
+    q = num / den;
+    r = num % den;
+  }
   if (r < 0) { q -= 1; r += den; }  // floor division, r in [0, den)
   switch (mode) {
     case Rounding::Floor: return q;
