@@ -7,7 +7,10 @@
 int main(int argc, char** argv) {
   CLI::App app{
       "rastsim: cycle-approximate GPU rasterizer model.\n"
-      "Reference (bit-exact, untimed) rendering, configs and scenes; see `rastsim COMMAND --help`."};
+      "Bit-exact reference rendering (render), the SystemC timed model (simulate, sweep), the\n"
+      "Verilog RTL in Verilator (cosim), scan-out through video timing and a DAC (scanout,\n"
+      "monitor). Every command takes --config FILE and --set section.key=value; see\n"
+      "`rastsim COMMAND --help` and `rastsim config --doc`."};
   app.require_subcommand(1);
   app.set_help_all_flag("--help-all", "Help for every command");
   rastsim::app::register_config(app);
