@@ -70,6 +70,7 @@ void register_scanout(CLI::App& app) {
   static std::string scene_path, out_path, signal_path, stats_path, lines_arg;
   static bool quiet = false;
   static int64_t raster_cycles = -1;
+  static bool timed = false;
   static int signal_frames = 1;
   add_config_options(cmd, opts);
   cmd->add_option("--scene,-s", scene_path, "Scene: a trace (.trace) or a Wavefront OBJ (.obj)")
@@ -86,11 +87,15 @@ void register_scanout(CLI::App& app) {
       ->check(CLI::PositiveNumber)
       ->excludes(lines_opt);
   cmd->add_option("--stats", stats_path, "Write configured and measured timing and the decode check as JSON ('-' for stdout)");
-  cmd->add_option("--raster-cycles", raster_cycles,
+  auto* cycles_opt = cmd->add_option("--raster-cycles", raster_cycles,
                   "Raster pipeline finish time in core cycles (`rastsim simulate` stats: cycles): run the timed "
                   "scan-out (model/sc) from the start of vertical blanking at clock.core_mhz, report the deadline "
                   "check and decode its signal, underruns included")
       ->check(CLI::NonNegativeNumber);
+  cmd->add_flag("--timed", timed,
+                "Take the raster finish time from the SystemC pipeline on this scene and config (a "
+                "`rastsim simulate` child process), then run the timed scan-out as with --raster-cycles")
+      ->excludes(cycles_opt);
   cmd->add_flag("--quiet,-q", quiet, "Print only monitor errors");
   cmd->callback([] {
     const Config cfg = load_config(opts);
@@ -116,6 +121,7 @@ void register_scanout(CLI::App& app) {
       if (sig) sig->w->push(s);
     };
     const Scanout scanout(t, dac, fb);
+    if (timed) raster_cycles = simulate_in_child(opts, scene_path).at("cycles").get<int64_t>();
     nlohmann::json deadline;
     if (raster_cycles >= 0) {
       // Timed: vertical blanking, then the frame (one vsync pulse each side of it).

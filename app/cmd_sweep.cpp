@@ -5,8 +5,6 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <fcntl.h>
-
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -69,31 +67,13 @@ std::string describe(const Point& p, const std::vector<Axis>& axes) {
   return s;
 }
 
-std::string last_line(const std::string& path) {
-  std::ifstream is(path);
-  std::string line, last;
-  while (std::getline(is, line))
-    if (!line.empty()) last = line;
-  return last.empty() ? "(no message)" : last;
-}
-
 // Starts `rastsim simulate` for one point; stdout discarded, stderr to the point's file.
 pid_t spawn(const Point& p, const std::vector<Axis>& axes, const ConfigOptions& base) {
-  std::vector<std::string> args{"rastsim", "simulate", "--quiet", "--scene", p.scene, "--stats", p.stats_path};
+  std::vector<std::string> args{"simulate", "--quiet", "--scene", p.scene, "--stats", p.stats_path};
   if (!base.config_path.empty()) args.insert(args.end(), {"--config", base.config_path});
   for (const auto& s : base.sets) args.insert(args.end(), {"--set", s});
   for (size_t i = 0; i < axes.size(); ++i) args.insert(args.end(), {"--set", axes[i].key + "=" + p.values[i]});
-  const pid_t pid = fork();
-  if (pid != 0) return pid;
-  const int null_fd = open("/dev/null", O_WRONLY);
-  const int err_fd = open(p.err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  if (null_fd >= 0) dup2(null_fd, 1);
-  if (err_fd >= 0) dup2(err_fd, 2);
-  std::vector<char*> argv;
-  for (auto& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  execv("/proc/self/exe", argv.data());
-  _exit(127);
+  return spawn_self(args, p.err_path);
 }
 
 class Progress {

@@ -2,6 +2,8 @@
 // Options and helpers shared by every `rastsim` subcommand.
 #pragma once
 
+#include <sys/types.h>
+
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -26,6 +28,16 @@ ObjPlacement obj_placement(const Config& cfg);
 
 // Writes JSON to a file (pretty, with a trailing newline); "-" means stdout.
 void write_json(const std::string& path, const nlohmann::json& j);
+
+// Starts this same binary as a child process running `rastsim ARGS...` (args[0] is the
+// subcommand), stdout to /dev/null, stderr to `err_path`. SystemC elaborates one design
+// per process, so commands that need several simulations run them this way.
+pid_t spawn_self(const std::vector<std::string>& args, const std::string& err_path);
+// The last non-empty line of a file (a child's error message), or "(no message)".
+std::string last_line(const std::string& path);
+// Runs `rastsim simulate` on `scene` with the same config options in a child process and
+// returns its stats JSON; throws with the child's error line when it fails.
+nlohmann::json simulate_in_child(const ConfigOptions& o, const std::string& scene);
 
 // Each subcommand registers itself; main() calls these in order.
 void register_config(CLI::App& app);
