@@ -16,6 +16,7 @@ RASTSIM_PACKAGES=(
   libgtest-dev libbenchmark-dev
   libtomlplusplus-dev libcli11-dev nlohmann-json3-dev libpng-dev zlib1g-dev
   python3-matplotlib
+  gtkwave   # vcd2fst / fst2vcd for FST video signals (rastsim scanout --signal, monitor), and to view waveforms
 )
 
 install_missing_packages() {
