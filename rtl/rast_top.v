@@ -9,10 +9,11 @@
 //
 // - Every parameter comes from the config through the exported header rast_params.vh
 //   (`rastsim export-rtl`, model/ref/rtl_params.cpp): widths of docs/fixed-point.md,
-//   fill rule and cull mode, the timing keys and FIFO depths. The same stages, FIFOs
-//   and timing equations as the SystemC model (docs/microarchitecture.md, docs/rtl.md).
-// - The tile size is a run-time input, 2^tile_log2_i with 1 <= tile_log2_i <=
-//   TileLog2Max, held constant while the pipeline is busy.
+//   the timing keys and FIFO depths. The same stages, FIFOs and timing equations as the
+//   SystemC model (docs/microarchitecture.md, docs/rtl.md).
+// - The raster state is run-time input, held constant while the pipeline is busy: the
+//   tile size 2^tile_log2_i with 1 <= tile_log2_i <= TileLog2Max; fill rule, cull mode
+//   and front face (encoded as model/ref/raster_state.h's enums, see rast_tri_setup).
 // - Triangles arrive snapped (s.I.F raw, relative to the origin), with the clip
 //   rectangle and origin of the state they were drawn in; a marker (a state command in
 //   order with the triangles) travels through every stage and leaves as a marker beat.
@@ -26,6 +27,9 @@ module rast_top #(
   input  wire logic                                  clk_i,           // core clock
   input  wire logic                                  rst_ni,          // asynchronous reset, active low
   input  wire logic [2:0]                            tile_log2_i,     // log2 tile size (static)
+  input  wire logic [1:0]                            fill_rule_i,     // raster.fill_rule (static)
+  input  wire logic [1:0]                            cull_mode_i,     // raster.cull (static)
+  input  wire logic                                  front_ccw_i,     // raster.front_face = ccw (static)
   input  wire logic                                  tri_valid_i,     // a triangle or marker
   output      logic                                  tri_ready_o,     // taken (triangle FIFO not full)
   input  wire logic                                  tri_marker_i,    // a marker
@@ -97,10 +101,10 @@ module rast_top #(
   logic [AttrW-1:0]    s_attr;
   rast_tri_setup #(
     .CoordW(CoordW), .CoordFrac(CoordFrac), .CoefW(CoefW), .EdgeW(EdgeW), .AreaW(AreaW),
-    .PixelW(PixelW), .AttrW(AttrW), .FillRule(FillRule), .CullMode(CullMode), .FrontCcw(FrontCcw),
-    .SetupInterval(SetupInterval)
+    .PixelW(PixelW), .AttrW(AttrW), .SetupInterval(SetupInterval)
   ) u_tri_setup (
-    .clk_i, .rst_ni, .in_valid_i(t_valid), .in_ready_o(t_ready), .in_marker_i(t_marker),
+    .clk_i, .rst_ni, .fill_rule_i, .cull_mode_i, .front_ccw_i,
+    .in_valid_i(t_valid), .in_ready_o(t_ready), .in_marker_i(t_marker),
     .in_x_i(t_x), .in_y_i(t_y), .in_clip_i(t_clip), .in_origin_i(t_origin), .in_attr_i(t_attr),
     .out_valid_o(s_valid), .out_ready_i(s_ready), .out_marker_o(s_marker), .out_a_o(s_a),
     .out_b_o(s_b), .out_c_o(s_c), .out_bias_o(s_bias), .out_area2_o(s_area2), .out_bbox_o(s_bbox),

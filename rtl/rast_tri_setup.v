@@ -1,11 +1,14 @@
 // SPDX-License-Identifier: Apache-2.0
 // rast_tri_setup: triangle setup of snapped fixed-point vertices (ref: setup.cpp).
 //
-// - Doubled signed area (exact, EdgeW bits); zero area is culled, and per CullMode the
-//   back or front faces (FrontCcw says which winding is front).
+// - Doubled signed area (exact, EdgeW bits); zero area is culled, and per cull_mode_i
+//   the back or front faces (front_ccw_i says which winding is front).
 // - Three edges E_i = a x + b y + c, edge i from vertex i to vertex i+1, negated for a
-//   counter-clockwise triangle so the interior is E > 0; fill-rule bias per FillRule
+//   counter-clockwise triangle so the interior is E > 0; fill-rule bias per fill_rule_i
 //   (1 = the edge does not own its samples: covered needs E - 1 >= 0).
+// - Fill rule, cull mode and front face are run-time inputs (raster state, static while
+//   the pipeline is busy), encoded as model/ref/raster_state.h's enums: fill rule
+//   0 top_left, 1 bottom_right, 2 inclusive, 3 exclusive; cull 0 none, 1 back, 2 front.
 // - Bounding box of the pixel centres inside the vertices' extent, clipped to the clip
 //   rectangle (viewport, framebuffer and scissor, given with every triangle); an empty
 //   box is culled (nothing to traverse).
@@ -24,13 +27,13 @@ module rast_tri_setup #(
   parameter int AreaW         = 48,  // 2N + 2
   parameter int PixelW        = 14,  // pixel index bits
   parameter int AttrW         = 8,   // pass-through attribute bits
-  parameter int FillRule      = 0,   // 0 top_left, 1 bottom_right, 2 inclusive, 3 exclusive
-  parameter int CullMode      = 0,   // 0 none, 1 back, 2 front
-  parameter int FrontCcw      = 1,   // 1: counter-clockwise on screen is front
   parameter int SetupInterval = 1    // cycles per triangle
 ) (
   input  wire logic                  clk_i,         // core clock
   input  wire logic                  rst_ni,        // asynchronous reset, active low
+  input  wire logic [1:0]            fill_rule_i,   // 0 top_left, 1 bottom_right, 2 inclusive, 3 exclusive (static)
+  input  wire logic [1:0]            cull_mode_i,   // 0 none, 1 back, 2 front (3: as none) (static)
+  input  wire logic                  front_ccw_i,   // 1: counter-clockwise on screen is front (static)
   input  wire logic                  in_valid_i,    // triangle or marker in
   output      logic                  in_ready_o,    // taken this cycle
   input  wire logic                  in_marker_i,   // a marker, not a triangle
@@ -135,8 +138,8 @@ module rast_tri_setup #(
   // |area2| <= L^2 < 2^(2N+2): exact in EdgeW bits although the products wrap.
   assign area2 = dx1 * dy2 - dy1 * dx2;
   assign neg   = area2[EdgeW-1];          // counter-clockwise on screen
-  assign front = (neg == (FrontCcw != 0));
-  assign facing_culled = (CullMode == 1 && !front) || (CullMode == 2 && front);
+  assign front = (neg == front_ccw_i);
+  assign facing_culled = (cull_mode_i == 2'd1 && !front) || (cull_mode_i == 2'd2 && front);
   assign out_area2_o = neg ? AreaW'(-area2) : AreaW'(area2);
 
   // ---- Edges and fill-rule bias ----
@@ -150,10 +153,10 @@ module rast_tri_setup #(
       a = neg ? CoefW'(vy[(i+1)%3]) - CoefW'(vy[i]) : CoefW'(vy[i]) - CoefW'(vy[(i+1)%3]);
       b = neg ? CoefW'(vx[i]) - CoefW'(vx[(i+1)%3]) : CoefW'(vx[(i+1)%3]) - CoefW'(vx[i]);
       c = -(EdgeW'(a) * EdgeW'(vx[i]) + EdgeW'(b) * EdgeW'(vy[i]));
-      case (FillRule)
-        0:       owns = (a > 0) || (a == 0 && b > 0);  // top-left
-        1:       owns = (a < 0) || (a == 0 && b < 0);  // bottom-right
-        2:       owns = 1'b1;                          // inclusive
+      case (fill_rule_i)
+        2'd0:    owns = (a > 0) || (a == 0 && b > 0);  // top-left
+        2'd1:    owns = (a < 0) || (a == 0 && b < 0);  // bottom-right
+        2'd2:    owns = 1'b1;                          // inclusive
         default: owns = 1'b0;                          // exclusive
       endcase
       out_a_o[i*CoefW +: CoefW] = a;

@@ -31,9 +31,6 @@ constexpr Field kFields[] = {
     {"DepthW", &RtlParams::depth_w, "D = raster.depth_bits"},
     {"PixelW", &RtlParams::pixel_w, "pixel x, y: unsigned"},
     {"TileLog2Max", &RtlParams::tile_log2_max, "log2 of the largest tile (raster.tile_size)"},
-    {"FillRule", &RtlParams::fill_rule, "0 top_left, 1 bottom_right, 2 inclusive, 3 exclusive"},
-    {"CullMode", &RtlParams::cull_mode, "0 none, 1 back, 2 front"},
-    {"FrontCcw", &RtlParams::front_ccw, "1: counter-clockwise on screen is front"},
     {"SetupInterval", &RtlParams::setup_interval, "setup.interval_cycles"},
     {"SetupLatency", &RtlParams::setup_latency, "setup.latency_cycles"},
     {"CoarseTilesPerCycle", &RtlParams::coarse_tiles_per_cycle, "coarse.tiles_per_cycle"},
@@ -64,9 +61,6 @@ RtlParams rtl_params_from_config(const Config& cfg) {
   p.depth_num_w = 2 * n + 2 + st.depth_bits;
   p.depth_w = st.depth_bits;
   p.tile_log2_max = std::countr_zero(static_cast<unsigned>(st.tile_size));
-  p.fill_rule = static_cast<int>(st.fill_rule);
-  p.cull_mode = static_cast<int>(st.cull);
-  p.front_ccw = st.front_ccw ? 1 : 0;
   // The timing keys, read and checked once (timing_params.cpp), as the SystemC model reads them.
   const TimingParams t = TimingParams::from_config(cfg);
   p.setup_interval = static_cast<int>(t.setup_interval);

@@ -5,13 +5,15 @@
 // typed twice: the Verilog gets them through the exported header, the C++ testbench
 // through this struct.
 //
-// - rtl_params_from_config: Config -> RtlParams (format, widths, fill rule, cull mode,
-//   timing keys the RTL implements, FIFO depths).
+// - rtl_params_from_config: Config -> RtlParams (format, widths, timing keys the RTL
+//   implements, FIFO depths). Fill rule, cull mode and front face are not parameters:
+//   they are run-time inputs of the RTL like the tile size (docs/rtl.md), driven from
+//   the RasterState of the config being simulated.
 // - rtl_params_verilog: the Verilog header (a parameter port list body) that
 //   rtl/rast_top.v includes; `rastsim export-rtl` and the build's exporter write it.
 // - rtl_params_compatible: whether an RTL library built for one config can simulate
-//   another (same everything, tile size at most the built maximum: the tile size is a
-//   run-time input of the RTL, see docs/rtl.md).
+//   another (same widths and timing, tile size at most the built maximum: the tile size
+//   is a run-time input of the RTL, see docs/rtl.md).
 #pragma once
 
 #include <string>
@@ -32,9 +34,6 @@ struct RtlParams {
   int depth_w = 0;       // D = raster.depth_bits
   int pixel_w = 14;      // pixel x, y, unsigned
   int tile_log2_max = 0; // log2 of raster.tile_size: the largest tile the RTL supports
-  // Fixed-function state: 0 top_left, 1 bottom_right, 2 inclusive, 3 exclusive;
-  // cull 0 none, 1 back, 2 front.
-  int fill_rule = 0, cull_mode = 0, front_ccw = 0;
   // Timing keys the RTL implements (config_schema_timing.cpp).
   int setup_interval = 0, setup_latency = 0;
   int coarse_tiles_per_cycle = 0;

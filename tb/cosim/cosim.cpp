@@ -7,12 +7,18 @@
 #include "cosim_driver.h"
 #include "pipeline.h"
 #include "primitive_assembly.h"
+#include "raster_state.h"
 #include "setup.h"
 #include "traverse.h"
 
 namespace rastsim::cosim {
 
 namespace {
+
+// rast_top's fill_rule_i / cull_mode_i carry these enums' values (rtl/rast_tri_setup.v).
+static_assert(int(FillRule::TopLeft) == 0 && int(FillRule::BottomRight) == 1 && int(FillRule::Inclusive) == 2 &&
+              int(FillRule::Exclusive) == 3);
+static_assert(int(CullMode::None) == 0 && int(CullMode::Back) == 1 && int(CullMode::Front) == 2);
 
 uint64_t ceil_div(uint64_t n, uint64_t d) { return (n + d - 1) / d; }
 
@@ -104,6 +110,11 @@ CosimResult run_cosim(const Scene& scene, const Config& cfg, const CosimOptions&
   if (tile < 2 || !std::has_single_bit(static_cast<unsigned>(tile)))
     throw std::runtime_error("tile size " + std::to_string(tile) + " is not a power of two >= 2");
   s.tile_log2 = std::countr_zero(static_cast<unsigned>(tile));
+  // Fill rule, cull mode and front face: run-time inputs, from this config (not the model's).
+  const RasterState st = raster_state_from_config(cfg);
+  s.fill_rule = static_cast<int>(st.fill_rule);
+  s.cull_mode = static_cast<int>(st.cull);
+  s.front_ccw = st.front_ccw ? 1 : 0;
   RtlParams wanted = s.params;
   wanted.tile_log2_max = s.tile_log2;
   s.cmd_depth = static_cast<int>(cfg.get_int("fifo.command_depth"));

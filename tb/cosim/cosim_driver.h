@@ -49,8 +49,11 @@ struct Expected {
 };
 
 struct TbSetup {
-  RtlParams params;                     // of the config being simulated
+  RtlParams params;                     // of the verilated model (widths, timing)
+  // Run-time raster state of the config being simulated, driven on rast_top's static
+  // inputs: log2 tile size, fill rule, cull mode (raster_state.h's enum values), front face.
   int tile_log2 = 0;
+  int fill_rule = 0, cull_mode = 0, front_ccw = 1;
   std::vector<TbItem> items;
   std::vector<Expected> expected;
   std::vector<std::string> tri_names;   // "file:line triangle k"
@@ -113,6 +116,9 @@ void run_rtl(const TbSetup& s, CosimResult& r) {
   };
   const uint64_t coord_mask = (uint64_t{1} << p.coord_w) - 1;
   top->tile_log2_i = static_cast<uint8_t>(s.tile_log2);
+  top->fill_rule_i = static_cast<uint8_t>(s.fill_rule);
+  top->cull_mode_i = static_cast<uint8_t>(s.cull_mode);
+  top->front_ccw_i = static_cast<uint8_t>(s.front_ccw);
   top->tri_valid_i = 0;
   top->frag_ready_i = 0;
   top->rst_ni = 0;
@@ -140,6 +146,9 @@ void run_rtl(const TbSetup& s, CosimResult& r) {
   size_t next_item = 0;
   uint64_t rop_left = 0, last_busy = 0;  // last cycle any stage worked
   size_t next_expected = 0;
+  // Cycles the RTL has been idle but for the interpolator pipeline, with nothing out:
+  // once past that pipeline's latency, nothing is left inside (a marker behind culled
+  // triangles must not be taken for a drained pipeline).
   uint64_t quiet_cycles = 0;
   std::mt19937_64 rng(s.opts.backpressure_seed);
   std::bernoulli_distribution stall(s.opts.backpressure);
@@ -211,8 +220,8 @@ void run_rtl(const TbSetup& s, CosimResult& r) {
     const bool tri_taken = tri_valid && top->tri_ready_o;
     if (!top->idle_o || top->frag_valid_o || fetch.active || assembly.active) last_busy = std::max(last_busy, t);
     // Fragments out of the RTL.
+    quiet_cycles = (top->idle_o && !top->frag_valid_o) ? quiet_cycles + 1 : 0;
     if (top->frag_valid_o && frag_ready) {
-      quiet_cycles = 0;
       if (top->frag_marker_o) {
         if (markers_in_flight.empty()) {
           mismatch("cycle " + std::to_string(t) + ": a marker the testbench never sent");
@@ -253,8 +262,6 @@ void run_rtl(const TbSetup& s, CosimResult& r) {
           staging_blocked = true;
         }
       }
-    } else if (!top->frag_valid_o) {
-      ++quiet_cycles;
     }
     // Assembly: count its busy cycle, hand over on a taken offer.
     if (assembly.active) {

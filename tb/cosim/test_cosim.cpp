@@ -17,35 +17,10 @@
 #include <random>
 
 #include "cosim.h"
+#include "cosim_test_util.h"
 
 namespace rastsim::cosim {
 namespace {
-
-Config load(const std::string& name) {
-  Config c;
-  c.load_file(std::string(RASTSIM_SOURCE_DIR) + "/configs/" + name + ".toml");
-  c.validate();
-  return c;
-}
-
-SceneVertex vtx(double x, double y, std::mt19937_64& rng) {
-  std::uniform_int_distribution<int> c8(0, 255);
-  std::uniform_real_distribution<double> z(0, 1);
-  SceneVertex v;
-  v.x = Q64::from_double(x);
-  v.y = Q64::from_double(y);
-  v.z = z(rng);
-  v.r = uint8_t(c8(rng));
-  v.g = uint8_t(c8(rng));
-  v.b = uint8_t(c8(rng));
-  return v;
-}
-
-Command tri_cmd(const SceneVertex& a, const SceneVertex& b, const SceneVertex& c, int line) {
-  CmdPrimitives p;
-  p.vertices = {a, b, c};
-  return Command{p, SourceLoc{"random", line}};
-}
 
 // Random triangles over the viewport and its guard band: mostly small, some large,
 // some slivers and some degenerate; now and then a scissor or viewport change.
@@ -77,10 +52,11 @@ Scene random_scene(const Config& cfg, uint64_t seed, int n) {
     const double cx = q(ux(rng)), cy = q(uy(rng));
     const double size = kind < 0.7 ? 6.0 : (kind < 0.9 ? 24.0 : 64.0);
     std::uniform_real_distribution<double> d(-size, size);
-    SceneVertex a = vtx(cx, cy, rng), b = vtx(q(cx + d(rng)), q(cy + d(rng)), rng),
-                c = vtx(q(cx + d(rng)), q(cy + d(rng)), rng);
-    if (kind > 0.97) c = vtx(q(2 * b.x.to_double() - a.x.to_double()), q(2 * b.y.to_double() - a.y.to_double()), rng);
-    s.commands.push_back(tri_cmd(a, b, c, line));
+    SceneVertex a = random_vertex(cx, cy, rng), b = random_vertex(q(cx + d(rng)), q(cy + d(rng)), rng),
+                c = random_vertex(q(cx + d(rng)), q(cy + d(rng)), rng);
+    if (kind > 0.97)
+      c = random_vertex(q(2 * b.x.to_double() - a.x.to_double()), q(2 * b.y.to_double() - a.y.to_double()), rng);
+    s.commands.push_back(tri_cmd(a, b, c, "random", line));
   }
   return s;
 }
@@ -98,7 +74,7 @@ struct RandomCase {
 class RandomCosim : public ::testing::TestWithParam<RandomCase> {};
 
 TEST_P(RandomCosim, TwoThousandTrianglesWithBackpressure) {
-  Config cfg = load(GetParam().config);
+  Config cfg = load_shipped_config(GetParam().config);
   cfg.apply_override("raster.out_of_range=cull");  // some vertices leave the guard band
   const uint64_t seed = 0x5eed0000u + uint64_t(GetParam().tile);
   std::cout << "seed " << seed << " (scene and backpressure)\n";
@@ -133,7 +109,8 @@ Scene directed_scene(const Config& cfg) {
   s.source = "directed";
   int line = 0;
   auto add = [&](double x0, double y0, double x1, double y1, double x2, double y2) {
-    s.commands.push_back(tri_cmd(vtx(x0, y0, rng), vtx(x1, y1, rng), vtx(x2, y2, rng), ++line));
+    s.commands.push_back(tri_cmd(random_vertex(x0, y0, rng), random_vertex(x1, y1, rng), random_vertex(x2, y2, rng),
+                                 "directed", ++line));
   };
   // Fill rule: shared edges through pixel centres, all eight orientations of a square.
   add(8.5, 8.5, 40.5, 8.5, 8.5, 40.5);
@@ -182,7 +159,7 @@ struct DirectedCase {
 class DirectedCosim : public ::testing::TestWithParam<DirectedCase> {};
 
 TEST_P(DirectedCosim, EdgeCasesMatch) {
-  const Config cfg = load(GetParam().config);
+  const Config cfg = load_shipped_config(GetParam().config);
   CosimOptions o;
   o.tile_size = GetParam().tile;
   o.backpressure = 0.5;
