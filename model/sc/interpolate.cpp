@@ -6,7 +6,7 @@ namespace rastsim::sc {
 void Interpolate::body() {
   for (;;) {
     const PixelItem in = read(in_);
-    if (pass_state(in, out_)) continue;
+    if (pass_state(in, out_, p_.interp_latency)) continue;
     const PixelBatch& batch = *in.work;
     auto frags = std::make_shared<std::vector<Fragment>>();
     frags->reserve(batch.pixels.size());

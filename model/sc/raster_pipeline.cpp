@@ -68,7 +68,11 @@ std::string strip_suffix(std::string path, const std::string& suffix) {
 
 }  // namespace
 
-uint64_t fixed_latency_cycles(const TimingParams& p) { return p.fetch_cycles_per_command + 6; }
+// Fetch's header, one issue cycle in each of the 6 later stages, and the pipeline
+// latencies of setup and interpolation, which every transaction (state markers too) waits.
+uint64_t fixed_latency_cycles(const TimingParams& p) {
+  return p.fetch_cycles_per_command + 6 + (p.setup_latency - p.setup_interval) + p.interp_latency;
+}
 
 SimResult simulate_scene(const Scene& scene, const Config& cfg, const SimOptions& opts) {
   const auto t0 = std::chrono::steady_clock::now();
@@ -111,6 +115,9 @@ SimResult simulate_scene(const Scene& scene, const Config& cfg, const SimOptions
     r.stages.push_back({s->basename(), st.busy, st.stalled, st.starved, st.transactions_in, st.transactions_out});
     r.cycles_lower_bound = std::max(r.cycles_lower_bound, fill + st.busy);
     fill += (s == &top->command_fetch) ? p.fetch_cycles_per_command : 1;
+    // Everything leaving setup or interpolation also waits out their pipeline latency.
+    if (s == &top->tri_setup) fill += p.setup_latency - p.setup_interval;
+    if (s == &top->interpolate) fill += p.interp_latency;
   }
   top->for_each_fifo([&](auto& f) {
     r.fifos.push_back({f.basename(), f.depth(), f.writes(), f.reads()});

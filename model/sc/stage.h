@@ -88,12 +88,15 @@ class Stage : public sc_core::sc_module {
     idle_since_ = sc_core::sc_time_stamp();
   }
 
-  // A state command passes through a stage in one cycle; returns true when `in` was one.
+  // A state command takes one cycle of a stage's issue slot and then, like any other
+  // transaction, the stage's pipeline latency (`extra_latency`, as for its work items):
+  // in hardware it travels through the same pipeline registers. Returns true when `in`
+  // was one.
   template <class In, class Out>
-  bool pass_state(const Item<In>& in, Link<Item<Out>>& out) {
+  bool pass_state(const Item<In>& in, Link<Item<Out>>& out, uint64_t extra_latency = 0) {
     if (!in.state) return false;
     busy(1);
-    write(out, Item<Out>{in.state, {}});
+    write(out, Item<Out>{in.state, {}}, extra_latency);
     return true;
   }
 

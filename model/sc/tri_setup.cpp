@@ -9,7 +9,7 @@ void TriSetup::body() {
   for (;;) {
     const TriangleItem in = read(in_);
     if (in.state) apply_state_command(*in.state, st_, no_fb_);  // viewport, scissor
-    if (pass_state(in, out_)) continue;
+    if (pass_state(in, out_, p_.setup_latency - p_.setup_interval)) continue;
     ++ctx_.render.triangles_in;
     auto tri = std::make_shared<SetupTriangle>();
     const SetupOutcome outcome = setup_triangle(in.work.v, st_, in.work.cmd->loc, *tri);

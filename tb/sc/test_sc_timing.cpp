@@ -21,7 +21,8 @@ TEST(ScTiming, EmptySceneCostsOnlyFixedLatency) {
   const TimingParams p = TimingParams::from_config(cfg);
   // No commands: nothing happens.
   EXPECT_EQ(cycles_of(run_isolated([&] { return simulate_stats(Scene{}, cfg); })), 0u);
-  // One state command: fetch header, then one cycle in each later stage.
+  // One state command: fetch header, one cycle in each later stage, and the setup and
+  // interpolation pipeline latencies (fixed_latency_cycles).
   Scene viewport;
   viewport.commands.push_back({CmdViewport{100, 100}, {"mem", 1}});
   EXPECT_EQ(cycles_of(run_isolated([&] { return simulate_stats(viewport, cfg); })), sc::fixed_latency_cycles(p));
@@ -74,7 +75,10 @@ TEST(ScTiming, BottleneckStageSetsThroughput) {
   const uint64_t rop_busy = s["stages"]["rop"]["busy"];
   EXPECT_GE(c, s["cycles_lower_bound"].get<uint64_t>());
   EXPECT_LE(double(c), 1.1 * double(rop_busy));
-  EXPECT_EQ(rop_busy, s["cycles_lower_bound"].get<uint64_t>() - (TimingParams::from_config(cfg).fetch_cycles_per_command + 5));
+  // The ROP's fill: fetch, 5 stages, and the setup and interpolation pipeline latencies.
+  const TimingParams p = TimingParams::from_config(cfg);
+  const uint64_t rop_fill = p.fetch_cycles_per_command + 5 + (p.setup_latency - p.setup_interval) + p.interp_latency;
+  EXPECT_EQ(rop_busy, s["cycles_lower_bound"].get<uint64_t>() - rop_fill);
 }
 
 TEST(ScTiming, SetupLatencyIsNotThroughput) {
