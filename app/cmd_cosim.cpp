@@ -5,8 +5,9 @@
 #include <iostream>
 
 #include "common.h"
-#include "cosim.h"
+#include "rtl/cosim.h"
 #include "sc/raster_pipeline.h"
+#include "scene/scene_io.h"
 
 namespace rastsim::app {
 

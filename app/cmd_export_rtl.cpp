@@ -5,7 +5,7 @@
 #include <iostream>
 
 #include "common.h"
-#include "rtl_params.h"
+#include "rtl/rtl_params.h"
 
 namespace rastsim::app {
 

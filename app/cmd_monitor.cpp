@@ -6,11 +6,12 @@
 #include <iostream>
 
 #include "common.h"
-#include "dac.h"
-#include "framebuffer.h"
-#include "monitor.h"
-#include "signal_reader.h"
-#include "video_timing.h"
+#include "display/dac.h"
+#include "ref/framebuffer.h"
+#include "display/monitor.h"
+#include "display/signal_reader.h"
+#include "config/video_timing.h"
+#include "display/image_io.h"
 
 namespace rastsim::app {
 

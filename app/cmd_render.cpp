@@ -4,7 +4,11 @@
 #include <iostream>
 
 #include "common.h"
-#include "pipeline.h"
+#include "ref/pipeline.h"
+#include "report/stats_json.h"
+#include "scene/scene_io.h"
+#include "display/image_io.h"
+#include "config/raster_state_config.h"
 
 namespace rastsim::app {
 
@@ -36,7 +40,7 @@ void register_render(CLI::App& app) {
     }
     const Framebuffer fb = render_scene(scene, arch, stats, sink);
     if (!out_path.empty()) write_image(fb, out_path);
-    nlohmann::json j = stats.to_json();
+    nlohmann::json j = to_json(stats);
     j["config"] = cfg.source_name();
     j["scene"] = scene_path;
     if (!stats_path.empty()) write_json(stats_path, j);

@@ -8,10 +8,13 @@
 #include <iostream>
 
 #include "common.h"
-#include "monitor.h"
-#include "pipeline.h"
-#include "scanout.h"
+#include "display/monitor.h"
+#include "ref/pipeline.h"
+#include "display/scanout.h"
 #include "sc/scanout.h"
+#include "scene/scene_io.h"
+#include "display/image_io.h"
+#include "config/raster_state_config.h"
 
 namespace rastsim::app {
 

@@ -8,6 +8,8 @@
 #include "common.h"
 #include "sc/scanout.h"
 #include "sc/raster_pipeline.h"
+#include "scene/scene_io.h"
+#include "display/image_io.h"
 
 namespace rastsim::app {
 

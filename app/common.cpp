@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "common.h"
+#include "scene/scene_io.h"
 
 #include <fcntl.h>
 #include <sys/wait.h>

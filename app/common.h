@@ -9,8 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "config.h"
-#include "scene.h"
+#include "config/config.h"
+#include "ref/scene.h"
+#include "scene/scene_io.h"
 
 namespace rastsim::app {
 

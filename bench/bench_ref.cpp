@@ -14,9 +14,9 @@
 #include <cstdint>
 #include <random>
 
-#include "pipeline.h"
-#include "primitive_assembly.h"
-#include "setup.h"
+#include "ref/pipeline.h"
+#include "ref/prim_assembly.h"
+#include "ref/tri_setup.h"
 
 namespace rastsim {
 namespace {

@@ -18,9 +18,9 @@
 #include <utility>
 #include <vector>
 
-#include "pipeline.h"
-#include "rop.h"
-#include "setup.h"
+#include "ref/pipeline.h"
+#include "ref/rop.h"
+#include "ref/tri_setup.h"
 
 namespace rastsim {
 namespace {

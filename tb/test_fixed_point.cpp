@@ -21,7 +21,7 @@
 #include <string>
 #include <vector>
 
-#include "fixed_point.h"
+#include "ref/fixed_point.h"
 
 namespace rastsim {
 namespace {

@@ -29,8 +29,8 @@
 #include <string>
 #include <vector>
 
-#include "setup.h"
-#include "traverse.h"
+#include "ref/tri_setup.h"
+#include "ref/coarse_raster.h"
 
 namespace rastsim {
 namespace {

@@ -15,8 +15,9 @@
 #include <iterator>
 #include <random>
 
-#include "pipeline.h"
-#include "scene.h"
+#include "ref/pipeline.h"
+#include "ref/scene.h"
+#include "scene/scene_io.h"
 
 namespace rastsim {
 namespace scene_test {  // defined in test_scene_trace.cpp

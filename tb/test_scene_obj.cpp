@@ -9,8 +9,10 @@
 #include <fstream>
 #include <functional>
 
-#include "pipeline.h"
-#include "scene.h"
+#include "ref/pipeline.h"
+#include "ref/scene.h"
+#include "scene/scene_io.h"
+#include "config/raster_state_config.h"
 
 namespace rastsim {
 namespace scene_test {  // defined in test_scene_trace.cpp

@@ -10,9 +10,11 @@
 
 #include <unistd.h>
 
-#include "pipeline.h"
-#include "primitive_assembly.h"
-#include "scene.h"
+#include "ref/pipeline.h"
+#include "ref/prim_assembly.h"
+#include "ref/scene.h"
+#include "scene/scene_io.h"
+#include "config/raster_state_config.h"
 
 namespace rastsim {
 namespace scene_test {

@@ -2,7 +2,8 @@
 // Smoke test: the default config builds a raster state and an empty scene renders.
 #include <gtest/gtest.h>
 
-#include "pipeline.h"
+#include "ref/pipeline.h"
+#include "config/raster_state_config.h"
 
 namespace rastsim {
 

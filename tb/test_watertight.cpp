@@ -30,7 +30,7 @@
 #include <utility>
 #include <vector>
 
-#include "pipeline.h"
+#include "ref/pipeline.h"
 
 namespace rastsim {
 namespace {

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "fixed_point.h"
+#include "ref/fixed_point.h"
 
 #include <cctype>
 #include <charconv>

@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: Apache-2.0
-// Framebuffer: RGBA8 colour and unorm depth, row 0 at the top; CRC and image files.
+// Framebuffer: RGBA8 colour and unorm depth, row 0 at the top; its CRC.
+// (Image files: display/image_io.h.)
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
-#include <string>
 #include <vector>
 
 namespace rastsim {
@@ -23,11 +24,5 @@ struct Framebuffer {
   // CRC-32 (IEEE, as zlib) of the RGBA8 colour buffer, rows top to bottom.
   uint32_t color_crc32() const;
 };
-
-// Writes the colour buffer as PNG (RGB, alpha dropped since it is always 255) or binary
-// PPM, chosen by the extension. Throws std::runtime_error naming the file on failure.
-void write_image(const Framebuffer& fb, const std::string& path);
-// Reads a PNG or PPM written by write_image back into RGBA8 (for tests and tools).
-Framebuffer read_image(const std::string& path);
 
 }  // namespace rastsim

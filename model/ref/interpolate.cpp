@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "interpolate.h"
+#include "ref/interpolate.h"
 
 namespace rastsim {
 

@@ -13,7 +13,7 @@
 
 #include <cstdint>
 
-#include "setup.h"
+#include "ref/tri_setup.h"
 
 namespace rastsim {
 

@@ -1,34 +1,13 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "pipeline.h"
+#include "ref/pipeline.h"
 
 #include <chrono>
 
-#include "primitive_assembly.h"
-#include "rop.h"
-#include "setup.h"
+#include "ref/prim_assembly.h"
+#include "ref/rop.h"
+#include "ref/tri_setup.h"
 
 namespace rastsim {
-
-nlohmann::json RenderStats::to_json() const {
-  return {
-      {"triangles_in", triangles_in},
-      {"triangles_culled", triangles_culled},
-      {"triangles_zero_area", triangles_zero_area},
-      {"triangles_facing_culled", triangles_facing_culled},
-      {"triangles_out_of_range", triangles_out_of_range},
-      {"triangles_outside_clip", triangles_outside_clip},
-      {"triangles_rasterized", triangles_rasterized},
-      {"tiles_visited", traversal.tiles_visited},
-      {"tiles_rejected", traversal.tiles_rejected},
-      {"tiles_accepted", traversal.tiles_accepted},
-      {"tiles_partial", traversal.tiles_partial},
-      {"pixel_tests", traversal.pixel_tests},
-      {"fragments", traversal.fragments},
-      {"fragments_passed", fragments_passed},
-      {"framebuffer_crc32", framebuffer_crc32},
-      {"wall_seconds", wall_seconds},
-  };
-}
 
 bool count_setup_outcome(SetupOutcome o, RenderStats& stats) {
   switch (o) {

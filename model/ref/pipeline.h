@@ -8,13 +8,11 @@
 #include <functional>
 #include <string>
 
-#include <nlohmann/json.hpp>
-
-#include "framebuffer.h"
-#include "interpolate.h"
-#include "raster_state.h"
-#include "scene.h"
-#include "traverse.h"
+#include "ref/framebuffer.h"
+#include "ref/interpolate.h"
+#include "ref/raster_state.h"
+#include "ref/scene.h"
+#include "ref/coarse_raster.h"
 
 namespace rastsim {
 
@@ -30,9 +28,6 @@ struct RenderStats {
   uint64_t fragments_passed = 0;        // passed the depth test and were written
   uint32_t framebuffer_crc32 = 0;
   double wall_seconds = 0;
-
-  // Every stat under its public name (docs/reference-model.md lists them).
-  nlohmann::json to_json() const;
 };
 
 // Applies a scene's state command (viewport, scissor, clears) to the state and

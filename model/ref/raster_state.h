@@ -1,12 +1,11 @@
 // SPDX-License-Identifier: Apache-2.0
 // RasterState: the fixed-function state every raster stage reads, built once from the
-// Config (architecture) and updated by scene commands (viewport, scissor, clears).
+// config (config/raster_state_config.h) and updated by scene commands (viewport, scissor, clears).
 #pragma once
 
 #include <cstdint>
 
-#include "config.h"
-#include "fixed_point.h"
+#include "ref/fixed_point.h"
 
 namespace rastsim {
 
@@ -48,9 +47,6 @@ struct RasterState {
   // Pixels a primitive may touch: the viewport, clipped to the framebuffer and scissor.
   PixelRect clip_rect() const;
 };
-
-// Builds the architecture part from a validated config; viewport = display size.
-RasterState raster_state_from_config(const Config& cfg);
 
 const char* to_string(DepthFunc f);
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "rop.h"
+#include "ref/rop.h"
 
 namespace rastsim {
 

@@ -2,9 +2,9 @@
 // ROP: depth test against the depth buffer, then colour (and depth) write.
 #pragma once
 
-#include "framebuffer.h"
-#include "interpolate.h"
-#include "raster_state.h"
+#include "ref/framebuffer.h"
+#include "ref/interpolate.h"
+#include "ref/raster_state.h"
 
 namespace rastsim {
 

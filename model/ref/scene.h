@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: Apache-2.0
 // Scene = the command stream the pipeline consumes (what command fetch reads).
 //
-// Two sources produce it: line-based traces (traces/*.trace, docs/trace-format.md) and
-// Wavefront OBJ meshes placed by a camera/viewport transform (scene_obj.cpp). Both
-// keep the file and line of every command so later stages can name them in errors.
+// Two readers produce it (model/scene): line-based traces (traces/*.trace,
+// docs/trace-format.md) and Wavefront OBJ meshes placed by a camera/viewport transform.
+// Both keep the file and line of every command so later stages can name them in errors.
 #pragma once
 
 #include <cstdint>
@@ -12,7 +12,7 @@
 #include <variant>
 #include <vector>
 
-#include "fixed_point.h"
+#include "ref/fixed_point.h"
 
 namespace rastsim {
 
@@ -57,25 +57,5 @@ struct Scene {
   std::string source;                 // file name
   std::vector<Command> commands;
 };
-
-// Where an OBJ mesh lands on screen: a camera looking at the mesh's bounding sphere.
-struct ObjPlacement {
-  int viewport_width = 128, viewport_height = 128;
-  double yaw_deg = 30.0, pitch_deg = 20.0;  // rotation of the model about y, then x
-  double fill = 0.9;                         // fraction of the viewport the sphere spans
-  uint8_t clear_r = 0, clear_g = 0, clear_b = 0;
-};
-
-// Parse a trace file. Throws SceneError("file:line: ...") on any malformed input.
-Scene load_trace(const std::string& path);
-Scene parse_trace(const std::string& text, const std::string& name);
-
-// Parse a Wavefront OBJ (with its mtllib files, looked up beside it) and place it.
-Scene load_obj(const std::string& path, const ObjPlacement& placement);
-Scene parse_obj(const std::string& text, const std::string& name, const ObjPlacement& placement,
-                const std::string& base_dir);
-
-// By extension: .obj -> load_obj, anything else -> load_trace.
-Scene load_scene(const std::string& path, const ObjPlacement& placement);
 
 }  // namespace rastsim

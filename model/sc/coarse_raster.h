@@ -11,7 +11,7 @@
 // - Counts tiles_visited / rejected / accepted / partial.
 #pragma once
 
-#include "ref/traverse.h"
+#include "ref/coarse_raster.h"
 #include "sc/tri_setup.h"
 
 namespace rastsim::sc {

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "sc/command_fetch.h"
 
-#include "ref/primitive_assembly.h"
+#include "ref/prim_assembly.h"
 
 namespace rastsim::sc {
 
@@ -14,12 +14,10 @@ void CommandFetch::body() {
       continue;
     }
     const size_t n = triangle_count(*prims);
-    uint64_t header = p_.fetch_cycles_per_command;  // paid with the first triangle
-    if (n == 0) busy(header);
+    if (n == 0) busy(p_.fetch_cycles_per_command);
     for (size_t k = 0; k < n; ++k) {
       const uint64_t new_vertices = (k == 0 || prims->topology == Topology::List) ? 3 : 1;
-      busy(header + ceil_div(new_vertices, p_.fetch_vertices_per_cycle));
-      header = 0;
+      busy(p_.fetch_triangle_cycles(k == 0, new_vertices));
       write(out_, CommandItem{nullptr, TriangleRef{&cmd, k}});
     }
   }

@@ -14,7 +14,7 @@
 
 #include "ref/scene.h"
 #include "sc/stage.h"
-#include "ref/timing_params.h"
+#include "config/timing_params.h"
 
 namespace rastsim::sc {
 

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "sc/prim_assembly.h"
 
-#include "ref/primitive_assembly.h"
+#include "ref/prim_assembly.h"
 
 namespace rastsim::sc {
 

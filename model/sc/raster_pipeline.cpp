@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "sc/raster_pipeline.h"
+#include "report/stats_json.h"
 
 #include <algorithm>
 #include <chrono>
@@ -8,6 +9,7 @@
 #include <systemc>
 
 #include "sc/rop.h"
+#include "config/raster_state_config.h"
 
 namespace rastsim::sc {
 
@@ -134,7 +136,7 @@ SimResult simulate_scene(const Scene& scene, const Config& cfg, const SimOptions
 }
 
 nlohmann::json SimResult::to_json() const {
-  nlohmann::json j = render.to_json();
+  nlohmann::json j = rastsim::to_json(render);
   j["cycles"] = cycles;
   j["cycles_lower_bound"] = cycles_lower_bound;
   j["core_mhz"] = core_mhz;

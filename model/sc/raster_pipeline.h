@@ -16,9 +16,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "ref/config.h"
+#include "config/config.h"
 #include "ref/pipeline.h"
-#include "ref/timing_params.h"
+#include "config/timing_params.h"
 
 namespace rastsim::sc {
 

@@ -20,12 +20,12 @@ void Rop::body() {
       apply_state_command(*in.state, st_, fb_);
       const bool clear = std::holds_alternative<CmdClear>(in.state->body) ||
                          std::holds_alternative<CmdClearDepth>(in.state->body);
-      busy(clear ? ceil_div(uint64_t(fb_.width) * uint64_t(fb_.height), p_.rop_clear_pixels_per_cycle) : 1);
+      busy(clear ? p_.rop_clear_cycles(uint64_t(fb_.width) * uint64_t(fb_.height)) : 1);
       continue;
     }
     for (const Fragment& f : *in.work)
       if (rop_write(fb_, f, st_.depth_func, st_.depth_write)) ++ctx_.render.fragments_passed;
-    busy(ceil_div(in.work->size(), p_.rop_pixels_per_cycle));
+    busy(p_.rop_fragment_cycles(in.work->size()));
   }
 }
 

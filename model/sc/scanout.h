@@ -26,9 +26,9 @@
 #include <nlohmann/json.hpp>
 #include <systemc>
 
-#include "ref/config.h"
-#include "ref/scanout.h"
-#include "ref/video_timing.h"
+#include "config/config.h"
+#include "display/scanout.h"
+#include "config/video_timing.h"
 
 namespace rastsim::sc {
 

@@ -14,7 +14,7 @@
 
 #include "ref/framebuffer.h"
 #include "ref/raster_state.h"
-#include "ref/setup.h"
+#include "ref/tri_setup.h"
 #include "sc/prim_assembly.h"
 
 namespace rastsim::sc {

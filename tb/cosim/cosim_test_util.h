@@ -6,8 +6,8 @@
 #include <random>
 #include <string>
 
-#include "config.h"
-#include "scene.h"
+#include "config/config.h"
+#include "ref/scene.h"
 
 namespace rastsim::cosim {
 

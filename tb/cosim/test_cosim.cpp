@@ -16,7 +16,7 @@
 #include <cmath>
 #include <random>
 
-#include "cosim.h"
+#include "rtl/cosim.h"
 #include "cosim_test_util.h"
 
 namespace rastsim::cosim {

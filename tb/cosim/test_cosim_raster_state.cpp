@@ -20,9 +20,10 @@
 #include <random>
 #include <utility>
 
-#include "cosim.h"
+#include "rtl/cosim.h"
 #include "cosim_test_util.h"
-#include "pipeline.h"
+#include "ref/pipeline.h"
+#include "config/raster_state_config.h"
 
 namespace rastsim::cosim {
 namespace {

@@ -11,7 +11,9 @@
 #include <iostream>
 #include <random>
 
-#include "ref/primitive_assembly.h"
+#include "ref/prim_assembly.h"
+#include "report/stats_json.h"
+#include "config/raster_state_config.h"
 
 namespace rastsim::sctest {
 
@@ -68,7 +70,7 @@ nlohmann::json compare_with_reference(const Scene& scene, const Config& cfg, con
     auto at = [&](const std::vector<std::string>& v) { return size_t(first) < v.size() ? v[first] : "(end)"; };
     mismatch = "ref '" + at(ref_frags) + "' vs sim '" + at(sim_frags) + "'";
   }
-  nlohmann::json ref_json = ref_stats.to_json(), sim_json = r.render.to_json();
+  nlohmann::json ref_json = to_json(ref_stats), sim_json = to_json(r.render);
   ref_json.erase("wall_seconds");
   sim_json.erase("wall_seconds");
   return {{"crc_ref", ref_fb.color_crc32()},

@@ -15,7 +15,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "ref/config.h"
+#include "config/config.h"
 #include "ref/scene.h"
 #include "sc/raster_pipeline.h"
 

@@ -9,6 +9,7 @@
 #include <fstream>
 
 #include "harness.h"
+#include "scene/scene_io.h"
 
 namespace rastsim::sctest {
 namespace {

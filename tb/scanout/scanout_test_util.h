@@ -4,9 +4,9 @@
 
 #include <cstdint>
 
-#include "framebuffer.h"
-#include "monitor.h"
-#include "scanout.h"
+#include "ref/framebuffer.h"
+#include "display/monitor.h"
+#include "display/scanout.h"
 
 namespace rastsim::scanout_test {
 

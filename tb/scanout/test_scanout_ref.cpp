@@ -9,7 +9,7 @@
 #include <cmath>
 
 #include "scanout_test_util.h"
-#include "video_timing.h"
+#include "config/video_timing.h"
 
 namespace rastsim {
 namespace {

@@ -15,17 +15,19 @@
 #include <fstream>
 #include <sstream>
 
-#include "pipeline.h"
-#include "raster_state.h"
+#include "ref/pipeline.h"
+#include "ref/raster_state.h"
 #include "scanout_test_util.h"
-#include "signal_reader.h"
+#include "display/signal_reader.h"
+#include "scene/scene_io.h"
+#include "config/raster_state_config.h"
 
 namespace rastsim {
 namespace {
 
 namespace fs = std::filesystem;
 
-const fs::path kSourceDir = fs::path(__FILE__).parent_path().parent_path().parent_path();
+const fs::path kSourceDir = RASTSIM_SOURCE_DIR;
 
 fs::path temp_dir() {
   const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();

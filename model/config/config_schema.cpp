@@ -1,0 +1,128 @@
+// SPDX-License-Identifier: Apache-2.0
+// The configuration schema: every key rastsim reads, declared once.
+// Later stages (timed model, RTL export, scan-out) add their keys to this table.
+#include <sstream>
+
+#include "config/config.h"
+#include "ref/fixed_point.h"
+
+namespace rastsim {
+
+// Keys of the timed model (clock, stage latencies/throughputs, FIFO depths), declared in
+// config_schema_timing.cpp next to nothing else.
+void add_timing_params(std::vector<ParamDef>& schema);
+// Keys of video timing, the DAC and scan-out, declared in config_schema_scanout.cpp.
+void add_scanout_params(std::vector<ParamDef>& schema);
+
+namespace {
+
+bool is_power_of_two(const ParamValue& v) {
+  const int64_t n = std::get<int64_t>(v);
+  return n > 0 && (n & (n - 1)) == 0;
+}
+
+bool is_fixed_format(const ParamValue& v) {
+  try {
+    FixedFormat::parse(std::get<std::string>(v));
+    return true;
+  } catch (const std::invalid_argument&) {
+    return false;
+  }
+}
+
+std::vector<ParamDef> make_schema() {
+  using T = ParamType;
+  std::vector<ParamDef> s;
+  auto add = [&](ParamDef d) { s.push_back(std::move(d)); };
+  // ---- display: the framebuffer and the viewport ----
+  add({"display.width", T::Int, int64_t{128}, "px", 1, 16384, {},
+       "Framebuffer and viewport width in pixels"});
+  add({"display.height", T::Int, int64_t{128}, "px", 1, 16384, {},
+       "Framebuffer and viewport height in pixels"});
+  // ---- raster: setup and traversal ----
+  add({"raster.coord_format", T::String, std::string("s7.16"), "", 1, 0, {},
+       "Snapped vertex coordinate format s<I>.<F>, relative to the viewport centre",
+       is_fixed_format, "of form s<I>.<F> with I >= 0, F >= 1, I + F <= 31"});
+  add({"raster.tile_size", T::Int, int64_t{16}, "px", 2, 128, {},
+       "Square tile edge for the coarse tile walk", is_power_of_two, "a power of two"});
+  add({"raster.fill_rule", T::Enum, std::string("top_left"), "", 1, 0,
+       {"top_left", "bottom_right", "inclusive", "exclusive"},
+       "Ownership of samples exactly on an edge (top_left: Direct3D 11; inclusive/exclusive are not watertight)"});
+  add({"raster.cull", T::Enum, std::string("none"), "", 1, 0, {"none", "back", "front"},
+       "Which facing to discard after setup"});
+  add({"raster.front_face", T::Enum, std::string("ccw"), "", 1, 0, {"ccw", "cw"},
+       "Winding of a front face as seen on screen (ccw: OpenGL/OBJ, cw: Direct3D)"});
+  add({"raster.depth_func", T::Enum, std::string("always"), "", 1, 0,
+       {"never", "less", "lequal", "equal", "greater", "gequal", "notequal", "always"},
+       "Depth test; a fragment passes when func(fragment_z, stored_z) holds"});
+  add({"raster.depth_bits", T::Int, int64_t{24}, "bits", 8, 32, {},
+       "Depth buffer width; z in [0,1] is quantised to unorm of this width"});
+  add({"raster.depth_write", T::Bool, true, "", 1, 0, {},
+       "Write the depth of passing fragments"});
+  add({"raster.out_of_range", T::Enum, std::string("error"), "", 1, 0, {"error", "cull"},
+       "A vertex outside the coordinate format's range: stop with an error, or cull its triangle and count it"});
+  // ---- scene: how OBJ meshes are placed on screen (not architecture) ----
+  add({"scene.obj_yaw_deg", T::Float, 30.0, "deg", -360, 360, {},
+       "OBJ placement: rotation of the mesh about its vertical axis"});
+  add({"scene.obj_pitch_deg", T::Float, 20.0, "deg", -90, 90, {},
+       "OBJ placement: tilt of the mesh toward the viewer, after the yaw"});
+  add({"scene.obj_fill", T::Float, 0.9, "", 0.01, 4.0, {},
+       "OBJ placement: fraction of the smaller viewport side the mesh's bounding sphere spans"});
+  add_timing_params(s);
+  add_scanout_params(s);
+  return s;
+}
+
+}  // namespace
+
+const std::vector<ParamDef>& config_schema() {
+  static const std::vector<ParamDef> schema = make_schema();
+  return schema;
+}
+
+const ParamDef* find_param(const std::string& key) {
+  for (const auto& d : config_schema())
+    if (d.key == key) return &d;
+  return nullptr;
+}
+
+std::string ParamDef::allowed() const {
+  std::ostringstream os;
+  switch (type) {
+    case ParamType::Int:
+      os << "an integer in [" << int64_t(min) << ", " << int64_t(max) << "]";
+      break;
+    case ParamType::Float:
+      os << "a number in [" << min << ", " << max << "]";
+      break;
+    case ParamType::Bool: os << "true or false"; break;
+    case ParamType::String: os << "a string"; break;
+    case ParamType::Enum: {
+      os << "one of ";
+      for (size_t i = 0; i < choices.size(); ++i) os << (i ? ", " : "") << choices[i];
+      break;
+    }
+  }
+  if (!rule.empty()) os << (type == ParamType::String ? " " : ", ") << rule;
+  return os.str();
+}
+
+std::string config_doc() {
+  std::ostringstream os;
+  os << "# rastsim configuration keys (TOML: [section] key = value; CLI: --set section.key=value)\n";
+  std::string section;
+  for (const auto& d : config_schema()) {
+    const std::string sec = d.key.substr(0, d.key.find('.'));
+    if (sec != section) {
+      os << "\n[" << sec << "]\n";
+      section = sec;
+    }
+    os << "  " << d.key << " = " << to_string(d.default_value);
+    if (!d.unit.empty()) os << "  (" << d.unit << ")";
+    os << "\n      " << d.description << "\n      allowed: " << d.allowed();
+    os << "\n";
+  }
+  return os.str();
+}
+
+}  // namespace rastsim

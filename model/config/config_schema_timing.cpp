@@ -1,0 +1,66 @@
+// SPDX-License-Identifier: Apache-2.0
+// Timing keys of the SystemC cycle-approximate model (model/sc), declared once here.
+//
+// Every number the timed model uses comes from this table: clock, per-stage throughput,
+// initiation interval and latency, and the depth of every FIFO between stages. Units are
+// in the key names. The defaults describe a mid-range design (one triangle every two
+// cycles, 8 coverage samples and 4 fragments a cycle); configs/embedded.toml and
+// configs/desktop.toml are the small and large ends. docs/microarchitecture.md gives the
+// timing equation each key enters.
+#include "config/config.h"
+
+namespace rastsim {
+
+void add_timing_params(std::vector<ParamDef>& s) {
+  using T = ParamType;
+  auto add = [&](ParamDef d) { s.push_back(std::move(d)); };
+  // ---- clock ----
+  add({"clock.core_mhz", T::Float, 500.0, "MHz", 1, 10000, {},
+       "Core clock of the raster pipeline; converts cycles to seconds in the stats (1 simulated ns = 1 cycle)"});
+  // ---- command fetch ----
+  add({"fetch.cycles_per_command", T::Int, int64_t{1}, "cycles", 1, 1024, {},
+       "Cycles to decode one command header (state command, or the start of a primitive command)"});
+  add({"fetch.vertices_per_cycle", T::Int, int64_t{3}, "vertices/cycle", 1, 64, {},
+       "Vertex fetch bandwidth; a triangle's new vertices (3 for lists, 1 for strips/fans) take ceil(n / this)"});
+  // ---- primitive assembly ----
+  add({"assembly.cycles_per_triangle", T::Int, int64_t{1}, "cycles", 1, 1024, {},
+       "Cycles primitive assembly spends forming one triangle from its vertices"});
+  // ---- triangle setup ----
+  add({"setup.interval_cycles", T::Int, int64_t{2}, "cycles", 1, 4096, {},
+       "Initiation interval of triangle setup: cycles between two triangles entering it"});
+  add({"setup.latency_cycles", T::Int, int64_t{12}, "cycles", 1, 4096, {},
+       "Latency of triangle setup: cycles from a triangle entering to its edge equations leaving (>= interval)"});
+  // ---- coarse raster ----
+  add({"coarse.tiles_per_cycle", T::Int, int64_t{1}, "tiles/cycle", 1, 64, {},
+       "Tiles the coarse walker classifies (early-out / early-in) per cycle"});
+  // ---- fine raster ----
+  add({"fine.samples_per_cycle", T::Int, int64_t{8}, "samples/cycle", 1, 4096, {},
+       "Coverage tests per cycle on a partial tile; a footprint of A pixels takes ceil(A / this)"});
+  add({"fine.accepted_tile_cycles", T::Int, int64_t{1}, "cycles", 1, 1024, {},
+       "Cycles to emit a trivially accepted tile (whole-footprint mask, no tests)"});
+  // ---- attribute interpolation ----
+  add({"interp.fragments_per_cycle", T::Int, int64_t{4}, "fragments/cycle", 1, 1024, {},
+       "Fragments whose colour and depth are interpolated per cycle"});
+  add({"interp.latency_cycles", T::Int, int64_t{6}, "cycles", 0, 4096, {},
+       "Extra pipeline latency of the interpolator (divider) after a batch's last fragment enters"});
+  // ---- ROP ----
+  add({"rop.pixels_per_cycle", T::Int, int64_t{4}, "pixels/cycle", 1, 1024, {},
+       "Fragments depth-tested and written per cycle"});
+  add({"rop.clear_pixels_per_cycle", T::Int, int64_t{64}, "pixels/cycle", 1, 1 << 20, {},
+       "Pixels a colour or depth clear writes per cycle (fast-clear bandwidth)"});
+  // ---- FIFOs between stages (depth in transactions) ----
+  add({"fifo.command_depth", T::Int, int64_t{8}, "entries", 1, 65536, {},
+       "Command fetch -> primitive assembly FIFO (one entry: a state command or one triangle's vertices)"});
+  add({"fifo.triangle_depth", T::Int, int64_t{4}, "entries", 1, 65536, {},
+       "Primitive assembly -> triangle setup FIFO (one entry: a triangle or a state command)"});
+  add({"fifo.setup_depth", T::Int, int64_t{4}, "entries", 1, 65536, {},
+       "Triangle setup -> coarse raster FIFO (one entry: a set-up triangle or a state command)"});
+  add({"fifo.tile_depth", T::Int, int64_t{8}, "entries", 1, 65536, {},
+       "Coarse raster -> fine raster FIFO (one entry: an accepted or partial tile)"});
+  add({"fifo.pixel_depth", T::Int, int64_t{4}, "entries", 1, 65536, {},
+       "Fine raster -> interpolation FIFO (one entry: one tile's covered pixels)"});
+  add({"fifo.fragment_depth", T::Int, int64_t{4}, "entries", 1, 65536, {},
+       "Interpolation -> ROP FIFO (one entry: one tile's shaded fragments)"});
+}
+
+}  // namespace rastsim

@@ -1,0 +1,45 @@
+// SPDX-License-Identifier: Apache-2.0
+// RasterState from a validated config: the architecture part of the state every raster
+// stage reads (model/ref/raster_state.h).
+#include "config/raster_state_config.h"
+
+namespace rastsim {
+
+namespace {
+template <class E>
+E pick(const std::string& v, std::initializer_list<std::pair<const char*, E>> table) {
+  for (const auto& [name, e] : table)
+    if (v == name) return e;
+  throw ConfigError("internal: unhandled enum value '" + v + "'");
+}
+}  // namespace
+
+RasterState raster_state_from_config(const Config& cfg) {
+  cfg.validate();
+  RasterState s;
+  s.coord_format = FixedFormat::parse(cfg.get_string("raster.coord_format"));
+  s.tile_size = static_cast<int>(cfg.get_int("raster.tile_size"));
+  s.fill_rule = pick<FillRule>(cfg.get_string("raster.fill_rule"),
+                               {{"top_left", FillRule::TopLeft},
+                                {"bottom_right", FillRule::BottomRight},
+                                {"inclusive", FillRule::Inclusive},
+                                {"exclusive", FillRule::Exclusive}});
+  s.cull = pick<CullMode>(cfg.get_string("raster.cull"),
+                          {{"none", CullMode::None}, {"back", CullMode::Back}, {"front", CullMode::Front}});
+  s.front_ccw = cfg.get_string("raster.front_face") == "ccw";
+  s.depth_func = pick<DepthFunc>(cfg.get_string("raster.depth_func"),
+                                 {{"never", DepthFunc::Never}, {"less", DepthFunc::Less},
+                                  {"lequal", DepthFunc::LEqual}, {"equal", DepthFunc::Equal},
+                                  {"greater", DepthFunc::Greater}, {"gequal", DepthFunc::GEqual},
+                                  {"notequal", DepthFunc::NotEqual}, {"always", DepthFunc::Always}});
+  s.depth_bits = static_cast<int>(cfg.get_int("raster.depth_bits"));
+  s.depth_write = cfg.get_bool("raster.depth_write");
+  s.out_of_range = cfg.get_string("raster.out_of_range") == "cull" ? OutOfRange::Cull : OutOfRange::Error;
+  s.fb_width = static_cast<int>(cfg.get_int("display.width"));
+  s.fb_height = static_cast<int>(cfg.get_int("display.height"));
+  s.viewport_width = s.fb_width;
+  s.viewport_height = s.fb_height;
+  return s;
+}
+
+}  // namespace rastsim

@@ -1,0 +1,56 @@
+// SPDX-License-Identifier: Apache-2.0
+// TimingParams: the config's timing keys (config_schema_timing.cpp), read and checked
+// once; no defaults of its own. The SystemC model (model/sc) times its stages with them
+// and the RTL parameter export (rtl_params.cpp) builds the Verilog with the same values.
+#pragma once
+
+#include <cstdint>
+
+#include "config/config.h"
+
+namespace rastsim {
+
+// ceil(n / per_cycle), the cost of n items through a port of per_cycle items a cycle.
+inline uint64_t ceil_div(uint64_t n, uint64_t per_cycle) { return (n + per_cycle - 1) / per_cycle; }
+
+struct TimingParams {
+  double core_mhz = 0;
+  uint64_t fetch_cycles_per_command = 0, fetch_vertices_per_cycle = 0;
+  uint64_t assembly_cycles_per_triangle = 0;
+  uint64_t setup_interval = 0, setup_latency = 0;
+  uint64_t coarse_tiles_per_cycle = 0;
+  uint64_t fine_samples_per_cycle = 0, fine_accepted_tile_cycles = 0;
+  uint64_t interp_fragments_per_cycle = 0, interp_latency = 0;
+  uint64_t rop_pixels_per_cycle = 0, rop_clear_pixels_per_cycle = 0;
+  int fifo_command = 0, fifo_triangle = 0, fifo_setup = 0, fifo_tile = 0, fifo_pixel = 0, fifo_fragment = 0;
+
+  // Entries of the FIFO after a stage with a pipeline latency: the configured depth plus
+  // the transactions in flight inside the stage's pipeline (its pipeline registers),
+  // so that latency costs time but not throughput.
+  int setup_fifo_entries() const { return fifo_setup + int(ceil_div(setup_latency - setup_interval, setup_interval)); }
+  int fragment_fifo_entries() const { return fifo_fragment + int(interp_latency); }
+
+  // The stages' cost equations (docs/microarchitecture.md), in cycles. The SystemC
+  // stages and the RTL testbench's stages (model/rtl) both call these.
+  // Command fetch: the command header (paid once a command, with its first triangle)
+  // plus its new vertices; a list triangle brings 3, a strip or fan triangle after the
+  // first brings 1.
+  uint64_t fetch_triangle_cycles(bool first_of_command, uint64_t new_vertices) const {
+    return (first_of_command ? fetch_cycles_per_command : 0) + ceil_div(new_vertices, fetch_vertices_per_cycle);
+  }
+  // ROP: a batch of fragments; a clear (colour or depth) of the whole framebuffer at the
+  // fast-clear rate; any other state command passes in one cycle.
+  uint64_t rop_fragment_cycles(uint64_t fragments) const { return ceil_div(fragments, rop_pixels_per_cycle); }
+  uint64_t rop_clear_cycles(uint64_t pixels) const { return ceil_div(pixels, rop_clear_pixels_per_cycle); }
+
+  // Reads and cross-checks the keys (setup.latency_cycles >= setup.interval_cycles);
+  // throws ConfigError naming the keys.
+  static TimingParams from_config(const Config& cfg);
+};
+
+}  // namespace rastsim
+
+namespace rastsim::sc {
+using rastsim::ceil_div;
+using rastsim::TimingParams;
+}  // namespace rastsim::sc

@@ -1,0 +1,80 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "display/image_io.h"
+
+#include <png.h>
+
+#include <cstdio>
+#include <fstream>
+#include <memory>
+#include <stdexcept>
+
+namespace rastsim {
+
+namespace {
+bool ends_with(const std::string& s, const std::string& suf) {
+  return s.size() >= suf.size() && s.compare(s.size() - suf.size(), suf.size(), suf) == 0;
+}
+
+struct FileCloser {
+  void operator()(FILE* f) const { if (f) std::fclose(f); }
+};
+}  // namespace
+
+void write_image(const Framebuffer& fb, const std::string& path) {
+  if (ends_with(path, ".ppm")) {
+    std::ofstream os(path, std::ios::binary);
+    if (!os) throw std::runtime_error(path + ": cannot open for writing");
+    os << "P6\n" << fb.width << " " << fb.height << "\n255\n";
+    for (size_t i = 0; i < fb.rgba.size(); i += 4) os.write(reinterpret_cast<const char*>(&fb.rgba[i]), 3);
+    if (!os) throw std::runtime_error(path + ": write failed");
+    return;
+  }
+  if (!ends_with(path, ".png")) throw std::runtime_error(path + ": output must end in .png or .ppm");
+  std::unique_ptr<FILE, FileCloser> f(std::fopen(path.c_str(), "wb"));
+  if (!f) throw std::runtime_error(path + ": cannot open for writing");
+  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+  png_infop info = png ? png_create_info_struct(png) : nullptr;
+  if (!png || !info) throw std::runtime_error(path + ": libpng init failed");
+  if (setjmp(png_jmpbuf(png))) {
+    png_destroy_write_struct(&png, &info);
+    throw std::runtime_error(path + ": PNG write failed");
+  }
+  png_init_io(png, f.get());
+  png_set_IHDR(png, info, fb.width, fb.height, 8, PNG_COLOR_TYPE_RGBA, PNG_INTERLACE_NONE,
+               PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+  png_write_info(png, info);
+  for (int y = 0; y < fb.height; ++y)
+    png_write_row(png, const_cast<png_bytep>(fb.pixel(0, y)));
+  png_write_end(png, nullptr);
+  png_destroy_write_struct(&png, &info);
+}
+
+Framebuffer read_image(const std::string& path) {
+  if (ends_with(path, ".ppm")) {
+    std::ifstream is(path, std::ios::binary);
+    std::string magic;
+    int w = 0, h = 0, maxv = 0;
+    is >> magic >> w >> h >> maxv;
+    if (!is || magic != "P6" || w <= 0 || h <= 0 || maxv != 255)
+      throw std::runtime_error(path + ": not a binary PPM (P6, 8-bit)");
+    is.get();
+    Framebuffer fb(w, h);
+    for (size_t i = 0; i < fb.rgba.size(); i += 4) {
+      is.read(reinterpret_cast<char*>(&fb.rgba[i]), 3);
+      fb.rgba[i + 3] = 255;
+    }
+    if (!is) throw std::runtime_error(path + ": truncated PPM");
+    return fb;
+  }
+  png_image img{};
+  img.version = PNG_IMAGE_VERSION;
+  if (!png_image_begin_read_from_file(&img, path.c_str()))
+    throw std::runtime_error(path + ": " + img.message);
+  img.format = PNG_FORMAT_RGBA;
+  Framebuffer fb(static_cast<int>(img.width), static_cast<int>(img.height));
+  if (!png_image_finish_read(&img, nullptr, fb.rgba.data(), 0, nullptr))
+    throw std::runtime_error(path + ": " + img.message);
+  return fb;
+}
+
+}  // namespace rastsim

@@ -1,0 +1,68 @@
+// SPDX-License-Identifier: Apache-2.0
+// Coarse raster: the tile walk with early-out / early-in, and the whole tiled traversal
+// of a triangle (coarse raster feeding fine raster, ref/fine_raster.h).
+//
+// - Tiles are raster.tile_size squares aligned to the framebuffer origin; the walk
+//   visits, row by row, every tile that overlaps the triangle's clipped bounding box.
+// - A tile's footprint is the tile clipped to that box. Each edge is linear, so over
+//   the footprint's pixel centres its extremes lie at two opposite corners, chosen by
+//   the signs of a and b: if some edge's maximum (with bias) is < 0 the tile is
+//   rejected (early-out); if every edge's minimum is >= 0 it is accepted whole
+//   (early-in, no per-pixel tests); otherwise it is partial and tested per pixel.
+#pragma once
+
+#include <cstdint>
+
+#include "ref/fine_raster.h"
+#include "ref/tri_setup.h"
+
+namespace rastsim {
+
+enum class TileClass { Rejected, Accepted, Partial };
+
+// Counters a hardware tile walker would keep.
+struct TraversalCounters {
+  uint64_t tiles_visited = 0, tiles_rejected = 0, tiles_accepted = 0, tiles_partial = 0;
+  uint64_t pixel_tests = 0;  // per-pixel coverage tests (partial tiles only)
+  uint64_t fragments = 0;    // covered pixels emitted
+};
+
+// The tile grid cells overlapping `bbox`, in tile units [tx0, tx1) x [ty0, ty1).
+PixelRect tile_range(const PixelRect& bbox, int tile_size);
+// Footprint of tile (tx, ty): the tile's pixels clipped to bbox.
+PixelRect tile_footprint(const PixelRect& bbox, int tile_size, int tx, int ty);
+
+// Early-out / early-in classification of one footprint.
+TileClass classify_tile(const SetupTriangle& t, const PixelRect& footprint, int frac_bits);
+
+// The whole traversal of one set-up triangle: tile walk, classification, fine raster.
+// emit(px, py) is called once per covered pixel, tile by tile (row-major tiles,
+// row-major pixels inside each tile).
+template <class Emit>
+void traverse_triangle(const SetupTriangle& t, int tile_size, int frac_bits, TraversalCounters& c,
+                       Emit&& emit) {
+  const PixelRect tiles = tile_range(t.bbox, tile_size);
+  for (int ty = tiles.y0; ty < tiles.y1; ++ty) {
+    for (int tx = tiles.x0; tx < tiles.x1; ++tx) {
+      const PixelRect fp = tile_footprint(t.bbox, tile_size, tx, ty);
+      ++c.tiles_visited;
+      switch (classify_tile(t, fp, frac_bits)) {
+        case TileClass::Rejected: ++c.tiles_rejected; break;
+        case TileClass::Accepted:
+          ++c.tiles_accepted;
+          c.fragments += static_cast<uint64_t>(fp.area());
+          fine_raster_accepted(fp, emit);
+          break;
+        case TileClass::Partial:
+          ++c.tiles_partial;
+          c.pixel_tests += fine_raster_partial(t, fp, frac_bits, [&](int px, int py) {
+            ++c.fragments;
+            emit(px, py);
+          });
+          break;
+      }
+    }
+  }
+}
+
+}  // namespace rastsim

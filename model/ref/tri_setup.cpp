@@ -1,0 +1,118 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "ref/tri_setup.h"
+
+#include <algorithm>
+
+namespace rastsim {
+
+const char* to_string(SetupOutcome o) {
+  switch (o) {
+    case SetupOutcome::Accepted: return "accepted";
+    case SetupOutcome::CulledZeroArea: return "zero_area";
+    case SetupOutcome::CulledBackFace: return "back_face";
+    case SetupOutcome::CulledFrontFace: return "front_face";
+    case SetupOutcome::CulledOutOfRange: return "out_of_range";
+    case SetupOutcome::CulledOutsideClip: return "outside_clip";
+  }
+  return "?";
+}
+
+namespace {
+
+// Fill-rule bias for an edge already oriented so that the interior is E > 0.
+// Direct3D 11 top-left rule: a sample exactly on an edge is covered when the edge is a
+// left edge (interior to its right: a > 0) or a top edge (horizontal, interior below:
+// a == 0 && b > 0, y grows downward). bottom_right mirrors it.
+int fill_bias(const EdgeEq& e, FillRule rule) {
+  switch (rule) {
+    case FillRule::TopLeft: return (e.a > 0 || (e.a == 0 && e.b > 0)) ? 0 : -1;
+    case FillRule::BottomRight: return (e.a < 0 || (e.a == 0 && e.b < 0)) ? 0 : -1;
+    case FillRule::Inclusive: return 0;
+    case FillRule::Exclusive: return -1;
+  }
+  return -1;
+}
+
+// Smallest pixel index whose centre (p + 1/2, in raw units relative to origin) is >= raw.
+int64_t first_pixel_at_or_after(int64_t raw, int64_t origin, int frac_bits) {
+  const i128 t = i128(raw) - (i128(1) << (frac_bits - 1));
+  // ceil(t / 2^F) = -floor(-t / 2^F)
+  return origin - static_cast<int64_t>(shift_right_round(-t, frac_bits, Rounding::Floor));
+}
+// Largest pixel index whose centre is <= raw.
+int64_t last_pixel_at_or_before(int64_t raw, int64_t origin, int frac_bits) {
+  const i128 t = i128(raw) - (i128(1) << (frac_bits - 1));
+  return origin + static_cast<int64_t>(shift_right_round(t, frac_bits, Rounding::Floor));
+}
+
+}  // namespace
+
+SetupOutcome setup_triangle(const std::array<SceneVertex, 3>& v, const RasterState& st,
+                            const SourceLoc& loc, SetupTriangle& t) {
+  const FixedFormat& fmt = st.coord_format;
+  t.origin_x = st.origin_x();
+  t.origin_y = st.origin_y();
+  for (int i = 0; i < 3; ++i) {
+    const auto sx = snap_coord(v[i].x, t.origin_x, fmt);
+    const auto sy = snap_coord(v[i].y, t.origin_y, fmt);
+    if (!sx || !sy) {
+      if (st.out_of_range == OutOfRange::Cull) return SetupOutcome::CulledOutOfRange;
+      const double lo = fmt.to_double(fmt.raw_min()), hi = fmt.to_double(fmt.raw_max());
+      throw SceneError(loc.str() + ": vertex " + std::to_string(i) + " (" +
+                       std::to_string(v[i].x.to_double()) + ", " + std::to_string(v[i].y.to_double()) +
+                       ") is outside the " + fmt.name() + " coordinate range: x in [" +
+                       std::to_string(t.origin_x + lo) + ", " + std::to_string(t.origin_x + hi) +
+                       "], y in [" + std::to_string(t.origin_y + lo) + ", " +
+                       std::to_string(t.origin_y + hi) +
+                       "] px (set raster.out_of_range = \"cull\" to drop such triangles)");
+    }
+    t.x[i] = *sx;
+    t.y[i] = *sy;
+  }
+
+  // Attributes first, so a bad depth is reported even for a culled triangle.
+  for (int i = 0; i < 3; ++i) {
+    const auto z = quantize_unorm(v[i].z, st.depth_bits);
+    if (!z) throw SceneError(loc.str() + ": vertex " + std::to_string(i) + " depth " +
+                             std::to_string(v[i].z) + " is outside [0, 1]");
+    t.z[i] = *z;
+    t.rgb[i] = {v[i].r, v[i].g, v[i].b};
+  }
+
+  // Doubled signed area, exact: > 0 means clockwise on screen (y grows downward).
+  t.area2 = i128(t.x[1] - t.x[0]) * (t.y[2] - t.y[0]) - i128(t.y[1] - t.y[0]) * (t.x[2] - t.x[0]);
+  if (t.area2 == 0) return SetupOutcome::CulledZeroArea;
+  t.ccw_on_screen = t.area2 < 0;
+  const bool front = t.ccw_on_screen == st.front_ccw;
+  if (st.cull == CullMode::Back && !front) return SetupOutcome::CulledBackFace;
+  if (st.cull == CullMode::Front && front) return SetupOutcome::CulledFrontFace;
+
+  // Edge i from vertex i to i+1: E = a*x + b*y + c with a = y_i - y_{i+1},
+  // b = x_{i+1} - x_i, c = -(a*x_i + b*y_i); E > 0 inside a clockwise triangle.
+  const int sign = t.area2 > 0 ? 1 : -1;
+  for (int i = 0; i < 3; ++i) {
+    const int j = (i + 1) % 3;
+    EdgeEq& e = t.edge[i];
+    e.a = sign * (t.y[i] - t.y[j]);
+    e.b = sign * (t.x[j] - t.x[i]);
+    e.c = -(i128(e.a) * t.x[i] + i128(e.b) * t.y[i]);
+    e.bias = fill_bias(e, st.fill_rule);
+  }
+  if (sign < 0) t.area2 = -t.area2;
+
+  // Bounding box of pixel centres inside the snapped vertices' hull, clipped.
+  const int F = fmt.frac_bits;
+  const int64_t xmin = std::min({t.x[0], t.x[1], t.x[2]}), xmax = std::max({t.x[0], t.x[1], t.x[2]});
+  const int64_t ymin = std::min({t.y[0], t.y[1], t.y[2]}), ymax = std::max({t.y[0], t.y[1], t.y[2]});
+  const PixelRect clip = st.clip_rect();
+  const int64_t bx0 = std::max<int64_t>(first_pixel_at_or_after(xmin, t.origin_x, F), clip.x0);
+  const int64_t by0 = std::max<int64_t>(first_pixel_at_or_after(ymin, t.origin_y, F), clip.y0);
+  const int64_t bx1 = std::min<int64_t>(last_pixel_at_or_before(xmax, t.origin_x, F) + 1, clip.x1);
+  const int64_t by1 = std::min<int64_t>(last_pixel_at_or_before(ymax, t.origin_y, F) + 1, clip.y1);
+  if (bx0 >= bx1 || by0 >= by1) return SetupOutcome::CulledOutsideClip;
+  t.bbox = {int(bx0), int(by0), int(bx1), int(by1)};
+
+  return SetupOutcome::Accepted;
+}
+
+}  // namespace rastsim

@@ -1,0 +1,70 @@
+// SPDX-License-Identifier: Apache-2.0
+// Triangle setup: snap, orient, cull, edge equations, bounding box, attributes.
+//
+// - Snaps the three vertices to raster.coord_format, relative to the viewport centre,
+//   with round-to-nearest-even (fixed_point.h: snap_coord).
+// - Signed doubled area from the snapped vertices (exact); zero area is culled, and per
+//   raster.cull back- or front-facing triangles.
+// - Three edge equations E(x, y) = A*x + B*y + C in raw units, oriented so that the
+//   interior is E > 0 for either winding, with the fill-rule bias folded in so that a
+//   sample is covered exactly when E + bias >= 0 (bias is 0 or -1).
+// - Bounding box of the snapped vertices in pixels, clamped to viewport and scissor.
+// - Per-vertex attributes (RGB8, depth quantised to raster.depth_bits).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+
+#include "ref/fixed_point.h"
+#include "ref/raster_state.h"
+#include "ref/scene.h"
+
+namespace rastsim {
+
+// One edge: E(x, y) = a*x + b*y + c, x and y raw s.I.F coordinates (relative to the
+// origin). Widths for s.I.F: a, b need I+F+2 bits; c and E need 2I+2F+3 (fixed-point.md).
+struct EdgeEq {
+  int64_t a = 0, b = 0;
+  i128 c = 0;
+  int bias = 0;  // 0 when samples on the edge are covered, -1 when they are not
+
+  // Edge value at raw sample point (x, y), before bias.
+  i128 eval(int64_t x, int64_t y) const { return i128(a) * x + i128(b) * y + c; }
+};
+
+enum class SetupOutcome {
+  Accepted,
+  CulledZeroArea,
+  CulledBackFace,
+  CulledFrontFace,
+  CulledOutOfRange,   // raster.out_of_range = cull and a vertex lies outside the format
+  CulledOutsideClip,  // bounding box misses the viewport/scissor: nothing to traverse
+};
+const char* to_string(SetupOutcome o);
+
+struct SetupTriangle {
+  std::array<int64_t, 3> x{}, y{};  // snapped raw coordinates, relative to the origin
+  std::array<EdgeEq, 3> edge{};     // edge i runs from vertex i to vertex (i+1)%3
+  i128 area2 = 0;                   // doubled area, > 0 after orientation (raw^2 units)
+  bool ccw_on_screen = false;       // winding as the scene gave it, seen on screen
+  PixelRect bbox;                   // pixels whose centres may be covered, clipped
+  std::array<uint32_t, 3> z{};      // depth, unorm raster.depth_bits
+  std::array<std::array<uint8_t, 3>, 3> rgb{};  // per-vertex colour
+  int64_t origin_x = 0, origin_y = 0;  // pixel of raw (0, 0), to map samples back
+
+  // Raw coordinate of the centre of pixel column px / row py.
+  int64_t sample_x(int px, int frac_bits) const {
+    return ((int64_t(px) - origin_x) << frac_bits) + (int64_t{1} << (frac_bits - 1));
+  }
+  int64_t sample_y(int py, int frac_bits) const {
+    return ((int64_t(py) - origin_y) << frac_bits) + (int64_t{1} << (frac_bits - 1));
+  }
+};
+
+// Sets up one triangle. On CulledOutOfRange with raster.out_of_range = error it throws
+// SceneError naming `loc` and the vertex instead of returning.
+SetupOutcome setup_triangle(const std::array<SceneVertex, 3>& v, const RasterState& st,
+                            const SourceLoc& loc, SetupTriangle& out);
+
+}  // namespace rastsim

@@ -1,0 +1,27 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "report/stats_json.h"
+
+namespace rastsim {
+
+nlohmann::json to_json(const RenderStats& s) {
+  return {
+      {"triangles_in", s.triangles_in},
+      {"triangles_culled", s.triangles_culled},
+      {"triangles_zero_area", s.triangles_zero_area},
+      {"triangles_facing_culled", s.triangles_facing_culled},
+      {"triangles_out_of_range", s.triangles_out_of_range},
+      {"triangles_outside_clip", s.triangles_outside_clip},
+      {"triangles_rasterized", s.triangles_rasterized},
+      {"tiles_visited", s.traversal.tiles_visited},
+      {"tiles_rejected", s.traversal.tiles_rejected},
+      {"tiles_accepted", s.traversal.tiles_accepted},
+      {"tiles_partial", s.traversal.tiles_partial},
+      {"pixel_tests", s.traversal.pixel_tests},
+      {"fragments", s.traversal.fragments},
+      {"fragments_passed", s.fragments_passed},
+      {"framebuffer_crc32", s.framebuffer_crc32},
+      {"wall_seconds", s.wall_seconds},
+  };
+}
+
+}  // namespace rastsim

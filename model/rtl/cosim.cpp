@@ -1,0 +1,145 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "rtl/cosim.h"
+
+#include <bit>
+#include <stdexcept>
+
+#include "config/timing_params.h"
+#include "rtl/cosim_driver.h"
+#include "ref/pipeline.h"
+#include "ref/prim_assembly.h"
+#include "ref/raster_state.h"
+#include "ref/tri_setup.h"
+#include "ref/coarse_raster.h"
+#include "config/raster_state_config.h"
+
+namespace rastsim::cosim {
+
+namespace {
+
+// rast_top's fill_rule_i / cull_mode_i carry these enums' values (rtl/rast_tri_setup.v).
+static_assert(int(FillRule::TopLeft) == 0 && int(FillRule::BottomRight) == 1 && int(FillRule::Inclusive) == 2 &&
+              int(FillRule::Exclusive) == 3);
+static_assert(int(CullMode::None) == 0 && int(CullMode::Back) == 1 && int(CullMode::Front) == 2);
+
+// The scene as the testbench's command stream, and the reference model's fragments for
+// the same tile size: the same loop as ref/pipeline.cpp render_scene.
+void build(const Scene& scene, const Config& cfg, int tile_size, TbSetup& s) {
+  RasterState st = raster_state_from_config(cfg);
+  st.tile_size = tile_size;
+  const int F = st.coord_format.frac_bits;
+  const TimingParams tp = TimingParams::from_config(cfg);
+  const uint64_t cpc = tp.fetch_cycles_per_command;
+  Framebuffer fb(1, 1);  // state commands need one; the testbench ROP keeps no pixels
+  TraversalCounters counters;
+  for (const Command& cmd : scene.commands) {
+    const auto* prims = std::get_if<CmdPrimitives>(&cmd.body);
+    if (!prims) {
+      apply_state_command(cmd, st, fb);
+      TbItem m;
+      m.kind = TbItem::Marker;
+      m.fetch_cost = cpc;
+      const bool clear = std::holds_alternative<CmdClear>(cmd.body) || std::holds_alternative<CmdClearDepth>(cmd.body);
+      m.rop_cost = clear ? tp.rop_clear_cycles(uint64_t(st.fb_width) * uint64_t(st.fb_height)) : 1;
+      s.items.push_back(m);
+      continue;
+    }
+    const size_t n = triangle_count(*prims);
+    if (n == 0) {
+      TbItem e;
+      e.kind = TbItem::Null;
+      e.fetch_cost = cpc;
+      s.items.push_back(e);
+    }
+    for (size_t k = 0; k < n; ++k) {
+      TbItem it;
+      const uint64_t new_vertices = (k == 0 || prims->topology == Topology::List) ? 3 : 1;
+      it.fetch_cost = tp.fetch_triangle_cycles(k == 0, new_vertices);
+      it.assembly_cost = tp.assembly_cycles_per_triangle;
+      it.tri = static_cast<int>(s.tri_names.size());
+      s.tri_names.push_back(cmd.loc.str() + " triangle " + std::to_string(k));
+      SetupTriangle t;
+      const SetupOutcome o = setup_triangle(assemble_triangle(*prims, k), st, cmd.loc, t);
+      if (o == SetupOutcome::CulledOutOfRange) {
+        // Nothing the RTL can represent: a zero-area triangle costs setup the same.
+        it.x[0] = it.x[1] = it.x[2] = it.y[0] = it.y[1] = it.y[2] = 0;
+      } else {
+        for (int v = 0; v < 3; ++v) {
+          it.x[v] = t.x[v];
+          it.y[v] = t.y[v];
+          it.z[v] = t.z[v];
+          it.rgb[v] = uint32_t(t.rgb[v][0]) | uint32_t(t.rgb[v][1]) << 8 | uint32_t(t.rgb[v][2]) << 16;
+        }
+      }
+      const PixelRect clip = st.clip_rect();
+      it.clip[0] = clip.x0;
+      it.clip[1] = clip.y0;
+      it.clip[2] = clip.x1;
+      it.clip[3] = clip.y1;
+      it.origin[0] = static_cast<int>(st.origin_x());
+      it.origin[1] = static_cast<int>(st.origin_y());
+      s.items.push_back(it);
+      if (o != SetupOutcome::Accepted) continue;
+      traverse_triangle(t, tile_size, F, counters, [&](int px, int py) {
+        s.expected.push_back(Expected{interpolate(t, px, py, F), it.tri});
+      });
+    }
+  }
+}
+
+}  // namespace
+
+std::vector<RtlModelInfo> rtl_models() {
+  std::vector<RtlModelInfo> v;
+  for (const RegistryEntry& e : rtl_registry()) {
+    Config c;
+    c.load_file(std::string(RASTSIM_SOURCE_DIR) + "/configs/" + e.name + ".toml");
+    c.validate();
+    v.push_back({e.name, rtl_params_from_config(c)});
+  }
+  return v;
+}
+
+CosimResult run_cosim(const Scene& scene, const Config& cfg, const CosimOptions& opts) {
+  TbSetup s;
+  s.opts = opts;
+  s.params = rtl_params_from_config(cfg);
+  const int tile = opts.tile_size ? opts.tile_size : static_cast<int>(cfg.get_int("raster.tile_size"));
+  if (tile < 2 || !std::has_single_bit(static_cast<unsigned>(tile)))
+    throw std::runtime_error("tile size " + std::to_string(tile) + " is not a power of two >= 2");
+  s.tile_log2 = std::countr_zero(static_cast<unsigned>(tile));
+  // Fill rule, cull mode and front face: run-time inputs, from this config (not the model's).
+  const RasterState st = raster_state_from_config(cfg);
+  s.fill_rule = static_cast<int>(st.fill_rule);
+  s.cull_mode = static_cast<int>(st.cull);
+  s.front_ccw = st.front_ccw ? 1 : 0;
+  RtlParams wanted = s.params;
+  wanted.tile_log2_max = s.tile_log2;
+  s.cmd_depth = static_cast<int>(cfg.get_int("fifo.command_depth"));
+  // Plus the batches inside the interpolator's latency (the model's latency slots,
+  // model/sc/timing_params.h: fragment_fifo_entries).
+  s.frag_depth = static_cast<int>(cfg.get_int("fifo.fragment_depth") + cfg.get_int("interp.latency_cycles"));
+  s.rop_pixels_per_cycle = static_cast<uint64_t>(cfg.get_int("rop.pixels_per_cycle"));
+
+  const auto models = rtl_models();
+  std::string why_all;
+  for (size_t i = 0; i < models.size(); ++i) {
+    std::string why;
+    if (!rtl_params_compatible(models[i].params, wanted, &why)) {
+      why_all += "\n  " + models[i].name + ": " + why;
+      continue;
+    }
+    s.params = models[i].params;  // the built widths and maximum tile size
+    build(scene, cfg, tile, s);
+    CosimResult r;
+    r.rtl_config = models[i].name;
+    r.fragments_expected = s.expected.size();
+    for (const TbItem& it : s.items) (it.kind == TbItem::Marker ? r.markers : r.triangles) += it.kind != TbItem::Null;
+    rtl_registry()[i].run(s, r);
+    return r;
+  }
+  throw std::runtime_error("no verilated RTL model matches this config (build one by adding it to RAST_RTL_CONFIGS "
+                           "in rtl/CMakeLists.txt):" + why_all);
+}
+
+}  // namespace rastsim::cosim

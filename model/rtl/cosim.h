@@ -1,0 +1,58 @@
+// SPDX-License-Identifier: Apache-2.0
+// Co-simulation of the Verilog raster pipeline (rtl/rast_top.v, verilated per config
+// into rastsim_rtl) against the reference model, fragment for fragment, with a cycle
+// count comparable to the SystemC model's.
+//
+// - The testbench plays the stages the RTL does not have, with the SystemC model's
+//   timing equations (model/sc): command fetch and primitive assembly in front of the
+//   RTL's triangle FIFO, and the fragment FIFO and ROP (a memory model) behind its
+//   fragment stream. Vertices are snapped by the reference model's setup (the RTL
+//   takes snapped fixed-point vertices); state commands travel as markers.
+// - Every fragment is compared bit for bit (x, y, depth, r, g, b) IN ORDER with the
+//   reference model's stream for the same tile size (tiles row-major, pixels row-major
+//   within a tile, triangles in order); the first mismatch is reported with its
+//   triangle (scene file:line and index) and pixel.
+// - Optional random backpressure on the fragment stream (seeded), FST waveform.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "config/config.h"
+#include "rtl/rtl_params.h"
+#include "ref/scene.h"
+
+namespace rastsim::cosim {
+
+struct CosimOptions {
+  int tile_size = 0;               // 0: raster.tile_size of the config
+  uint64_t backpressure_seed = 0;  // seed of the random fragment backpressure
+  double backpressure = 0;         // probability that frag_ready is low in a cycle (0 = off)
+  std::string fst_path;            // write an FST waveform ("" = none)
+  uint64_t max_cycles = 2'000'000'000;
+};
+
+struct CosimResult {
+  std::string rtl_config;          // which verilated model ran
+  uint64_t cycles_rtl = 0;         // first command to the ROP's last busy cycle
+  uint64_t fragments_expected = 0; // from the reference model
+  uint64_t fragments_compared = 0; // fragments the RTL produced and were compared
+  uint64_t mismatches = 0;         // differing or missing/extra fragments
+  std::string first_mismatch;      // "" when none
+  uint64_t triangles = 0, markers = 0;
+  double wall_seconds = 0;         // the RTL simulation (testbench included)
+};
+
+// The verilated configs linked into this binary, and the parameters each was built with.
+struct RtlModelInfo {
+  std::string name;  // configs/<name>.toml
+  RtlParams params;
+};
+std::vector<RtlModelInfo> rtl_models();
+
+// Runs `scene` through the RTL model built for a config compatible with `cfg`
+// (rtl_params_compatible). Throws std::runtime_error when none is, naming the difference.
+CosimResult run_cosim(const Scene& scene, const Config& cfg, const CosimOptions& opts = {});
+
+}  // namespace rastsim::cosim

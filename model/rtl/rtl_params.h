@@ -1,0 +1,58 @@
+// SPDX-License-Identifier: Apache-2.0
+// RTL parameters: what the Verilog raster pipeline (rtl/rast_*.v) is built with, derived
+// from a validated Config. The datapath widths are computed here with the equations of
+// docs/fixed-point.md ("Datapath widths") from the coordinate format, so no width is
+// typed twice: the Verilog gets them through the exported header, the C++ testbench
+// through this struct.
+//
+// - rtl_params_from_config: Config -> RtlParams (format, widths, timing keys the RTL
+//   implements, FIFO depths). Fill rule, cull mode and front face are not parameters:
+//   they are run-time inputs of the RTL like the tile size (docs/rtl.md), driven from
+//   the RasterState of the config being simulated.
+// - rtl_params_verilog: the Verilog header (a parameter port list body) that
+//   rtl/rast_top.v includes; `rastsim export-rtl` and the build's exporter write it.
+// - rtl_params_compatible: whether an RTL library built for one config can simulate
+//   another (same widths and timing, tile size at most the built maximum: the tile size
+//   is a run-time input of the RTL, see docs/rtl.md).
+#pragma once
+
+#include <string>
+
+#include "config/config.h"
+
+namespace rastsim {
+
+struct RtlParams {
+  // Coordinate format s.I.F and the widths that follow from it (docs/fixed-point.md).
+  int coord_int = 0, coord_frac = 0;  // I, F
+  int coord_w = 0;       // snapped vertex x, y: N + 1
+  int coef_w = 0;        // edge a, b: N + 2
+  int edge_w = 0;        // edge c and E(x, y), E + bias: 2N + 3
+  int area_w = 0;        // area2 and barycentric weights, unsigned: 2N + 2
+  int color_num_w = 0;   // colour numerator sum w_k c_k, unsigned: 2N + 10
+  int depth_num_w = 0;   // depth numerator sum w_k z_k, unsigned: 2N + 2 + D
+  int depth_w = 0;       // D = raster.depth_bits
+  int pixel_w = 14;      // pixel x, y, unsigned
+  int tile_log2_max = 0; // log2 of raster.tile_size: the largest tile the RTL supports
+  // Timing keys the RTL implements (config_schema_timing.cpp).
+  int setup_interval = 0, setup_latency = 0;
+  int coarse_tiles_per_cycle = 0;
+  int fine_samples_per_cycle = 0, fine_accepted_tile_cycles = 0;
+  int interp_fragments_per_cycle = 0, interp_latency = 0;
+  int fifo_triangle = 0, fifo_setup = 0, fifo_tile = 0, fifo_pixel = 0;
+
+  bool operator==(const RtlParams&) const = default;
+};
+
+RtlParams rtl_params_from_config(const Config& cfg);
+
+// The Verilog header: "parameter Name = value, // comment" lines (the last without a
+// comma), to be `include`d in rast_top's parameter port list. `source` names the
+// config in the banner.
+std::string rtl_params_verilog(const RtlParams& p, const std::string& source);
+
+// An RTL built with `built` can run `wanted` (tile size as a run-time input up to the
+// built maximum). On false, `why` says which parameter differs.
+bool rtl_params_compatible(const RtlParams& built, const RtlParams& wanted, std::string* why = nullptr);
+
+}  // namespace rastsim

@@ -1,0 +1,342 @@
+// SPDX-License-Identifier: Apache-2.0
+// OBJ loader: a Wavefront OBJ subset placed on screen by ObjPlacement (docs/trace-format.md).
+//
+// - Parse: `v x y z [w] [r g b]`, `vt`/`vn` (counted so face indices can be checked,
+//   otherwise ignored), `f` in the forms i, i/t, i//n, i/t/n with negative (relative)
+//   indices, `mtllib`/`usemtl` with `newmtl`/`Kd` from the MTL; o, g, s and the other
+//   non-polygon statements are ignored.
+// - Place: centre the bounding box of the vertices faces use, rotate about y (yaw) then
+//   x (pitch), project orthographically so the bounding sphere spans `fill` of the
+//   smaller viewport side, y down on screen, depth 0 (near) .. 1 (far) over the sphere.
+// - Shade: colour (vertex colour, else material Kd, else white) times a headlight
+//   Lambert term 0.25 + 0.75 * max(0, n_z) of the face's view-space normal.
+// - Emit: CmdClear, CmdClearDepth 1, then one List command per face (polygons fanned
+//   from their first vertex), each named by the face's line.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <numbers>
+#include <optional>
+#include <string_view>
+
+#include "ref/scene.h"
+#include "scene/scene_text.h"
+#include "scene/scene_io.h"
+
+namespace rastsim {
+
+// The text layer shared with the trace parser, defined in scene_trace.cpp. (It has no
+// header of its own because this change may not add one; see docs/trace-format.md.)
+
+
+namespace {
+
+using scene_text::quote;
+using scene_text::Tokens;
+using Vec3 = std::array<double, 3>;
+using Rgb = std::array<double, 3>;  // linear 0..1, as OBJ and MTL write colours
+
+// Ambient share of the headlight shading: faces turned away from the viewer keep a
+// quarter of their colour so silhouettes stay visible against the clear colour.
+constexpr double kAmbient = 0.25;
+
+struct ObjVertex {
+  Vec3 p{};
+  std::optional<Rgb> rgb;  // trailing `r g b` some exporters write
+  int line = 0;
+};
+
+struct ObjFace {
+  int line = 0;
+  std::vector<size_t> v;   // 0-based vertex indices
+  std::optional<Rgb> kd;   // material in force at the face
+};
+
+// Statements that carry nothing a flat-shaded triangle rasteriser uses.
+bool ignored_statement(std::string_view kw) {
+  static constexpr std::string_view kIgnored[] = {
+      "o", "g", "s", "vp", "l", "p", "mg", "lod", "usemap", "maplib",
+      "shadow_obj", "trace_obj", "bevel", "c_interp", "d_interp", "ctech", "stech"};
+  return std::find(std::begin(kIgnored), std::end(kIgnored), kw) != std::end(kIgnored);
+}
+
+// Material names may hold spaces (some exporters write them): the rest of the line.
+std::string rest_of_line(const Tokens& t) {
+  std::string s;
+  for (size_t i = 1; i < t.size(); ++i) s += (i > 1 ? " " : "") + std::string(t[i]);
+  return s;
+}
+
+class ObjParser {
+ public:
+  ObjParser(const std::string& name, const std::string& base_dir) : name_(name), base_dir_(base_dir) {}
+
+  void line(int n, const Tokens& t) {
+    line_ = n;
+    const std::string_view kw = t[0];
+    if (kw == "v") return vertex(t);
+    if (kw == "vt") return counted(t, 1, 3, vt_count_);
+    if (kw == "vn") return counted(t, 3, 3, vn_count_);
+    if (kw == "f") return face(t);
+    if (kw == "mtllib") return mtllib(t);
+    if (kw == "usemtl") return usemtl(t);
+    if (ignored_statement(kw)) return;
+    fail("unknown OBJ statement " + quote(kw));
+  }
+
+  std::vector<ObjVertex> vertices;
+  std::vector<ObjFace> faces;
+
+ private:
+  [[noreturn]] void fail(const std::string& what) const { scene_text::fail(name_, line_, what); }
+
+  double number(std::string_view tok, const std::string& what) const {
+    const auto v = scene_text::parse_double(tok);
+    if (!v) fail(what + " " + quote(tok) + " is not a finite number");
+    return *v;
+  }
+
+  double unit(std::string_view tok, const std::string& what) const {
+    const double v = number(tok, what);
+    if (v < 0.0 || v > 1.0) fail(what + " " + quote(tok) + " is outside [0, 1]");
+    return v;
+  }
+
+  void vertex(const Tokens& t) {
+    const size_t n = t.size() - 1;
+    if (n != 3 && n != 4 && n != 6)
+      fail("'v' takes x y z, x y z w or x y z r g b, got " + std::to_string(n) + " numbers");
+    ObjVertex v;
+    v.line = line_;
+    v.p = {number(t[1], "x"), number(t[2], "y"), number(t[3], "z")};
+    if (n == 4) number(t[4], "w");  // rational weight: meaningless for polygons, checked only
+    if (n == 6) v.rgb = Rgb{unit(t[4], "red"), unit(t[5], "green"), unit(t[6], "blue")};
+    vertices.push_back(v);
+  }
+
+  // vt / vn: only their count matters (faces may index them); the numbers are checked.
+  void counted(const Tokens& t, size_t lo, size_t hi, size_t& count) {
+    const size_t n = t.size() - 1;
+    if (n < lo || n > hi)
+      fail("'" + std::string(t[0]) + "' takes " + std::to_string(lo) +
+           (lo == hi ? "" : " to " + std::to_string(hi)) + " numbers, got " + std::to_string(n));
+    for (size_t i = 1; i <= n; ++i) number(t[i], "'" + std::string(t[0]) + "' component");
+    ++count;
+  }
+
+  // A 1-based (or negative, relative to the end so far) index into `count` elements.
+  size_t index(std::string_view tok, size_t count, const std::string& what) const {
+    const auto v = scene_text::parse_int(tok);
+    if (!v) fail(what + " " + quote(tok) + " is not an integer");
+    if (*v == 0) fail(what + " 0 is invalid (OBJ indices start at 1; negative ones count back)");
+    const int64_t n = static_cast<int64_t>(count);
+    if (*v > n || *v < -n)
+      fail(what + " " + std::to_string(*v) + " is out of range (" + std::to_string(count) + " defined so far)");
+    return static_cast<size_t>(*v > 0 ? *v - 1 : n + *v);
+  }
+
+  void face(const Tokens& t) {
+    if (t.size() - 1 < 3) fail("'f' needs at least 3 vertices, got " + std::to_string(t.size() - 1));
+    ObjFace f;
+    f.line = line_;
+    f.kd = material_;
+    for (size_t k = 1; k < t.size(); ++k) {
+      const std::string label = "face vertex " + std::to_string(k) + " ";
+      // Split "i/t/n" into at most three parts; the forms are i, i/t, i//n and i/t/n.
+      std::array<std::string_view, 3> part{};
+      size_t parts = 0;
+      std::string_view rest = t[k];
+      for (;;) {
+        if (parts == 3) fail(label + quote(t[k]) + " has more than three '/'-separated parts");
+        const size_t slash = rest.find('/');
+        part[parts++] = rest.substr(0, slash);
+        if (slash == std::string_view::npos) break;
+        rest.remove_prefix(slash + 1);
+      }
+      const bool bad_tex = parts == 2 && part[1].empty();
+      if (part[0].empty() || bad_tex || (parts == 3 && part[2].empty()))
+        fail(label + quote(t[k]) + " is not of the form i, i/t, i//n or i/t/n");
+      f.v.push_back(index(part[0], vertices.size(), label + "index"));
+      if (parts >= 2 && !part[1].empty()) index(part[1], vt_count_, label + "texture index");
+      if (parts == 3) index(part[2], vn_count_, label + "normal index");
+    }
+    faces.push_back(std::move(f));
+  }
+
+  void mtllib(const Tokens& t) {
+    if (t.size() < 2) fail("'mtllib' needs a file name");
+    for (size_t i = 1; i < t.size(); ++i) {
+      const std::string path = (std::filesystem::path(base_dir_) / std::string(t[i])).string();
+      std::string text;
+      try {
+        text = scene_text::read_file(path);
+      } catch (const SceneError&) {
+        fail("cannot open material library " + quote(t[i]) + " (looked for " + quote(path) + ")");
+      }
+      parse_mtl(text, path);
+    }
+  }
+
+  // MTL: `newmtl NAME` starts a material, `Kd r [g b]` sets its diffuse colour; every
+  // other statement (Ka, Ks, Ns, d, illum, map_*, PBR extensions) is ignored. A material
+  // without Kd is white; a later `newmtl` of the same name replaces the earlier one.
+  void parse_mtl(const std::string& text, const std::string& path) {
+    std::string current;
+    scene_text::for_each_line(text, path, [&](int n, const Tokens& t) {
+      auto mtl_fail = [&](const std::string& what) { scene_text::fail(path, n, what); };
+      if (t[0] == "newmtl") {
+        if (t.size() < 2) mtl_fail("'newmtl' needs a material name");
+        current = rest_of_line(t);
+        materials_[current] = Rgb{1.0, 1.0, 1.0};
+      } else if (t[0] == "Kd") {
+        if (current.empty()) mtl_fail("'Kd' before any 'newmtl'");
+        if (t.size() > 1 && (t[1] == "spectral" || t[1] == "xyz"))
+          mtl_fail("'Kd " + std::string(t[1]) + "' is not supported (only 'Kd r g b')");
+        if (t.size() != 2 && t.size() != 4) mtl_fail("'Kd' takes r g b (or one grey value) in [0, 1]");
+        Rgb kd{};
+        for (size_t c = 0; c < 3; ++c) {
+          const std::string_view tok = t[t.size() == 2 ? 1 : c + 1];
+          const auto v = scene_text::parse_double(tok);
+          if (!v) mtl_fail("Kd " + quote(tok) + " is not a finite number");
+          if (*v < 0.0 || *v > 1.0) mtl_fail("Kd " + quote(tok) + " is outside [0, 1]");
+          kd[c] = *v;
+        }
+        materials_[current] = kd;
+      }
+    });
+  }
+
+  void usemtl(const Tokens& t) {
+    if (t.size() < 2) fail("'usemtl' needs a material name");
+    const auto it = materials_.find(rest_of_line(t));
+    if (it == materials_.end()) fail("unknown material " + quote(rest_of_line(t)) + " (no 'newmtl' of that name)");
+    material_ = it->second;
+  }
+
+  const std::string& name_;
+  const std::string& base_dir_;
+  int line_ = 0;
+  size_t vt_count_ = 0, vn_count_ = 0;
+  std::map<std::string, Rgb> materials_;
+  std::optional<Rgb> material_;
+};
+
+// 0..1 colour times shade to RGB8, rounding half up (one rounding for both factors).
+uint8_t to_rgb8(double c, double shade) {
+  return static_cast<uint8_t>(std::clamp(std::floor(c * shade * 255.0 + 0.5), 0.0, 255.0));
+}
+
+// Places the parsed mesh and emits its commands (see the file comment for the maths).
+Scene place(const ObjParser& obj, const std::string& name, const ObjPlacement& pl) {
+  const auto& verts = obj.vertices;
+  std::vector<bool> used(verts.size(), false);
+  for (const ObjFace& f : obj.faces)
+    for (size_t i : f.v) used[i] = true;
+
+  // Bounding box centre; halves first so that two huge finite bounds cannot overflow.
+  Vec3 lo, hi;
+  lo.fill(HUGE_VAL);
+  hi.fill(-HUGE_VAL);
+  for (size_t i = 0; i < verts.size(); ++i)
+    for (int a = 0; a < 3 && used[i]; ++a) {
+      lo[a] = std::min(lo[a], verts[i].p[a]);
+      hi[a] = std::max(hi[a], verts[i].p[a]);
+    }
+  Vec3 centre;
+  for (int a = 0; a < 3; ++a) centre[a] = lo[a] / 2 + hi[a] / 2;
+
+  // Bounding sphere about that centre; positions are then taken relative to its radius,
+  // so every later quantity is O(1) whatever units the file uses.
+  double radius = 0;
+  for (size_t i = 0; i < verts.size(); ++i) {
+    if (!used[i]) continue;
+    const Vec3& p = verts[i].p;
+    const double d = std::hypot(p[0] - centre[0], p[1] - centre[1], p[2] - centre[2]);
+    if (!std::isfinite(d)) scene_text::fail(name, verts[i].line, "vertex is too far from the mesh centre to place");
+    radius = std::max(radius, d);
+  }
+  if (radius == 0) radius = 1;  // a single point: every face is degenerate, keep it finite
+
+  const double yaw = pl.yaw_deg * std::numbers::pi / 180, pitch = pl.pitch_deg * std::numbers::pi / 180;
+  const double cy = std::cos(yaw), sy = std::sin(yaw), cp = std::cos(pitch), sp = std::sin(pitch);
+  const double px_per_radius = pl.fill * std::min(pl.viewport_width, pl.viewport_height) / 2.0;
+  const double mid_x = pl.viewport_width / 2.0, mid_y = pl.viewport_height / 2.0;
+
+  // View-space position (unit sphere) of every used vertex.
+  std::vector<Vec3> view(verts.size());
+  for (size_t i = 0; i < verts.size(); ++i) {
+    if (!used[i]) continue;
+    const double x = (verts[i].p[0] - centre[0]) / radius, y = (verts[i].p[1] - centre[1]) / radius,
+                 z = (verts[i].p[2] - centre[2]) / radius;
+    const double x1 = x * cy + z * sy, z1 = -x * sy + z * cy;  // about y: +z turns toward +x
+    view[i] = {x1, y * cp - z1 * sp, y * sp + z1 * cp};        // about x: +y turns toward +z
+  }
+
+  Scene scene;
+  scene.source = name;
+  const SourceLoc first{name, obj.faces.front().line};
+  scene.commands.push_back({CmdClear{pl.clear_r, pl.clear_g, pl.clear_b}, first});
+  scene.commands.push_back({CmdClearDepth{1.0}, first});
+  for (const ObjFace& f : obj.faces) {
+    // Newell's normal: the polygon's area vector, exact for triangles and well defined
+    // for non-planar polygons; its z is toward the viewer.
+    Vec3 n{};
+    for (size_t k = 0; k < f.v.size(); ++k) {
+      const Vec3& a = view[f.v[k]];
+      const Vec3& b = view[f.v[(k + 1) % f.v.size()]];
+      n[0] += (a[1] - b[1]) * (a[2] + b[2]);
+      n[1] += (a[2] - b[2]) * (a[0] + b[0]);
+      n[2] += (a[0] - b[0]) * (a[1] + b[1]);
+    }
+    const double len = std::hypot(n[0], n[1], n[2]);
+    const double nz = len > 0 ? n[2] / len : 0.0;
+    const double shade = kAmbient + (1 - kAmbient) * std::max(0.0, nz);
+
+    std::vector<SceneVertex> corner;
+    for (size_t i : f.v) {
+      const Vec3& q = view[i];
+      const Rgb rgb = verts[i].rgb.value_or(f.kd.value_or(Rgb{1.0, 1.0, 1.0}));
+      SceneVertex sv;
+      sv.x = Q64::from_double(mid_x + px_per_radius * q[0]);
+      sv.y = Q64::from_double(mid_y - px_per_radius * q[1]);  // object +y is up on screen
+      sv.z = std::clamp(0.5 - 0.5 * q[2], 0.0, 1.0);           // larger view z is nearer
+      sv.r = to_rgb8(rgb[0], shade);
+      sv.g = to_rgb8(rgb[1], shade);
+      sv.b = to_rgb8(rgb[2], shade);
+      corner.push_back(sv);
+    }
+    CmdPrimitives p{Topology::List, {}};
+    for (size_t k = 1; k + 1 < corner.size(); ++k) {  // fan from the first corner
+      p.vertices.push_back(corner[0]);
+      p.vertices.push_back(corner[k]);
+      p.vertices.push_back(corner[k + 1]);
+    }
+    scene.commands.push_back({std::move(p), SourceLoc{name, f.line}});
+  }
+  return scene;
+}
+
+}  // namespace
+
+Scene parse_obj(const std::string& text, const std::string& name, const ObjPlacement& placement,
+                const std::string& base_dir) {
+  const ObjPlacement& pl = placement;
+  if (pl.viewport_width < 1 || pl.viewport_height < 1 || !std::isfinite(pl.fill) || pl.fill <= 0 ||
+      !std::isfinite(pl.yaw_deg) || !std::isfinite(pl.pitch_deg))
+    throw SceneError(name + ": OBJ placement needs a positive viewport, a positive finite fill and "
+                            "finite yaw and pitch");
+  ObjParser obj(name, base_dir);
+  const int lines = scene_text::for_each_line(text, name, [&](int n, const Tokens& t) { obj.line(n, t); });
+  if (obj.faces.empty()) scene_text::fail(name, std::max(lines, 1), "no faces (an OBJ scene needs at least one 'f')");
+  return place(obj, name, pl);
+}
+
+Scene load_obj(const std::string& path, const ObjPlacement& placement) {
+  const std::string dir = std::filesystem::path(path).parent_path().string();
+  return parse_obj(scene_text::read_file(path), path, placement, dir.empty() ? "." : dir);
+}
+
+}  // namespace rastsim

@@ -1,0 +1,121 @@
+// SPDX-License-Identifier: Apache-2.0
+// Text layer shared by the trace and OBJ parsers: file reading, line splitting with the
+// NUL / line-length guards, '#' comments, whitespace tokens, strict number syntax, and
+// the one "file:line: what" error builder.
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <limits>
+#include <optional>
+#include <sstream>
+#include <string_view>
+
+#include "scene/scene_text.h"
+
+namespace rastsim {
+
+namespace scene_text {
+
+// Longest line either format accepts (excluding the newline). A bound keeps error
+// messages and per-line token lists small whatever a corrupted file holds.
+constexpr size_t kMaxLineChars = 4096;
+
+[[noreturn]] void fail(const std::string& file, int line, const std::string& what) {
+  throw SceneError(file + ":" + std::to_string(line) + ": " + what);
+}
+
+// A token as it may appear in an error message: quoted, control and non-ASCII bytes
+// escaped, long tokens cut, so a binary file cannot garble the terminal.
+std::string quote(std::string_view tok) {
+  constexpr size_t kMaxShown = 40;
+  std::string out = "'";
+  for (size_t i = 0; i < tok.size() && i < kMaxShown; ++i) {
+    const auto c = static_cast<unsigned char>(tok[i]);
+    if (c >= 0x20 && c < 0x7f) {
+      out += static_cast<char>(c);
+    } else {
+      static const char* hex = "0123456789abcdef";
+      out += "\\x";
+      out += hex[c >> 4];
+      out += hex[c & 15];
+    }
+  }
+  if (tok.size() > kMaxShown) out += "...";
+  return out + "'";
+}
+
+// Whole file as text. Only regular files: a directory or device (e.g. an mtllib that
+// names /dev/zero) would fail late or never end.
+std::string read_file(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) throw SceneError(path + ": cannot open");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw SceneError(path + ": cannot open");
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  if (in.bad()) throw SceneError(path + ": cannot read");
+  return ss.str();
+}
+
+// Calls fn(line, tokens) for every line that has a token after comment stripping;
+// returns the number of lines. Lines split on '\n'; '\r' counts as whitespace, so
+// CRLF files read the same as LF files.
+int for_each_line(std::string_view text, const std::string& name, const LineFn& fn) {
+  int line = 0;
+  size_t pos = 0;
+  Tokens tokens;
+  while (pos < text.size()) {
+    if (line == std::numeric_limits<int>::max()) fail(name, line, "too many lines");
+    ++line;
+    size_t eol = text.find('\n', pos);
+    if (eol == std::string_view::npos) eol = text.size();
+    std::string_view s = text.substr(pos, eol - pos);
+    pos = eol + 1;
+    if (s.size() > kMaxLineChars)
+      fail(name, line, "line is longer than " + std::to_string(kMaxLineChars) + " characters");
+    if (s.find('\0') != std::string_view::npos) fail(name, line, "NUL byte (not a text file?)");
+    s = s.substr(0, s.find('#'));
+    tokens.clear();
+    constexpr std::string_view kSpace = " \t\r\v\f";
+    for (size_t b = s.find_first_not_of(kSpace); b != std::string_view::npos;
+         b = s.find_first_not_of(kSpace, b)) {
+      const size_t e = std::min(s.find_first_of(kSpace, b), s.size());
+      tokens.push_back(s.substr(b, e - b));
+      b = e;
+    }
+    if (!tokens.empty()) fn(line, tokens);
+  }
+  return line;
+}
+
+// A whole token as a T through from_chars, which reads an optional '-' but not '+'
+// (exporters write both): no spaces, no "+-", no trailing garbage, no hex.
+template <class T>
+std::optional<T> from_token(std::string_view tok) {
+  if (!tok.empty() && tok[0] == '+') {
+    tok.remove_prefix(1);
+    if (!tok.empty() && tok[0] == '-') return std::nullopt;
+  }
+  T v{};
+  const auto r = std::from_chars(tok.data(), tok.data() + tok.size(), v);
+  if (tok.empty() || r.ec != std::errc() || r.ptr != tok.data() + tok.size()) return std::nullopt;
+  return v;
+}
+
+std::optional<int64_t> parse_int(std::string_view tok) { return from_token<int64_t>(tok); }
+
+// A finite double in the usual exporter syntax (1, -0.5, 1e-3); no inf or nan. Values
+// beyond the double range (1e999, and 1e-999 below it) are errors too.
+std::optional<double> parse_double(std::string_view tok) {
+  const auto v = from_token<double>(tok);
+  if (v && !std::isfinite(*v)) return std::nullopt;
+  return v;
+}
+
+}  // namespace scene_text
+
+}  // namespace rastsim
