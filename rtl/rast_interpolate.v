@@ -25,6 +25,7 @@ module rast_interpolate #(
   parameter int DepthW            = 24,  // D
   parameter int PixelW            = 14,  // pixel index bits
   parameter int TileLog2Max       = 4,   // largest tile: 2^TileLog2Max pixels square
+  parameter int TileLog2W         = 3,   // tile_log2_i bits (holds the schema's largest TileLog2Max)
   parameter int FragmentsPerCycle = 4,   // pixels interpolated per cycle
   parameter int Latency           = 6,   // pick-to-fragment register stages
   localparam int MaskW = 1 << (2 * TileLog2Max),  // derived: coverage mask bits
@@ -32,7 +33,7 @@ module rast_interpolate #(
 ) (
   input  wire logic                      clk_i,         // core clock
   input  wire logic                      rst_ni,        // asynchronous reset, active low
-  input  wire logic [2:0]                tile_log2_i,   // log2 tile size (static)
+  input  wire logic [TileLog2W-1:0]      tile_log2_i,   // log2 tile size (static)
   input  wire logic                      in_valid_i,    // mask or marker at the head
   output      logic                      in_ready_o,    // pop the head
   input  wire logic                      in_marker_i,   // head is a marker
@@ -54,7 +55,7 @@ module rast_interpolate #(
   output      logic [Lanes*PixelW-1:0]   out_y_o,       // lane j pixel y
   output      logic [Lanes*DepthW-1:0]   out_z_o,       // lane j depth
   output      logic [Lanes*24-1:0]       out_rgb_o,     // lane j colour {b, g, r}
-  output      logic                      busy_o         // a fragment is in flight
+  output      logic                      busy_o         // a tile is being picked or a beat is in the pipeline
 );
   localparam int IdxW  = 2 * TileLog2Max;              // derived: mask index bits
   localparam int SideW = 3 + Lanes * (1 + 2 * PixelW);  // derived: side data bits
@@ -151,7 +152,15 @@ module rast_interpolate #(
     .d_i({beat, in_marker_i, last_beat && !in_marker_i, in_marker_i ? '0 : pick, lane_x, lane_y}),
     .q_o(side_out));
   assign {out_valid_o, out_marker_o, out_last_o, out_lanes_o, out_x_o, out_y_o} = side_out;
-  assign busy_o = (consumed_q != '0);
+  // Beats inside the Latency register stages: one enters with each enabled beat and one
+  // leaves with each enabled output beat, so at most Latency are inside (0 for a wire).
+  localparam int InflightW = $clog2(Latency + 2);  // derived: counts 0..Latency
+  logic [InflightW-1:0] inflight_q;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) inflight_q <= '0;
+    else if (en) inflight_q <= inflight_q + InflightW'(beat) - InflightW'(out_valid_o);
+  end
+  assign busy_o = (consumed_q != '0) || (inflight_q != '0);
 endmodule
 
 `default_nettype wire

@@ -8,12 +8,14 @@
 //   cycle it works on it (the FIFO slot frees at once, as in the SystemC model).
 //
 // - Every parameter comes from the config through the exported header rast_params.vh
-//   (`rastsim export-rtl`, model/ref/rtl_params.cpp): widths of docs/fixed-point.md,
-//   the timing keys and FIFO depths. The same stages, FIFOs and timing equations as the
+//   (`rastsim export-rtl`, model/rtl/rtl_params.cpp): widths of docs/fixed-point.md,
+//   the timing keys and FIFO depths, and what derives from them (SetupFifoEntries: the
+//   setup FIFO also holds the triangles inside setup's latency pipeline, the SystemC
+//   model's latency slots, config/timing_params.h setup_fifo_entries). The same stages, FIFOs and timing equations as the
 //   SystemC model (docs/microarchitecture.md, docs/rtl.md).
 // - The raster state is run-time input, held constant while the pipeline is busy: the
 //   tile size 2^tile_log2_i with 1 <= tile_log2_i <= TileLog2Max; fill rule, cull mode
-//   and front face (encoded as model/ref/raster_state.h's enums, see rast_tri_setup).
+//   and front face (encoded as ref/raster_state.h's enums, see rast_tri_setup).
 // - Triangles arrive snapped (s.I.F raw, relative to the origin), with the clip
 //   rectangle and origin of the state they were drawn in; a marker (a state command in
 //   order with the triangles) travels through every stage and leaves as a marker beat.
@@ -26,7 +28,7 @@ module rast_top #(
 ) (
   input  wire logic                                  clk_i,           // core clock
   input  wire logic                                  rst_ni,          // asynchronous reset, active low
-  input  wire logic [2:0]                            tile_log2_i,     // log2 tile size (static)
+  input  wire logic [TileLog2W-1:0]                  tile_log2_i,     // log2 tile size (static)
   input  wire logic [1:0]                            fill_rule_i,     // raster.fill_rule (static)
   input  wire logic [1:0]                            cull_mode_i,     // raster.cull (static)
   input  wire logic                                  front_ccw_i,     // raster.front_face = ccw (static)
@@ -60,7 +62,7 @@ module rast_top #(
   output      logic [InterpFragmentsPerCycle*PixelW-1:0] frag_y_o,    // lane j y
   output      logic [InterpFragmentsPerCycle*DepthW-1:0] frag_z_o,    // lane j depth
   output      logic [InterpFragmentsPerCycle*24-1:0]     frag_rgb_o,  // lane j colour {b, g, r}
-  output      logic                                  idle_o           // no work anywhere but the interpolator pipeline
+  output      logic                                  idle_o           // no work anywhere, the interpolator pipeline included
 );
   localparam int MaskW = 1 << (2 * TileLog2Max);      // derived: coverage mask bits
   localparam int AttrW = 3 * DepthW + 3 * 24;         // derived: vertex attributes
@@ -68,10 +70,6 @@ module rast_top #(
   localparam int TriW  = 1 + 6 * CoordW + 6 * PixelW + AttrW;                      // derived
   localparam int SetW  = 1 + EdgesW + 4 * PixelW + 2 * PixelW + AreaW + AttrW;     // derived
   localparam int TileW = 1 + 1 + 4 * PixelW + EdgesW + 2 * PixelW + AreaW + AttrW;  // derived
-  // derived: the setup FIFO also holds the triangles inside setup's latency pipeline,
-  // ceil((latency - interval) / interval) of them (the SystemC model's latency slots,
-  // model/sc/timing_params.h: setup_fifo_entries).
-  localparam int SetupFifoEntries = SetupFifoDepth + (SetupLatency - 1) / SetupInterval;
   localparam int PixW  = 1 + MaskW + 2 * PixelW + EdgesW - 3 + 2 * PixelW + AreaW + AttrW;  // derived
 
   // ---- Triangle FIFO (fifo.triangle_depth) ----
@@ -138,7 +136,7 @@ module rast_top #(
   logic [4*PixelW-1:0] k_fp;
   rast_coarse_raster #(
     .CoordW(CoordW), .CoordFrac(CoordFrac), .CoefW(CoefW), .EdgeW(EdgeW), .PixelW(PixelW),
-    .TilesPerCycle(CoarseTilesPerCycle)
+    .TilesPerCycle(CoarseTilesPerCycle), .TileLog2W(TileLog2W)
   ) u_coarse_raster (
     .clk_i, .rst_ni, .tile_log2_i, .in_valid_i(c_valid), .in_ready_o(c_ready), .in_marker_i(c_marker),
     .in_a_i(c_a), .in_b_i(c_b), .in_c_i(c_c), .in_bias_i(c_bias), .in_bbox_i(c_bbox), .in_origin_i(c_origin),
@@ -173,7 +171,7 @@ module rast_top #(
   logic [2*PixelW-1:0] m_tile;
   rast_fine_raster #(
     .CoordW(CoordW), .CoordFrac(CoordFrac), .CoefW(CoefW), .EdgeW(EdgeW), .PixelW(PixelW),
-    .TileLog2Max(TileLog2Max), .SamplesPerCycle(FineSamplesPerCycle),
+    .TileLog2Max(TileLog2Max), .TileLog2W(TileLog2W), .SamplesPerCycle(FineSamplesPerCycle),
     .AcceptedTileCycles(FineAcceptedTileCycles)
   ) u_fine_raster (
     .clk_i, .rst_ni, .tile_log2_i, .in_valid_i(f_valid), .in_ready_o(f_ready), .in_marker_i(f_marker),
@@ -207,7 +205,8 @@ module rast_top #(
   rast_interpolate #(
     .CoordW(CoordW), .CoordFrac(CoordFrac), .CoefW(CoefW), .EdgeW(EdgeW), .AreaW(AreaW),
     .ColorNumW(ColorNumW), .DepthNumW(DepthNumW), .DepthW(DepthW), .PixelW(PixelW),
-    .TileLog2Max(TileLog2Max), .FragmentsPerCycle(InterpFragmentsPerCycle), .Latency(InterpLatency)
+    .TileLog2Max(TileLog2Max), .TileLog2W(TileLog2W), .FragmentsPerCycle(InterpFragmentsPerCycle),
+    .Latency(InterpLatency)
   ) u_interpolate (
     .clk_i, .rst_ni, .tile_log2_i, .in_valid_i(p_valid), .in_ready_o(p_ready), .in_marker_i(p_marker),
     .in_mask_i(p_mask), .in_tile_i(p_tile), .in_a_i(p_a), .in_b_i(p_b), .in_c_i(p_c),

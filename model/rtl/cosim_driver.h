@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // The cycle loop of the co-simulation, one template instance per verilated config
-// (Vrast_<config>, generated registry). Internal to tb/cosim.
+// (Vrast_<config>, generated registry). Internal to model/rtl.
 //
 // Timing convention (the same as the RTL's and, shifted by nothing, the SystemC
 // model's): a stage that takes an item in cycle u and needs n cycles offers its result
@@ -23,6 +23,7 @@
 #include <verilated.h>
 #include <verilated_fst_c.h>
 
+#include "config/timing_params.h"
 #include "rtl/cosim.h"
 #include "ref/interpolate.h"
 #include "ref/pipeline.h"
@@ -57,15 +58,15 @@ struct TbSetup {
   std::vector<TbItem> items;
   std::vector<Expected> expected;
   std::vector<std::string> tri_names;   // "file:line triangle k"
-  int cmd_depth = 1, frag_depth = 1;    // fifo.command_depth, fifo.fragment_depth
-  uint64_t rop_pixels_per_cycle = 1;
+  TimingParams timing;                  // the testbench stages' costs and FIFO depths
   CosimOptions opts;
 };
 
 using RunFn = void (*)(const TbSetup&, CosimResult&);
 struct RegistryEntry {
-  const char* name;
+  const char* name;  // configs/<name>.toml, as the model was built
   RunFn run;
+  RtlParams params;  // what the model was built with (compiled in at configure time)
 };
 const std::vector<RegistryEntry>& rtl_registry();  // generated: rtl_registry.cpp
 
@@ -146,10 +147,6 @@ void run_rtl(const TbSetup& s, CosimResult& r) {
   size_t next_item = 0;
   uint64_t rop_left = 0, last_busy = 0;  // last cycle any stage worked
   size_t next_expected = 0;
-  // Cycles the RTL has been idle but for the interpolator pipeline, with nothing out:
-  // once past that pipeline's latency, nothing is left inside (a marker behind culled
-  // triangles must not be taken for a drained pipeline).
-  uint64_t quiet_cycles = 0;
   std::mt19937_64 rng(s.opts.backpressure_seed);
   std::bernoulli_distribution stall(s.opts.backpressure);
   const int lanes = p.interp_fragments_per_cycle;
@@ -168,14 +165,14 @@ void run_rtl(const TbSetup& s, CosimResult& r) {
       const Batch b = frag_fifo.front();
       frag_fifo.pop_front();
       rop_left = b.marker ? s.items[b.marker_item].rop_cost
-                          : (b.fragments + s.rop_pixels_per_cycle - 1) / s.rop_pixels_per_cycle;
+                          : s.timing.rop_fragment_cycles(b.fragments);
     }
     if (rop_left > 0) {
       --rop_left;
       last_busy = t;
     }
     // A completed batch waiting for room in the fragment FIFO blocks the interpolator.
-    if (staging_blocked && frag_fifo.size() < size_t(s.frag_depth)) {
+    if (staging_blocked && frag_fifo.size() < size_t(s.timing.fragment_fifo_entries())) {
       staging.pushed = t;
       frag_fifo.push_back(staging);
       staging = Batch{};
@@ -220,7 +217,6 @@ void run_rtl(const TbSetup& s, CosimResult& r) {
     const bool tri_taken = tri_valid && top->tri_ready_o;
     if (!top->idle_o || top->frag_valid_o || fetch.active || assembly.active) last_busy = std::max(last_busy, t);
     // Fragments out of the RTL.
-    quiet_cycles = (top->idle_o && !top->frag_valid_o) ? quiet_cycles + 1 : 0;
     if (top->frag_valid_o && frag_ready) {
       if (top->frag_marker_o) {
         if (markers_in_flight.empty()) {
@@ -254,7 +250,7 @@ void run_rtl(const TbSetup& s, CosimResult& r) {
         }
       }
       if (top->frag_marker_o || top->frag_last_o) {
-        if (frag_fifo.size() < size_t(s.frag_depth)) {
+        if (frag_fifo.size() < size_t(s.timing.fragment_fifo_entries())) {
           staging.pushed = t;
           frag_fifo.push_back(staging);
           staging = Batch{};
@@ -280,15 +276,15 @@ void run_rtl(const TbSetup& s, CosimResult& r) {
         --fetch.left;
       } else if (s.items[fetch.item].kind == TbItem::Null) {
         fetch.active = false;  // an empty primitive command: header only, nothing out
-      } else if (cmd_fifo.size() < size_t(s.cmd_depth)) {
+      } else if (cmd_fifo.size() < size_t(s.timing.fifo_command)) {
         cmd_fifo.push_back(Entry{fetch.item, t});
         fetch.active = false;
       }
     }
     half(1);
-    // Done: nothing left anywhere and the interpolator pipeline drained.
+    // Done: nothing left anywhere (idle_o covers the interpolator's pipeline).
     if (next_item >= s.items.size() && !fetch.active && cmd_fifo.empty() && !assembly.active &&
-        top->idle_o && !top->frag_valid_o && quiet_cycles > uint64_t(p.interp_latency) + 2 &&
+        top->idle_o && !top->frag_valid_o &&
         !staging_blocked && staging.fragments == 0 && !staging.marker && frag_fifo.empty() && rop_left == 0) {
       r.cycles_rtl = last_busy + 1;
       break;

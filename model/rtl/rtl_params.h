@@ -11,12 +11,16 @@
 //   the RasterState of the config being simulated.
 // - rtl_params_verilog: the Verilog header (a parameter port list body) that
 //   rtl/rast_top.v includes; `rastsim export-rtl` and the build's exporter write it.
+// - rtl_params_cpp: the same values as a C++ initializer, compiled into the registry of
+//   verilated models (model/rtl/CMakeLists.txt), so no binary reads a config at run time
+//   to learn what a model was built with.
 // - rtl_params_compatible: whether an RTL library built for one config can simulate
 //   another (same widths and timing, tile size at most the built maximum: the tile size
 //   is a run-time input of the RTL, see docs/rtl.md).
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "config/config.h"
 
@@ -32,14 +36,16 @@ struct RtlParams {
   int color_num_w = 0;   // colour numerator sum w_k c_k, unsigned: 2N + 10
   int depth_num_w = 0;   // depth numerator sum w_k z_k, unsigned: 2N + 2 + D
   int depth_w = 0;       // D = raster.depth_bits
-  int pixel_w = 14;      // pixel x, y, unsigned
+  int pixel_w = 0;       // pixel x, y, unsigned: holds the schema's largest display size
   int tile_log2_max = 0; // log2 of raster.tile_size: the largest tile the RTL supports
+  int tile_log2_w = 0;   // tile_log2_i port: holds log2 of the schema's largest tile size
   // Timing keys the RTL implements (config_schema_timing.cpp).
   int setup_interval = 0, setup_latency = 0;
   int coarse_tiles_per_cycle = 0;
   int fine_samples_per_cycle = 0, fine_accepted_tile_cycles = 0;
   int interp_fragments_per_cycle = 0, interp_latency = 0;
-  int fifo_triangle = 0, fifo_setup = 0, fifo_tile = 0, fifo_pixel = 0;
+  int fifo_triangle = 0, fifo_tile = 0, fifo_pixel = 0;
+  int setup_fifo_entries = 0;  // TimingParams::setup_fifo_entries: depth + latency slots
 
   bool operator==(const RtlParams&) const = default;
 };
@@ -50,6 +56,11 @@ RtlParams rtl_params_from_config(const Config& cfg);
 // comma), to be `include`d in rast_top's parameter port list. `source` names the
 // config in the banner.
 std::string rtl_params_verilog(const RtlParams& p, const std::string& source);
+
+// A C++ expression that rebuilds `p`: rtl_params_from_values({...}) with every exported
+// parameter in the export's order.
+std::string rtl_params_cpp(const RtlParams& p);
+RtlParams rtl_params_from_values(const std::vector<int>& values);
 
 // An RTL built with `built` can run `wanted` (tile size as a run-time input up to the
 // built maximum). On false, `why` says which parameter differs.
