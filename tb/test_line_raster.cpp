@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <random>
+#include <set>
 #include <utility>
 #include <vector>
 
@@ -193,6 +194,85 @@ TEST(LineRaster, ReversalChangesExactlyTheTieLines) {
   std::printf("%d random lines, endpoints in [-100, 100]^2: %d with Bresenham/midpoint ties; changed by reversal: "
               "bresenham %d, midpoint %d, dda f32 %d, dda f64 %d, dda fixed (16 bits) %d\n",
               n, tie_lines, changed[0], changed[1], changed[2], changed[3], changed[4]);
+}
+
+}  // namespace
+}  // namespace rastsim
+
+namespace rastsim {
+namespace {
+
+// ---- The diamond-exit rule, by brute force ----
+// Written without clipping: on the segment, membership in the test area can change
+// only where the segment crosses one of the diamond's four edge lines, so it is
+// enough to test t = 0, every crossing in [0, 1] and the midpoints between them.
+struct Q {  // rational num / den, den > 0
+  i128 num, den;
+};
+bool in_area_q(const i128 u, const i128 v, const i128 den, const i128 h, bool y_major) {
+  const i128 au = u < 0 ? -u : u, av = v < 0 ? -v : v;
+  return au + av < h * den || (au + av == h * den && v > 0) || (y_major && u == h * den && v == 0);
+}
+bool lit_brute(int64_t x0, int64_t y0, int64_t x1, int64_t y1, int64_t px, int64_t py, int f) {
+  const i128 h = i128(1) << f, cx = (2 * i128(px) + 1) * h, cy = (2 * i128(py) + 1) * h;
+  const i128 ax = 2 * i128(x0) - cx, ay = 2 * i128(y0) - cy, dx = 2 * (i128(x1) - x0), dy = 2 * (i128(y1) - y0);
+  const bool ymaj = (dx < 0 ? -dx : dx) < (dy < 0 ? -dy : dy);
+  auto in_at = [&](const Q& t) { return in_area_q(ax * t.den + dx * t.num, ay * t.den + dy * t.num, t.den, h, ymaj); };
+  if (in_at({1, 1})) return false;
+  std::vector<Q> ts = {{0, 1}, {1, 1}};
+  for (int su : {-1, 1})
+    for (int sv : {-1, 1}) {  // su u + sv v = h  =>  t = (h - su ax - sv ay) / (su dx + sv dy)
+      i128 p = su * dx + sv * dy, q = h - su * ax - sv * ay;
+      if (p == 0) continue;
+      if (p < 0) p = -p, q = -q;
+      if (q >= 0 && q <= p) ts.push_back({q, p});
+    }
+  std::sort(ts.begin(), ts.end(), [](const Q& a, const Q& b) { return a.num * b.den < b.num * a.den; });
+  for (size_t i = 0; i < ts.size(); ++i) {
+    if (in_at(ts[i])) return true;
+    if (i + 1 < ts.size() && in_at({ts[i].num * ts[i + 1].den + ts[i + 1].num * ts[i].den, 2 * ts[i].den * ts[i + 1].den}))
+      return true;
+  }
+  return false;
+}
+
+std::set<std::pair<int, int>> diamond_set(int64_t x0, int64_t y0, int64_t x1, int64_t y1, int f) {
+  std::set<std::pair<int, int>> s;
+  diamond_line(x0, y0, x1, y1, f, [&](int x, int y) { EXPECT_TRUE(s.insert({x, y}).second) << "pixel twice"; });
+  return s;
+}
+
+TEST(DiamondLine, MatchesBruteForce) {
+  std::mt19937_64 rng(31);
+  for (int i = 0; i < 4000; ++i) {
+    const int f = (i % 2) ? 2 : 4;
+    std::uniform_int_distribution<int64_t> c(0, int64_t{12} << f);
+    int64_t x0 = c(rng), y0 = c(rng), x1 = c(rng), y1 = c(rng);
+    if (i % 3 == 0) {  // centres, corners, 45-degree and axis-aligned lines
+      x0 = (x0 >> (f - 1)) << (f - 1), y0 = (y0 >> (f - 1)) << (f - 1);
+      x1 = (x1 >> (f - 1)) << (f - 1), y1 = (i % 6 == 0) ? y0 + (x1 - x0) : ((y1 >> (f - 1)) << (f - 1));
+    }
+    const auto got = diamond_set(x0, y0, x1, y1, f);
+    std::set<std::pair<int, int>> want;
+    for (int64_t py = (std::min(y0, y1) >> f) - 2; py <= (std::max(y0, y1) >> f) + 2; ++py)
+      for (int64_t px = (std::min(x0, x1) >> f) - 2; px <= (std::max(x0, x1) >> f) + 2; ++px)
+        if (lit_brute(x0, y0, x1, y1, px, py, f)) want.insert({int(px), int(py)});
+    ASSERT_EQ(got, want) << "(" << x0 << "," << y0 << ")-(" << x1 << "," << y1 << ") F " << f;
+  }
+}
+
+TEST(DiamondLine, HandWorked) {
+  const int f = 4;  // 16 = 1 px
+  // Centre of pixel 0 to the centre of pixel 4 on row 0: it exits diamonds 0..3 and ends
+  // inside diamond 4, which it does not light.
+  EXPECT_EQ(diamond_set(8, 8, 4 * 16 + 8, 8, f), (std::set<std::pair<int, int>>{{0, 0}, {1, 0}, {2, 0}, {3, 0}}));
+  // A strip through that point lights pixel 4 exactly once (with the next segment).
+  EXPECT_EQ(diamond_set(4 * 16 + 8, 8, 6 * 16 + 8, 8, f), (std::set<std::pair<int, int>>{{4, 0}, {5, 0}}));
+  // A horizontal line along row boundary y = 1 (between rows 0 and 1) touches the
+  // bottom corners of row 0 (in) and the top corners of row 1 (out): row 0 lights.
+  EXPECT_EQ(diamond_set(8, 16, 3 * 16 + 8, 16, f), (std::set<std::pair<int, int>>{{0, 0}, {1, 0}, {2, 0}}));
+  // A zero-length line lights nothing.
+  EXPECT_TRUE(diamond_set(40, 40, 40, 40, f).empty());
 }
 
 }  // namespace

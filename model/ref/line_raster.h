@@ -135,6 +135,46 @@ void dda_line(int x0, int y0, int x1, int y1, DdaArith arith, int frac_bits, Emi
   }
 }
 
+// ---- The diamond-exit rule (Direct3D 11 / OpenGL aliased lines) ----
+// On snapped sub-pixel endpoints (raw, `frac_bits` fraction bits, absolute pixel
+// coordinates). Pixel (px, py) has the diamond |x - cx| + |y - cy| < 1/2 around its
+// centre (cx, cy) = (px + 1/2, py + 1/2), plus, of its boundary, the two lower edges and
+// the bottom corner (y grows downwards), and for a y-major line also the right corner;
+// the upper edges and the top and left corners are never in (nor the right corner of an
+// x-major line). A line is x-major when |dx| >= |dy|. The line lights a pixel when,
+// travelling from start to end, it exits that area: the segment meets the area and its
+// end point is not inside it. So a line ending inside a diamond does not light that
+// pixel, and a strip draws each shared vertex once.
+// diamond_exits: the exact test for one pixel (i128 arithmetic; raw |coordinates| < 2^40).
+bool diamond_exits(int64_t x0, int64_t y0, int64_t x1, int64_t y1, int64_t px, int64_t py, int frac_bits);
+// Every lit pixel, in drawing order (along the major axis from the start; within one
+// major step along the minor direction of travel).
+template <class Emit>
+void diamond_line(int64_t x0, int64_t y0, int64_t x1, int64_t y1, int frac_bits, Emit&& emit) {
+  const bool x_major = std::llabs(x1 - x0) >= std::llabs(y1 - y0);
+  const int64_t a0 = x_major ? x0 : y0, a1 = x_major ? x1 : y1;  // major axis
+  const int64_t b0 = x_major ? y0 : x0, b1 = x_major ? y1 : x1;  // minor axis
+  const int step = (a1 < a0) ? -1 : 1, bstep = (b1 < b0) ? -1 : 1;
+  const int64_t first = (a0 >> frac_bits) - step, last = (a1 >> frac_bits) + step;
+  for (int64_t m = first;; m += step) {
+    // The minor coordinate of the line at this column's centre, floored: the diamonds
+    // it can exit are within one pixel of it (|slope| <= 1).
+    const int64_t mc = (m << frac_bits) + (int64_t{1} << (frac_bits - 1));
+    int64_t bc = b0;
+    if (a1 != a0) {
+      const i128 num = i128(b0) * (a1 - a0) + i128(mc - a0) * (b1 - b0), den = a1 - a0;
+      bc = int64_t(den > 0 ? div_round(num, den, Rounding::Floor) : div_round(-num, -den, Rounding::Floor));
+    }
+    const int64_t n0 = (bc >> frac_bits) - bstep;
+    for (int k = 0; k < 3; ++k) {
+      const int64_t n = n0 + k * bstep;
+      const int64_t px = x_major ? m : n, py = x_major ? n : m;
+      if (diamond_exits(x0, y0, x1, y1, px, py, frac_bits)) emit(int(px), int(py));
+    }
+    if (m == last) break;
+  }
+}
+
 // Pixels where Bresenham and midpoint differ on a line of these deltas: the ideal line
 // is exactly half way between two pixels at column k of the walk when
 // 2 |dm| k = |dM| (mod 2 |dM|). With g = gcd(|dM|, |dm|) and b = |dM| / g, that has
