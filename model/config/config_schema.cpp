@@ -13,6 +13,8 @@ namespace rastsim {
 void add_timing_params(std::vector<ParamDef>& schema);
 // Keys of video timing, the DAC and scan-out, declared in config_schema_scanout.cpp.
 void add_scanout_params(std::vector<ParamDef>& schema);
+// Keys of the 2D primitives (lines, polygons), declared in config_schema_2d.cpp.
+void add_2d_params(std::vector<ParamDef>& schema);
 
 namespace {
 
@@ -70,6 +72,7 @@ std::vector<ParamDef> make_schema() {
        "OBJ placement: fraction of the smaller viewport side the mesh's bounding sphere spans"});
   add_timing_params(s);
   add_scanout_params(s);
+  add_2d_params(s);
   return s;
 }
 

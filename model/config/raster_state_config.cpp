@@ -37,6 +37,12 @@ RasterState raster_state_from_config(const Config& cfg) {
   s.out_of_range = cfg.get_string("raster.out_of_range") == "cull" ? OutOfRange::Cull : OutOfRange::Error;
   s.fb_width = static_cast<int>(cfg.get_int("display.width"));
   s.fb_height = static_cast<int>(cfg.get_int("display.height"));
+  s.line_method = pick<LineMethod>(cfg.get_string("line.method"),
+                                   {{"diamond", LineMethod::Diamond}, {"bresenham", LineMethod::Bresenham},
+                                    {"midpoint", LineMethod::Midpoint}, {"dda", LineMethod::Dda}});
+  s.dda_arith = pick<DdaArith>(cfg.get_string("line.dda_arith"),
+                               {{"f32", DdaArith::F32}, {"f64", DdaArith::F64}, {"fixed", DdaArith::Fixed}});
+  s.polygon_rule = cfg.get_string("polygon.rule") == "nonzero" ? PolygonRule::NonZero : PolygonRule::EvenOdd;
   s.viewport_width = s.fb_width;
   s.viewport_height = s.fb_height;
   return s;

@@ -64,6 +64,13 @@ bool apply_state_command(const Command& cmd, RasterState& st, Framebuffer& fb) {
       cmd.body);
 }
 
+void reject_2d_commands(const Scene& scene, const char* level) {
+  for (const Command& cmd : scene.commands)
+    if (const auto* d2 = std::get_if<CmdDraw2d>(&cmd.body))
+      throw SceneError(cmd.loc.str() + ": '" + d2->keyword + "' (2D drawing) is not supported by the " + level +
+                       " level yet; `rastsim render` draws it (docs/2d.md)");
+}
+
 Framebuffer render_scene(const Scene& scene, const RasterState& arch, RenderStats& stats,
                          const FragmentSink& on_fragment) {
   const auto t0 = std::chrono::steady_clock::now();
@@ -73,6 +80,10 @@ Framebuffer render_scene(const Scene& scene, const RasterState& arch, RenderStat
   const int F = st.coord_format.frac_bits;
   for (const Command& cmd : scene.commands) {
     if (apply_state_command(cmd, st, fb)) continue;
+    if (const auto* d2 = std::get_if<CmdDraw2d>(&cmd.body)) {
+      draw_2d(*d2, cmd.loc, st, fb, stats.draw2d);
+      continue;
+    }
     const auto& prims = std::get<CmdPrimitives>(cmd.body);
     const size_t n = triangle_count(prims);
     for (size_t k = 0; k < n; ++k) {

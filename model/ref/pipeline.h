@@ -8,6 +8,7 @@
 #include <functional>
 #include <string>
 
+#include "ref/draw2d.h"
 #include "ref/framebuffer.h"
 #include "ref/interpolate.h"
 #include "ref/raster_state.h"
@@ -26,6 +27,7 @@ struct RenderStats {
   uint64_t triangles_rasterized = 0;    // reached the tile walker
   TraversalCounters traversal;
   uint64_t fragments_passed = 0;        // passed the depth test and were written
+  Draw2dStats draw2d;                   // 2D primitives (points, lines, circles, fills, blits)
   uint32_t framebuffer_crc32 = 0;
   double wall_seconds = 0;
 };
@@ -38,6 +40,10 @@ bool apply_state_command(const Command& cmd, RasterState& st, Framebuffer& fb);
 // Counts one triangle-setup outcome in the triangle stats (shared with the timed model);
 // returns true when the triangle goes on to traversal.
 bool count_setup_outcome(SetupOutcome o, RenderStats& stats);
+
+// Throws SceneError naming the first 2D drawing command of `scene` for the levels that
+// have no 2D stage yet (`level`: "SystemC", "RTL").
+void reject_2d_commands(const Scene& scene, const char* level);
 
 using FragmentSink = std::function<void(const Fragment&)>;
 

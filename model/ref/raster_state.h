@@ -6,6 +6,8 @@
 #include <cstdint>
 
 #include "ref/fixed_point.h"
+#include "ref/line_raster.h"
+#include "ref/polygon_fill.h"
 
 namespace rastsim {
 
@@ -35,6 +37,10 @@ struct RasterState {
   bool depth_write = true;
   OutOfRange out_of_range = OutOfRange::Error;
   int fb_width = 128, fb_height = 128;  // framebuffer (display) size
+  // 2D primitives (config keys line.*, polygon.*).
+  LineMethod line_method = LineMethod::Diamond;
+  DdaArith dda_arith = DdaArith::Fixed;
+  PolygonRule polygon_rule = PolygonRule::EvenOdd;
 
   // Scene state (from commands).
   int viewport_width = 128, viewport_height = 128;

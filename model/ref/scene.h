@@ -6,6 +6,7 @@
 // Both keep the file and line of every command so later stages can name them in errors.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <stdexcept>
 #include <string>
@@ -46,7 +47,30 @@ struct CmdPrimitives {                                    // tri / strip / fan
   std::vector<SceneVertex> vertices;
 };
 
-using CommandBody = std::variant<CmdViewport, CmdClear, CmdClearDepth, CmdScissor, CmdPrimitives>;
+// ---- 2D drawing (docs/2d.md): each command carries the 2D state it is drawn with ----
+struct Style2d {
+  std::array<uint8_t, 3> color{}, bgcolor{};  // `color`, `bgcolor` (R G B)
+  std::array<uint8_t, 8> pattern{};           // `pattern HEX16`: row 0 first, bit 7 leftmost
+  bool pattern_solid = true;                  // `pattern solid` (the initial state)
+  uint8_t rop3 = 0;                           // `rop3 XX`
+  int point_size = 0;                         // `point_size S`
+};
+struct Vertex2d { Q64 x, y; };                            // exact decimal pixels
+enum class LineTopology { Single, List, Strip, Loop };    // line / lines / linestrip / lineloop
+struct Draw2dPoint { Vertex2d p; };
+struct Draw2dLines { LineTopology topology = LineTopology::Single; std::vector<Vertex2d> vertices; };
+struct Draw2dCircle { int cx = 0, cy = 0, r = 0; bool fill = false; };
+struct Draw2dRect { int x = 0, y = 0, w = 0, h = 0; };
+struct Draw2dPolygon { std::vector<Vertex2d> vertices; };
+struct Draw2dBlit { int sx = 0, sy = 0, dx = 0, dy = 0, w = 0, h = 0; };
+using Draw2dShape = std::variant<Draw2dPoint, Draw2dLines, Draw2dCircle, Draw2dRect, Draw2dPolygon, Draw2dBlit>;
+struct CmdDraw2d {
+  Draw2dShape shape;
+  Style2d style;
+  const char* keyword = "";  // the trace command, for messages
+};
+
+using CommandBody = std::variant<CmdViewport, CmdClear, CmdClearDepth, CmdScissor, CmdPrimitives, CmdDraw2d>;
 
 struct Command {
   CommandBody body;

@@ -19,6 +19,9 @@ nlohmann::json to_json(const RenderStats& s) {
       {"pixel_tests", s.traversal.pixel_tests},
       {"fragments", s.traversal.fragments},
       {"fragments_passed", s.fragments_passed},
+      {"primitives_2d", s.draw2d.primitives},
+      {"primitives_2d_culled", s.draw2d.primitives_culled},
+      {"pixels_2d", s.draw2d.pixels},
       {"framebuffer_crc32", s.framebuffer_crc32},
       {"wall_seconds", s.wall_seconds},
   };

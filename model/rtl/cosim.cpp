@@ -96,6 +96,7 @@ std::vector<RtlModelInfo> rtl_models() {
 }
 
 CosimResult run_cosim(const Scene& scene, const Config& cfg, const CosimOptions& opts) {
+  reject_2d_commands(scene, "RTL");
   TbSetup s;
   s.opts = opts;
   s.params = rtl_params_from_config(cfg);

@@ -80,6 +80,7 @@ SimResult simulate_scene(const Scene& scene, const Config& cfg, const SimOptions
   const auto t0 = std::chrono::steady_clock::now();
   const RasterState arch = raster_state_from_config(cfg);
   const TimingParams p = TimingParams::from_config(cfg);
+  reject_2d_commands(scene, "SystemC");
 
   setenv("SC_COPYRIGHT_MESSAGE", "DISABLE", 1);  // before the simulation context exists
   sc_core::sc_report_handler::set_actions(sc_core::SC_INFO, sc_core::SC_DO_NOTHING);

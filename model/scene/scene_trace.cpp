@@ -21,6 +21,7 @@
 #include <sstream>
 #include <string_view>
 
+#include "ref/rop3.h"
 #include "ref/scene.h"
 #include "scene/scene_text.h"
 #include "scene/scene_io.h"
@@ -70,7 +71,16 @@ class TraceParser {
         {"tri", &TraceParser::tri, true},           {"strip", &TraceParser::begin, true},
         {"fan", &TraceParser::begin, true},         {"color", &TraceParser::color, false},
         {"depth", &TraceParser::depth, false},      {"v", &TraceParser::vertex, false},
-        {"end", &TraceParser::end, false}};
+        {"end", &TraceParser::end, false},
+        // 2D drawing (docs/2d.md) and its state.
+        {"point", &TraceParser::point, true},       {"point_size", &TraceParser::point_size, false},
+        {"line", &TraceParser::line2d, true},       {"lines", &TraceParser::begin, true},
+        {"linestrip", &TraceParser::begin, true},   {"lineloop", &TraceParser::begin, true},
+        {"polygon", &TraceParser::begin, true},     {"quads", &TraceParser::begin, true},
+        {"quadstrip", &TraceParser::begin, true},   {"circle", &TraceParser::circle, true},
+        {"rect", &TraceParser::rect, true},         {"blit", &TraceParser::blit, true},
+        {"bgcolor", &TraceParser::bgcolor, false},  {"pattern", &TraceParser::pattern, false},
+        {"rop3", &TraceParser::rop3, false}};
     for (const Entry& e : kCommands) {
       if (e.keyword != t[0]) continue;
       if (e.emits && open_)
@@ -190,6 +200,7 @@ class TraceParser {
     r_ = channel(t[1], "red");
     g_ = channel(t[2], "green");
     b_ = channel(t[3], "blue");
+    style_.color = {r_, g_, b_};
   }
 
   void depth(const Tokens& t) {
@@ -210,33 +221,172 @@ class TraceParser {
     emit(std::move(p), line_);
   }
 
+  // Blocks of `v` lines closed by `end`: strip / fan (triangles), quads / quadstrip
+  // (triangles too: split by the front end, winding kept), lines / linestrip /
+  // lineloop and polygon (2D).
   void begin(const Tokens& t) {
     args(t, 0, "its vertices follow on 'v' lines up to 'end'");
     open_ = true;
     open_kw_ = std::string(t[0]);
     open_line_ = line_;
     first_vertex_line_ = 0;
-    open_prims_ = CmdPrimitives{t[0] == "strip" ? Topology::Strip : Topology::Fan, {}};
+    open_prims_ = CmdPrimitives{t[0] == "fan" ? Topology::Fan : t[0] == "strip" ? Topology::Strip : Topology::List, {}};
   }
 
+  bool open_is_2d() const { return open_kw_ == "lines" || open_kw_ == "linestrip" || open_kw_ == "lineloop" ||
+                                   open_kw_ == "polygon"; }
+
   void vertex(const Tokens& t) {
-    if (!open_) fail("'v' outside a strip or fan");
+    if (!open_) fail("'v' outside a strip or fan (or a quads, quadstrip, lines, linestrip, lineloop or polygon block)");
     const size_t n = t.size() - 1;
-    if (n != 2 && n != 6) fail("'v' takes 2 numbers (x y) or 6 (x y z r g b), got " + std::to_string(n));
+    if (open_is_2d()) {
+      if (n != 2) fail("'v' in a '" + open_kw_ + "' takes 2 numbers (x y), got " + std::to_string(n));
+    } else if (n != 2 && n != 6) {
+      fail("'v' takes 2 numbers (x y) or 6 (x y z r g b), got " + std::to_string(n));
+    }
     if (open_prims_.vertices.empty()) first_vertex_line_ = line_;
     open_prims_.vertices.push_back(vertex_at(t, 1, n == 6, ""));
   }
 
   void end(const Tokens& t) {
-    if (!open_) fail("'end' without a 'strip' or 'fan'");
+    if (!open_) fail("'end' without a 'strip' or 'fan' (or a 'quads', 'quadstrip', 'lines', 'linestrip', "
+                     "'lineloop' or 'polygon')");
     args(t, 0, "none");
     const size_t n = open_prims_.vertices.size();
-    if (n < 3) {
-      line_ = open_line_;
-      fail("'" + open_kw_ + "' has " + std::to_string(n) + " vertices; it needs at least 3");
-    }
+    const int at = line_;
+    line_ = open_line_;  // count errors name the block's line
+    auto need = [&](bool ok, const std::string& what) {
+      if (!ok) fail("'" + open_kw_ + "' has " + std::to_string(n) + " vertices; it needs " + what);
+    };
+    if (open_kw_ == "strip" || open_kw_ == "fan") need(n >= 3, "at least 3");
+    if (open_kw_ == "quads") need(n >= 4 && n % 4 == 0, "a multiple of 4");
+    if (open_kw_ == "quadstrip") need(n >= 4 && n % 2 == 0, "an even number, at least 4");
+    if (open_kw_ == "lines") need(n >= 2 && n % 2 == 0, "an even number, at least 2");
+    if (open_kw_ == "linestrip" || open_kw_ == "lineloop") need(n >= 2, "at least 2");
+    if (open_kw_ == "polygon") need(n >= 3, "at least 3");
+    line_ = at;
     open_ = false;
+    if (open_is_2d()) {
+      std::vector<Vertex2d> v;
+      for (const SceneVertex& sv : open_prims_.vertices) v.push_back({sv.x, sv.y});
+      line_ = open_line_;
+      if (open_kw_ == "polygon") return draw2d(Draw2dPolygon{std::move(v)}, "polygon", true);
+      const LineTopology top = open_kw_ == "lines" ? LineTopology::List
+                               : open_kw_ == "linestrip" ? LineTopology::Strip : LineTopology::Loop;
+      return draw2d(Draw2dLines{top, std::move(v)}, open_kw_ == "lines" ? "lines" : open_kw_ == "linestrip"
+                                                                                   ? "linestrip" : "lineloop", false);
+    }
+    if (open_kw_ == "quads" || open_kw_ == "quadstrip") open_prims_.vertices = split_quads(open_prims_.vertices);
     emit(std::move(open_prims_), first_vertex_line_);
+  }
+
+  // Quads (a, b, c, d) -> triangles (a, b, c), (a, c, d); a quad strip's quad k is
+  // (v2k, v2k+1, v2k+3, v2k+2). Both keep the quad's winding; the result is a list.
+  std::vector<SceneVertex> split_quads(const std::vector<SceneVertex>& v) const {
+    std::vector<SceneVertex> out;
+    auto quad = [&](size_t a, size_t b, size_t c, size_t d) {
+      for (size_t i : {a, b, c, a, c, d}) out.push_back(v[i]);
+    };
+    if (open_kw_ == "quads") {
+      for (size_t k = 0; k + 3 < v.size(); k += 4) quad(k, k + 1, k + 2, k + 3);
+    } else {
+      for (size_t k = 0; k + 3 < v.size(); k += 2) quad(k, k + 1, k + 3, k + 2);
+    }
+    return out;
+  }
+
+  // ---- 2D drawing: every command takes the 2D state as it stands on its line ----
+  void draw2d(Draw2dShape shape, const char* keyword, bool fill) {
+    // No source operand outside a blit: a code whose result depends on S is meaningless.
+    if (rop3_reads_source(style_.rop3))
+      fail(std::string("'") + keyword + "' with rop3 " + hex2(style_.rop3) + ", which reads the source (S); only " +
+           "'blit' has a source");
+    Style2d st = style_;
+    if (!fill) st.pattern_solid = true;  // lines, points and outlines draw the current colour
+    emit(CmdDraw2d{std::move(shape), st, keyword}, line_);
+  }
+
+  static std::string hex2(uint8_t v) {
+    const char* d = "0123456789ABCDEF";
+    return std::string{d[v >> 4], d[v & 15]};
+  }
+
+  int64_t pixel_int(std::string_view tok, const std::string& what) const {
+    return integer(tok, what, -kMaxExtent, kMaxExtent);
+  }
+  int64_t extent(std::string_view tok, const std::string& what) const { return integer(tok, what, 0, kMaxExtent); }
+
+  void point(const Tokens& t) {
+    args(t, 2, "x y");
+    draw2d(Draw2dPoint{{coord(t[1], "x"), coord(t[2], "y")}}, "point", false);
+  }
+
+  void point_size(const Tokens& t) {
+    args(t, 1, "S, pixels 1..256");
+    style_.point_size = int(integer(t[1], "point size", 1, 256));
+  }
+
+  void line2d(const Tokens& t) {
+    args(t, 4, "x0 y0 x1 y1");
+    draw2d(Draw2dLines{LineTopology::Single,
+                       {{coord(t[1], "x0"), coord(t[2], "y0")}, {coord(t[3], "x1"), coord(t[4], "y1")}}},
+           "line", false);
+  }
+
+  void circle(const Tokens& t) {
+    const bool fill = t.size() == 5 && t[4] == "fill";
+    if (!fill) args(t, 3, "cx cy r, integers, then optionally 'fill'");
+    draw2d(Draw2dCircle{int(pixel_int(t[1], "centre x")), int(pixel_int(t[2], "centre y")),
+                        int(extent(t[3], "radius")), fill},
+           "circle", fill);
+  }
+
+  void rect(const Tokens& t) {
+    args(t, 4, "x y w h, integers");
+    draw2d(Draw2dRect{int(pixel_int(t[1], "rect x")), int(pixel_int(t[2], "rect y")), int(extent(t[3], "rect width")),
+                      int(extent(t[4], "rect height"))},
+           "rect", true);
+  }
+
+  void blit(const Tokens& t) {
+    args(t, 6, "sx sy dx dy w h, integers");
+    emit(CmdDraw2d{Draw2dBlit{int(pixel_int(t[1], "blit sx")), int(pixel_int(t[2], "blit sy")),
+                              int(pixel_int(t[3], "blit dx")), int(pixel_int(t[4], "blit dy")),
+                              int(extent(t[5], "blit width")), int(extent(t[6], "blit height"))},
+                   style_, "blit"},
+         line_);
+  }
+
+  void bgcolor(const Tokens& t) {
+    args(t, 3, "R G B, 0..255");
+    style_.bgcolor = {channel(t[1], "red"), channel(t[2], "green"), channel(t[3], "blue")};
+  }
+
+  static int hex_digit(char c) {
+    if (c >= '0' && c <= '9') return c - '0';
+    if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+    if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+    return -1;
+  }
+
+  void pattern(const Tokens& t) {
+    args(t, 1, "16 hex digits (8 rows, row 0 first, most significant bit leftmost), or 'solid'");
+    if (t[1] == "solid") {
+      style_.pattern_solid = true;
+      return;
+    }
+    if (t[1].size() != 16) fail("pattern " + quote(t[1]) + " is not 16 hex digits");
+    for (size_t i = 0; i < 16; ++i)
+      if (hex_digit(t[1][i]) < 0) fail("pattern " + quote(t[1]) + " has a non-hex digit");
+    for (size_t r = 0; r < 8; ++r) style_.pattern[r] = uint8_t(hex_digit(t[1][2 * r]) << 4 | hex_digit(t[1][2 * r + 1]));
+    style_.pattern_solid = false;
+  }
+
+  void rop3(const Tokens& t) {
+    args(t, 1, "a code of 2 hex digits, e.g. F0 (PATCOPY)");
+    if (t[1].size() != 2 || hex_digit(t[1][0]) < 0 || hex_digit(t[1][1]) < 0)
+      fail("rop3 code " + quote(t[1]) + " is not 2 hex digits");
+    style_.rop3 = uint8_t(hex_digit(t[1][0]) << 4 | hex_digit(t[1][1]));
   }
 
   const std::string& name_;
@@ -248,6 +398,8 @@ class TraceParser {
   std::string open_kw_;
   int open_line_ = 0, first_vertex_line_ = 0;
   CmdPrimitives open_prims_;
+  // 2D state: white, black background, solid pattern, PATCOPY, 1-pixel points.
+  Style2d style_{{255, 255, 255}, {0, 0, 0}, {}, true, kRopPatCopy, 1};
 };
 
 }  // namespace
