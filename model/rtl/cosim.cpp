@@ -28,7 +28,7 @@ void build(const Scene& scene, const Config& cfg, int tile_size, TbSetup& s) {
   RasterState st = raster_state_from_config(cfg);
   st.tile_size = tile_size;
   const int F = st.coord_format.frac_bits;
-  const TimingParams tp = TimingParams::from_config(cfg);
+  const TimingParams& tp = s.timing;
   const uint64_t cpc = tp.fetch_cycles_per_command;
   Framebuffer fb(1, 1);  // state commands need one; the testbench ROP keeps no pixels
   TraversalCounters counters;
@@ -91,12 +91,7 @@ void build(const Scene& scene, const Config& cfg, int tile_size, TbSetup& s) {
 
 std::vector<RtlModelInfo> rtl_models() {
   std::vector<RtlModelInfo> v;
-  for (const RegistryEntry& e : rtl_registry()) {
-    Config c;
-    c.load_file(std::string(RASTSIM_SOURCE_DIR) + "/configs/" + e.name + ".toml");
-    c.validate();
-    v.push_back({e.name, rtl_params_from_config(c)});
-  }
+  for (const RegistryEntry& e : rtl_registry()) v.push_back({e.name, e.params});
   return v;
 }
 
@@ -115,12 +110,7 @@ CosimResult run_cosim(const Scene& scene, const Config& cfg, const CosimOptions&
   s.front_ccw = st.front_ccw ? 1 : 0;
   RtlParams wanted = s.params;
   wanted.tile_log2_max = s.tile_log2;
-  s.cmd_depth = static_cast<int>(cfg.get_int("fifo.command_depth"));
-  // Plus the batches inside the interpolator's latency (the model's latency slots,
-  // model/sc/timing_params.h: fragment_fifo_entries).
-  s.frag_depth = static_cast<int>(cfg.get_int("fifo.fragment_depth") + cfg.get_int("interp.latency_cycles"));
-  s.rop_pixels_per_cycle = static_cast<uint64_t>(cfg.get_int("rop.pixels_per_cycle"));
-
+  s.timing = TimingParams::from_config(cfg);
   const auto models = rtl_models();
   std::string why_all;
   for (size_t i = 0; i < models.size(); ++i) {

@@ -44,7 +44,8 @@ struct CosimResult {
   double wall_seconds = 0;         // the RTL simulation (testbench included)
 };
 
-// The verilated configs linked into this binary, and the parameters each was built with.
+// The verilated configs linked into this binary, and the parameters each was built with
+// (compiled in at configure time: no config file is read).
 struct RtlModelInfo {
   std::string name;  // configs/<name>.toml
   RtlParams params;

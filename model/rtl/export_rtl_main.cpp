@@ -1,32 +1,46 @@
 // SPDX-License-Identifier: Apache-2.0
-// rastsim_export_rtl: the build's RTL parameter exporter, a tiny stand-alone tool so
-// the build can generate rast_params.vh before the rastsim tool itself exists.
-// `rastsim export-rtl` (app/cmd_export_rtl.cpp) calls the same function.
+// rastsim_export_rtl: the build's RTL parameter exporter, a tiny stand-alone tool that
+// runs at configure time (rtl/CMakeLists.txt), before the rastsim tool exists.
+// `rastsim export-rtl` (app/cmd_export_rtl.cpp) calls the same functions.
 //
-//   rastsim_export_rtl CONFIG.toml OUT.vh
+//   rastsim_export_rtl CONFIG.toml OUT.vh OUT.inc
+//     OUT.vh:  rast_top's parameter header (rtl_params_verilog)
+//     OUT.inc: the same parameters as a C++ initializer list (rtl_params_values),
+//              compiled into the registry of verilated models (model/rtl/CMakeLists.txt)
 #include <fstream>
 #include <iostream>
+#include <iterator>
 
 #include "config/config.h"
 #include "rtl/rtl_params.h"
 
+namespace {
+
+// Rewrites `path` only when its text changes, so an unchanged config re-runs neither
+// Verilator nor the registry's compilation.
+void write_if_changed(const std::string& path, const std::string& text) {
+  std::ifstream old(path);
+  const std::string prev((std::istreambuf_iterator<char>(old)), std::istreambuf_iterator<char>());
+  if (prev == text) return;
+  std::ofstream os(path);
+  os << text;
+  if (!os) throw std::runtime_error(path + ": write failed");
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
-  if (argc != 3) {
-    std::cerr << "usage: rastsim_export_rtl CONFIG.toml OUT.vh\n";
+  if (argc != 4) {
+    std::cerr << "usage: rastsim_export_rtl CONFIG.toml OUT.vh OUT.inc\n";
     return 2;
   }
   try {
     rastsim::Config cfg;
     cfg.load_file(argv[1]);
     cfg.validate();
-    const std::string text = rastsim::rtl_params_verilog(rastsim::rtl_params_from_config(cfg), argv[1]);
-    // Rewrite only on change, so an unchanged config does not re-run Verilator.
-    std::ifstream old(argv[2]);
-    const std::string prev((std::istreambuf_iterator<char>(old)), std::istreambuf_iterator<char>());
-    if (prev == text) return 0;
-    std::ofstream os(argv[2]);
-    os << text;
-    if (!os) throw std::runtime_error(std::string(argv[2]) + ": write failed");
+    const rastsim::RtlParams p = rastsim::rtl_params_from_config(cfg);
+    write_if_changed(argv[2], rastsim::rtl_params_verilog(p, argv[1]));
+    write_if_changed(argv[3], rastsim::rtl_params_values(p) + "\n");
   } catch (const std::exception& e) {
     std::cerr << "rastsim_export_rtl: error: " << e.what() << "\n";
     return 1;

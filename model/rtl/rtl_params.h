@@ -11,11 +11,16 @@
 //   the RasterState of the config being simulated.
 // - rtl_params_verilog: the Verilog header (a parameter port list body) that
 //   rtl/rast_top.v includes; `rastsim export-rtl` and the build's exporter write it.
+// - rtl_params_values / rtl_params_from_values: the parameters as a C++ initializer
+//   list of ints (the table's order), which the build compiles into the registry of
+//   verilated models (model/rtl/CMakeLists.txt), so a binary knows what each model was
+//   built with without reading any config at run time.
 // - rtl_params_compatible: whether an RTL library built for one config can simulate
 //   another (same widths and timing, tile size at most the built maximum: the tile size
 //   is a run-time input of the RTL, see docs/rtl.md).
 #pragma once
 
+#include <initializer_list>
 #include <string>
 
 #include "config/config.h"
@@ -51,8 +56,31 @@ RtlParams rtl_params_from_config(const Config& cfg);
 // config in the banner.
 std::string rtl_params_verilog(const RtlParams& p, const std::string& source);
 
+// "{v0, v1, ...}": every parameter in the export table's order; rtl_params_from_values
+// reads it back (throws std::invalid_argument on a wrong count).
+std::string rtl_params_values(const RtlParams& p);
+RtlParams rtl_params_from_values(std::initializer_list<int> values);
+
 // An RTL built with `built` can run `wanted` (tile size as a run-time input up to the
 // built maximum). On false, `why` says which parameter differs.
 bool rtl_params_compatible(const RtlParams& built, const RtlParams& wanted, std::string* why = nullptr);
+
+// The scan-out RTL (rtl/scanout*.sv) is built with the video timing, framebuffer size
+// and DAC width of a config (video_timing.h, display.*, dac.bits).
+struct ScanoutRtlParams {
+  int h_active = 0, h_front_porch = 0, h_sync = 0, h_back_porch = 0;  // px
+  int v_active = 0, v_front_porch = 0, v_sync = 0, v_back_porch = 0;  // lines
+  int h_sync_positive = 0, v_sync_positive = 0;  // 1: the sync is high during the pulse
+  int fb_width = 0, fb_height = 0;               // framebuffer, px
+  int dac_bits = 0;                              // DAC code width a channel
+
+  bool operator==(const ScanoutRtlParams&) const = default;
+};
+
+ScanoutRtlParams scanout_rtl_params_from_config(const Config& cfg);
+
+// The Verilog header of the scan-out: "parameter int Name = value, // comment" lines,
+// the body of the scan-out top's parameter port list (tb/scanout/scanout_cosim_top.sv).
+std::string scanout_rtl_params_verilog(const ScanoutRtlParams& p, const std::string& source);
 
 }  // namespace rastsim
