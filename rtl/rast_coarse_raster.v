@@ -23,11 +23,12 @@ module rast_coarse_raster #(
   parameter int CoefW         = 25,  // N + 2
   parameter int EdgeW         = 49,  // 2N + 3
   parameter int PixelW        = 14,  // pixel index bits
+  parameter int TileLog2W     = 3,   // tile_log2_i bits
   parameter int TilesPerCycle = 1    // tiles classified per cycle
 ) (
   input  wire logic                 clk_i,         // core clock
   input  wire logic                 rst_ni,        // asynchronous reset, active low
-  input  wire logic [2:0]           tile_log2_i,   // log2 tile size, 1..TileLog2Max (static)
+  input  wire logic [TileLog2W-1:0] tile_log2_i,   // log2 tile size, 1..TileLog2Max (static)
   input  wire logic                 in_valid_i,    // set-up triangle or marker at the head
   output      logic                 in_ready_o,    // pop the head (last cycle of its walk)
   input  wire logic                 in_marker_i,   // head is a marker

@@ -20,6 +20,7 @@ module rast_fine_raster #(
   parameter int EdgeW              = 49,  // 2N + 3
   parameter int PixelW             = 14,  // pixel index bits
   parameter int TileLog2Max        = 4,   // largest tile: 2^TileLog2Max pixels square
+  parameter int TileLog2W          = 3,   // tile_log2_i bits
   parameter int SamplesPerCycle    = 8,   // coverage tests per cycle
   parameter int AcceptedTileCycles = 1,   // cycles to emit an accepted tile
   localparam int TileMax = 1 << TileLog2Max,  // derived: largest tile side
@@ -27,7 +28,7 @@ module rast_fine_raster #(
 ) (
   input  wire logic                 clk_i,          // core clock
   input  wire logic                 rst_ni,         // asynchronous reset, active low
-  input  wire logic [2:0]           tile_log2_i,    // log2 tile size (static)
+  input  wire logic [TileLog2W-1:0] tile_log2_i,    // log2 tile size (static)
   input  wire logic                 in_valid_i,     // tile or marker at the head
   output      logic                 in_ready_o,     // pop the head (tile's last cycle)
   input  wire logic                 in_marker_i,    // head is a marker

@@ -25,6 +25,7 @@ module rast_interpolate #(
   parameter int DepthW            = 24,  // D
   parameter int PixelW            = 14,  // pixel index bits
   parameter int TileLog2Max       = 4,   // largest tile: 2^TileLog2Max pixels square
+  parameter int TileLog2W         = 3,   // tile_log2_i bits
   parameter int FragmentsPerCycle = 4,   // pixels interpolated per cycle
   parameter int Latency           = 6,   // pick-to-fragment register stages
   localparam int MaskW = 1 << (2 * TileLog2Max),  // derived: coverage mask bits
@@ -32,7 +33,7 @@ module rast_interpolate #(
 ) (
   input  wire logic                      clk_i,         // core clock
   input  wire logic                      rst_ni,        // asynchronous reset, active low
-  input  wire logic [2:0]                tile_log2_i,   // log2 tile size (static)
+  input  wire logic [TileLog2W-1:0]      tile_log2_i,   // log2 tile size (static)
   input  wire logic                      in_valid_i,    // mask or marker at the head
   output      logic                      in_ready_o,    // pop the head
   input  wire logic                      in_marker_i,   // head is a marker
@@ -54,7 +55,7 @@ module rast_interpolate #(
   output      logic [Lanes*PixelW-1:0]   out_y_o,       // lane j pixel y
   output      logic [Lanes*DepthW-1:0]   out_z_o,       // lane j depth
   output      logic [Lanes*24-1:0]       out_rgb_o,     // lane j colour {b, g, r}
-  output      logic                      busy_o         // a fragment is in flight
+  output      logic                      busy_o         // a mask half done or a beat in the pipeline
 );
   localparam int IdxW  = 2 * TileLog2Max;              // derived: mask index bits
   localparam int SideW = 3 + Lanes * (1 + 2 * PixelW);  // derived: side data bits
@@ -143,15 +144,15 @@ module rast_interpolate #(
   end
 
   // ---- Side data: valid, marker, last, lanes and pixels, delayed like the dividers ----
-  logic             beat;
+  logic             beat, side_occupied;
   logic [SideW-1:0] side_out;
   assign beat = in_valid_i && (in_marker_i || (rem != '0));
   rast_pipe #(.Width(SideW), .Latency(Latency)) u_side (
     .clk_i, .rst_ni, .en_i(en),
     .d_i({beat, in_marker_i, last_beat && !in_marker_i, in_marker_i ? '0 : pick, lane_x, lane_y}),
-    .q_o(side_out));
+    .q_o(side_out), .occupied_o(side_occupied));
   assign {out_valid_o, out_marker_o, out_last_o, out_lanes_o, out_x_o, out_y_o} = side_out;
-  assign busy_o = (consumed_q != '0);
+  assign busy_o = (consumed_q != '0) || side_occupied;
 endmodule
 
 `default_nettype wire

@@ -188,7 +188,6 @@ class RtlBench {
     half(0);
     const bool tri_taken = tri_valid && top_->tri_ready_o;
     if (!top_->idle_o || top_->frag_valid_o || fetch_.active || assembly_.active) last_busy_ = std::max(last_busy_, t);
-    quiet_cycles_ = (top_->idle_o && !top_->frag_valid_o) ? quiet_cycles_ + 1 : 0;
     if (top_->frag_valid_o && frag_ready) take_beat(t);
     assembly_step(tri_taken);
     fetch_step(t);
@@ -336,12 +335,11 @@ class RtlBench {
                std::to_string(e.f.x) + ", " + std::to_string(e.f.y) + ") expected '" + fragment_trace_line(e.f) +
                "', RTL gave '" + fragment_trace_line(f) + "'");
   }
-  // Nothing left anywhere: scene fetched, FIFOs and stages empty, the RTL idle with its
-  // interpolator pipeline drained (a marker behind culled triangles must not be taken
-  // for a drained pipeline), the ROP done.
+  // Nothing left anywhere: scene fetched, FIFOs and stages empty, the RTL idle (its
+  // idle_o covers the interpolator's pipeline) with no beat out, the ROP done.
   bool done() const {
     return next_item_ >= s_.items.size() && !fetch_.active && cmd_fifo_.empty() && !assembly_.active &&
-           top_->idle_o && !top_->frag_valid_o && quiet_cycles_ > uint64_t(p_.interp_latency) + 2 &&
+           top_->idle_o && !top_->frag_valid_o &&
            !staging_blocked_ && staging_.fragments == 0 && !staging_.marker && frag_fifo_.empty() && rop_left_ == 0;
   }
   void end_of_run_check() {
@@ -373,8 +371,6 @@ class RtlBench {
   uint64_t rop_left_ = 0;                 // ROP busy cycles left
   uint64_t last_busy_ = 0;                // last cycle any stage worked
   size_t next_expected_ = 0;
-  // Cycles the RTL has been idle but for the interpolator pipeline, with nothing out.
-  uint64_t quiet_cycles_ = 0;
 };
 
 template <class V>

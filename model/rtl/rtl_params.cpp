@@ -2,6 +2,7 @@
 #include "rtl/rtl_params.h"
 #include "config/timing_params.h"
 
+#include <algorithm>
 #include <bit>
 #include <sstream>
 #include <stdexcept>
@@ -42,8 +43,9 @@ constexpr ParamField<RtlParams> kFields[] = {
     {"ColorNumW", &RtlParams::color_num_w, "colour numerator: 2N + 10 bits, unsigned"},
     {"DepthNumW", &RtlParams::depth_num_w, "depth numerator: 2N + 2 + D bits, unsigned"},
     {"DepthW", &RtlParams::depth_w, "D = raster.depth_bits"},
-    {"PixelW", &RtlParams::pixel_w, "pixel x, y: unsigned"},
+    {"PixelW", &RtlParams::pixel_w, "pixel x, y: unsigned, up to the largest display.width/height"},
     {"TileLog2Max", &RtlParams::tile_log2_max, "log2 of the largest tile (raster.tile_size)"},
+    {"TileLog2W", &RtlParams::tile_log2_w, "tile_log2_i bits: up to log2 of the largest raster.tile_size"},
     {"SetupInterval", &RtlParams::setup_interval, "setup.interval_cycles"},
     {"SetupLatency", &RtlParams::setup_latency, "setup.latency_cycles"},
     {"CoarseTilesPerCycle", &RtlParams::coarse_tiles_per_cycle, "coarse.tiles_per_cycle"},
@@ -52,7 +54,7 @@ constexpr ParamField<RtlParams> kFields[] = {
     {"InterpFragmentsPerCycle", &RtlParams::interp_fragments_per_cycle, "interp.fragments_per_cycle"},
     {"InterpLatency", &RtlParams::interp_latency, "interp.latency_cycles"},
     {"TriangleFifoDepth", &RtlParams::fifo_triangle, "fifo.triangle_depth"},
-    {"SetupFifoDepth", &RtlParams::fifo_setup, "fifo.setup_depth"},
+    {"SetupFifoEntries", &RtlParams::setup_fifo_entries, "fifo.setup_depth + setup latency slots"},
     {"TileFifoDepth", &RtlParams::fifo_tile, "fifo.tile_depth"},
     {"PixelFifoDepth", &RtlParams::fifo_pixel, "fifo.pixel_depth"},
 };
@@ -117,6 +119,10 @@ RtlParams rtl_params_from_config(const Config& cfg) {
   p.depth_num_w = 2 * n + 2 + st.depth_bits;
   p.depth_w = st.depth_bits;
   p.tile_log2_max = std::countr_zero(static_cast<unsigned>(st.tile_size));
+  // Port widths from the schema's maxima, so every config's RTL has the same ports.
+  const auto schema_max = [](const char* key) { return static_cast<unsigned>(find_param(key)->max); };
+  p.pixel_w = std::bit_width(std::max(schema_max("display.width"), schema_max("display.height")) - 1);
+  p.tile_log2_w = std::bit_width(static_cast<unsigned>(std::countr_zero(schema_max("raster.tile_size"))));
   // The timing keys, read and checked once (timing_params.cpp), as the SystemC model reads them.
   const TimingParams t = TimingParams::from_config(cfg);
   p.setup_interval = static_cast<int>(t.setup_interval);
@@ -127,7 +133,7 @@ RtlParams rtl_params_from_config(const Config& cfg) {
   p.interp_fragments_per_cycle = static_cast<int>(t.interp_fragments_per_cycle);
   p.interp_latency = static_cast<int>(t.interp_latency);
   p.fifo_triangle = t.fifo_triangle;
-  p.fifo_setup = t.fifo_setup;
+  p.setup_fifo_entries = t.setup_fifo_entries();
   p.fifo_tile = t.fifo_tile;
   p.fifo_pixel = t.fifo_pixel;
   return p;

@@ -37,14 +37,16 @@ struct RtlParams {
   int color_num_w = 0;   // colour numerator sum w_k c_k, unsigned: 2N + 10
   int depth_num_w = 0;   // depth numerator sum w_k z_k, unsigned: 2N + 2 + D
   int depth_w = 0;       // D = raster.depth_bits
-  int pixel_w = 14;      // pixel x, y, unsigned
+  int pixel_w = 0;       // pixel x, y, unsigned: holds the schema's largest display.width/height - 1
   int tile_log2_max = 0; // log2 of raster.tile_size: the largest tile the RTL supports
+  int tile_log2_w = 0;   // the tile_log2_i port: holds log2 of the schema's largest raster.tile_size
   // Timing keys the RTL implements (config_schema_timing.cpp).
   int setup_interval = 0, setup_latency = 0;
   int coarse_tiles_per_cycle = 0;
   int fine_samples_per_cycle = 0, fine_accepted_tile_cycles = 0;
   int interp_fragments_per_cycle = 0, interp_latency = 0;
-  int fifo_triangle = 0, fifo_setup = 0, fifo_tile = 0, fifo_pixel = 0;
+  int fifo_triangle = 0, fifo_tile = 0, fifo_pixel = 0;
+  int setup_fifo_entries = 0;  // fifo.setup_depth + setup's latency slots (TimingParams)
 
   bool operator==(const RtlParams&) const = default;
 };
