@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// RTL parameters: what the Verilog raster pipeline (rtl/rast_*.v) is built with, derived
+// RTL parameters: what the Verilog raster pipeline (rtl/rast_*.sv) is built with, derived
 // from a validated Config. The datapath widths are computed here with the equations of
 // docs/fixed-point.md ("Datapath widths") from the coordinate format, so no width is
 // typed twice: the Verilog gets them through the exported header, the C++ testbench
@@ -10,7 +10,7 @@
 //   they are run-time inputs of the RTL like the tile size (docs/rtl.md), driven from
 //   the RasterState of the config being simulated.
 // - rtl_params_verilog: the Verilog header (a parameter port list body) that
-//   rtl/rast_top.v includes; `rastsim export-rtl` and the build's exporter write it.
+//   rtl/rast_top.sv includes; `rastsim export-rtl` and the build's exporter write it.
 // - rtl_params_values / rtl_params_from_values: the parameters as a C++ initializer
 //   list of ints (the table's order), which the build compiles into the registry of
 //   verilated models (model/rtl/CMakeLists.txt), so a binary knows what each model was
@@ -67,7 +67,7 @@ RtlParams rtl_params_from_values(std::initializer_list<int> values);
 // built maximum). On false, `why` says which parameter differs.
 bool rtl_params_compatible(const RtlParams& built, const RtlParams& wanted, std::string* why = nullptr);
 
-// The scan-out RTL (rtl/scanout*.sv) is built with the video timing, framebuffer size
+// The scan-out RTL (rtl/scanout_*.sv) is built with the video timing, framebuffer size
 // and DAC width of a config (video_timing.h, display.*, dac.bits).
 struct ScanoutRtlParams {
   int h_active = 0, h_front_porch = 0, h_sync = 0, h_back_porch = 0;  // px
