@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// rast_coarse_raster: tile walk with early-out / early-in (ref: traverse.cpp,
+// rast_coarse_raster: tile walk with early-out / early-in (ref: model/ref/coarse_raster.cpp,
 // classify_tile; model: model/sc/coarse_raster.cpp).
 //
 // - Walks, row by row, every tile (2^tile_log2_i pixels square, aligned to the

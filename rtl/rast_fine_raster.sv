@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // rast_fine_raster: per-pixel coverage of partial tiles, whole masks for accepted
-// tiles (ref: traverse.h fine_raster_partial / fine_raster_accepted; model:
+// tiles (ref: model/ref/fine_raster.h fine_raster_partial / fine_raster_accepted; model:
 // model/sc/fine_raster.cpp).
 //
 // - Partial tile: tests SamplesPerCycle pixel centres of the footprint a cycle, in

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// rast_interpolate: colour and depth of each covered pixel (ref: interpolate.cpp;
+// rast_interpolate: colour and depth of each covered pixel (ref: model/ref/interpolate.cpp;
 // model: model/sc/interpolate.cpp).
 //
 // - Takes a tile's coverage mask and walks its set bits in order (row-major within

@@ -154,13 +154,13 @@ std::string rtl_params_values(const RtlParams& p) {
   return s + "}";
 }
 
-RtlParams rtl_params_from_values(std::initializer_list<int> values) {
+RtlParams rtl_params_from_values(const std::vector<int>& values) {
   if (values.size() != std::size(kFields))
     throw std::invalid_argument("RTL parameter list has " + std::to_string(values.size()) + " values, expected " +
                                 std::to_string(std::size(kFields)));
   RtlParams p;
-  const int* v = values.begin();
-  for (const auto& f : kFields) p.*f.member = *v++;
+  size_t k = 0;
+  for (const auto& f : kFields) p.*f.member = values[k++];
   return p;
 }
 

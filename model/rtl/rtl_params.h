@@ -20,8 +20,8 @@
 //   is a run-time input of the RTL, see docs/rtl.md).
 #pragma once
 
-#include <initializer_list>
 #include <string>
+#include <vector>
 
 #include "config/config.h"
 
@@ -61,7 +61,7 @@ std::string rtl_params_verilog(const RtlParams& p, const std::string& source);
 // "{v0, v1, ...}": every parameter in the export table's order; rtl_params_from_values
 // reads it back (throws std::invalid_argument on a wrong count).
 std::string rtl_params_values(const RtlParams& p);
-RtlParams rtl_params_from_values(std::initializer_list<int> values);
+RtlParams rtl_params_from_values(const std::vector<int>& values);
 
 // An RTL built with `built` can run `wanted` (tile size as a run-time input up to the
 // built maximum). On false, `why` says which parameter differs.
