@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// `rastsim cosim`: the verilated RTL (rtl/rast_top.v) on one scene, every fragment
+// `rastsim cosim`: the verilated RTL (rtl/rast_top.sv) on one scene, every fragment
 // compared with the reference model, and its cycle count next to the SystemC model's.
 #include <cmath>
 #include <iostream>

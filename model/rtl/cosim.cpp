@@ -17,7 +17,7 @@ namespace rastsim::cosim {
 
 namespace {
 
-// rast_top's fill_rule_i / cull_mode_i carry these enums' values (rtl/rast_tri_setup.v).
+// rast_top's fill_rule_i / cull_mode_i carry these enums' values (rtl/rast_tri_setup.sv).
 static_assert(int(FillRule::TopLeft) == 0 && int(FillRule::BottomRight) == 1 && int(FillRule::Inclusive) == 2 &&
               int(FillRule::Exclusive) == 3);
 static_assert(int(CullMode::None) == 0 && int(CullMode::Back) == 1 && int(CullMode::Front) == 2);
@@ -112,7 +112,6 @@ CosimResult run_cosim(const Scene& scene, const Config& cfg, const CosimOptions&
   RtlParams wanted = s.params;
   wanted.tile_log2_max = s.tile_log2;
   s.timing = TimingParams::from_config(cfg);
-
   const auto models = rtl_models();
   std::string why_all;
   for (size_t i = 0; i < models.size(); ++i) {

@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: Apache-2.0
-// Co-simulation of the Verilog raster pipeline (rtl/rast_top.v, verilated per config
-// into rastsim_rtl) against the reference model, fragment for fragment, with a cycle
-// count comparable to the SystemC model's.
+// Co-simulation of the Verilog raster pipeline (rtl/rast_top.sv, verilated per config
+// into rastsim_verilated) against the reference model, fragment for fragment, with a
+// cycle count comparable to the SystemC model's.
 //
 // - The testbench plays the stages the RTL does not have, with the SystemC model's
-//   timing equations (model/sc): command fetch and primitive assembly in front of the
-//   RTL's triangle FIFO, and the fragment FIFO and ROP (a memory model) behind its
-//   fragment stream. Vertices are snapped by the reference model's setup (the RTL
+//   cost equations (TimingParams, config/timing_params.h): command fetch and primitive
+//   assembly in front of the RTL's triangle FIFO, and the fragment FIFO and ROP (a
+//   memory model) behind its fragment stream. Vertices are snapped by the reference model's setup (the RTL
 //   takes snapped fixed-point vertices); state commands travel as markers.
 // - Every fragment is compared bit for bit (x, y, depth, r, g, b) IN ORDER with the
 //   reference model's stream for the same tile size (tiles row-major, pixels row-major
@@ -44,7 +44,8 @@ struct CosimResult {
   double wall_seconds = 0;         // the RTL simulation (testbench included)
 };
 
-// The verilated configs linked into this binary, and the parameters each was built with.
+// The verilated configs linked into this binary, and the parameters each was built with
+// (compiled in at configure time: no config file is read).
 struct RtlModelInfo {
   std::string name;  // configs/<name>.toml
   RtlParams params;

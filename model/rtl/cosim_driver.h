@@ -1,13 +1,15 @@
 // SPDX-License-Identifier: Apache-2.0
 // The cycle loop of the co-simulation, one template instance per verilated config
-// (Vrast_<config>, generated registry). Internal to model/rtl.
+// (Vrast_<config>, generated registry rtl_registry.cpp). Used by cosim.cpp and the
+// registry only; callers use cosim.h.
 //
 // Timing convention (the same as the RTL's and, shifted by nothing, the SystemC
 // model's): a stage that takes an item in cycle u and needs n cycles offers its result
 // in cycle u + n - 1; a FIFO entry pushed in cycle v is visible in cycle v + 1 (SystemC
 // time v + 1); a push into a full FIFO succeeds when the reader pops in the same cycle.
 // The testbench stages below follow model/sc/command_fetch.cpp, prim_assembly.cpp and
-// rop.cpp exactly; the cycle count is the ROP's last busy cycle + 1, as the model's.
+// rop.cpp exactly, with the cost equations of TimingParams; the cycle count is the
+// ROP's last busy cycle + 1, as the model's.
 #pragma once
 
 #include <algorithm>
@@ -58,15 +60,15 @@ struct TbSetup {
   std::vector<TbItem> items;
   std::vector<Expected> expected;
   std::vector<std::string> tri_names;   // "file:line triangle k"
-  TimingParams timing;                  // the testbench stages' costs and FIFO depths
+  TimingParams timing;                  // of the config being simulated: FIFO depths, ROP cost
   CosimOptions opts;
 };
 
 using RunFn = void (*)(const TbSetup&, CosimResult&);
 struct RegistryEntry {
-  const char* name;  // configs/<name>.toml, as the model was built
+  const char* name;  // configs/<name>.toml
   RunFn run;
-  RtlParams params;  // what the model was built with (compiled in at configure time)
+  RtlParams params;  // what Vrast_<name> was built with
 };
 const std::vector<RegistryEntry>& rtl_registry();  // generated: rtl_registry.cpp
 
@@ -95,209 +97,285 @@ struct TbStage {
   bool offering() const { return active && left == 1; }
 };
 
+// One co-simulation run: the verilated rast_top between the testbench's front end
+// (command fetch, command FIFO, primitive assembly) and its back end (fragment
+// staging, fragment FIFO, the ROP as a memory model). Each cycle: the back end and
+// assembly act on what is visible (ROP, staging, assembly take), the triangle port is
+// driven, the clock falls, the fragment port is read, assembly and fetch advance, the
+// clock rises.
 template <class V>
-void run_rtl(const TbSetup& s, CosimResult& r) {
-  const auto t0 = std::chrono::steady_clock::now();
-  const RtlParams& p = s.params;
-  auto ctx = std::make_unique<VerilatedContext>();
-  ctx->traceEverOn(!s.opts.fst_path.empty());
-  auto top = std::make_unique<V>(ctx.get(), "rast_top");
-  std::unique_ptr<VerilatedFstC> fst;
-  if (!s.opts.fst_path.empty()) {
-    fst = std::make_unique<VerilatedFstC>();
-    top->trace(fst.get(), 99);
-    fst->open(s.opts.fst_path.c_str());
-  }
-  uint64_t time = 0;
-  auto half = [&](int clk) {
-    top->clk_i = clk;
-    top->eval();
-    if (fst) fst->dump(time);
-    ++time;
-  };
-  const uint64_t coord_mask = (uint64_t{1} << p.coord_w) - 1;
-  top->tile_log2_i = static_cast<uint8_t>(s.tile_log2);
-  top->fill_rule_i = static_cast<uint8_t>(s.fill_rule);
-  top->cull_mode_i = static_cast<uint8_t>(s.cull_mode);
-  top->front_ccw_i = static_cast<uint8_t>(s.front_ccw);
-  top->tri_valid_i = 0;
-  top->frag_ready_i = 0;
-  top->rst_ni = 0;
-  half(0);
-  half(1);
-  top->rst_ni = 1;
+class RtlBench {
+ public:
+  RtlBench(const TbSetup& s, CosimResult& r)
+      : s_(s), p_(s.params), r_(r), rng_(s.opts.backpressure_seed), stall_(s.opts.backpressure),
+        cmd_depth_(size_t(s.timing.fifo_command)), frag_depth_(size_t(s.timing.fragment_fifo_entries())) {}
 
-  // ---- testbench state ----
+  void run() {
+    const auto t0 = std::chrono::steady_clock::now();
+    open();
+    reset();
+    for (uint64_t t = 0;; ++t) {
+      if (t >= s_.opts.max_cycles) {
+        mismatch("simulation did not finish within " + std::to_string(s_.opts.max_cycles) + " cycles");
+        break;
+      }
+      if (cycle(t)) {
+        r_.cycles_rtl = last_busy_ + 1;
+        break;
+      }
+    }
+    end_of_run_check();
+    if (fst_) fst_->close();
+    top_->final();
+    r_.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  }
+
+ private:
+  // A command-FIFO entry, visible to assembly from the cycle after its push.
   struct Entry {
     size_t item;
-    uint64_t pushed;  // cycle of the push: visible from pushed + 1
+    uint64_t pushed;
   };
-  std::deque<Entry> cmd_fifo;
+  // A fragment-FIFO entry: a tile's fragments or a marker, visible to the ROP from the
+  // cycle after its push.
   struct Batch {
     uint64_t fragments = 0;
     bool marker = false;
     size_t marker_item = 0;
     uint64_t pushed = 0;
   };
-  std::deque<Batch> frag_fifo;
-  std::deque<size_t> markers_in_flight;  // marker items sent to the RTL, in order
-  Batch staging;
-  bool staging_blocked = false;
-  TbStage fetch, assembly;
-  size_t next_item = 0;
-  uint64_t rop_left = 0, last_busy = 0;  // last cycle any stage worked
-  size_t next_expected = 0;
-  std::mt19937_64 rng(s.opts.backpressure_seed);
-  std::bernoulli_distribution stall(s.opts.backpressure);
-  const int lanes = p.interp_fragments_per_cycle;
-  auto mismatch = [&](const std::string& what) {
-    if (r.first_mismatch.empty()) r.first_mismatch = what;
-    ++r.mismatches;
-  };
 
-  for (uint64_t t = 0;; ++t) {
-    if (t >= s.opts.max_cycles) {
-      mismatch("simulation did not finish within " + std::to_string(s.opts.max_cycles) + " cycles");
-      break;
-    }
-    // ROP: start the next batch once visible (model/sc/rop.cpp).
-    if (rop_left == 0 && !frag_fifo.empty() && frag_fifo.front().pushed < t) {
-      const Batch b = frag_fifo.front();
-      frag_fifo.pop_front();
-      rop_left = b.marker ? s.items[b.marker_item].rop_cost
-                          : s.timing.rop_fragment_cycles(b.fragments);
-    }
-    if (rop_left > 0) {
-      --rop_left;
-      last_busy = t;
-    }
-    // A completed batch waiting for room in the fragment FIFO blocks the interpolator.
-    if (staging_blocked && frag_fifo.size() < size_t(s.timing.fragment_fifo_entries())) {
-      staging.pushed = t;
-      frag_fifo.push_back(staging);
-      staging = Batch{};
-      staging_blocked = false;
-    }
-    // Primitive assembly: take a visible command (model/sc/prim_assembly.cpp).
-    bool cmd_popped = false;
-    if (!assembly.active && !cmd_fifo.empty() && cmd_fifo.front().pushed < t) {
-      assembly = TbStage{true, s.items[cmd_fifo.front().item].assembly_cost, cmd_fifo.front().item};
-      cmd_fifo.pop_front();
-      cmd_popped = true;
-    }
-    (void)cmd_popped;
-    // Drive the RTL.
-    const bool tri_valid = assembly.offering();
-    top->tri_valid_i = tri_valid;
-    if (tri_valid) {
-      const TbItem& it = s.items[assembly.item];
-      top->tri_marker_i = it.kind == TbItem::Marker;
-      top->tri_x0_i = static_cast<uint64_t>(it.x[0]) & coord_mask;
-      top->tri_y0_i = static_cast<uint64_t>(it.y[0]) & coord_mask;
-      top->tri_x1_i = static_cast<uint64_t>(it.x[1]) & coord_mask;
-      top->tri_y1_i = static_cast<uint64_t>(it.y[1]) & coord_mask;
-      top->tri_x2_i = static_cast<uint64_t>(it.x[2]) & coord_mask;
-      top->tri_y2_i = static_cast<uint64_t>(it.y[2]) & coord_mask;
-      top->tri_z0_i = it.z[0];
-      top->tri_z1_i = it.z[1];
-      top->tri_z2_i = it.z[2];
-      top->tri_rgb0_i = it.rgb[0];
-      top->tri_rgb1_i = it.rgb[1];
-      top->tri_rgb2_i = it.rgb[2];
-      top->tri_clip_x0_i = it.clip[0];
-      top->tri_clip_y0_i = it.clip[1];
-      top->tri_clip_x1_i = it.clip[2];
-      top->tri_clip_y1_i = it.clip[3];
-      top->tri_origin_x_i = it.origin[0];
-      top->tri_origin_y_i = it.origin[1];
-    }
-    const bool frag_ready = !staging_blocked && !(s.opts.backpressure > 0 && stall(rng));
-    top->frag_ready_i = frag_ready;
-    half(0);
-    const bool tri_taken = tri_valid && top->tri_ready_o;
-    if (!top->idle_o || top->frag_valid_o || fetch.active || assembly.active) last_busy = std::max(last_busy, t);
-    // Fragments out of the RTL.
-    if (top->frag_valid_o && frag_ready) {
-      if (top->frag_marker_o) {
-        if (markers_in_flight.empty()) {
-          mismatch("cycle " + std::to_string(t) + ": a marker the testbench never sent");
-        } else {
-          staging.marker = true;
-          staging.marker_item = markers_in_flight.front();
-          markers_in_flight.pop_front();
-        }
-      } else {
-        for (int j = 0; j < lanes; ++j) {
-          if (!((port_bits(top->frag_lanes_o, j, 1)) & 1)) continue;
-          Fragment f;
-          f.x = static_cast<int>(port_bits(top->frag_x_o, j * p.pixel_w, p.pixel_w));
-          f.y = static_cast<int>(port_bits(top->frag_y_o, j * p.pixel_w, p.pixel_w));
-          f.z = static_cast<uint32_t>(port_bits(top->frag_z_o, j * p.depth_w, p.depth_w));
-          f.r = static_cast<uint8_t>(port_bits(top->frag_rgb_o, j * 24, 8));
-          f.g = static_cast<uint8_t>(port_bits(top->frag_rgb_o, j * 24 + 8, 8));
-          f.b = static_cast<uint8_t>(port_bits(top->frag_rgb_o, j * 24 + 16, 8));
-          ++staging.fragments;
-          ++r.fragments_compared;
-          if (next_expected >= s.expected.size()) {
-            mismatch("extra fragment from the RTL: " + fragment_trace_line(f));
-            continue;
-          }
-          const Expected& e = s.expected[next_expected++];
-          if (!(e.f == f))
-            mismatch("fragment #" + std::to_string(next_expected - 1) + " of " + s.tri_names[e.tri] + ": pixel (" +
-                     std::to_string(e.f.x) + ", " + std::to_string(e.f.y) + ") expected '" + fragment_trace_line(e.f) +
-                     "', RTL gave '" + fragment_trace_line(f) + "'");
-        }
-      }
-      if (top->frag_marker_o || top->frag_last_o) {
-        if (frag_fifo.size() < size_t(s.timing.fragment_fifo_entries())) {
-          staging.pushed = t;
-          frag_fifo.push_back(staging);
-          staging = Batch{};
-        } else {
-          staging_blocked = true;
-        }
-      }
-    }
-    // Assembly: count its busy cycle, hand over on a taken offer.
-    if (assembly.active) {
-      if (assembly.left > 1) {
-        --assembly.left;
-      } else if (tri_taken) {
-        if (s.items[assembly.item].kind == TbItem::Marker) markers_in_flight.push_back(assembly.item);
-        assembly.active = false;
-      }
-    }
-    // Command fetch: the next item of the scene (model/sc/command_fetch.cpp).
-    if (!fetch.active && next_item < s.items.size()) fetch = TbStage{true, s.items[next_item].fetch_cost, next_item++};
-    if (fetch.active) {
-      last_busy = std::max(last_busy, t);
-      if (fetch.left > 1) {
-        --fetch.left;
-      } else if (s.items[fetch.item].kind == TbItem::Null) {
-        fetch.active = false;  // an empty primitive command: header only, nothing out
-      } else if (cmd_fifo.size() < size_t(s.timing.fifo_command)) {
-        cmd_fifo.push_back(Entry{fetch.item, t});
-        fetch.active = false;
-      }
-    }
-    half(1);
-    // Done: nothing left anywhere (idle_o covers the interpolator's pipeline).
-    if (next_item >= s.items.size() && !fetch.active && cmd_fifo.empty() && !assembly.active &&
-        top->idle_o && !top->frag_valid_o &&
-        !staging_blocked && staging.fragments == 0 && !staging.marker && frag_fifo.empty() && rop_left == 0) {
-      r.cycles_rtl = last_busy + 1;
-      break;
+  // ---- The model, its waveform and its clock ----
+  void open() {
+    ctx_ = std::make_unique<VerilatedContext>();
+    ctx_->traceEverOn(!s_.opts.fst_path.empty());
+    top_ = std::make_unique<V>(ctx_.get(), "rast_top");
+    if (!s_.opts.fst_path.empty()) {
+      fst_ = std::make_unique<VerilatedFstC>();
+      top_->trace(fst_.get(), 99);
+      fst_->open(s_.opts.fst_path.c_str());
     }
   }
-  if (next_expected < s.expected.size())
-    mismatch(std::to_string(s.expected.size() - next_expected) + " fragments missing from the RTL, first: #" +
-             std::to_string(next_expected) + " of " + s.tri_names[s.expected[next_expected].tri] + ": '" +
-             fragment_trace_line(s.expected[next_expected].f) + "'");
-  if (!markers_in_flight.empty()) mismatch(std::to_string(markers_in_flight.size()) + " markers lost in the RTL");
-  if (fst) fst->close();
-  top->final();
-  r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  void half(int clk) {
+    top_->clk_i = clk;
+    top_->eval();
+    if (fst_) fst_->dump(time_);
+    ++time_;
+  }
+  // Static raster state on its ports, then one reset cycle.
+  void reset() {
+    top_->tile_log2_i = static_cast<uint8_t>(s_.tile_log2);
+    top_->fill_rule_i = static_cast<uint8_t>(s_.fill_rule);
+    top_->cull_mode_i = static_cast<uint8_t>(s_.cull_mode);
+    top_->front_ccw_i = static_cast<uint8_t>(s_.front_ccw);
+    top_->tri_valid_i = 0;
+    top_->frag_ready_i = 0;
+    top_->rst_ni = 0;
+    half(0);
+    half(1);
+    top_->rst_ni = 1;
+  }
+
+  // One clock cycle t; true when the run is complete.
+  bool cycle(uint64_t t) {
+    rop_step(t);
+    unblock_staging(t);
+    assembly_take(t);
+    const bool tri_valid = assembly_.offering();
+    drive_triangle(tri_valid);
+    const bool frag_ready = !staging_blocked_ && !(s_.opts.backpressure > 0 && stall_(rng_));
+    top_->frag_ready_i = frag_ready;
+    half(0);
+    const bool tri_taken = tri_valid && top_->tri_ready_o;
+    if (!top_->idle_o || top_->frag_valid_o || fetch_.active || assembly_.active) last_busy_ = std::max(last_busy_, t);
+    if (top_->frag_valid_o && frag_ready) take_beat(t);
+    assembly_step(tri_taken);
+    fetch_step(t);
+    half(1);
+    return done();
+  }
+
+  // ---- Back end: the ROP as a memory model (model/sc/rop.cpp) ----
+  // Starts the next visible batch when idle and counts its busy cycles.
+  void rop_step(uint64_t t) {
+    if (rop_left_ == 0 && !frag_fifo_.empty() && frag_fifo_.front().pushed < t) {
+      const Batch b = frag_fifo_.front();
+      frag_fifo_.pop_front();
+      rop_left_ = b.marker ? s_.items[b.marker_item].rop_cost : s_.timing.rop_fragment_cycles(b.fragments);
+    }
+    if (rop_left_ > 0) {
+      --rop_left_;
+      last_busy_ = t;
+    }
+  }
+  // A completed batch pushes into the fragment FIFO, or waits for room there while
+  // blocking the interpolator (frag_ready low).
+  void push_staging(uint64_t t) {
+    if (frag_fifo_.size() < frag_depth_) {
+      staging_.pushed = t;
+      frag_fifo_.push_back(staging_);
+      staging_ = Batch{};
+      staging_blocked_ = false;
+    } else {
+      staging_blocked_ = true;
+    }
+  }
+  void unblock_staging(uint64_t t) {
+    if (staging_blocked_) push_staging(t);
+  }
+
+  // ---- Front end: command fetch and primitive assembly (model/sc/command_fetch.cpp,
+  // prim_assembly.cpp) ----
+  // Assembly takes a visible command.
+  void assembly_take(uint64_t t) {
+    if (!assembly_.active && !cmd_fifo_.empty() && cmd_fifo_.front().pushed < t) {
+      assembly_ = TbStage{true, s_.items[cmd_fifo_.front().item].assembly_cost, cmd_fifo_.front().item};
+      cmd_fifo_.pop_front();
+    }
+  }
+  // Assembly counts its busy cycle and hands over on a taken offer.
+  void assembly_step(bool tri_taken) {
+    if (!assembly_.active) return;
+    if (assembly_.left > 1) {
+      --assembly_.left;
+    } else if (tri_taken) {
+      if (s_.items[assembly_.item].kind == TbItem::Marker) markers_in_flight_.push_back(assembly_.item);
+      assembly_.active = false;
+    }
+  }
+  // Fetch starts the scene's next item and pushes it into the command FIFO when done.
+  void fetch_step(uint64_t t) {
+    if (!fetch_.active && next_item_ < s_.items.size())
+      fetch_ = TbStage{true, s_.items[next_item_].fetch_cost, next_item_++};
+    if (!fetch_.active) return;
+    last_busy_ = std::max(last_busy_, t);
+    if (fetch_.left > 1) {
+      --fetch_.left;
+    } else if (s_.items[fetch_.item].kind == TbItem::Null) {
+      fetch_.active = false;  // an empty primitive command: header only, nothing out
+    } else if (cmd_fifo_.size() < cmd_depth_) {
+      cmd_fifo_.push_back(Entry{fetch_.item, t});
+      fetch_.active = false;
+    }
+  }
+
+  // ---- Port packing ----
+  // The triangle port: assembly's offered item, coordinates masked to CoordW bits.
+  void drive_triangle(bool valid) {
+    top_->tri_valid_i = valid;
+    if (!valid) return;
+    const TbItem& it = s_.items[assembly_.item];
+    const uint64_t coord_mask = (uint64_t{1} << p_.coord_w) - 1;
+    top_->tri_marker_i = it.kind == TbItem::Marker;
+    top_->tri_x0_i = static_cast<uint64_t>(it.x[0]) & coord_mask;
+    top_->tri_y0_i = static_cast<uint64_t>(it.y[0]) & coord_mask;
+    top_->tri_x1_i = static_cast<uint64_t>(it.x[1]) & coord_mask;
+    top_->tri_y1_i = static_cast<uint64_t>(it.y[1]) & coord_mask;
+    top_->tri_x2_i = static_cast<uint64_t>(it.x[2]) & coord_mask;
+    top_->tri_y2_i = static_cast<uint64_t>(it.y[2]) & coord_mask;
+    top_->tri_z0_i = it.z[0];
+    top_->tri_z1_i = it.z[1];
+    top_->tri_z2_i = it.z[2];
+    top_->tri_rgb0_i = it.rgb[0];
+    top_->tri_rgb1_i = it.rgb[1];
+    top_->tri_rgb2_i = it.rgb[2];
+    top_->tri_clip_x0_i = it.clip[0];
+    top_->tri_clip_y0_i = it.clip[1];
+    top_->tri_clip_x1_i = it.clip[2];
+    top_->tri_clip_y1_i = it.clip[3];
+    top_->tri_origin_x_i = it.origin[0];
+    top_->tri_origin_y_i = it.origin[1];
+  }
+  // Lane j of the fragment port.
+  Fragment lane_fragment(int j) const {
+    Fragment f;
+    f.x = static_cast<int>(port_bits(top_->frag_x_o, j * p_.pixel_w, p_.pixel_w));
+    f.y = static_cast<int>(port_bits(top_->frag_y_o, j * p_.pixel_w, p_.pixel_w));
+    f.z = static_cast<uint32_t>(port_bits(top_->frag_z_o, j * p_.depth_w, p_.depth_w));
+    f.r = static_cast<uint8_t>(port_bits(top_->frag_rgb_o, j * 24, 8));
+    f.g = static_cast<uint8_t>(port_bits(top_->frag_rgb_o, j * 24 + 8, 8));
+    f.b = static_cast<uint8_t>(port_bits(top_->frag_rgb_o, j * 24 + 16, 8));
+    return f;
+  }
+  // A taken beat: a marker, or up to interp.fragments_per_cycle fragments, each compared
+  // in order with the reference; a marker or a tile's last beat completes the batch.
+  void take_beat(uint64_t t) {
+    if (top_->frag_marker_o) {
+      if (markers_in_flight_.empty()) {
+        mismatch("cycle " + std::to_string(t) + ": a marker the testbench never sent");
+      } else {
+        staging_.marker = true;
+        staging_.marker_item = markers_in_flight_.front();
+        markers_in_flight_.pop_front();
+      }
+    } else {
+      for (int j = 0; j < p_.interp_fragments_per_cycle; ++j) {
+        if (!(port_bits(top_->frag_lanes_o, j, 1) & 1)) continue;
+        ++staging_.fragments;
+        compare(lane_fragment(j));
+      }
+    }
+    if (top_->frag_marker_o || top_->frag_last_o) push_staging(t);
+  }
+
+  // ---- Checks ----
+  void mismatch(const std::string& what) {
+    if (r_.first_mismatch.empty()) r_.first_mismatch = what;
+    ++r_.mismatches;
+  }
+  void compare(const Fragment& f) {
+    ++r_.fragments_compared;
+    if (next_expected_ >= s_.expected.size()) {
+      mismatch("extra fragment from the RTL: " + fragment_trace_line(f));
+      return;
+    }
+    const Expected& e = s_.expected[next_expected_++];
+    if (!(e.f == f))
+      mismatch("fragment #" + std::to_string(next_expected_ - 1) + " of " + s_.tri_names[e.tri] + ": pixel (" +
+               std::to_string(e.f.x) + ", " + std::to_string(e.f.y) + ") expected '" + fragment_trace_line(e.f) +
+               "', RTL gave '" + fragment_trace_line(f) + "'");
+  }
+  // Nothing left anywhere: scene fetched, FIFOs and stages empty, the RTL idle (its
+  // idle_o covers the interpolator's pipeline) with no beat out, the ROP done.
+  bool done() const {
+    return next_item_ >= s_.items.size() && !fetch_.active && cmd_fifo_.empty() && !assembly_.active &&
+           top_->idle_o && !top_->frag_valid_o &&
+           !staging_blocked_ && staging_.fragments == 0 && !staging_.marker && frag_fifo_.empty() && rop_left_ == 0;
+  }
+  void end_of_run_check() {
+    if (next_expected_ < s_.expected.size())
+      mismatch(std::to_string(s_.expected.size() - next_expected_) + " fragments missing from the RTL, first: #" +
+               std::to_string(next_expected_) + " of " + s_.tri_names[s_.expected[next_expected_].tri] + ": '" +
+               fragment_trace_line(s_.expected[next_expected_].f) + "'");
+    if (!markers_in_flight_.empty()) mismatch(std::to_string(markers_in_flight_.size()) + " markers lost in the RTL");
+  }
+
+  const TbSetup& s_;
+  const RtlParams& p_;
+  CosimResult& r_;
+  std::mt19937_64 rng_;
+  std::bernoulli_distribution stall_;
+  const size_t cmd_depth_, frag_depth_;  // command FIFO; fragment FIFO with the interpolator's latency slots
+  std::unique_ptr<VerilatedContext> ctx_;
+  std::unique_ptr<V> top_;
+  std::unique_ptr<VerilatedFstC> fst_;
+  uint64_t time_ = 0;  // half cycles, the waveform's time
+
+  std::deque<Entry> cmd_fifo_;
+  std::deque<Batch> frag_fifo_;
+  std::deque<size_t> markers_in_flight_;  // marker items sent to the RTL, in order
+  Batch staging_;                         // the batch the interpolator is filling
+  bool staging_blocked_ = false;          // completed, waiting for fragment-FIFO room
+  TbStage fetch_, assembly_;
+  size_t next_item_ = 0;
+  uint64_t rop_left_ = 0;                 // ROP busy cycles left
+  uint64_t last_busy_ = 0;                // last cycle any stage worked
+  size_t next_expected_ = 0;
+};
+
+template <class V>
+void run_rtl(const TbSetup& s, CosimResult& r) {
+  RtlBench<V>(s, r).run();
 }
 
 }  // namespace rastsim::cosim

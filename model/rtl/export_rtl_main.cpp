@@ -1,20 +1,26 @@
 // SPDX-License-Identifier: Apache-2.0
-// rastsim_export_rtl: the build's RTL parameter exporter, a tiny stand-alone tool so
-// the build can generate rast_params.vh before the rastsim tool itself exists.
-// `rastsim export-rtl` (app/cmd_export_rtl.cpp) calls the same function.
+// rastsim_export_rtl: the build's RTL parameter exporter, a tiny stand-alone tool that
+// runs at configure time (rtl/CMakeLists.txt), before the rastsim tool exists.
+// `rastsim export-rtl` (app/cmd_export_rtl.cpp) calls the same functions.
 //
 //   rastsim_export_rtl CONFIG.toml OUT.vh OUT.inc
-//
-// OUT.vh is the Verilog parameter list; OUT.inc the same values as a C++ expression
-// (rtl_params_cpp) that the generated registry of verilated models compiles in.
+//     OUT.vh:  rast_top's parameter header (rtl_params_verilog)
+//     OUT.inc: the same parameters as a C++ initializer list (rtl_params_values),
+//              compiled into the registry of verilated models (model/rtl/CMakeLists.txt)
+//   rastsim_export_rtl --scanout CONFIG.toml OUT.vh
+//     OUT.vh:  the scan-out top's parameter header (scanout_rtl_params_verilog)
 #include <fstream>
 #include <iostream>
+#include <iterator>
+#include <string>
 
 #include "config/config.h"
 #include "rtl/rtl_params.h"
 
 namespace {
-// Rewrites a file only when its text changes, so an unchanged config re-runs nothing.
+
+// Rewrites `path` only when its text changes, so an unchanged config re-runs neither
+// Verilator nor the registry's compilation.
 void write_if_changed(const std::string& path, const std::string& text) {
   std::ifstream old(path);
   const std::string prev((std::istreambuf_iterator<char>(old)), std::istreambuf_iterator<char>());
@@ -23,21 +29,28 @@ void write_if_changed(const std::string& path, const std::string& text) {
   os << text;
   if (!os) throw std::runtime_error(path + ": write failed");
 }
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  const bool scanout = argc == 4 && std::string(argv[1]) == "--scanout";
   if (argc != 4) {
-    std::cerr << "usage: rastsim_export_rtl CONFIG.toml OUT.vh OUT.inc\n";
+    std::cerr << "usage: rastsim_export_rtl CONFIG.toml OUT.vh OUT.inc\n"
+                 "       rastsim_export_rtl --scanout CONFIG.toml OUT.vh\n";
     return 2;
   }
   try {
+    const char* cfg_path = argv[scanout ? 2 : 1];
     rastsim::Config cfg;
-    cfg.load_file(argv[1]);
+    cfg.load_file(cfg_path);
     cfg.validate();
+    if (scanout) {
+      write_if_changed(argv[3], rastsim::scanout_rtl_params_verilog(rastsim::scanout_rtl_params_from_config(cfg), cfg_path));
+      return 0;
+    }
     const rastsim::RtlParams p = rastsim::rtl_params_from_config(cfg);
-    write_if_changed(argv[2], rastsim::rtl_params_verilog(p, argv[1]));
-    write_if_changed(argv[3], "// Generated from " + std::string(argv[1]) + ". Do not edit.\n" +
-                                  rastsim::rtl_params_cpp(p) + "\n");
+    write_if_changed(argv[2], rastsim::rtl_params_verilog(p, cfg_path));
+    write_if_changed(argv[3], rastsim::rtl_params_values(p) + "\n");
   } catch (const std::exception& e) {
     std::cerr << "rastsim_export_rtl: error: " << e.what() << "\n";
     return 1;

@@ -10,19 +10,30 @@
 #include "ref/fixed_point.h"
 #include "ref/raster_state.h"
 #include "config/raster_state_config.h"
+#include "config/video_timing.h"
 
 namespace rastsim {
 
 namespace {
 
 // Every exported parameter once: Verilog name, member, meaning. The export, the
-// compatibility check and the testbench all walk this table.
-struct Field {
+// compatibility check, the registry's initializer and the testbench all walk this table.
+template <class P>
+struct ParamField {
   const char* name;
-  int RtlParams::*member;
+  int P::*member;
   const char* comment;
 };
-constexpr Field kFields[] = {
+
+// "  parameter int Name = value,  // comment" a field, the last without the comma.
+template <class P, size_t N>
+void write_parameters(std::ostream& os, const P& p, const ParamField<P> (&fields)[N]) {
+  for (size_t k = 0; k < N; ++k)
+    os << "  parameter int " << fields[k].name << " = " << p.*fields[k].member << (k + 1 < N ? "," : " ")
+       << "  // " << fields[k].comment << "\n";
+}
+
+constexpr ParamField<RtlParams> kFields[] = {
     {"CoordInt", &RtlParams::coord_int, "I of raster.coord_format s.I.F"},
     {"CoordFrac", &RtlParams::coord_frac, "F of raster.coord_format (sub-pixel bits)"},
     {"CoordW", &RtlParams::coord_w, "snapped vertex x, y: N + 1 bits, signed"},
@@ -32,9 +43,9 @@ constexpr Field kFields[] = {
     {"ColorNumW", &RtlParams::color_num_w, "colour numerator: 2N + 10 bits, unsigned"},
     {"DepthNumW", &RtlParams::depth_num_w, "depth numerator: 2N + 2 + D bits, unsigned"},
     {"DepthW", &RtlParams::depth_w, "D = raster.depth_bits"},
-    {"PixelW", &RtlParams::pixel_w, "pixel x, y: unsigned, holds the largest display.width/height"},
+    {"PixelW", &RtlParams::pixel_w, "pixel x, y: unsigned, up to the largest display.width/height"},
     {"TileLog2Max", &RtlParams::tile_log2_max, "log2 of the largest tile (raster.tile_size)"},
-    {"TileLog2W", &RtlParams::tile_log2_w, "tile_log2_i bits: hold log2 of the largest raster.tile_size"},
+    {"TileLog2W", &RtlParams::tile_log2_w, "tile_log2_i bits: up to log2 of the largest raster.tile_size"},
     {"SetupInterval", &RtlParams::setup_interval, "setup.interval_cycles"},
     {"SetupLatency", &RtlParams::setup_latency, "setup.latency_cycles"},
     {"CoarseTilesPerCycle", &RtlParams::coarse_tiles_per_cycle, "coarse.tiles_per_cycle"},
@@ -43,17 +54,55 @@ constexpr Field kFields[] = {
     {"InterpFragmentsPerCycle", &RtlParams::interp_fragments_per_cycle, "interp.fragments_per_cycle"},
     {"InterpLatency", &RtlParams::interp_latency, "interp.latency_cycles"},
     {"TriangleFifoDepth", &RtlParams::fifo_triangle, "fifo.triangle_depth"},
+    {"SetupFifoEntries", &RtlParams::setup_fifo_entries, "fifo.setup_depth + setup latency slots"},
     {"TileFifoDepth", &RtlParams::fifo_tile, "fifo.tile_depth"},
     {"PixelFifoDepth", &RtlParams::fifo_pixel, "fifo.pixel_depth"},
-    {"SetupFifoEntries", &RtlParams::setup_fifo_entries, "setup FIFO entries: depth + latency slots (derived)"},
 };
 
-// Unsigned bits that hold every value 0..max.
-int bits_for(int64_t max) { return std::max(1, static_cast<int>(std::bit_width(static_cast<uint64_t>(max)))); }
-// The largest value the schema allows for an integer key.
-int64_t schema_max(const char* key) { return static_cast<int64_t>(find_param(key)->max); }
+constexpr ParamField<ScanoutRtlParams> kScanoutFields[] = {
+    {"HActive", &ScanoutRtlParams::h_active, "active pixels a line"},
+    {"HFrontPorch", &ScanoutRtlParams::h_front_porch, "px from the last active pixel to hsync"},
+    {"HSync", &ScanoutRtlParams::h_sync, "hsync width, px"},
+    {"HBackPorch", &ScanoutRtlParams::h_back_porch, "px from the end of hsync to the next line"},
+    {"VActive", &ScanoutRtlParams::v_active, "active lines a frame"},
+    {"VFrontPorch", &ScanoutRtlParams::v_front_porch, "lines from the last active line to vsync"},
+    {"VSync", &ScanoutRtlParams::v_sync, "vsync width, lines"},
+    {"VBackPorch", &ScanoutRtlParams::v_back_porch, "lines from the end of vsync to the next frame"},
+    {"HSyncPositive", &ScanoutRtlParams::h_sync_positive, "1: hsync is high during the pulse"},
+    {"VSyncPositive", &ScanoutRtlParams::v_sync_positive, "1: vsync is high during the pulse"},
+    {"FbWidth", &ScanoutRtlParams::fb_width, "framebuffer width, px (display.width)"},
+    {"FbHeight", &ScanoutRtlParams::fb_height, "framebuffer height, px (display.height)"},
+    {"DacBits", &ScanoutRtlParams::dac_bits, "DAC code width a channel (dac.bits)"},
+};
 
 }  // namespace
+
+ScanoutRtlParams scanout_rtl_params_from_config(const Config& cfg) {
+  const VideoTiming t = video_timing_from_config(cfg);
+  ScanoutRtlParams p;
+  p.h_active = t.h_active;
+  p.h_front_porch = t.h_front_porch;
+  p.h_sync = t.h_sync;
+  p.h_back_porch = t.h_back_porch;
+  p.v_active = t.v_active;
+  p.v_front_porch = t.v_front_porch;
+  p.v_sync = t.v_sync;
+  p.v_back_porch = t.v_back_porch;
+  p.h_sync_positive = t.h_sync_positive ? 1 : 0;
+  p.v_sync_positive = t.v_sync_positive ? 1 : 0;
+  p.fb_width = static_cast<int>(cfg.get_int("display.width"));
+  p.fb_height = static_cast<int>(cfg.get_int("display.height"));
+  p.dac_bits = static_cast<int>(cfg.get_int("dac.bits"));
+  return p;
+}
+
+std::string scanout_rtl_params_verilog(const ScanoutRtlParams& p, const std::string& source) {
+  std::ostringstream os;
+  os << "// Generated by `rastsim export-rtl-scanout` from " << source << ". Do not edit.\n"
+     << "// The body of the scan-out top's parameter port list; computed in model/rtl/rtl_params.cpp.\n";
+  write_parameters(os, p, kScanoutFields);
+  return os.str();
+}
 
 RtlParams rtl_params_from_config(const Config& cfg) {
   const RasterState st = raster_state_from_config(cfg);  // validates
@@ -70,10 +119,10 @@ RtlParams rtl_params_from_config(const Config& cfg) {
   p.depth_num_w = 2 * n + 2 + st.depth_bits;
   p.depth_w = st.depth_bits;
   p.tile_log2_max = std::countr_zero(static_cast<unsigned>(st.tile_size));
-  // Port widths that hold the schema's extremes, so every config has the same ports:
-  // pixel indices 0..max display size - 1, tile_log2 0..log2(max tile size).
-  p.pixel_w = bits_for(std::max(schema_max("display.width"), schema_max("display.height")) - 1);
-  p.tile_log2_w = bits_for(std::countr_zero(static_cast<uint64_t>(schema_max("raster.tile_size"))));
+  // Port widths from the schema's maxima, so every config's RTL has the same ports.
+  const auto schema_max = [](const char* key) { return static_cast<unsigned>(find_param(key)->max); };
+  p.pixel_w = std::bit_width(std::max(schema_max("display.width"), schema_max("display.height")) - 1);
+  p.tile_log2_w = std::bit_width(static_cast<unsigned>(std::countr_zero(schema_max("raster.tile_size"))));
   // The timing keys, read and checked once (timing_params.cpp), as the SystemC model reads them.
   const TimingParams t = TimingParams::from_config(cfg);
   p.setup_interval = static_cast<int>(t.setup_interval);
@@ -84,43 +133,39 @@ RtlParams rtl_params_from_config(const Config& cfg) {
   p.interp_fragments_per_cycle = static_cast<int>(t.interp_fragments_per_cycle);
   p.interp_latency = static_cast<int>(t.interp_latency);
   p.fifo_triangle = t.fifo_triangle;
+  p.setup_fifo_entries = t.setup_fifo_entries();
   p.fifo_tile = t.fifo_tile;
   p.fifo_pixel = t.fifo_pixel;
-  p.setup_fifo_entries = t.setup_fifo_entries();
   return p;
 }
 
 std::string rtl_params_verilog(const RtlParams& p, const std::string& source) {
   std::ostringstream os;
   os << "// Generated by `rastsim export-rtl` from " << source << ". Do not edit.\n"
-     << "// The body of rast_top's parameter port list (rtl/rast_top.v); widths follow\n"
+     << "// The body of rast_top's parameter port list (rtl/rast_top.sv); widths follow\n"
      << "// docs/fixed-point.md and are computed in model/rtl/rtl_params.cpp.\n";
-  const size_t n = std::size(kFields);
-  for (size_t k = 0; k < n; ++k)
-    os << "  parameter int " << kFields[k].name << " = " << p.*kFields[k].member << (k + 1 < n ? "," : " ")
-       << "  // " << kFields[k].comment << "\n";
+  write_parameters(os, p, kFields);
   return os.str();
 }
 
-std::string rtl_params_cpp(const RtlParams& p) {
-  std::ostringstream os;
-  os << "rastsim::rtl_params_from_values({";
-  for (size_t k = 0; k < std::size(kFields); ++k) os << (k ? ", " : "") << p.*kFields[k].member;
-  os << "})";
-  return os.str();
+std::string rtl_params_values(const RtlParams& p) {
+  std::string s = "{";
+  for (const auto& f : kFields) s += (s.size() > 1 ? ", " : "") + std::to_string(p.*f.member);
+  return s + "}";
 }
 
 RtlParams rtl_params_from_values(const std::vector<int>& values) {
   if (values.size() != std::size(kFields))
-    throw std::logic_error("rtl_params_from_values: " + std::to_string(values.size()) + " values for " +
-                           std::to_string(std::size(kFields)) + " parameters (a stale generated registry?)");
+    throw std::invalid_argument("RTL parameter list has " + std::to_string(values.size()) + " values, expected " +
+                                std::to_string(std::size(kFields)));
   RtlParams p;
-  for (size_t k = 0; k < values.size(); ++k) p.*kFields[k].member = values[k];
+  size_t k = 0;
+  for (const auto& f : kFields) p.*f.member = values[k++];
   return p;
 }
 
 bool rtl_params_compatible(const RtlParams& built, const RtlParams& wanted, std::string* why) {
-  for (const Field& f : kFields) {
+  for (const auto& f : kFields) {
     const int b = built.*f.member, w = wanted.*f.member;
     const bool ok = (f.member == &RtlParams::tile_log2_max) ? (w <= b && w >= 1) : (w == b);
     if (!ok) {

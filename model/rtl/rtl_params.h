@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// RTL parameters: what the Verilog raster pipeline (rtl/rast_*.v) is built with, derived
+// RTL parameters: what the Verilog raster pipeline (rtl/rast_*.sv) is built with, derived
 // from a validated Config. The datapath widths are computed here with the equations of
 // docs/fixed-point.md ("Datapath widths") from the coordinate format, so no width is
 // typed twice: the Verilog gets them through the exported header, the C++ testbench
@@ -10,10 +10,11 @@
 //   they are run-time inputs of the RTL like the tile size (docs/rtl.md), driven from
 //   the RasterState of the config being simulated.
 // - rtl_params_verilog: the Verilog header (a parameter port list body) that
-//   rtl/rast_top.v includes; `rastsim export-rtl` and the build's exporter write it.
-// - rtl_params_cpp: the same values as a C++ initializer, compiled into the registry of
-//   verilated models (model/rtl/CMakeLists.txt), so no binary reads a config at run time
-//   to learn what a model was built with.
+//   rtl/rast_top.sv includes; `rastsim export-rtl` and the build's exporter write it.
+// - rtl_params_values / rtl_params_from_values: the parameters as a C++ initializer
+//   list of ints (the table's order), which the build compiles into the registry of
+//   verilated models (model/rtl/CMakeLists.txt), so a binary knows what each model was
+//   built with without reading any config at run time.
 // - rtl_params_compatible: whether an RTL library built for one config can simulate
 //   another (same widths and timing, tile size at most the built maximum: the tile size
 //   is a run-time input of the RTL, see docs/rtl.md).
@@ -36,16 +37,16 @@ struct RtlParams {
   int color_num_w = 0;   // colour numerator sum w_k c_k, unsigned: 2N + 10
   int depth_num_w = 0;   // depth numerator sum w_k z_k, unsigned: 2N + 2 + D
   int depth_w = 0;       // D = raster.depth_bits
-  int pixel_w = 0;       // pixel x, y, unsigned: holds the schema's largest display size
+  int pixel_w = 0;       // pixel x, y, unsigned: holds the schema's largest display.width/height - 1
   int tile_log2_max = 0; // log2 of raster.tile_size: the largest tile the RTL supports
-  int tile_log2_w = 0;   // tile_log2_i port: holds log2 of the schema's largest tile size
+  int tile_log2_w = 0;   // the tile_log2_i port: holds log2 of the schema's largest raster.tile_size
   // Timing keys the RTL implements (config_schema_timing.cpp).
   int setup_interval = 0, setup_latency = 0;
   int coarse_tiles_per_cycle = 0;
   int fine_samples_per_cycle = 0, fine_accepted_tile_cycles = 0;
   int interp_fragments_per_cycle = 0, interp_latency = 0;
   int fifo_triangle = 0, fifo_tile = 0, fifo_pixel = 0;
-  int setup_fifo_entries = 0;  // TimingParams::setup_fifo_entries: depth + latency slots
+  int setup_fifo_entries = 0;  // fifo.setup_depth + setup's latency slots (TimingParams)
 
   bool operator==(const RtlParams&) const = default;
 };
@@ -57,13 +58,31 @@ RtlParams rtl_params_from_config(const Config& cfg);
 // config in the banner.
 std::string rtl_params_verilog(const RtlParams& p, const std::string& source);
 
-// A C++ expression that rebuilds `p`: rtl_params_from_values({...}) with every exported
-// parameter in the export's order.
-std::string rtl_params_cpp(const RtlParams& p);
+// "{v0, v1, ...}": every parameter in the export table's order; rtl_params_from_values
+// reads it back (throws std::invalid_argument on a wrong count).
+std::string rtl_params_values(const RtlParams& p);
 RtlParams rtl_params_from_values(const std::vector<int>& values);
 
 // An RTL built with `built` can run `wanted` (tile size as a run-time input up to the
 // built maximum). On false, `why` says which parameter differs.
 bool rtl_params_compatible(const RtlParams& built, const RtlParams& wanted, std::string* why = nullptr);
+
+// The scan-out RTL (rtl/scanout_*.sv) is built with the video timing, framebuffer size
+// and DAC width of a config (video_timing.h, display.*, dac.bits).
+struct ScanoutRtlParams {
+  int h_active = 0, h_front_porch = 0, h_sync = 0, h_back_porch = 0;  // px
+  int v_active = 0, v_front_porch = 0, v_sync = 0, v_back_porch = 0;  // lines
+  int h_sync_positive = 0, v_sync_positive = 0;  // 1: the sync is high during the pulse
+  int fb_width = 0, fb_height = 0;               // framebuffer, px
+  int dac_bits = 0;                              // DAC code width a channel
+
+  bool operator==(const ScanoutRtlParams&) const = default;
+};
+
+ScanoutRtlParams scanout_rtl_params_from_config(const Config& cfg);
+
+// The Verilog header of the scan-out: "parameter int Name = value, // comment" lines,
+// the body of the scan-out top's parameter port list (tb/scanout/scanout_cosim_top.sv).
+std::string scanout_rtl_params_verilog(const ScanoutRtlParams& p, const std::string& source);
 
 }  // namespace rastsim

@@ -1,20 +1,28 @@
 // SPDX-License-Identifier: Apache-2.0
 // RTL scan-out (Verilator) against the reference scan-out, signal by signal, for two
 // whole frames, for the panel and VGA configs; the RTL's output decoded by the virtual
-// monitor. The RTL is LATENCY = 2 pixel clocks behind the reference (rtl/scanout.v).
+// monitor. The RTL is scanout_top's Latency pixel clocks behind the reference
+// (rtl/scanout_top.sv, a public localparam).
 #include <gtest/gtest.h>
 
 #include <functional>
 #include <memory>
 
 #include "Vscanout_panel.h"
+#include "Vscanout_panel__Syms.h"
 #include "Vscanout_vga.h"
+#include "Vscanout_vga__Syms.h"
 #include "scanout_test_util.h"
 
 namespace rastsim {
 namespace {
 
-constexpr int kLatency = 2;
+// scanout_top's public localparam Latency, from the class Verilator generated for the
+// cosim top's instance u_scanout (its name depends on the parameters; the member's does not).
+template <class Syms>
+constexpr int kLatencyOf = decltype(Syms::TOP__scanout_cosim_top__u_scanout)::Latency;
+constexpr int kLatency = kLatencyOf<Vscanout_panel__Syms>;
+static_assert(kLatencyOf<Vscanout_vga__Syms> == kLatency);
 
 struct RtlRun {
   long long compared = 0, mismatches = 0;

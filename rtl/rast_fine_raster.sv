@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // rast_fine_raster: per-pixel coverage of partial tiles, whole masks for accepted
-// tiles (ref: traverse.h fine_raster_partial / fine_raster_accepted; model:
+// tiles (ref: model/ref/fine_raster.h fine_raster_partial / fine_raster_accepted; model:
 // model/sc/fine_raster.cpp).
 //
 // - Partial tile: tests SamplesPerCycle pixel centres of the footprint a cycle, in
@@ -20,7 +20,7 @@ module rast_fine_raster #(
   parameter int EdgeW              = 49,  // 2N + 3
   parameter int PixelW             = 14,  // pixel index bits
   parameter int TileLog2Max        = 4,   // largest tile: 2^TileLog2Max pixels square
-  parameter int TileLog2W          = 3,   // tile_log2_i bits (holds the schema's largest tile log2)
+  parameter int TileLog2W          = 3,   // tile_log2_i bits
   parameter int SamplesPerCycle    = 8,   // coverage tests per cycle
   parameter int AcceptedTileCycles = 1,   // cycles to emit an accepted tile
   localparam int TileMax = 1 << TileLog2Max,  // derived: largest tile side

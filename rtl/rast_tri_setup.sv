@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// rast_tri_setup: triangle setup of snapped fixed-point vertices (ref: setup.cpp).
+// rast_tri_setup: triangle setup of snapped fixed-point vertices (ref: model/ref/tri_setup.cpp).
 //
 // - Doubled signed area (exact, EdgeW bits); zero area is culled, and per cull_mode_i
 //   the back or front faces (front_ccw_i says which winding is front).

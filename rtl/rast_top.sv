@@ -9,13 +9,11 @@
 //
 // - Every parameter comes from the config through the exported header rast_params.vh
 //   (`rastsim export-rtl`, model/rtl/rtl_params.cpp): widths of docs/fixed-point.md,
-//   the timing keys and FIFO depths, and what derives from them (SetupFifoEntries: the
-//   setup FIFO also holds the triangles inside setup's latency pipeline, the SystemC
-//   model's latency slots, config/timing_params.h setup_fifo_entries). The same stages, FIFOs and timing equations as the
+//   the timing keys and FIFO depths. The same stages, FIFOs and timing equations as the
 //   SystemC model (docs/microarchitecture.md, docs/rtl.md).
 // - The raster state is run-time input, held constant while the pipeline is busy: the
 //   tile size 2^tile_log2_i with 1 <= tile_log2_i <= TileLog2Max; fill rule, cull mode
-//   and front face (encoded as ref/raster_state.h's enums, see rast_tri_setup).
+//   and front face (encoded as model/ref/raster_state.h's enums, see rast_tri_setup).
 // - Triangles arrive snapped (s.I.F raw, relative to the origin), with the clip
 //   rectangle and origin of the state they were drawn in; a marker (a state command in
 //   order with the triangles) travels through every stage and leaves as a marker beat.
@@ -62,7 +60,7 @@ module rast_top #(
   output      logic [InterpFragmentsPerCycle*PixelW-1:0] frag_y_o,    // lane j y
   output      logic [InterpFragmentsPerCycle*DepthW-1:0] frag_z_o,    // lane j depth
   output      logic [InterpFragmentsPerCycle*24-1:0]     frag_rgb_o,  // lane j colour {b, g, r}
-  output      logic                                  idle_o           // no work anywhere, the interpolator pipeline included
+  output      logic                                  idle_o           // no work anywhere, the interpolator pipeline drained
 );
   localparam int MaskW = 1 << (2 * TileLog2Max);      // derived: coverage mask bits
   localparam int AttrW = 3 * DepthW + 3 * 24;         // derived: vertex attributes
@@ -71,6 +69,14 @@ module rast_top #(
   localparam int SetW  = 1 + EdgesW + 4 * PixelW + 2 * PixelW + AreaW + AttrW;     // derived
   localparam int TileW = 1 + 1 + 4 * PixelW + EdgesW + 2 * PixelW + AreaW + AttrW;  // derived
   localparam int PixW  = 1 + MaskW + 2 * PixelW + EdgesW - 3 + 2 * PixelW + AreaW + AttrW;  // derived
+
+  // Elaboration-time checks of the exported parameters.
+  if (SetupLatency < SetupInterval) begin : g_check_setup
+    $error("rast_top: SetupLatency (%0d) must be at least SetupInterval (%0d)", SetupLatency, SetupInterval);
+  end
+  if (TileLog2Max < 1 || TileLog2Max > (1 << TileLog2W) - 1) begin : g_check_tile
+    $error("rast_top: TileLog2Max (%0d) must be in 1..%0d (the tile_log2_i port)", TileLog2Max, (1 << TileLog2W) - 1);
+  end
 
   // ---- Triangle FIFO (fifo.triangle_depth) ----
   logic            t_valid, t_ready, t_marker, t_empty;
@@ -109,7 +115,9 @@ module rast_top #(
     .out_origin_o(s_origin), .out_attr_o(s_attr), .busy_o(s_busy));
   assign s_edges = {s_a, s_b, s_c, s_bias};
 
-  // ---- Setup FIFO (fifo.setup_depth + latency slots; entries wait setup.latency - interval cycles) ----
+  // ---- Setup FIFO (SetupFifoEntries: fifo.setup_depth plus the triangles inside setup's
+  // latency pipeline, TimingParams::setup_fifo_entries; entries wait setup.latency -
+  // interval cycles) ----
   logic                c_valid, c_ready, c_marker, c_empty, c_busy;
   logic                c_fifo_valid, c_fifo_ready;
   logic [SetW-1:0]     c_data, c_fifo_data;
@@ -136,7 +144,7 @@ module rast_top #(
   logic [4*PixelW-1:0] k_fp;
   rast_coarse_raster #(
     .CoordW(CoordW), .CoordFrac(CoordFrac), .CoefW(CoefW), .EdgeW(EdgeW), .PixelW(PixelW),
-    .TilesPerCycle(CoarseTilesPerCycle), .TileLog2W(TileLog2W)
+    .TileLog2W(TileLog2W), .TilesPerCycle(CoarseTilesPerCycle)
   ) u_coarse_raster (
     .clk_i, .rst_ni, .tile_log2_i, .in_valid_i(c_valid), .in_ready_o(c_ready), .in_marker_i(c_marker),
     .in_a_i(c_a), .in_b_i(c_b), .in_c_i(c_c), .in_bias_i(c_bias), .in_bbox_i(c_bbox), .in_origin_i(c_origin),
@@ -205,8 +213,7 @@ module rast_top #(
   rast_interpolate #(
     .CoordW(CoordW), .CoordFrac(CoordFrac), .CoefW(CoefW), .EdgeW(EdgeW), .AreaW(AreaW),
     .ColorNumW(ColorNumW), .DepthNumW(DepthNumW), .DepthW(DepthW), .PixelW(PixelW),
-    .TileLog2Max(TileLog2Max), .TileLog2W(TileLog2W), .FragmentsPerCycle(InterpFragmentsPerCycle),
-    .Latency(InterpLatency)
+    .TileLog2Max(TileLog2Max), .TileLog2W(TileLog2W), .FragmentsPerCycle(InterpFragmentsPerCycle), .Latency(InterpLatency)
   ) u_interpolate (
     .clk_i, .rst_ni, .tile_log2_i, .in_valid_i(p_valid), .in_ready_o(p_ready), .in_marker_i(p_marker),
     .in_mask_i(p_mask), .in_tile_i(p_tile), .in_a_i(p_a), .in_b_i(p_b), .in_c_i(p_c),

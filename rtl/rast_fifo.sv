@@ -33,6 +33,11 @@ module rast_fifo #(
   localparam int WaitW = (Latency > 0) ? $clog2(Latency + 1) : 1;  // derived: countdown bits
   localparam logic [PtrW-1:0] LastPtr = PtrW'(Depth - 1);        // derived
 
+  // Elaboration-time check.
+  if (Depth < 1) begin : g_check_depth
+    $error("rast_fifo: Depth (%0d) must be at least 1", Depth);
+  end
+
   logic [Width-1:0] mem_q [Depth];
   logic [WaitW-1:0] wait_q [Depth];
   logic [PtrW-1:0]  rd_q, wr_q;

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// rast_coarse_raster: tile walk with early-out / early-in (ref: traverse.cpp,
+// rast_coarse_raster: tile walk with early-out / early-in (ref: model/ref/coarse_raster.cpp,
 // classify_tile; model: model/sc/coarse_raster.cpp).
 //
 // - Walks, row by row, every tile (2^tile_log2_i pixels square, aligned to the
@@ -23,8 +23,8 @@ module rast_coarse_raster #(
   parameter int CoefW         = 25,  // N + 2
   parameter int EdgeW         = 49,  // 2N + 3
   parameter int PixelW        = 14,  // pixel index bits
-  parameter int TilesPerCycle = 1,   // tiles classified per cycle
-  parameter int TileLog2W     = 3    // tile_log2_i bits (holds the schema's largest tile log2)
+  parameter int TileLog2W     = 3,   // tile_log2_i bits
+  parameter int TilesPerCycle = 1    // tiles classified per cycle
 ) (
   input  wire logic                 clk_i,         // core clock
   input  wire logic                 rst_ni,        // asynchronous reset, active low

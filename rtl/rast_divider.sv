@@ -29,6 +29,11 @@ module rast_divider #(
   localparam int RW     = NumW + 1;                      // derived: 2 num + den fits
   localparam int DW     = DenW + 1;                      // derived: 2 den
 
+  // Elaboration-time check: the QW restoring steps are exact only when NumW = DenW + QW.
+  if (NumW != DenW + QW) begin : g_check_widths
+    $error("rast_divider: NumW (%0d) must equal DenW + QW (%0d + %0d)", NumW, DenW, QW);
+  end
+
   // Stage s takes (remainder, divisor, quotient so far) and does steps
   // [s*Steps, (s+1)*Steps) of QW; stage outputs are registered when Latency > 0.
   logic [RW-1:0] r_c [Stages], r_q [Stages];

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// rast_interpolate: colour and depth of each covered pixel (ref: interpolate.cpp;
+// rast_interpolate: colour and depth of each covered pixel (ref: model/ref/interpolate.cpp;
 // model: model/sc/interpolate.cpp).
 //
 // - Takes a tile's coverage mask and walks its set bits in order (row-major within
@@ -25,7 +25,7 @@ module rast_interpolate #(
   parameter int DepthW            = 24,  // D
   parameter int PixelW            = 14,  // pixel index bits
   parameter int TileLog2Max       = 4,   // largest tile: 2^TileLog2Max pixels square
-  parameter int TileLog2W         = 3,   // tile_log2_i bits (holds the schema's largest TileLog2Max)
+  parameter int TileLog2W         = 3,   // tile_log2_i bits
   parameter int FragmentsPerCycle = 4,   // pixels interpolated per cycle
   parameter int Latency           = 6,   // pick-to-fragment register stages
   localparam int MaskW = 1 << (2 * TileLog2Max),  // derived: coverage mask bits
@@ -55,7 +55,7 @@ module rast_interpolate #(
   output      logic [Lanes*PixelW-1:0]   out_y_o,       // lane j pixel y
   output      logic [Lanes*DepthW-1:0]   out_z_o,       // lane j depth
   output      logic [Lanes*24-1:0]       out_rgb_o,     // lane j colour {b, g, r}
-  output      logic                      busy_o         // a tile is being picked or a beat is in the pipeline
+  output      logic                      busy_o         // a mask half done or a beat in the pipeline
 );
   localparam int IdxW  = 2 * TileLog2Max;              // derived: mask index bits
   localparam int SideW = 3 + Lanes * (1 + 2 * PixelW);  // derived: side data bits
@@ -144,23 +144,15 @@ module rast_interpolate #(
   end
 
   // ---- Side data: valid, marker, last, lanes and pixels, delayed like the dividers ----
-  logic             beat;
+  logic             beat, side_occupied;
   logic [SideW-1:0] side_out;
   assign beat = in_valid_i && (in_marker_i || (rem != '0));
   rast_pipe #(.Width(SideW), .Latency(Latency)) u_side (
     .clk_i, .rst_ni, .en_i(en),
     .d_i({beat, in_marker_i, last_beat && !in_marker_i, in_marker_i ? '0 : pick, lane_x, lane_y}),
-    .q_o(side_out));
+    .q_o(side_out), .occupied_o(side_occupied));
   assign {out_valid_o, out_marker_o, out_last_o, out_lanes_o, out_x_o, out_y_o} = side_out;
-  // Beats inside the Latency register stages: one enters with each enabled beat and one
-  // leaves with each enabled output beat, so at most Latency are inside (0 for a wire).
-  localparam int InflightW = $clog2(Latency + 2);  // derived: counts 0..Latency
-  logic [InflightW-1:0] inflight_q;
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) inflight_q <= '0;
-    else if (en) inflight_q <= inflight_q + InflightW'(beat) - InflightW'(out_valid_o);
-  end
-  assign busy_o = (consumed_q != '0) || (inflight_q != '0);
+  assign busy_o = (consumed_q != '0) || side_occupied;
 endmodule
 
 `default_nettype wire

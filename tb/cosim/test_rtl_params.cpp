@@ -1,0 +1,49 @@
+// SPDX-License-Identifier: Apache-2.0
+// The parameters compiled into the registry of verilated models (model/rtl/CMakeLists.txt,
+// written by the configure-time exporter) against the shipped configs they were built
+// from, read here independently; and the initializer's round trip.
+#include <gtest/gtest.h>
+
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "rtl/cosim.h"
+#include "rtl/rtl_params.h"
+#include "cosim_test_util.h"
+
+namespace rastsim::cosim {
+namespace {
+
+TEST(RtlRegistry, CompiledParametersEqualTheShippedConfigs) {
+  const auto models = rtl_models();
+  ASSERT_FALSE(models.empty());
+  for (const RtlModelInfo& m : models) {
+    const RtlParams want = rtl_params_from_config(load_shipped_config(m.name));
+    std::string why;
+    EXPECT_TRUE(m.params == want) << m.name << ": " << (rtl_params_compatible(m.params, want, &why) ? "" : why);
+  }
+}
+
+TEST(RtlRegistry, PortWidthsHoldTheSchemaMaxima) {
+  // 16384 px displays: pixel coordinates 0..16383 in 14 bits; 128 px tiles: log2 7 in 3 bits.
+  const RtlParams p = rtl_params_from_config(load_shipped_config("default"));
+  EXPECT_EQ(p.pixel_w, 14);
+  EXPECT_EQ(p.tile_log2_w, 3);
+}
+
+TEST(RtlParamsValues, RoundTripAndWrongCount) {
+  const RtlParams p = rtl_params_from_config(load_shipped_config("desktop"));
+  std::string text = rtl_params_values(p);  // "{v0, v1, ...}"
+  ASSERT_EQ(text.front(), '{');
+  ASSERT_EQ(text.back(), '}');
+  std::vector<int> values;
+  std::istringstream is(text.substr(1, text.size() - 2));
+  for (std::string item; std::getline(is, item, ',');) values.push_back(std::stoi(item));
+  EXPECT_TRUE(rtl_params_from_values(values) == p);
+  EXPECT_THROW(rtl_params_from_values({1, 2, 3}), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace rastsim::cosim
