@@ -7,7 +7,9 @@
 #include <fstream>
 #include <iostream>
 
+#include "display/signal_reader.h"
 #include "common.h"
+#include "report/stats_json.h"
 #include "display/monitor.h"
 #include "ref/pipeline.h"
 #include "display/scanout.h"
@@ -57,7 +59,7 @@ struct SignalFile {
   void close() {
     w->close();
     if (vcd_path == path) return;
-    const std::string cmd = "vcd2fst '" + vcd_path + "' '" + path + "' > /dev/null";
+    const std::string cmd = "vcd2fst " + shell_quote(vcd_path) + " " + shell_quote(path) + " > /dev/null";
     const int rc = std::system(cmd.c_str());
     std::remove(vcd_path.c_str());
     if (rc != 0) throw std::runtime_error(path + ": vcd2fst failed (install gtkwave, or write .vcd)");
@@ -163,7 +165,7 @@ void register_scanout(CLI::App& app) {
         {"dac", {{"bits", dac.config().bits}, {"full_scale_volts", dac.config().full_scale_volts},
                  {"inl_lsb", dac.config().inl_lsb}, {"dnl_lsb", dac.config().dnl_lsb},
                  {"lut", cfg.get_string("dac.lut")}}},
-        {"framebuffer_crc32", rstats.framebuffer_crc32}});
+        {"framebuffer_crc32", crc32_hex(rstats.framebuffer_crc32)}});
     if (!deadline.is_null()) j["deadline"] = deadline;
     if (!stats_path.empty()) write_json(stats_path, j);
     if (!quiet) {

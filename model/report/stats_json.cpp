@@ -1,7 +1,15 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "report/stats_json.h"
 
+#include <cstdio>
+
 namespace rastsim {
+
+std::string crc32_hex(uint32_t crc) {
+  char hex[9];
+  std::snprintf(hex, sizeof hex, "%08x", crc);
+  return hex;
+}
 
 nlohmann::json to_json(const RenderStats& s) {
   return {
@@ -19,7 +27,7 @@ nlohmann::json to_json(const RenderStats& s) {
       {"pixel_tests", s.traversal.pixel_tests},
       {"fragments", s.traversal.fragments},
       {"fragments_passed", s.fragments_passed},
-      {"framebuffer_crc32", s.framebuffer_crc32},
+      {"framebuffer_crc32", crc32_hex(s.framebuffer_crc32)},
       {"wall_seconds", s.wall_seconds},
   };
 }
