@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Recorded signal -> virtual monitor (model/ref/signal_reader.h): the panel preset
+// Recorded signal -> virtual monitor (model/display/signal_reader.h): the panel preset
 // scanned out to a VCD and decoded from the file bit for bit; a shifted hsync edge
 // edited into the file is named; malformed files give "file:line: what"; an RTL-style
 // trace (Verilator names, a clock, codes only) decodes the same; FST through fst2vcd.
