@@ -51,6 +51,16 @@ struct ScanoutOptions {
 };
 void run_scanout_command(const ScanoutOptions& o);
 
+// `rastsim sweep` as a plain function: base config, scenes, --set arguments, CSV path,
+// simulations run at once.
+struct SweepOptions {
+  ConfigOptions base;
+  std::vector<std::string> scenes, set_args;
+  std::string out_path;
+  unsigned jobs = 1;
+};
+void run_sweep_command(SweepOptions o);
+
 // Each subcommand registers itself; main() calls these in order.
 void register_config(CLI::App& app);
 void register_render(CLI::App& app);
