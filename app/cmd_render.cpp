@@ -45,13 +45,11 @@ void register_render(CLI::App& app) {
     j["scene"] = scene_path;
     if (!stats_path.empty()) write_json(stats_path, j);
     if (!quiet) {
-      char crc[16];
-      std::snprintf(crc, sizeof crc, "%08x", stats.framebuffer_crc32);
       std::cout << "render: " << stats.triangles_in << " triangles (" << stats.triangles_culled << " culled), "
                 << stats.traversal.tiles_visited << " tiles (" << stats.traversal.tiles_rejected << " rejected, "
                 << stats.traversal.tiles_accepted << " accepted, " << stats.traversal.tiles_partial
                 << " partial), " << stats.traversal.pixel_tests << " pixel tests, " << stats.traversal.fragments
-                << " fragments, crc32 " << crc << ", " << stats.wall_seconds << " s\n";
+                << " fragments, crc32 " << crc32_hex(stats.framebuffer_crc32) << ", " << stats.wall_seconds << " s\n";
     }
   });
 }

@@ -7,7 +7,9 @@
 #include <fstream>
 #include <iostream>
 
+#include "display/signal_reader.h"
 #include "common.h"
+#include "report/stats_json.h"
 #include "display/monitor.h"
 #include "ref/pipeline.h"
 #include "display/scanout.h"
@@ -57,7 +59,7 @@ struct SignalFile {
   void close() {
     w->close();
     if (vcd_path == path) return;
-    const std::string cmd = "vcd2fst '" + vcd_path + "' '" + path + "' > /dev/null";
+    const std::string cmd = "vcd2fst " + shell_quote(vcd_path) + " " + shell_quote(path) + " > /dev/null";
     const int rc = std::system(cmd.c_str());
     std::remove(vcd_path.c_str());
     if (rc != 0) throw std::runtime_error(path + ": vcd2fst failed (install gtkwave, or write .vcd)");
@@ -66,126 +68,165 @@ struct SignalFile {
 
 }  // namespace
 
-void register_scanout(CLI::App& app) {
-  auto* cmd = app.add_subcommand(
-      "scanout", "Render a scene, scan it out through the video DAC, decode it with the virtual monitor");
-  static ConfigOptions opts;
-  static std::string scene_path, out_path, signal_path, stats_path, lines_arg;
-  static bool quiet = false;
-  static int64_t raster_cycles = -1;
-  static bool timed = false;
-  static int signal_frames = 1;
-  add_config_options(cmd, opts);
-  cmd->add_option("--scene,-s", scene_path, "Scene: a trace (.trace) or a Wavefront OBJ (.obj)")
+namespace {
+
+// The part of the signal --signal writes: [first, first + count) pixel clocks.
+struct SignalWindow {
+  long long first = 0, count = 0;
+};
+
+SignalWindow signal_window(const VideoTiming& t, const std::string& lines_arg, int signal_frames) {
+  SignalWindow w{0, signal_frames * t.pixels_per_frame()};
+  if (lines_arg.empty()) return w;
+  int a = 0, n = 0;
+  if (std::sscanf(lines_arg.c_str(), "%d:%d", &a, &n) != 2 || a < 0 || n < 1 || a + n > t.v_total)
+    throw std::runtime_error("--signal-lines " + lines_arg + ": expected FIRST:COUNT within the " +
+                             std::to_string(t.v_total) + " lines of a frame");
+  return {static_cast<long long>(a) * t.h_total, static_cast<long long>(n) * t.h_total};
+}
+
+// Scans `scanout` out into `sink`: untimed (two frames at least: a picture lies between
+// two vsync leading edges), or timed from a raster finish time. Returns the timed
+// run's deadline report, null when untimed.
+nlohmann::json scan_out(const ScanoutOptions& o, const Config& cfg, int64_t raster_cycles, const Scanout& scanout,
+                        const SampleSink& sink) {
+  if (raster_cycles < 0) {
+    scanout.run(std::max(2, o.signal_frames), sink);
+    return nullptr;
+  }
+  // Timed: vertical blanking, then the frame (one vsync pulse each side of it).
+  const auto p = sc::scanout_params_from_config(cfg, cfg.get_float("clock.core_mhz"));
+  nlohmann::json deadline = sc::run_scanout(p, static_cast<uint64_t>(raster_cycles), &scanout, sink).to_json();
+  deadline["buffering"] = cfg.get_string("scanout.buffering");
+  deadline["core_mhz"] = cfg.get_float("clock.core_mhz");
+  return deadline;
+}
+
+// The decoded frame against the framebuffer's visible corner (the active area).
+struct DecodeCheck {
+  long long mismatched = 0;
+  int max_err = 0;
+  bool same = false;
+};
+
+DecodeCheck compare_decoded(const MonitorResult& r, const Framebuffer& fb, const VideoTiming& t) {
+  DecodeCheck d;
+  for (int y = 0; y < t.v_active && r.locked; ++y)
+    for (int x = 0; x < t.h_active; ++x) {
+      bool diff = false;
+      for (int c = 0; c < 3; ++c) {
+        const int e = std::abs(int(r.image.pixel(x, y)[c]) - int(fb.pixel(x, y)[c]));
+        d.max_err = std::max(d.max_err, e);
+        diff |= e != 0;
+      }
+      d.mismatched += diff;
+    }
+  d.same = r.locked && d.mismatched == 0;
+  return d;
+}
+
+nlohmann::json scanout_stats(const ScanoutOptions& o, const Config& cfg, const VideoTiming& t, const Dac& dac,
+                             const MonitorResult& r, const DecodeCheck& d, uint32_t crc,
+                             const nlohmann::json& deadline) {
+  nlohmann::json j = measured_json(r);
+  j.update({
+      {"config", cfg.source_name()}, {"scene", o.scene_path},
+      {"decoded_equals_framebuffer", d.same}, {"mismatched_pixels", d.mismatched}, {"max_code_error", d.max_err},
+      {"configured", timing_json(t)},
+      {"dac", {{"bits", dac.config().bits}, {"full_scale_volts", dac.config().full_scale_volts},
+               {"inl_lsb", dac.config().inl_lsb}, {"dnl_lsb", dac.config().dnl_lsb},
+               {"lut", cfg.get_string("dac.lut")}}},
+      {"framebuffer_crc32", crc32_hex(crc)}});
+  if (!deadline.is_null()) j["deadline"] = deadline;
+  return j;
+}
+
+void print_summary(const VideoTiming& t, const MonitorResult& r, const DecodeCheck& d, const nlohmann::json& deadline) {
+  const VideoTiming& m = r.measured;
+  char buf[512];
+  std::snprintf(buf, sizeof buf,
+                "scanout: %s, configured line %.3f kHz, frame %.2f Hz; measured %dx%d total, hsync %d px, "
+                "vsync %d lines -> line %.3f kHz, frame %.2f Hz; decoded frame %s the framebuffer%s\n",
+                describe_timing(t).substr(0, describe_timing(t).find(':')).c_str(), t.line_rate_hz() / 1e3,
+                t.frame_rate_hz(), m.h_total, m.v_total, m.h_sync, m.v_sync, r.line_rate_hz / 1e3,
+                r.frame_rate_hz, d.same ? "equals" : "differs from",
+                d.same ? "" : (" (" + std::to_string(d.mismatched) + " pixels, max error " + std::to_string(d.max_err) + ")").c_str());
+  std::cout << buf;
+  if (!deadline.is_null())
+    std::cout << "scanout: raster finishes at " << deadline["frame_time_cycles"] << " cycles, deadline "
+              << deadline["deadline_cycles"] << " cycles (" << deadline["buffering"].get<std::string>()
+              << " buffering): " << (deadline["frame_deadline_met"].get<bool>() ? "met" : "MISSED") << ", "
+              << deadline["underrun_lines"] << " underrun lines\n";
+}
+
+void add_scanout_options(CLI::App* cmd, ScanoutOptions& o) {
+  add_config_options(cmd, o.config);
+  cmd->add_option("--scene,-s", o.scene_path, "Scene: a trace (.trace) or a Wavefront OBJ (.obj)")
       ->required()
       ->check(CLI::ExistingFile);
-  cmd->add_option("-o,--output", out_path, "Decoded frame to write: .png or .ppm")->required();
-  cmd->add_option("--signal", signal_path,
+  cmd->add_option("-o,--output", o.out_path, "Decoded frame to write: .png or .ppm")->required();
+  cmd->add_option("--signal", o.signal_path,
                   "Write the video signal (hsync, vsync, blank, codes, levels in V) of the first frame (see --signal-frames): .vcd or .fst");
-  auto* lines_opt = cmd->add_option("--signal-lines", lines_arg, "Only lines FIRST..FIRST+COUNT-1 of the first frame in --signal")
+  auto* lines_opt = cmd->add_option("--signal-lines", o.lines_arg, "Only lines FIRST..FIRST+COUNT-1 of the first frame in --signal")
       ->type_name("FIRST:COUNT");
-  cmd->add_option("--signal-frames", signal_frames,
+  cmd->add_option("--signal-frames", o.signal_frames,
                   "Write the first N frames in --signal (default 1); `rastsim monitor` needs 2 to decode a frame "
                   "(with --raster-cycles: at most the timed run)")
       ->check(CLI::PositiveNumber)
       ->excludes(lines_opt);
-  cmd->add_option("--stats", stats_path, "Write configured and measured timing and the decode check as JSON ('-' for stdout)");
-  auto* cycles_opt = cmd->add_option("--raster-cycles", raster_cycles,
+  cmd->add_option("--stats", o.stats_path, "Write configured and measured timing and the decode check as JSON ('-' for stdout)");
+  auto* cycles_opt = cmd->add_option("--raster-cycles", o.raster_cycles,
                   "Raster pipeline finish time in core cycles (`rastsim simulate` stats: cycles): run the timed "
                   "scan-out (model/sc) from the start of vertical blanking at clock.core_mhz, report the deadline "
                   "check and decode its signal, underruns included")
       ->check(CLI::NonNegativeNumber);
-  cmd->add_flag("--timed", timed,
+  cmd->add_flag("--timed", o.timed,
                 "Take the raster finish time from the SystemC pipeline on this scene and config (a "
                 "`rastsim simulate` child process), then run the timed scan-out as with --raster-cycles")
       ->excludes(cycles_opt);
-  cmd->add_flag("--quiet,-q", quiet, "Print only monitor errors");
-  cmd->callback([] {
-    const Config cfg = load_config(opts);
-    const VideoTiming t = video_timing_from_config(cfg);  // faults in the timing keys stop here
-    const Dac dac(dac_config_from_config(cfg));
-    const Scene scene = load_scene(scene_path, obj_placement(cfg));
-    RenderStats rstats;
-    const Framebuffer fb = render_scene(scene, raster_state_from_config(cfg), rstats);
+  cmd->add_flag("--quiet,-q", o.quiet, "Print only monitor errors");
+}
 
-    long long first = 0, count = signal_frames * t.pixels_per_frame();
-    if (!lines_arg.empty()) {
-      int a = 0, n = 0;
-      if (std::sscanf(lines_arg.c_str(), "%d:%d", &a, &n) != 2 || a < 0 || n < 1 || a + n > t.v_total)
-        throw std::runtime_error("--signal-lines " + lines_arg + ": expected FIRST:COUNT within the " +
-                                 std::to_string(t.v_total) + " lines of a frame");
-      first = static_cast<long long>(a) * t.h_total, count = static_cast<long long>(n) * t.h_total;
-    }
-    std::unique_ptr<SignalFile> sig;
-    if (!signal_path.empty()) sig = std::make_unique<SignalFile>(signal_path, t, dac.config().bits, first, count);
-    Monitor mon(t, dac.config());
-    auto sink = [&](const VideoSample& s) {
-      mon.push(s);
-      if (sig) sig->w->push(s);
-    };
-    const Scanout scanout(t, dac, fb);
-    if (timed) raster_cycles = simulate_in_child(opts, scene_path).at("cycles").get<int64_t>();
-    nlohmann::json deadline;
-    if (raster_cycles >= 0) {
-      // Timed: vertical blanking, then the frame (one vsync pulse each side of it).
-      const auto p = sc::scanout_params_from_config(cfg, cfg.get_float("clock.core_mhz"));
-      deadline = sc::run_scanout(p, static_cast<uint64_t>(raster_cycles), &scanout, sink).to_json();
-      deadline["buffering"] = cfg.get_string("scanout.buffering");
-      deadline["core_mhz"] = cfg.get_float("clock.core_mhz");
-    } else {
-      scanout.run(std::max(2, signal_frames), sink);  // two frames: a picture lies between two vsync leading edges
-    }
-    if (sig) sig->close();
-    const MonitorResult r = mon.finish();
-    write_image(r.image, out_path);
+}  // namespace
 
-    // Compare with the framebuffer's visible corner (the active area).
-    long long mismatched = 0;
-    int max_err = 0;
-    bool same = r.locked;
-    for (int y = 0; y < t.v_active && r.locked; ++y)
-      for (int x = 0; x < t.h_active; ++x) {
-        bool diff = false;
-        for (int c = 0; c < 3; ++c) {
-          const int e = std::abs(int(r.image.pixel(x, y)[c]) - int(fb.pixel(x, y)[c]));
-          max_err = std::max(max_err, e);
-          diff |= e != 0;
-        }
-        mismatched += diff;
-      }
-    same = same && mismatched == 0;
-    const VideoTiming& m = r.measured;
-    nlohmann::json j = measured_json(r);
-    j.update({
-        {"config", cfg.source_name()}, {"scene", scene_path},
-        {"decoded_equals_framebuffer", same}, {"mismatched_pixels", mismatched}, {"max_code_error", max_err},
-        {"configured", timing_json(t)},
-        {"dac", {{"bits", dac.config().bits}, {"full_scale_volts", dac.config().full_scale_volts},
-                 {"inl_lsb", dac.config().inl_lsb}, {"dnl_lsb", dac.config().dnl_lsb},
-                 {"lut", cfg.get_string("dac.lut")}}},
-        {"framebuffer_crc32", rstats.framebuffer_crc32}});
-    if (!deadline.is_null()) j["deadline"] = deadline;
-    if (!stats_path.empty()) write_json(stats_path, j);
-    if (!quiet) {
-      char buf[512];
-      std::snprintf(buf, sizeof buf,
-                    "scanout: %s, configured line %.3f kHz, frame %.2f Hz; measured %dx%d total, hsync %d px, "
-                    "vsync %d lines -> line %.3f kHz, frame %.2f Hz; decoded frame %s the framebuffer%s\n",
-                    describe_timing(t).substr(0, describe_timing(t).find(':')).c_str(), t.line_rate_hz() / 1e3,
-                    t.frame_rate_hz(), m.h_total, m.v_total, m.h_sync, m.v_sync, r.line_rate_hz / 1e3,
-                    r.frame_rate_hz, same ? "equals" : "differs from",
-                    same ? "" : (" (" + std::to_string(mismatched) + " pixels, max error " + std::to_string(max_err) + ")").c_str());
-      std::cout << buf;
-      if (!deadline.is_null())
-        std::cout << "scanout: raster finishes at " << deadline["frame_time_cycles"] << " cycles, deadline "
-                  << deadline["deadline_cycles"] << " cycles (" << deadline["buffering"].get<std::string>()
-                  << " buffering): " << (deadline["frame_deadline_met"].get<bool>() ? "met" : "MISSED") << ", "
-                  << deadline["underrun_lines"] << " underrun lines\n";
-    }
-    std::cout.flush();  // the summary first, then the monitor's messages
-    for (const auto& e : r.errors) std::cerr << "scanout: monitor: " << e << "\n";
-    if (!r.ok()) throw std::runtime_error("virtual monitor: " + std::to_string(r.errors.size()) + " timing errors (above)");
-  });
+void run_scanout_command(const ScanoutOptions& o) {
+  const Config cfg = load_config(o.config);
+  const VideoTiming t = video_timing_from_config(cfg);  // faults in the timing keys stop here
+  const Dac dac(dac_config_from_config(cfg));
+  const Scene scene = load_scene(o.scene_path, obj_placement(cfg));
+  RenderStats rstats;
+  const Framebuffer fb = render_scene(scene, raster_state_from_config(cfg), rstats);
+
+  const SignalWindow win = signal_window(t, o.lines_arg, o.signal_frames);
+  std::unique_ptr<SignalFile> sig;
+  if (!o.signal_path.empty()) sig = std::make_unique<SignalFile>(o.signal_path, t, dac.config().bits, win.first, win.count);
+  Monitor mon(t, dac.config());
+  auto sink = [&](const VideoSample& s) {
+    mon.push(s);
+    if (sig) sig->w->push(s);
+  };
+  const Scanout scanout(t, dac, fb);
+  const int64_t raster_cycles =
+      o.timed ? simulate_in_child(o.config, o.scene_path).at("cycles").get<int64_t>() : o.raster_cycles;
+  const nlohmann::json deadline = scan_out(o, cfg, raster_cycles, scanout, sink);
+  if (sig) sig->close();
+  const MonitorResult r = mon.finish();
+  write_image(r.image, o.out_path);
+
+  const DecodeCheck d = compare_decoded(r, fb, t);
+  if (!o.stats_path.empty()) write_json(o.stats_path, scanout_stats(o, cfg, t, dac, r, d, rstats.framebuffer_crc32, deadline));
+  if (!o.quiet) print_summary(t, r, d, deadline);
+  std::cout.flush();  // the summary first, then the monitor's messages
+  for (const auto& e : r.errors) std::cerr << "scanout: monitor: " << e << "\n";
+  if (!r.ok()) throw std::runtime_error("virtual monitor: " + std::to_string(r.errors.size()) + " timing errors (above)");
+}
+
+void register_scanout(CLI::App& app) {
+  auto* cmd = app.add_subcommand(
+      "scanout", "Render a scene, scan it out through the video DAC, decode it with the virtual monitor");
+  static ScanoutOptions opts;
+  add_scanout_options(cmd, opts);
+  cmd->callback([] { run_scanout_command(opts); });
 
   auto* exp = app.add_subcommand("export-rtl-scanout",
                                  "Write the scan-out RTL's parameters (Verilog localparams) from a config");

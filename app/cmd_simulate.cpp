@@ -6,6 +6,7 @@
 #include <iostream>
 
 #include "common.h"
+#include "report/stats_json.h"
 #include "sc/scanout.h"
 #include "sc/raster_pipeline.h"
 #include "scene/scene_io.h"
@@ -69,12 +70,10 @@ void register_simulate(CLI::App& app) {
       const sc::StageReport* bottleneck = &r.stages.front();
       for (const auto& s : r.stages)
         if (s.busy > bottleneck->busy) bottleneck = &s;
-      char crc[16];
-      std::snprintf(crc, sizeof crc, "%08x", r.render.framebuffer_crc32);
       std::cout << "simulate: " << r.cycles << " cycles (lower bound " << r.cycles_lower_bound << ", busiest stage "
                 << bottleneck->name << " " << bottleneck->busy << "), " << r.render.triangles_in << " triangles, "
                 << r.render.traversal.tiles_visited << " tiles, " << r.render.traversal.fragments
-                << " fragments, crc32 " << crc << ", " << r.sim_wall_seconds << " s wall, "
+                << " fragments, crc32 " << crc32_hex(r.render.framebuffer_crc32) << ", " << r.sim_wall_seconds << " s wall, "
                 << j["simulated_cycles_per_second"].get<double>() << " cycles/s\n";
     }
   });

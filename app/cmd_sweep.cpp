@@ -96,128 +96,150 @@ class Progress {
   bool tty_;
 };
 
+// The --set arguments: KEY=V1,V2,... become axes; KEY=V joins the base config's overrides.
+std::vector<Axis> split_axes(const std::vector<std::string>& set_args, ConfigOptions& base) {
+  std::vector<Axis> axes;
+  for (const auto& s : set_args) {
+    Axis a = parse_axis(s);
+    if (a.values.size() == 1) {
+      base.sets.push_back(a.key + "=" + a.values[0]);
+      continue;
+    }
+    axes.push_back(std::move(a));
+  }
+  return axes;
+}
+
+// Every swept value validated up front, so a typo fails before anything runs.
+void validate_axes(const Config& cfg, const std::vector<Axis>& axes) {
+  for (const auto& a : axes)
+    for (const auto& v : a.values) {
+      Config c = cfg;
+      c.apply_override(a.key + "=" + v);
+      c.validate();
+    }
+}
+
+// The cross product, scene-major; each point's stats and stderr files live in `tmp`.
+std::vector<Point> make_points(const std::vector<std::string>& scenes, const std::vector<Axis>& axes,
+                               const std::filesystem::path& tmp) {
+  std::vector<Point> points;
+  for (const auto& scene : scenes) {
+    std::vector<size_t> idx(axes.size(), 0);
+    for (;;) {
+      Point p;
+      p.scene = scene;
+      for (size_t i = 0; i < axes.size(); ++i) p.values.push_back(axes[i].values[idx[i]]);
+      const std::string n = std::to_string(points.size());
+      p.stats_path = (tmp / (n + ".json")).string();
+      p.err_path = (tmp / (n + ".err")).string();
+      points.push_back(std::move(p));
+      size_t i = axes.size();
+      while (i > 0 && ++idx[i - 1] == axes[i - 1].values.size()) idx[--i] = 0;
+      if (i == 0) break;
+    }
+  }
+  return points;
+}
+
+// Runs every point, `jobs` child processes at once; returns how many failed.
+size_t run_points(std::vector<Point>& points, const std::vector<Axis>& axes, const ConfigOptions& base,
+                  unsigned jobs) {
+  Progress progress(points.size());
+  std::map<pid_t, size_t> running;
+  size_t next = 0, done = 0, failed = 0;
+  while (done < points.size()) {
+    while (next < points.size() && running.size() < jobs) {
+      running[spawn(points[next], axes, base)] = next;
+      ++next;
+    }
+    int status = 0;
+    const pid_t pid = waitpid(-1, &status, 0);
+    if (pid < 0) throw std::runtime_error("sweep: waitpid failed");
+    const auto it = running.find(pid);
+    if (it == running.end()) continue;
+    Point& p = points[it->second];
+    running.erase(it);
+    ++done;
+    p.status = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    if (p.status == 0) {
+      std::ifstream is(p.stats_path);
+      p.stats = nlohmann::json::parse(is);
+    } else {
+      ++failed;
+      if (progress.tty()) std::cerr << "\n";
+      std::cerr << "sweep: point " << describe(p, axes) << " failed: " << last_line(p.err_path) << "\n";
+    }
+    progress.update(done, failed, describe(p, axes) + (p.status == 0 ? " ok" : " FAILED"));
+  }
+  return failed;
+}
+
+// Columns: scene, swept keys, status, then every stat (first successful run's order).
+void write_csv(const std::string& out_path, const std::vector<Point>& points, const std::vector<Axis>& axes) {
+  std::vector<std::string> stat_keys;
+  for (const auto& p : points)
+    if (p.status == 0) {
+      std::vector<std::pair<std::string, nlohmann::json>> flat;
+      flatten(p.stats, "", flat);
+      for (const auto& [k, v] : flat)
+        if (k != "scene") stat_keys.push_back(k);
+      break;
+    }
+  std::ofstream os(out_path);
+  if (!os) throw std::runtime_error(out_path + ": cannot open for writing");
+  os << "scene";
+  for (const auto& a : axes) os << "," << csv_field(a.key);
+  os << ",status";
+  for (const auto& k : stat_keys) os << "," << csv_field(k);
+  os << "\n";
+  for (const auto& p : points) {
+    os << csv_field(p.scene);
+    for (const auto& v : p.values) os << "," << csv_field(v);
+    os << "," << csv_field(p.status == 0 ? "ok" : last_line(p.err_path));
+    std::map<std::string, nlohmann::json> flat_map;
+    if (p.status == 0) {
+      std::vector<std::pair<std::string, nlohmann::json>> flat;
+      flatten(p.stats, "", flat);
+      flat_map.insert(flat.begin(), flat.end());
+    }
+    for (const auto& k : stat_keys) os << "," << (flat_map.count(k) ? csv_value(flat_map[k]) : "");
+    os << "\n";
+  }
+}
+
 }  // namespace
+
+void run_sweep_command(SweepOptions o) {
+  std::vector<Axis> axes = split_axes(o.set_args, o.base);
+  validate_axes(load_config(o.base), axes);
+  const auto tmp = std::filesystem::temp_directory_path() / ("rastsim-sweep-" + std::to_string(getpid()));
+  std::filesystem::create_directories(tmp);
+  std::vector<Point> points = make_points(o.scenes, axes, tmp);
+  const size_t failed = run_points(points, axes, o.base, o.jobs);
+  write_csv(o.out_path, points, axes);
+  std::filesystem::remove_all(tmp);
+  std::cerr << "sweep: wrote " << points.size() << " rows to " << o.out_path << "\n";
+  if (failed) throw std::runtime_error(std::to_string(failed) + " of " + std::to_string(points.size()) +
+                                       " sweep points failed (see above)");
+}
 
 void register_sweep(CLI::App& app) {
   auto* cmd = app.add_subcommand(
       "sweep", "Simulate the cross product of scenes and config values in parallel; one CSV row a run");
-  static ConfigOptions base;
-  static std::vector<std::string> scenes, set_args;
-  static std::string out_path;
-  static unsigned jobs = std::max(1u, std::thread::hardware_concurrency());
-  cmd->add_option("--config,-c", base.config_path, "Base architecture config (TOML)")->check(CLI::ExistingFile);
-  cmd->add_option("--scene,-s", scenes, "Scene (repeatable): a trace or an OBJ")->required()->check(CLI::ExistingFile);
-  cmd->add_option("--set", set_args,
+  static SweepOptions o;
+  o.jobs = std::max(1u, std::thread::hardware_concurrency());
+  cmd->add_option("--config,-c", o.base.config_path, "Base architecture config (TOML)")->check(CLI::ExistingFile);
+  cmd->add_option("--scene,-s", o.scenes, "Scene (repeatable): a trace or an OBJ")->required()->check(CLI::ExistingFile);
+  cmd->add_option("--set", o.set_args,
                   "KEY=V1,V2,... sweeps a key over values (repeatable; the sweep is the cross product); "
                   "KEY=V fixes one")
       ->type_name("KEY=VALUES")
       ->allow_extra_args(false);
-  cmd->add_option("--out,-o", out_path, "CSV to write: scene, each swept key, then every stat")->required();
-  cmd->add_option("--jobs,-j", jobs, "Simulations run at once (default: the number of cores)")
+  cmd->add_option("--out,-o", o.out_path, "CSV to write: scene, each swept key, then every stat")->required();
+  cmd->add_option("--jobs,-j", o.jobs, "Simulations run at once (default: the number of cores)")
       ->check(CLI::Range(1u, 1024u));
-  cmd->callback([] {
-    // Validate every value up front, so a typo fails before anything runs.
-    std::vector<Axis> axes;
-    for (const auto& s : set_args) {
-      Axis a = parse_axis(s);
-      if (a.values.size() == 1) {
-        base.sets.push_back(a.key + "=" + a.values[0]);
-        continue;
-      }
-      axes.push_back(std::move(a));
-    }
-    const Config cfg = load_config(base);
-    for (const auto& a : axes)
-      for (const auto& v : a.values) {
-        Config c = cfg;
-        c.apply_override(a.key + "=" + v);
-        c.validate();
-      }
-
-    const auto tmp = std::filesystem::temp_directory_path() /
-                     ("rastsim-sweep-" + std::to_string(getpid()));
-    std::filesystem::create_directories(tmp);
-    std::vector<Point> points;
-    for (const auto& scene : scenes) {
-      std::vector<size_t> idx(axes.size(), 0);
-      for (;;) {
-        Point p;
-        p.scene = scene;
-        for (size_t i = 0; i < axes.size(); ++i) p.values.push_back(axes[i].values[idx[i]]);
-        const std::string n = std::to_string(points.size());
-        p.stats_path = (tmp / (n + ".json")).string();
-        p.err_path = (tmp / (n + ".err")).string();
-        points.push_back(std::move(p));
-        size_t i = axes.size();
-        while (i > 0 && ++idx[i - 1] == axes[i - 1].values.size()) idx[--i] = 0;
-        if (i == 0) break;
-      }
-    }
-
-    Progress progress(points.size());
-    std::map<pid_t, size_t> running;
-    size_t next = 0, done = 0, failed = 0;
-    while (done < points.size()) {
-      while (next < points.size() && running.size() < jobs) {
-        running[spawn(points[next], axes, base)] = next;
-        ++next;
-      }
-      int status = 0;
-      const pid_t pid = waitpid(-1, &status, 0);
-      if (pid < 0) throw std::runtime_error("sweep: waitpid failed");
-      const auto it = running.find(pid);
-      if (it == running.end()) continue;
-      Point& p = points[it->second];
-      running.erase(it);
-      ++done;
-      p.status = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-      if (p.status == 0) {
-        std::ifstream is(p.stats_path);
-        p.stats = nlohmann::json::parse(is);
-      } else {
-        ++failed;
-        if (progress.tty()) std::cerr << "\n";
-        std::cerr << "sweep: point " << describe(p, axes) << " failed: " << last_line(p.err_path) << "\n";
-      }
-      progress.update(done, failed, describe(p, axes) + (p.status == 0 ? " ok" : " FAILED"));
-    }
-
-    // Columns: scene, swept keys, status, then every stat (first successful run's order).
-    std::vector<std::string> stat_keys;
-    for (const auto& p : points)
-      if (p.status == 0) {
-        std::vector<std::pair<std::string, nlohmann::json>> flat;
-        flatten(p.stats, "", flat);
-        for (const auto& [k, v] : flat)
-          if (k != "scene") stat_keys.push_back(k);
-        break;
-      }
-    std::ofstream os(out_path);
-    if (!os) throw std::runtime_error(out_path + ": cannot open for writing");
-    os << "scene";
-    for (const auto& a : axes) os << "," << csv_field(a.key);
-    os << ",status";
-    for (const auto& k : stat_keys) os << "," << csv_field(k);
-    os << "\n";
-    for (const auto& p : points) {
-      os << csv_field(p.scene);
-      for (const auto& v : p.values) os << "," << csv_field(v);
-      os << "," << csv_field(p.status == 0 ? "ok" : last_line(p.err_path));
-      std::map<std::string, nlohmann::json> flat_map;
-      if (p.status == 0) {
-        std::vector<std::pair<std::string, nlohmann::json>> flat;
-        flatten(p.stats, "", flat);
-        flat_map.insert(flat.begin(), flat.end());
-      }
-      for (const auto& k : stat_keys) os << "," << (flat_map.count(k) ? csv_value(flat_map[k]) : "");
-      os << "\n";
-    }
-    os.close();
-    std::filesystem::remove_all(tmp);
-    std::cerr << "sweep: wrote " << points.size() << " rows to " << out_path << "\n";
-    if (failed) throw std::runtime_error(std::to_string(failed) + " of " + std::to_string(points.size()) +
-                                         " sweep points failed (see above)");
-  });
+  cmd->callback([] { run_sweep_command(o); });
 }
 
 }  // namespace rastsim::app

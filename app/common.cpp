@@ -33,15 +33,7 @@ Config load_config(const ConfigOptions& o) {
   return cfg;
 }
 
-ObjPlacement obj_placement(const Config& cfg) {
-  ObjPlacement p;
-  p.viewport_width = static_cast<int>(cfg.get_int("display.width"));
-  p.viewport_height = static_cast<int>(cfg.get_int("display.height"));
-  p.yaw_deg = cfg.get_float("scene.obj_yaw_deg");
-  p.pitch_deg = cfg.get_float("scene.obj_pitch_deg");
-  p.fill = cfg.get_float("scene.obj_fill");
-  return p;
-}
+ObjPlacement obj_placement(const Config& cfg) { return obj_placement_from_config(cfg); }
 
 void write_json(const std::string& path, const nlohmann::json& j) {
   if (path == "-") {

@@ -40,6 +40,27 @@ std::string last_line(const std::string& path);
 // returns its stats JSON; throws with the child's error line when it fails.
 nlohmann::json simulate_in_child(const ConfigOptions& o, const std::string& scene);
 
+// `rastsim scanout` as a plain function: every option of the command, then the run.
+struct ScanoutOptions {
+  ConfigOptions config;
+  std::string scene_path, out_path, signal_path, stats_path, lines_arg;
+  bool quiet = false;
+  int64_t raster_cycles = -1;  // < 0: untimed scan-out
+  bool timed = false;          // take raster_cycles from a `rastsim simulate` child
+  int signal_frames = 1;
+};
+void run_scanout_command(const ScanoutOptions& o);
+
+// `rastsim sweep` as a plain function: base config, scenes, --set arguments, CSV path,
+// simulations run at once.
+struct SweepOptions {
+  ConfigOptions base;
+  std::vector<std::string> scenes, set_args;
+  std::string out_path;
+  unsigned jobs = 1;
+};
+void run_sweep_command(SweepOptions o);
+
 // Each subcommand registers itself; main() calls these in order.
 void register_config(CLI::App& app);
 void register_render(CLI::App& app);

@@ -18,6 +18,7 @@
 #include <utility>
 #include <vector>
 
+#include "config/raster_state_config.h"
 #include "ref/pipeline.h"
 #include "ref/rop.h"
 #include "ref/tri_setup.h"
@@ -46,7 +47,7 @@ SceneVertex scene_vertex(const V& v) {
 }
 
 RasterState state(int w, int h) {
-  RasterState st;  // s7.16, top-left, no culling, depth always
+  RasterState st = raster_state_from_config(Config{});
   st.fb_width = st.viewport_width = w;
   st.fb_height = st.viewport_height = h;
   st.tile_size = 4;

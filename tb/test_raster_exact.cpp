@@ -29,6 +29,7 @@
 #include <string>
 #include <vector>
 
+#include "config/raster_state_config.h"
 #include "ref/tri_setup.h"
 #include "ref/coarse_raster.h"
 
@@ -155,7 +156,7 @@ TEST_P(RasterExact, CoverageMatchesReferenceForEveryTileSize) {
   const int64_t one = int64_t{1} << F, half = one / 2;
   const int64_t ox = c.vw / 2, oy = c.vh / 2;  // viewport centre, rounded down
 
-  RasterState st;
+  RasterState st = raster_state_from_config(Config{});
   st.coord_format = c.fmt;
   st.fill_rule = c.rule;
   st.out_of_range = OutOfRange::Cull;

@@ -148,14 +148,14 @@ TEST(SceneFuzz, MutatedTracesAndObjsGiveSceneOrSceneError) {
       "mtllib cube.mtl\nv 0 0 0\nv 1 0 0 0.5 0.5 0.5\nv 0 1 0\nv 1 1 0 1\nvt 0 0\nvn 0 0 1\n"
       "usemtl blue\nf 1/1/1 2/1/1 3/1/1\nf -1//-1 -2//1 -3//1\ng x\ns 1\nf 1 2 4 3\n"};
   for (const auto& t : traces) ASSERT_NO_THROW(parse_trace(t, "seed.trace"));
-  for (const auto& t : objs) ASSERT_NO_THROW(parse_obj(t, "seed.obj", ObjPlacement{}, kData));
+  for (const auto& t : objs) ASSERT_NO_THROW(parse_obj(t, "seed.obj", obj_placement_from_config(Config{}), kData));
 
   FuzzCounts tn, on;
   fuzz(traces, 8000, rng, seed, [](const std::string& t, std::mt19937_64&) { return parse_trace(t, "fuzz.trace"); },
        tn);
   fuzz(objs, 5000, rng, seed,
        [](const std::string& t, std::mt19937_64& r) {
-         ObjPlacement p;  // placements vary too, within the config's ranges
+         ObjPlacement p = obj_placement_from_config(Config{});  // placements vary too, within the config's ranges
          p.yaw_deg = double(r() % 721) - 360;
          p.pitch_deg = double(r() % 181) - 90;
          p.fill = 0.01 + double(r() % 400) / 100;
@@ -180,7 +180,7 @@ TEST(SceneFuzz, ValidScenesRenderEndToEnd) {
     const Scene s = load_trace(std::string(RASTSIM_SOURCE_DIR) + "/traces/" + t + ".trace");
     EXPECT_NO_THROW(scene_test::render_default(s)) << t;
   }
-  EXPECT_NO_THROW(scene_test::render_default(load_obj(kData + "/cube.obj", ObjPlacement{})));
+  EXPECT_NO_THROW(scene_test::render_default(load_obj(kData + "/cube.obj", obj_placement_from_config(Config{}))));
 }
 
 }  // namespace

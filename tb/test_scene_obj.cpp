@@ -30,7 +30,7 @@ const std::string kData = RASTSIM_TEST_DATA;
 // Head-on, no rotation, 100x100, sphere spans the viewport: one object unit is
 // 50 / R pixels.
 ObjPlacement flat(int w = 100, int h = 100, double fill = 1.0) {
-  ObjPlacement p;
+  ObjPlacement p = obj_placement_from_config(Config{});
   p.viewport_width = w;
   p.viewport_height = h;
   p.yaw_deg = 0;
@@ -39,7 +39,7 @@ ObjPlacement flat(int w = 100, int h = 100, double fill = 1.0) {
   return p;
 }
 
-Scene parse(const std::string& text, const ObjPlacement& p = ObjPlacement{}) {
+Scene parse(const std::string& text, const ObjPlacement& p = obj_placement_from_config(Config{})) {
   return parse_obj(text, "m.obj", p, kData);
 }
 
@@ -160,7 +160,7 @@ TEST(SceneObj, PolygonsAreFannedFromTheFirstCorner) {
 
 TEST(SceneObj, WindingIsKeptOnScreen) {
   // CCW seen from +z (front-facing) must be CCW on screen: doubled y-down area < 0.
-  for (const ObjPlacement& p : {flat(), ObjPlacement{}}) {
+  for (const ObjPlacement& p : {flat(), obj_placement_from_config(Config{})}) {
     const Scene s = parse("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 3 2\n", p);
     const auto& front = face(s, 0).vertices;
     const auto& back = face(s, 1).vertices;
@@ -206,7 +206,7 @@ TEST(SceneObj, KdRoundsHalfUp) {
 
 // cube.obj: every index form, two materials; default placement yaw 30, pitch 20.
 TEST(SceneObj, CubeFileLoadsWithMaterials) {
-  const Scene s = load_obj(kData + "/cube.obj", ObjPlacement{});
+  const Scene s = load_obj(kData + "/cube.obj", obj_placement_from_config(Config{}));
   ASSERT_EQ(s.commands.size(), 8u);
   EXPECT_EQ(s.source, kData + "/cube.obj");
   // Shade 0.25 + 0.75 n_z with n_z of each face after the rotation:
@@ -237,7 +237,7 @@ TEST(SceneObj, CubeFileLoadsWithMaterials) {
 }
 
 TEST(SceneObj, CubeRendersWithBackFaceCulling) {
-  const Scene s = load_obj(kData + "/cube.obj", ObjPlacement{});
+  const Scene s = load_obj(kData + "/cube.obj", obj_placement_from_config(Config{}));
   RasterState st = raster_state_from_config(Config{});
   st.cull = CullMode::Back;
   st.depth_func = DepthFunc::Less;
@@ -251,7 +251,7 @@ TEST(SceneObj, CubeRendersWithBackFaceCulling) {
 
 TEST(SceneObj, LoadMissingFile) {
   try {
-    load_obj(kData + "/nope.obj", ObjPlacement{});
+    load_obj(kData + "/nope.obj", obj_placement_from_config(Config{}));
     FAIL() << "no error";
   } catch (const SceneError& e) {
     EXPECT_EQ(std::string(e.what()), kData + "/nope.obj: cannot open");
@@ -259,13 +259,13 @@ TEST(SceneObj, LoadMissingFile) {
 }
 
 TEST(SceneObj, BadPlacement) {
-  ObjPlacement p;
+  ObjPlacement p = obj_placement_from_config(Config{});
   p.fill = 0;
   EXPECT_TRUE(SceneFails([&] { parse(kOcta, p); }, "m.obj:", "OBJ placement"));
-  p = ObjPlacement{};
+  p = obj_placement_from_config(Config{});
   p.viewport_height = 0;
   EXPECT_TRUE(SceneFails([&] { parse(kOcta, p); }, "m.obj:", "OBJ placement"));
-  p = ObjPlacement{};
+  p = obj_placement_from_config(Config{});
   p.yaw_deg = NAN;
   EXPECT_TRUE(SceneFails([&] { parse(kOcta, p); }, "m.obj:", "OBJ placement"));
 }

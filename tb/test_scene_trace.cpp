@@ -331,12 +331,12 @@ TEST(SceneTrace, LoadSceneDispatchesOnExtension) {
   std::ofstream(dir / "obj") << "clear 1 2 3\n";  // no extension: a trace
   for (const char* n : {"m.obj", "m.OBJ", "m.Obj"}) {
     SCOPED_TRACE(n);
-    const Scene s = load_scene((dir / n).string(), ObjPlacement{});
+    const Scene s = load_scene((dir / n).string(), obj_placement_from_config(Config{}));
     ASSERT_EQ(s.commands.size(), 3u);  // clear, clear depth, one face
     EXPECT_TRUE(std::holds_alternative<CmdPrimitives>(s.commands[2].body));
   }
   for (const char* n : {"m.trace", "obj"}) {
-    const Scene s = load_scene((dir / n).string(), ObjPlacement{});
+    const Scene s = load_scene((dir / n).string(), obj_placement_from_config(Config{}));
     ASSERT_EQ(s.commands.size(), 1u);
     EXPECT_EQ(body<CmdClear>(s, 0).r, 1);
     EXPECT_EQ(s.source, (dir / n).string());

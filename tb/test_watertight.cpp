@@ -30,6 +30,7 @@
 #include <utility>
 #include <vector>
 
+#include "config/raster_state_config.h"
 #include "ref/pipeline.h"
 
 namespace rastsim {
@@ -133,7 +134,7 @@ class Watertight : public ::testing::TestWithParam<WtCase> {
     scene.commands.push_back({CmdViewport{c.vw, c.vh}, {"gen", 1}});
     scene.commands.push_back({CmdClear{0, 0, 0}, {"gen", 2}});
     scene.commands.push_back({std::move(prims), {"gen", 3}});
-    RasterState st;
+    RasterState st = raster_state_from_config(Config{});
     st.coord_format = c.fmt;
     st.tile_size = c.tile;
     st.fill_rule = FillRule::TopLeft;
@@ -325,7 +326,7 @@ TEST_P(WatertightCircle, FansOverAnEnclosingCircle) {
     Scene scene;
     scene.commands.push_back({CmdViewport{c.vw, c.vh}, {"gen", 1}});
     scene.commands.push_back({std::move(prims), {"gen", 2}});
-    RasterState st;
+    RasterState st = raster_state_from_config(Config{});
     st.coord_format = c.fmt;
     st.tile_size = c.tile;
     st.fb_width = c.vw;
@@ -381,7 +382,7 @@ TEST(WatertightControl, SharedEdgeThroughCentresDependsOnFillRule) {
     Scene scene;
     scene.commands.push_back({CmdViewport{8, 8}, {"gen", 1}});
     scene.commands.push_back({std::move(prims), {"gen", 2}});
-    RasterState st;
+    RasterState st = raster_state_from_config(Config{});
     st.fill_rule = k.rule;
     st.tile_size = 4;
     st.fb_width = st.fb_height = 8;

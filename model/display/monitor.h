@@ -51,7 +51,6 @@ class Monitor {
   MonitorResult finish() const;
   long long samples() const { return n_; }
 
- private:
   struct Runs {  // run-length record of one wire: start sample and level of each run
     std::vector<long long> start;
     std::vector<uint8_t> level;
@@ -59,6 +58,8 @@ class Monitor {
       if (level.empty() || level.back() != v) start.push_back(t), level.push_back(v);
     }
   };
+
+ private:
   VideoTiming exp_;
   DacConfig dac_cfg_;
   Dac palette_;  // ideal DAC with the same palette, for the inverse lookup

@@ -450,13 +450,13 @@ class Reader {
   long long over_range_ = 0, first_over_range_ = 0;
 };
 
+}  // namespace
+
 std::string shell_quote(const std::string& s) {
   std::string o = "'";
   for (char c : s) o += c == '\'' ? std::string("'\\''") : std::string(1, c);
   return o + "'";
 }
-
-}  // namespace
 
 SignalReadInfo read_video_vcd(std::istream& in, const std::string& name, const VideoTiming& expected, const Dac& dac,
                               const SampleSink& sink, const SignalReaderOptions& opts) {

@@ -27,8 +27,8 @@ __extension__ typedef unsigned __int128 u128;
 
 // A signed fixed-point format s.I.F. Total width 1 + I + F bits.
 struct FixedFormat {
-  int int_bits = 7;    // I
-  int frac_bits = 16;  // F
+  int int_bits = 0;   // I (raster.coord_format gives both; no default here)
+  int frac_bits = 0;  // F
 
   // Accepts "s7.16" and "s.7.16". Throws std::invalid_argument with a message
   // naming what is wrong (I >= 0, F >= 1, I + F <= 31).

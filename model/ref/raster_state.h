@@ -25,25 +25,27 @@ struct PixelRect {
   bool operator==(const PixelRect&) const = default;
 };
 
+// Every value comes from the config (raster_state_from_config) or a scene command; the
+// initialisers below are neutral, not defaults.
 struct RasterState {
   // Architecture (from the config).
   FixedFormat coord_format;
-  int tile_size = 16;
+  int tile_size = 0;  // px
   FillRule fill_rule = FillRule::TopLeft;
   CullMode cull = CullMode::None;
-  bool front_ccw = true;  // a triangle that appears counter-clockwise on screen is front
+  bool front_ccw = false;  // true: a triangle that appears counter-clockwise on screen is front
   DepthFunc depth_func = DepthFunc::Always;
-  int depth_bits = 24;
-  bool depth_write = true;
+  int depth_bits = 0;
+  bool depth_write = false;
   OutOfRange out_of_range = OutOfRange::Error;
-  int fb_width = 128, fb_height = 128;  // framebuffer (display) size
+  int fb_width = 0, fb_height = 0;  // framebuffer (display) size, px
   // 2D primitives (config keys line.*, polygon.*).
-  LineMethod line_method = LineMethod::Diamond;
-  DdaArith dda_arith = DdaArith::Fixed;
+  LineMethod line_method = LineMethod::Diamond;  // first enumerator: neutral
+  DdaArith dda_arith = DdaArith::F32;
   PolygonRule polygon_rule = PolygonRule::EvenOdd;
 
   // Scene state (from commands).
-  int viewport_width = 128, viewport_height = 128;
+  int viewport_width = 0, viewport_height = 0;
   bool scissor_enabled = false;
   PixelRect scissor;
 

@@ -1,7 +1,15 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "report/stats_json.h"
 
+#include <cstdio>
+
 namespace rastsim {
+
+std::string crc32_hex(uint32_t crc) {
+  char hex[9];
+  std::snprintf(hex, sizeof hex, "%08x", crc);
+  return hex;
+}
 
 nlohmann::json to_json(const RenderStats& s) {
   return {
@@ -22,7 +30,7 @@ nlohmann::json to_json(const RenderStats& s) {
       {"primitives_2d", s.draw2d.primitives},
       {"primitives_2d_culled", s.draw2d.primitives_culled},
       {"pixels_2d", s.draw2d.pixels},
-      {"framebuffer_crc32", s.framebuffer_crc32},
+      {"framebuffer_crc32", crc32_hex(s.framebuffer_crc32)},
       {"wall_seconds", s.wall_seconds},
   };
 }

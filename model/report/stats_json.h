@@ -3,13 +3,19 @@
 // keys). Kept out of model/ref so the golden model links no JSON library.
 #pragma once
 
+#include <cstdint>
+#include <string>
+
 #include <nlohmann/json.hpp>
 
 #include "ref/pipeline.h"
 
 namespace rastsim {
 
-// Every stat under its public name.
+// A CRC-32 as the text output prints it: 8 lower-case hex digits ("0a1b2c3d").
+std::string crc32_hex(uint32_t crc);
+
+// Every stat under its public name; framebuffer_crc32 as crc32_hex.
 nlohmann::json to_json(const RenderStats& s);
 
 }  // namespace rastsim

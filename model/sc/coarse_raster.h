@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // Coarse raster: the tile walk of one set-up triangle with early-out and early-in
-// (ref/traverse.h: tile_range, tile_footprint, classify_tile).
+// (ref/coarse_raster.h: tile_range, tile_footprint, classify_tile).
 //
 // - Visits every tile overlapping the triangle's clipped bounding box, row by row, at
 //   coarse.tiles_per_cycle tiles a cycle: the walk of V tiles takes

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // Fine raster: per-pixel coverage of partial tiles, whole-footprint emission of
-// accepted ones (ref/traverse.h: fine_raster_partial, fine_raster_accepted).
+// accepted ones (ref/fine_raster.h: fine_raster_partial, fine_raster_accepted).
 //
 // - A partial footprint of A pixels takes ceil(A / fine.samples_per_cycle) cycles; an
 //   accepted footprint takes fine.accepted_tile_cycles (a full mask, no tests).

@@ -12,10 +12,11 @@
 
 #include <cstdint>
 #include <ostream>
-#include <stdexcept>
 #include <string>
 
 #include <systemc>
+
+#include "sc/model_error.h"
 
 namespace rastsim::sc {
 
@@ -47,9 +48,7 @@ class Link : public sc_core::sc_module {
   void write(P payload, const sc_core::sc_time& ready) { fifo_.write(Tx<P>{std::move(payload), ready, writes_++}); }
   Tx<P> read() {
     Tx<P> t = fifo_.read();
-    if (t.seq != reads_)
-      throw std::logic_error(std::string(name()) + ": expected transaction #" + std::to_string(reads_) +
-                             ", got #" + std::to_string(t.seq) + " (lost or reordered)");
+    check_order(name(), reads_, t.seq);
     ++reads_;
     return t;
   }

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // Primitive assembly: forms each triangle of a list, strip or fan from its vertices
-// (ref/primitive_assembly.h: assemble_triangle, which keeps a strip's winding).
+// (ref/prim_assembly.h: assemble_triangle, which keeps a strip's winding).
 //
 // - Cost: assembly.cycles_per_triangle per triangle; 1 cycle per state command.
 #pragma once

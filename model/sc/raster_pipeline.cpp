@@ -8,6 +8,7 @@
 
 #include <systemc>
 
+#include "sc/model_error.h"
 #include "sc/rop.h"
 #include "config/raster_state_config.h"
 
@@ -106,7 +107,7 @@ SimResult simulate_scene(const Scene& scene, const Config& cfg, const SimOptions
   sc_core::sc_start();
   const sc_core::sc_time end = sc_core::sc_time_stamp();
   if (tf) sc_core::sc_close_vcd_trace_file(tf);
-  if (!ctx.error.empty()) throw SceneError(ctx.error);
+  ctx.rethrow_failure();  // SceneError for bad input, ModelError for a fault of the model
 
   SimResult r;
   r.core_mhz = p.core_mhz;
@@ -125,7 +126,7 @@ SimResult simulate_scene(const Scene& scene, const Config& cfg, const SimOptions
   top->for_each_fifo([&](auto& f) {
     r.fifos.push_back({f.basename(), f.depth(), f.writes(), f.reads()});
     if (f.writes() != f.reads())
-      throw std::logic_error(std::string(f.name()) + ": " + std::to_string(f.writes() - f.reads()) +
+      throw ModelError(std::string(f.name()) + ": " + std::to_string(f.writes() - f.reads()) +
                              " transactions left behind (pipeline deadlock)");
   });
   r.render = ctx.render;

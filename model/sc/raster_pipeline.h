@@ -62,8 +62,9 @@ uint64_t fixed_latency_cycles(const TimingParams& p);
 
 // Elaborates the pipeline for `cfg`, runs `scene` through it and returns the result.
 // SystemC allows one elaboration per process: call this once per process (the sweep
-// and the tests run each simulation in a child process). Throws on scene errors with
-// the reference model's message.
+// and the tests run each simulation in a child process). Throws SceneError on bad input
+// (the reference model's message) and ModelError (sc/model_error.h) on a fault of the
+// model itself, such as a lost or reordered transaction.
 SimResult simulate_scene(const Scene& scene, const Config& cfg, const SimOptions& opts = {});
 
 }  // namespace rastsim::sc

@@ -4,6 +4,9 @@
 #include "sc/scanout.h"
 
 #include <cmath>
+#include <stdexcept>
+
+#include "config/timing_params.h"
 
 namespace rastsim::sc {
 
@@ -21,8 +24,14 @@ ScanoutParams scanout_params_from_config(const Config& cfg, double core_mhz) {
 }
 
 namespace {
+// The sink's samples come from the reference scan-out: a sink alone has nothing to show.
+void check_sink_has_reference(const Scanout* ref, const SampleSink& sink) {
+  if (sink && !ref)
+    throw std::invalid_argument("scan-out: a sample sink needs the reference frame (Scanout) to sample; none given");
+}
+
 uint64_t fetch_cycles(const ScanoutParams& p) {
-  return (p.timing.h_active + p.fetch_px_per_cycle - 1) / p.fetch_px_per_cycle;
+  return ceil_div(uint64_t(p.timing.h_active), uint64_t(p.fetch_px_per_cycle));
 }
 double frame_period_s(const VideoTiming& t) { return double(t.pixels_per_frame()) / t.pixel_clock_hz; }
 }  // namespace
@@ -47,6 +56,7 @@ nlohmann::json ScanoutReport::to_json() const {
 ScanoutModule::ScanoutModule(sc_core::sc_module_name name, const ScanoutParams& p, uint64_t raster_finish_cycles,
                              const Scanout* ref, SampleSink sink)
     : sc_module(name), p_(p), line_buffer_("line_buffer", p.line_buffer_lines), ref_(ref), sink_(std::move(sink)) {
+  check_sink_has_reference(ref_, sink_);
   // Time in ps; the raster finish time is rounded up to the next ps.
   t_ready_ = sc_time(std::ceil(double(raster_finish_cycles) / p.core_hz * 1e12), SC_PS);
   report.frame_time_cycles = raster_finish_cycles;
@@ -118,6 +128,7 @@ void ScanoutModule::display_thread() {
 
 ScanoutReport run_scanout(const ScanoutParams& p, uint64_t raster_finish_cycles, const Scanout* ref,
                           const SampleSink& sink) {
+  check_sink_has_reference(ref, sink);  // before elaborating anything
   sc_core::sc_report_handler::set_actions(sc_core::SC_INFO, sc_core::SC_DO_NOTHING);  // "stopped by user"
   ScanoutModule m("scanout", p, raster_finish_cycles, ref, sink);
   sc_core::sc_start();

@@ -32,12 +32,13 @@
 
 namespace rastsim::sc {
 
+// Every value comes from the config (scanout_params_from_config); none has a default here.
 struct ScanoutParams {
   VideoTiming timing;
-  bool single_buffered = false;  // scanout.buffering
-  int line_buffer_lines = 2;     // scanout.line_buffer_lines
-  int fetch_px_per_cycle = 4;    // scanout.fetch_px_per_cycle
-  double core_hz = 100e6;        // the raster pipeline's clock (clock.core_mhz)
+  bool single_buffered = false;  // scanout.buffering == "single"
+  int line_buffer_lines = 0;     // scanout.line_buffer_lines
+  int fetch_px_per_cycle = 0;    // scanout.fetch_px_per_cycle
+  double core_hz = 0;            // the raster pipeline's clock (clock.core_mhz), Hz
 };
 
 // From a validated config; `core_mhz` is the raster pipeline's clock.
@@ -61,7 +62,8 @@ uint64_t scanout_deadline_cycles(const ScanoutParams& p);
 
 SC_MODULE(ScanoutModule) {
   // `sink` (optional) receives every pixel clock from t = 0 through the end of the
-  // frame's active region and vertical blanking, via `ref`.
+  // frame's active region and vertical blanking, via `ref`. A sink without `ref` throws
+  // std::invalid_argument.
   ScanoutModule(sc_core::sc_module_name name, const ScanoutParams& p, uint64_t raster_finish_cycles,
                 const Scanout* ref = nullptr, SampleSink sink = {});
   SC_HAS_PROCESS(ScanoutModule);

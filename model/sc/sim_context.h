@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <exception>
 #include <string>
 
 #include <systemc>
@@ -29,13 +30,17 @@ struct SimContext {
   RenderStats render;       // the same counters as the reference model, stage by stage
   FragmentSink on_fragment;  // sees each fragment leaving interpolation, in order
 
-  std::string error;  // first error raised in any stage ("" when none)
+  std::exception_ptr error;  // first exception raised in any stage (null when none)
 
   uint64_t to_cycles(const sc_core::sc_time& t) const { return t.value() / cycle.value(); }
-  // Records the first error and stops the simulation; simulate_scene rethrows it.
-  void fail(const std::string& what) {
-    if (error.empty()) error = what;
+  // Records the first exception and stops the simulation; rethrow_failure() raises it
+  // again after sc_start, with its type (SceneError, ModelError, ...) intact.
+  void fail(std::exception_ptr e) {
+    if (!error) error = std::move(e);
     sc_core::sc_stop();
+  }
+  void rethrow_failure() const {
+    if (error) std::rethrow_exception(error);
   }
 };
 

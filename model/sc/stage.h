@@ -106,8 +106,8 @@ class Stage : public sc_core::sc_module {
   void thread() {
     try {
       body();
-    } catch (const std::exception& e) {
-      ctx_.fail(e.what());
+    } catch (...) {
+      ctx_.fail(std::current_exception());
     }
   }
   void set_state(StageState s) {

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // Triangle setup: snapping, culling, edge equations and bounding box of one triangle
-// (ref/setup.h: setup_triangle), pipelined.
+// (ref/tri_setup.h: setup_triangle), pipelined.
 //
 // - Keeps its own copy of the raster state; viewport and scissor commands update it as
 //   they pass (ref/pipeline.h: apply_state_command), in program order.

@@ -5,17 +5,22 @@
 
 #include <string>
 
+#include "config/config.h"
 #include "ref/scene.h"
 
 namespace rastsim {
 
 // Where an OBJ mesh lands on screen: a camera looking at the mesh's bounding sphere.
+// Every value comes from the config (obj_placement_from_config); none has a default here.
 struct ObjPlacement {
-  int viewport_width = 128, viewport_height = 128;
-  double yaw_deg = 30.0, pitch_deg = 20.0;  // rotation of the model about y, then x
-  double fill = 0.9;                         // fraction of the viewport the sphere spans
+  int viewport_width = 0, viewport_height = 0;  // px (display.width, display.height)
+  double yaw_deg = 0, pitch_deg = 0;  // rotation of the model about y, then x (scene.obj_*_deg)
+  double fill = 0;                    // fraction of the viewport the sphere spans (scene.obj_fill)
   uint8_t clear_r = 0, clear_g = 0, clear_b = 0;
 };
+
+// From a validated config: the display size and the scene.obj_* keys.
+ObjPlacement obj_placement_from_config(const Config& cfg);
 
 // Parse a trace file. Throws SceneError("file:line: ...") on any malformed input.
 Scene load_trace(const std::string& path);

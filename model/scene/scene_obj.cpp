@@ -339,4 +339,14 @@ Scene load_obj(const std::string& path, const ObjPlacement& placement) {
   return parse_obj(scene_text::read_file(path), path, placement, dir.empty() ? "." : dir);
 }
 
+ObjPlacement obj_placement_from_config(const Config& cfg) {
+  ObjPlacement p;
+  p.viewport_width = static_cast<int>(cfg.get_int("display.width"));
+  p.viewport_height = static_cast<int>(cfg.get_int("display.height"));
+  p.yaw_deg = cfg.get_float("scene.obj_yaw_deg");
+  p.pitch_deg = cfg.get_float("scene.obj_pitch_deg");
+  p.fill = cfg.get_float("scene.obj_fill");
+  return p;
+}
+
 }  // namespace rastsim

@@ -38,6 +38,12 @@ else
   fail "render of the demo scene failed"
 fi
 
+# 1b. The stats JSON gives framebuffer_crc32 as the summary line prints it (8 hex digits).
+line="$("$BIN" render --config "$CFG" --scene "$SCENE" --stats "$TMP/crc.json")"
+crc_json="$(json_field "$TMP/crc.json" framebuffer_crc32)"
+if [[ "$crc_json" =~ ^[0-9a-f]{8}$ ]] && grep -q "crc32 $crc_json," <<<"$line"; then pass
+else fail "framebuffer_crc32 '$crc_json' is not the summary line's crc32: $line"; fi
+
 # 2. The tile size changes the tile counts but never the image.
 crc0=""; tiles_seen=""
 for t in 2 4 8 16 32 64 128; do

@@ -14,6 +14,9 @@
 namespace rastsim {
 namespace {
 
+// The DAC of a default config: tests change only what they are about.
+DacConfig default_dac_config() { return dac_config_from_config(Config{}); }
+
 using scanout_test::decode;
 using scanout_test::pattern;
 using scanout_test::rgb_mismatches;
@@ -105,7 +108,7 @@ INSTANTIATE_TEST_SUITE_P(Presets, ScanoutPreset, ::testing::ValuesIn(kStandards)
 
 TEST(ScanoutDac, IdealLevelsAreCodeTimesLsb) {
   // 8 bits, 0.700 V: LSB = 0.7 / 255 V; code 255 -> 0.700 V, code 128 -> 0.35137 V.
-  const Dac dac(DacConfig{});
+  const Dac dac(default_dac_config());
   EXPECT_NEAR(dac.volts(0, 255), 0.700, 1e-12);
   EXPECT_NEAR(dac.volts(1, 128), 0.7 * 128 / 255, 1e-12);
   EXPECT_EQ(dac.volts(2, 0), 0.0);
@@ -113,7 +116,7 @@ TEST(ScanoutDac, IdealLevelsAreCodeTimesLsb) {
 }
 
 TEST(ScanoutDac, TenBitLinearPaletteRoundTrips) {
-  DacConfig c;
+  DacConfig c = default_dac_config();
   c.bits = 10;
   const Dac dac(c);
   // round(v * 1023 / 255): 1 -> 4 (4.01), 128 -> 514 (513.5 rounds up), 255 -> 1023.
@@ -126,7 +129,7 @@ TEST(ScanoutDac, TenBitLinearPaletteRoundTrips) {
 TEST(ScanoutDac, MismatchModelStaysWithinConfiguredInlAndDnl) {
   for (uint64_t seed : {1u, 2u, 77u}) {
     SCOPED_TRACE("seed " + std::to_string(seed));
-    DacConfig c;
+    DacConfig c = default_dac_config();
     c.inl_lsb = 2.0, c.dnl_lsb = 0.5, c.seed = seed;
     const Dac dac(c);
     // Independent measurement from the levels alone: endpoint-fit line through codes 0
@@ -185,7 +188,7 @@ TEST(ScanoutFault, PorchesNotAddingUpRejectedByConfig) {
 TEST(ScanoutFault, PorchesNotAddingUpCaughtByMonitor) {
   VideoTiming t = *find_timing_preset("vga640x480@60");
   t.h_back_porch = 50;  // the source counts 640 + 16 + 96 + 50 = 802 clocks a line
-  const Dac dac(DacConfig{});
+  const Dac dac(default_dac_config());
   const MonitorResult r = decode(t, t, dac, pattern(640, 480));
   EXPECT_TRUE(has_error(r, "porches do not add up")) << all_errors(r);
   EXPECT_TRUE(has_error(r, "h_total: measured 802 px, expected 800")) << all_errors(r);
@@ -197,7 +200,7 @@ TEST(ScanoutFault, WrongPorchNamedByMonitor) {
   const VideoTiming vga = *find_timing_preset("vga640x480@60");
   VideoTiming src = vga;
   src.h_front_porch = 20, src.h_back_porch = 44;
-  const MonitorResult r = decode(src, vga, Dac(DacConfig{}), pattern(640, 480));
+  const MonitorResult r = decode(src, vga, Dac(default_dac_config()), pattern(640, 480));
   EXPECT_TRUE(has_error(r, "h_front_porch: measured 20 px, expected 16")) << all_errors(r);
   EXPECT_TRUE(has_error(r, "h_back_porch: measured 44 px, expected 48")) << all_errors(r);
   EXPECT_FALSE(has_error(r, "h_total")) << all_errors(r);
@@ -217,7 +220,7 @@ TEST(ScanoutFault, FramebufferSmallerThanActiveRejectedByConfig) {
 
 TEST(ScanoutFault, FramebufferSmallerThanActiveCaughtByMonitor) {
   const VideoTiming vga = *find_timing_preset("vga640x480@60");
-  const MonitorResult r = decode(vga, vga, Dac(DacConfig{}), pattern(128, 128));
+  const MonitorResult r = decode(vga, vga, Dac(default_dac_config()), pattern(128, 128));
   EXPECT_TRUE(has_error(r, "h_active: measured 128 px, expected 640")) << all_errors(r);
   EXPECT_TRUE(has_error(r, "no pixel data")) << all_errors(r);
   EXPECT_EQ(r.no_data_pixels, 640u * 480 - 128 * 128);
@@ -226,7 +229,7 @@ TEST(ScanoutFault, FramebufferSmallerThanActiveCaughtByMonitor) {
 TEST(ScanoutFault, UnderrunLinesCaughtByMonitor) {
   // Lines 0..99 of every frame come without data, as when the line buffer is empty.
   const VideoTiming t = *find_timing_preset("panel");
-  const Dac dac(DacConfig{});
+  const Dac dac(default_dac_config());
   const Framebuffer fb = pattern(128, 128);
   const Scanout so(t, dac, fb);
   Monitor mon(t, dac.config());
@@ -243,14 +246,14 @@ TEST(ScanoutFault, InvertedSyncPolarityNamed) {
   const VideoTiming vga = *find_timing_preset("vga640x480@60");
   VideoTiming src = vga;
   src.h_sync_positive = true;
-  const MonitorResult r = decode(src, vga, Dac(DacConfig{}), pattern(640, 480));
+  const MonitorResult r = decode(src, vga, Dac(default_dac_config()), pattern(640, 480));
   EXPECT_TRUE(has_error(r, "hsync polarity: measured positive, expected negative")) << all_errors(r);
   EXPECT_EQ(rgb_mismatches(r.image, pattern(640, 480)), 0) << "polarity is detected, the picture still decodes";
 }
 
 TEST(ScanoutFault, MissingHsyncNamed) {
   const VideoTiming t = *find_timing_preset("panel");
-  const Dac dac(DacConfig{});
+  const Dac dac(default_dac_config());
   const Framebuffer fb = pattern(128, 128);
   Monitor mon(t, dac.config());
   Scanout(t, dac, fb).run(2, [&](VideoSample s) {
@@ -264,7 +267,7 @@ TEST(ScanoutFault, MissingHsyncNamed) {
 
 TEST(ScanoutFault, SingleFrameIsNotEnoughToFrame) {
   const VideoTiming t = *find_timing_preset("panel");
-  const MonitorResult r = decode(t, t, Dac(DacConfig{}), pattern(128, 128), 1);
+  const MonitorResult r = decode(t, t, Dac(default_dac_config()), pattern(128, 128), 1);
   EXPECT_TRUE(has_error(r, "no complete frame")) << all_errors(r);
 }
 
@@ -284,7 +287,7 @@ TEST(ScanoutConfig, CustomTimingFromKeys) {
   EXPECT_FALSE(t.v_sync_positive);
   EXPECT_NEAR(t.line_rate_hz(), 1e6 / 132, 1e-9);
   // A framebuffer larger than the active area is cropped: the decode is its corner.
-  const Dac dac(DacConfig{});
+  const Dac dac(default_dac_config());
   const Framebuffer fb = pattern(128, 128);
   const MonitorResult r = decode(t, t, dac, fb);
   EXPECT_TRUE(r.ok()) << all_errors(r);

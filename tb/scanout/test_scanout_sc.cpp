@@ -5,6 +5,8 @@
 // use --gtest_filter). Not gtest_main: libsystemc owns main() and calls sc_main.
 #include <gtest/gtest.h>
 
+#include <stdexcept>
+#include <string>
 #include <systemc>
 
 #include "sc/scanout.h"
@@ -13,13 +15,19 @@
 namespace rastsim {
 namespace {
 
+// The DAC and scan-out of a default config: tests change only what they are about.
+DacConfig default_dac_config() { return dac_config_from_config(Config{}); }
+sc::ScanoutParams default_params(const char* preset, double core_mhz) {
+  sc::ScanoutParams p = sc::scanout_params_from_config(Config{}, core_mhz);
+  p.timing = *find_timing_preset(preset);
+  return p;
+}
+
 sc::ScanoutParams panel_single() {
-  sc::ScanoutParams p;
-  p.timing = *find_timing_preset("panel");
+  sc::ScanoutParams p = default_params("panel", 100);
   p.single_buffered = true;
   p.line_buffer_lines = 2;
   p.fetch_px_per_cycle = 4;  // 128 px a line: 32 core cycles a fetch
-  p.core_hz = 100e6;
   return p;
 }
 
@@ -53,7 +61,7 @@ TEST(ScanoutSc, SlowRasterUnderrunCaughtByMonitor) {
   // y = 4 at 1470.6 us is too early, y = 5 at 1593.1 us gets its fetch (1500.32 us).
   // So lines 0..4 underrun: 5 lines, 640 pixels.
   const sc::ScanoutParams p = panel_single();
-  const Dac dac(DacConfig{});
+  const Dac dac(default_dac_config());
   const Framebuffer fb = scanout_test::pattern(128, 128);
   const Scanout ref(p.timing, dac, fb);
   Monitor mon(p.timing, dac.config());
@@ -83,10 +91,8 @@ TEST(ScanoutSc, DoubleBufferedLateRasterRepeatsFrame) {
 }
 
 TEST(ScanoutSc, PerPixelVgaStreamDecodesBitExact) {
-  sc::ScanoutParams p;
-  p.timing = *find_timing_preset("vga640x480@60");
-  p.core_hz = 200e6;
-  const Dac dac(DacConfig{});
+  const sc::ScanoutParams p = default_params("vga640x480@60", 200);
+  const Dac dac(default_dac_config());
   const Framebuffer fb = scanout_test::pattern(640, 480);
   const Scanout ref(p.timing, dac, fb);
   Monitor mon(p.timing, dac.config());
@@ -97,6 +103,15 @@ TEST(ScanoutSc, PerPixelVgaStreamDecodesBitExact) {
   EXPECT_EQ(scanout_test::rgb_mismatches(m.image, fb), 0);
   EXPECT_EQ(m.measured.h_total, 800);
   EXPECT_EQ(m.measured.v_total, 525);
+}
+
+TEST(ScanoutSc, SinkWithoutReferenceFrameIsRejected) {
+  try {
+    sc::run_scanout(panel_single(), 1000, nullptr, [](const VideoSample&) {});
+    FAIL() << "a sink without a reference frame was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("needs the reference frame"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Recorded signal -> virtual monitor (model/ref/signal_reader.h): the panel preset
+// Recorded signal -> virtual monitor (model/display/signal_reader.h): the panel preset
 // scanned out to a VCD and decoded from the file bit for bit; a shifted hsync edge
 // edited into the file is named; malformed files give "file:line: what"; an RTL-style
 // trace (Verilator names, a clock, codes only) decodes the same; FST through fst2vcd.
@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -54,7 +55,7 @@ struct Panel {
   Framebuffer fb;
   Panel() {
     RenderStats st;
-    fb = render_scene(load_scene((kSourceDir / "traces/torus.trace").string(), ObjPlacement{}),
+    fb = render_scene(load_scene((kSourceDir / "traces/torus.trace").string(), obj_placement_from_config(Config{})),
                       raster_state_from_config(cfg), st);
   }
   // The reference scan-out of `frames` frames from (0, 0) as `rastsim scanout --signal` writes it.
@@ -100,6 +101,19 @@ void expect_panel_decoded_exactly(const Panel& p, const Decoded& d) {
   VideoTiming conf = p.t;
   conf.name = m.name;
   EXPECT_EQ(m, conf);
+}
+
+// The shell reads a quoted name back as the same single word, whatever it holds.
+TEST(SignalReader, ShellQuoteSurvivesTheShell) {
+  for (const std::string name : {"plain.fst", "with space.fst", "it's.fst", "a'b'\"c\" $HOME `x` ;rm.fst", ""}) {
+    SCOPED_TRACE(name);
+    FILE* p = popen(("printf '%s|' " + shell_quote(name)).c_str(), "r");
+    ASSERT_NE(p, nullptr);
+    std::string out;
+    for (int c; (c = std::fgetc(p)) != EOF;) out += char(c);
+    EXPECT_EQ(pclose(p), 0);
+    EXPECT_EQ(out, name + "|");
+  }
 }
 
 TEST(SignalReader, PanelVcdRoundTripBitExact) {
