@@ -18,68 +18,68 @@ namespace rastsim::app {
 nlohmann::json timing_json(const VideoTiming& t);     // cmd_scanout.cpp
 nlohmann::json measured_json(const MonitorResult& r);  // cmd_scanout.cpp
 
+void run_monitor_command(const MonitorOptions& o) {
+  const Config cfg = load_config(o.config);
+  const VideoTiming t = video_timing_from_config(cfg);
+  const Dac dac(dac_config_from_config(cfg));
+  Monitor mon(t, dac.config());
+  const SignalReadInfo info =
+      read_video_signal(o.signal_path, t, dac, [&](const VideoSample& s) { mon.push(s); }, {o.clock});
+  const MonitorResult r = mon.finish();
+  std::vector<std::string> errors = info.problems;
+  errors.insert(errors.end(), r.errors.begin(), r.errors.end());
+  if (!o.out_path.empty() && r.locked) write_image(r.image, o.out_path);
+
+  const VideoTiming& m = r.measured;
+  nlohmann::json j = measured_json(r);
+  j.update({{"config", cfg.source_name()}, {"signal", o.signal_path}, {"monitor_errors", errors},
+            {"notes", info.notes}, {"samples", info.samples},
+            {"sample_clock", info.clock.empty() ? "expected pixel clock" : info.clock},
+            {"sample_clock_hz", info.sample_clock_hz}, {"timescale", info.timescale},
+            {"levels_from", info.levels_from}, {"variables", info.variables}, {"configured", timing_json(t)}});
+  if (!o.stats_path.empty()) write_json(o.stats_path, j);
+  if (!o.quiet) {
+    const std::string mode = describe_timing(t).substr(0, describe_timing(t).find(':'));
+    char buf[512];
+    std::snprintf(buf, sizeof buf,
+                  "monitor: %s, configured line %.3f kHz, frame %.2f Hz; measured %dx%d total, hsync %d px, "
+                  "vsync %d lines -> line %.3f kHz, frame %.2f Hz; decoded %d frame%s from %lld samples of %s\n",
+                  mode.c_str(), t.line_rate_hz() / 1e3, t.frame_rate_hz(), m.h_total, m.v_total, m.h_sync, m.v_sync,
+                  r.line_rate_hz / 1e3, r.frame_rate_hz, r.frames_decoded, r.frames_decoded == 1 ? "" : "s",
+                  info.samples, o.signal_path.c_str());
+    if (r.locked) std::cout << buf;
+    else
+      std::cout << "monitor: " << mode << ": no complete frame in " << info.samples << " samples of " << o.signal_path
+                << "\n";
+    for (const auto& n : info.notes) std::cout << "monitor: note: " << n << "\n";
+  }
+  std::cout.flush();  // the summary first, then the monitor's messages
+  for (const auto& e : errors) std::cerr << "monitor: " << e << "\n";
+  if (!r.locked && r.frames_decoded == 0)
+    std::cerr << "monitor: a frame lies between two vsync leading edges: record at least two frames "
+                 "(rastsim scanout --signal-frames 2)\n";
+  if (!errors.empty())
+    throw std::runtime_error("virtual monitor: " + std::to_string(errors.size()) +
+                             (errors.size() == 1 ? " error in " : " errors in ") + o.signal_path + " (above)");
+}
+
 void register_monitor(CLI::App& app) {
   auto* cmd = app.add_subcommand(
       "monitor", "Decode a recorded video signal (.vcd/.fst) with the virtual monitor set to the config's timing");
-  static ConfigOptions opts;
-  static std::string signal_path, out_path, stats_path, clock;
-  static bool quiet = false;
-  add_config_options(cmd, opts);
-  cmd->add_option("--signal", signal_path,
+  static MonitorOptions o;
+  add_config_options(cmd, o.config);
+  cmd->add_option("--signal", o.signal_path,
                   "Recorded signal: .vcd (rastsim scanout --signal, or an RTL trace) or .fst (needs gtkwave's fst2vcd); "
                   "at least two vsync pulses (rastsim scanout --signal-frames 2)")
       ->required()
       ->check(CLI::ExistingFile);
-  cmd->add_option("-o,--output", out_path, "Decoded frame to write: .png or .ppm");
-  cmd->add_option("--stats", stats_path, "Write configured and measured timing as JSON ('-' for stdout)");
-  cmd->add_option("--clock", clock,
+  cmd->add_option("-o,--output", o.out_path, "Decoded frame to write: .png or .ppm");
+  cmd->add_option("--stats", o.stats_path, "Write configured and measured timing as JSON ('-' for stdout)");
+  cmd->add_option("--clock", o.clock,
                   "Clock variable to sample on (default: one named clk, clk_i, pclk, pixel_clk or clk_pixel if "
                   "present); 'none' samples at the config's pixel clock");
-  cmd->add_flag("--quiet,-q", quiet, "Print only errors");
-  cmd->callback([] {
-    const Config cfg = load_config(opts);
-    const VideoTiming t = video_timing_from_config(cfg);
-    const Dac dac(dac_config_from_config(cfg));
-    Monitor mon(t, dac.config());
-    const SignalReadInfo info =
-        read_video_signal(signal_path, t, dac, [&](const VideoSample& s) { mon.push(s); }, {clock});
-    const MonitorResult r = mon.finish();
-    std::vector<std::string> errors = info.problems;
-    errors.insert(errors.end(), r.errors.begin(), r.errors.end());
-    if (!out_path.empty() && r.locked) write_image(r.image, out_path);
-
-    const VideoTiming& m = r.measured;
-    nlohmann::json j = measured_json(r);
-    j.update({{"config", cfg.source_name()}, {"signal", signal_path}, {"monitor_errors", errors},
-              {"notes", info.notes}, {"samples", info.samples},
-              {"sample_clock", info.clock.empty() ? "expected pixel clock" : info.clock},
-              {"sample_clock_hz", info.sample_clock_hz}, {"timescale", info.timescale},
-              {"levels_from", info.levels_from}, {"variables", info.variables}, {"configured", timing_json(t)}});
-    if (!stats_path.empty()) write_json(stats_path, j);
-    if (!quiet) {
-      const std::string mode = describe_timing(t).substr(0, describe_timing(t).find(':'));
-      char buf[512];
-      std::snprintf(buf, sizeof buf,
-                    "monitor: %s, configured line %.3f kHz, frame %.2f Hz; measured %dx%d total, hsync %d px, "
-                    "vsync %d lines -> line %.3f kHz, frame %.2f Hz; decoded %d frame%s from %lld samples of %s\n",
-                    mode.c_str(), t.line_rate_hz() / 1e3, t.frame_rate_hz(), m.h_total, m.v_total, m.h_sync, m.v_sync,
-                    r.line_rate_hz / 1e3, r.frame_rate_hz, r.frames_decoded, r.frames_decoded == 1 ? "" : "s",
-                    info.samples, signal_path.c_str());
-      if (r.locked) std::cout << buf;
-      else
-        std::cout << "monitor: " << mode << ": no complete frame in " << info.samples << " samples of " << signal_path
-                  << "\n";
-      for (const auto& n : info.notes) std::cout << "monitor: note: " << n << "\n";
-    }
-    std::cout.flush();  // the summary first, then the monitor's messages
-    for (const auto& e : errors) std::cerr << "monitor: " << e << "\n";
-    if (!r.locked && r.frames_decoded == 0)
-      std::cerr << "monitor: a frame lies between two vsync leading edges: record at least two frames "
-                   "(rastsim scanout --signal-frames 2)\n";
-    if (!errors.empty())
-      throw std::runtime_error("virtual monitor: " + std::to_string(errors.size()) +
-                               (errors.size() == 1 ? " error in " : " errors in ") + signal_path + " (above)");
-  });
+  cmd->add_flag("--quiet,-q", o.quiet, "Print only errors");
+  cmd->callback([] { run_monitor_command(o); });
 }
 
 }  // namespace rastsim::app

@@ -40,6 +40,32 @@ std::string last_line(const std::string& path);
 // returns its stats JSON; throws with the child's error line when it fails.
 nlohmann::json simulate_in_child(const ConfigOptions& o, const std::string& scene);
 
+// `rastsim render` as a plain function: every option of the command, then the run.
+struct RenderOptions {
+  ConfigOptions config;
+  std::string scene_path, out_path, stats_path, frag_path;
+  bool quiet = false;
+};
+void run_render_command(const RenderOptions& o);
+
+// `rastsim simulate` as a plain function; the stall options are for tests.
+struct SimulateOptions {
+  ConfigOptions config;
+  std::string scene_path, out_path, stats_path, vcd_path, frag_path;
+  uint64_t stall_seed = 0;
+  double stall_probability = 0;  // 0 = off
+  bool quiet = false;
+};
+void run_simulate_command(const SimulateOptions& o);
+
+// `rastsim monitor` as a plain function: every option of the command, then the run.
+struct MonitorOptions {
+  ConfigOptions config;
+  std::string signal_path, out_path, stats_path, clock;
+  bool quiet = false;
+};
+void run_monitor_command(const MonitorOptions& o);
+
 // `rastsim scanout` as a plain function: every option of the command, then the run.
 struct ScanoutOptions {
   ConfigOptions config;
