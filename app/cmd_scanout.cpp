@@ -13,6 +13,7 @@
 #include "display/monitor.h"
 #include "ref/pipeline.h"
 #include "display/scanout.h"
+#include "rtl/rtl_params.h"
 #include "sc/scanout.h"
 #include "scene/scene_io.h"
 #include "display/image_io.h"
@@ -229,13 +230,14 @@ void register_scanout(CLI::App& app) {
   cmd->callback([] { run_scanout_command(opts); });
 
   auto* exp = app.add_subcommand("export-rtl-scanout",
-                                 "Write the scan-out RTL's parameters (Verilog localparams) from a config");
+                                 "Write the scan-out RTL's parameters (Verilog parameter list) from a config");
   static ConfigOptions eopts;
   static std::string vh_path;
   add_config_options(exp, eopts);
   exp->add_option("-o,--output", vh_path, "Verilog header to write ('-' for stdout)")->required();
   exp->callback([] {
-    const std::string text = scanout_verilog_params(load_config(eopts));
+    const Config cfg = load_config(eopts);
+    const std::string text = scanout_rtl_params_verilog(scanout_rtl_params_from_config(cfg), cfg.source_name());
     if (vh_path == "-") {
       std::cout << text;
       return;

@@ -34,11 +34,6 @@ struct VideoSample {
 
 using SampleSink = std::function<void(const VideoSample&)>;
 
-// The scan-out RTL's parameters as a Verilog header of localparams (ALL_CAPS), from the
-// config: timing, sync polarities, framebuffer size and DAC bits. rtl/ never types a
-// number of its own; the build writes this file under <build>/rtl/generated/.
-std::string scanout_verilog_params(const Config& cfg);
-
 class Scanout {
  public:
   // Keeps references: the timing, DAC and framebuffer must outlive the scan-out.
