@@ -170,7 +170,7 @@ TEST(LineRaster, DdaDriftIsFoundWhereTheArithmeticIsNotExact) {
 TEST(LineRaster, ReversalChangesExactlyTheTieLines) {
   std::mt19937_64 rng(1);
   std::uniform_int_distribution<int> c(-100, 100);
-  const int n = 100000;
+  const int n = 20000;
   int changed[5] = {}, tie_lines = 0;
   auto set_of = [](Pixels p) {
     std::sort(p.begin(), p.end());
