@@ -2,7 +2,6 @@
 #include "ref/raster2d.h"
 
 #include <algorithm>
-#include <vector>
 
 #include "ref/rop3.h"
 
@@ -28,30 +27,38 @@ uint64_t fill_span(Framebuffer& fb, const PixelRect& clip, const Raster2dState& 
   return uint64_t(r.x1 - r.x0);
 }
 
-uint64_t blit(Framebuffer& fb, const PixelRect& clip, const Raster2dState& st, int sx, int sy, int dx, int dy, int w,
-              int h) {
-  if (w <= 0 || h <= 0) return 0;
+BlitRect clip_blit(int fb_width, int fb_height, const PixelRect& clip, int sx, int sy, int dx, int dy, int w, int h) {
+  if (w <= 0 || h <= 0) return {};
   // Clip in destination space: the destination box, the clip box, and the source box
   // clipped to the framebuffer moved by the copy's offset. (64-bit offsets: no overflow.)
   const int64_t ox = int64_t(dx) - sx, oy = int64_t(dy) - sy;
-  const PixelRect fb_rect{0, 0, fb.width, fb.height};
+  const PixelRect fb_rect{0, 0, fb_width, fb_height};
   const PixelRect src = PixelRect{sx, sy, sx + w, sy + h}.intersect(fb_rect);
-  const PixelRect src_in_dst{int(std::clamp<int64_t>(src.x0 + ox, INT32_MIN, INT32_MAX)),
-                             int(std::clamp<int64_t>(src.y0 + oy, INT32_MIN, INT32_MAX)),
-                             int(std::clamp<int64_t>(src.x1 + ox, INT32_MIN, INT32_MAX)),
-                             int(std::clamp<int64_t>(src.y1 + oy, INT32_MIN, INT32_MAX))};
+  auto clamp = [](int64_t v) { return int(std::clamp<int64_t>(v, INT32_MIN, INT32_MAX)); };
+  const PixelRect src_in_dst{clamp(src.x0 + ox), clamp(src.y0 + oy), clamp(src.x1 + ox), clamp(src.y1 + oy)};
   const PixelRect r = PixelRect{dx, dy, dx + w, dy + h}.intersect(clip).intersect(fb_rect).intersect(src_in_dst);
-  if (r.empty()) return 0;
-  // Read the whole source first: overlapping copies see the source as it was.
-  const int rw = r.x1 - r.x0, rh = r.y1 - r.y0;
-  std::vector<uint8_t> source(size_t(rw) * rh * 4);
-  for (int y = 0; y < rh; ++y)
-    std::copy_n(fb.pixel(int(r.x0 - ox), int(r.y0 + y - oy)), size_t(rw) * 4, &source[size_t(y) * rw * 4]);
-  for (int y = 0; y < rh; ++y)
-    for (int x = 0; x < rw; ++x)
-      write_pixel(fb.pixel(r.x0 + x, r.y0 + y), pattern_color(st, r.x0 + x, r.y0 + y),
-                  &source[(size_t(y) * rw + x) * 4], st.rop3);
-  return uint64_t(rw) * rh;
+  if (r.empty()) return {};
+  return {int(r.x0 - ox), int(r.y0 - oy), r.x0, r.y0, r.x1 - r.x0, r.y1 - r.y0};
+}
+
+uint64_t blit_clipped(Framebuffer& fb, const Raster2dState& st, const BlitRect& b) {
+  if (b.empty()) return 0;
+  const BlitWalkOrder o = blit_walk_order(b);
+  for (int j = 0; j < b.h; ++j) {
+    const int y = o.rows_up ? b.h - 1 - j : j;
+    for (int i = 0; i < b.w; ++i) {
+      const int x = o.right_to_left ? b.w - 1 - i : i;
+      uint8_t s[4];
+      std::copy_n(fb.pixel(b.sx + x, b.sy + y), 4, s);
+      write_pixel(fb.pixel(b.dx + x, b.dy + y), pattern_color(st, b.dx + x, b.dy + y), s, st.rop3);
+    }
+  }
+  return uint64_t(b.w) * uint64_t(b.h);
+}
+
+uint64_t blit(Framebuffer& fb, const PixelRect& clip, const Raster2dState& st, int sx, int sy, int dx, int dy, int w,
+              int h) {
+  return blit_clipped(fb, st, clip_blit(fb.width, fb.height, clip, sx, sy, dx, dy, w, h));
 }
 
 }  // namespace rastsim

@@ -13,7 +13,11 @@
 //   a blit's source is clipped to the framebuffer and its destination to `clip`, both
 //   in step so every written pixel keeps its source pixel.
 // - A blit behaves as if the whole source rectangle were read before any write, so
-//   overlapping copies in any direction give the source as it was.
+//   overlapping copies in any direction give the source as it was. The hardware gets
+//   there by its walk order (blit_walk_order): rows bottom to top when the copy moves
+//   down, top to bottom otherwise; within a row right to left when the copy moves right
+//   along the same rows, left to right otherwise. Every source pixel is read before the
+//   walk overwrites it, and each destination pixel is written once.
 #pragma once
 
 #include <array>
@@ -35,6 +39,26 @@ struct Raster2dState {
   Pattern8x8 pattern;
   uint8_t rop3 = 0;                   // the ROP3 code (set by the trace; PATCOPY = 0xF0)
 };
+
+// A blit after clipping: w x h pixels from source (sx, sy) to destination (dx, dy).
+struct BlitRect {
+  int sx = 0, sy = 0, dx = 0, dy = 0, w = 0, h = 0;
+  bool empty() const { return w <= 0 || h <= 0; }
+};
+
+// Clips a blit: the source to the fb_width x fb_height framebuffer, the destination to
+// `clip` and the framebuffer, both in step so every destination pixel keeps its source.
+BlitRect clip_blit(int fb_width, int fb_height, const PixelRect& clip, int sx, int sy, int dx, int dy, int w, int h);
+
+// The overlap-safe walk of a clipped blit: rows bottom to top when `rows_up`, pixels
+// right to left within a row when `right_to_left`.
+struct BlitWalkOrder {
+  bool rows_up = false, right_to_left = false;
+};
+inline BlitWalkOrder blit_walk_order(const BlitRect& b) { return {b.dy > b.sy, b.dy == b.sy && b.dx > b.sx}; }
+
+// Copies a clipped blit pixel by pixel in the walk order. Returns pixels written.
+uint64_t blit_clipped(Framebuffer& fb, const Raster2dState& st, const BlitRect& b);
 
 // Fills pixels [x0, x1) of row y (clipped to `clip`) with the pattern through ROP3
 // (no source operand: the caller rejects codes that read S). Returns pixels written.
