@@ -49,6 +49,26 @@ void add_timing_params(std::vector<ParamDef>& s) {
   add({"rop.clear_pixels_per_cycle", T::Int, int64_t{64}, "pixels/cycle", 1, 1 << 20, {},
        "Pixels a colour or depth clear writes per cycle (fast-clear bandwidth)"});
   // ---- FIFOs between stages (depth in transactions) ----
+  // The 2D path (docs/2d.md, "Timing"): command fetch -> 2D front end -> 2D engine, the
+  // engine writing the framebuffer through the ROP's port while the ROP holds for it.
+  add({"setup2d.ops_per_cycle", T::Int, int64_t{1}, "operations/cycle", 1, 64, {},
+       "Engine operations (spans, pixels, lines, blits) the 2D front end turns out per cycle; a command of N "
+       "operations takes max(1, ceil(N / this))"});
+  add({"engine2d.fill_pixels_per_cycle", T::Int, int64_t{4}, "pixels/cycle", 1, 8, {},
+       "Pixels of one span the 2D engine writes per beat (its framebuffer port width)"});
+  add({"engine2d.span_setup_cycles", T::Int, int64_t{1}, "cycles", 0, 64, {},
+       "Cycles the 2D engine spends setting up each span and each blit row"});
+  add({"engine2d.rmw_cycles", T::Int, int64_t{2}, "cycles", 2, 16, {},
+       "Cycles of one beat (or one line pixel) when the ROP3 code reads the destination D: read, wait, write; "
+       "a beat that does not read D takes 1"});
+  add({"engine2d.blit_bytes_per_cycle", T::Int, int64_t{8}, "bytes/cycle", 1, 8, {},
+       "Framebuffer bandwidth of a blit: a pixel moves 4 bytes written plus 4 read for each of S and D the "
+       "ROP3 code reads; a row of w pixels takes ceil(w * bytes / this). At most one pixel a cycle"});
+  add({"fifo.draw2d_depth", T::Int, int64_t{4}, "entries", 1, 65536, {},
+       "Command fetch -> 2D front end FIFO (one entry: a 2D command)"});
+  add({"fifo.op2d_depth", T::Int, int64_t{2}, "entries", 1, 65536, {},
+       "2D front end -> 2D engine FIFO (one entry: one command's engine operations)"});
+
   add({"fifo.command_depth", T::Int, int64_t{8}, "entries", 1, 65536, {},
        "Command fetch -> primitive assembly FIFO (one entry: a state command or one triangle's vertices)"});
   add({"fifo.triangle_depth", T::Int, int64_t{4}, "entries", 1, 65536, {},

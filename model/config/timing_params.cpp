@@ -1,6 +1,10 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "config/timing_params.h"
 
+#include <cstdlib>
+
+#include "ref/rop3.h"
+
 namespace rastsim {
 
 TimingParams TimingParams::from_config(const Config& cfg) {
@@ -20,6 +24,13 @@ TimingParams TimingParams::from_config(const Config& cfg) {
   p.interp_latency = u("interp.latency_cycles");
   p.rop_pixels_per_cycle = u("rop.pixels_per_cycle");
   p.rop_clear_pixels_per_cycle = u("rop.clear_pixels_per_cycle");
+  p.setup2d_ops_per_cycle = u("setup2d.ops_per_cycle");
+  p.engine2d_fill_pixels_per_cycle = u("engine2d.fill_pixels_per_cycle");
+  p.engine2d_span_setup = u("engine2d.span_setup_cycles");
+  p.engine2d_rmw = u("engine2d.rmw_cycles");
+  p.engine2d_blit_bytes_per_cycle = u("engine2d.blit_bytes_per_cycle");
+  p.fifo_draw2d = depth("fifo.draw2d_depth");
+  p.fifo_op2d = depth("fifo.op2d_depth");
   p.fifo_command = depth("fifo.command_depth");
   p.fifo_triangle = depth("fifo.triangle_depth");
   p.fifo_setup = depth("fifo.setup_depth");
@@ -32,6 +43,21 @@ TimingParams TimingParams::from_config(const Config& cfg) {
                       std::to_string(p.setup_interval) + " (" + cfg.origin("setup.interval_cycles") +
                       "); a pipelined stage cannot finish a triangle before accepting the next");
   return p;
+}
+
+uint64_t TimingParams::engine2d_op_cycles(const Op2d& op, uint8_t rop3) const {
+  const bool reads_d = rop3_reads_destination(rop3);
+  switch (op.kind) {
+    case Op2d::Kind::Span: return engine2d_span_cycles(uint64_t(op.x1 - op.x0), reads_d);
+    case Op2d::Kind::Pixel: return engine2d_pixel_cycles(reads_d);
+    case Op2d::Kind::Line: {
+      const int64_t dx = std::abs(int64_t(op.x1) - op.x0), dy = std::abs(int64_t(op.y1) - op.y0);
+      return engine2d_line_cycles(uint64_t(std::max(dx, dy)) + 1, reads_d);
+    }
+    case Op2d::Kind::Blit:
+      return engine2d_blit_cycles(uint64_t(op.w), uint64_t(op.h), rop3_reads_source(rop3), reads_d);
+  }
+  return 0;
 }
 
 }  // namespace rastsim

@@ -4,9 +4,11 @@
 // and the RTL parameter export (rtl_params.cpp) builds the Verilog with the same values.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 
 #include "config/config.h"
+#include "ref/draw2d.h"
 
 namespace rastsim {
 
@@ -22,6 +24,10 @@ struct TimingParams {
   uint64_t fine_samples_per_cycle = 0, fine_accepted_tile_cycles = 0;
   uint64_t interp_fragments_per_cycle = 0, interp_latency = 0;
   uint64_t rop_pixels_per_cycle = 0, rop_clear_pixels_per_cycle = 0;
+  uint64_t setup2d_ops_per_cycle = 0;
+  uint64_t engine2d_fill_pixels_per_cycle = 0, engine2d_span_setup = 0, engine2d_rmw = 0;
+  uint64_t engine2d_blit_bytes_per_cycle = 0;
+  int fifo_draw2d = 0, fifo_op2d = 0;
   int fifo_command = 0, fifo_triangle = 0, fifo_setup = 0, fifo_tile = 0, fifo_pixel = 0, fifo_fragment = 0;
 
   // Entries of the FIFO after a stage with a pipeline latency: the configured depth plus
@@ -38,10 +44,38 @@ struct TimingParams {
   uint64_t fetch_triangle_cycles(bool first_of_command, uint64_t new_vertices) const {
     return (first_of_command ? fetch_cycles_per_command : 0) + ceil_div(new_vertices, fetch_vertices_per_cycle);
   }
+  // Command fetch of a 2D command: the header plus its vertices.
+  uint64_t fetch_draw2d_cycles(uint64_t vertices) const {
+    return fetch_cycles_per_command + ceil_div(vertices, fetch_vertices_per_cycle);
+  }
   // ROP: a batch of fragments; a clear (colour or depth) of the whole framebuffer at the
   // fast-clear rate; any other state command passes in one cycle.
   uint64_t rop_fragment_cycles(uint64_t fragments) const { return ceil_div(fragments, rop_pixels_per_cycle); }
   uint64_t rop_clear_cycles(uint64_t pixels) const { return ceil_div(pixels, rop_clear_pixels_per_cycle); }
+
+
+  // The 2D path (docs/2d.md, "Timing").
+  // Front end: one command's N engine operations.
+  uint64_t setup2d_cycles(uint64_t ops) const { return std::max<uint64_t>(1, ceil_div(ops, setup2d_ops_per_cycle)); }
+  // Engine, one beat: 1 cycle, or rmw when the ROP3 code reads D (read, wait, write).
+  uint64_t engine2d_beat_cycles(bool reads_d) const { return reads_d ? engine2d_rmw : 1; }
+  // A span of n pixels (clipped, n >= 1): set-up, then beats of fill_pixels_per_cycle.
+  uint64_t engine2d_span_cycles(uint64_t n, bool reads_d) const {
+    return engine2d_span_setup + ceil_div(n, engine2d_fill_pixels_per_cycle) * engine2d_beat_cycles(reads_d);
+  }
+  // One pixel of a pixel stream (diamond and DDA lines, outlines): one beat.
+  uint64_t engine2d_pixel_cycles(bool reads_d) const { return engine2d_beat_cycles(reads_d); }
+  // An index-method line of n pixels through the line unit: 1 set-up cycle, then one
+  // beat a pixel (clipped pixels walked too).
+  uint64_t engine2d_line_cycles(uint64_t n, bool reads_d) const { return 1 + n * engine2d_beat_cycles(reads_d); }
+  // A clipped blit of h rows of w pixels: per row set-up, then the row's bytes at the
+  // blit bandwidth (4 written, 4 read for each of S and D the code reads).
+  uint64_t engine2d_blit_cycles(uint64_t w, uint64_t h, bool reads_s, bool reads_d) const {
+    const uint64_t bytes = 4 + (reads_s ? 4 : 0) + (reads_d ? 4 : 0);
+    return h * (engine2d_span_setup + ceil_div(w * bytes, engine2d_blit_bytes_per_cycle));
+  }
+  // Any engine operation of a command painted with ROP3 code `rop3`.
+  uint64_t engine2d_op_cycles(const Op2d& op, uint8_t rop3) const;
 
   // Reads and cross-checks the keys (setup.latency_cycles >= setup.interval_cycles);
   // throws ConfigError naming the keys.

@@ -1,14 +1,22 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "sc/command_fetch.h"
 
+#include "ref/pipeline.h"
 #include "ref/prim_assembly.h"
 
 namespace rastsim::sc {
 
 void CommandFetch::body() {
   for (const Command& cmd : scene_.commands) {
+    if (const auto* d2 = std::get_if<CmdDraw2d>(&cmd.body)) {
+      busy(p_.fetch_draw2d_cycles(draw2d_vertex_count(*d2)));
+      write(out_2d_, Draw2dItem{nullptr, Draw2dJob{&cmd, std::make_shared<const RasterState>(st_)}});
+      write(out_, CommandItem{&cmd, {}});
+      continue;
+    }
     const auto* prims = std::get_if<CmdPrimitives>(&cmd.body);
     if (!prims) {
+      apply_state_command(cmd, st_, no_fb_);  // viewport, scissor
       busy(p_.fetch_cycles_per_command);
       write(out_, CommandItem{&cmd, {}});
       continue;

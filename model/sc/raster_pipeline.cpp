@@ -27,13 +27,19 @@ struct RasterPipeline : sc_core::sc_module {
         tile_fifo("tile_fifo", p.fifo_tile, ctx.tracing),
         pixel_fifo("pixel_fifo", p.fifo_pixel, ctx.tracing),
         fragment_fifo("fragment_fifo", p.fragment_fifo_entries(), ctx.tracing),
-        command_fetch("command_fetch", ctx, scene, p, command_fifo),
+        draw2d_fifo("draw2d_fifo", p.fifo_draw2d, ctx.tracing),
+        op2d_fifo("op2d_fifo", p.fifo_op2d, ctx.tracing),
+        grant_2d("grant_2d", 1, ctx.tracing),
+        done_2d("done_2d", 1, ctx.tracing),
+        command_fetch("command_fetch", ctx, scene, arch, p, command_fifo, draw2d_fifo),
         prim_assembly("prim_assembly", ctx, p, command_fifo, triangle_fifo),
         tri_setup("tri_setup", ctx, arch, p, triangle_fifo, setup_fifo),
         coarse_raster("coarse_raster", ctx, arch, p, setup_fifo, tile_fifo),
         fine_raster("fine_raster", ctx, arch, p, tile_fifo, pixel_fifo),
         interpolate("interpolate", ctx, arch, p, pixel_fifo, fragment_fifo),
-        rop("rop", ctx, arch, p, fragment_fifo) {}
+        rop("rop", ctx, arch, p, fragment_fifo, grant_2d, done_2d),
+        draw2d_setup("draw2d_setup", ctx, p, draw2d_fifo, op2d_fifo),
+        engine2d("engine2d", ctx, p, rop.framebuffer(), op2d_fifo, grant_2d, done_2d) {}
 
   Link<CommandItem> command_fifo;
   Link<TriangleItem> triangle_fifo;
@@ -41,6 +47,9 @@ struct RasterPipeline : sc_core::sc_module {
   Link<TileItem> tile_fifo;
   Link<PixelItem> pixel_fifo;
   Link<FragmentItem> fragment_fifo;
+  Link<Draw2dItem> draw2d_fifo;
+  Link<Op2dItem> op2d_fifo;
+  Link<PortGrant> grant_2d, done_2d;  // the ROP's framebuffer port, lent to the 2D engine
   CommandFetch command_fetch;
   PrimAssembly prim_assembly;
   TriSetup tri_setup;
@@ -48,9 +57,13 @@ struct RasterPipeline : sc_core::sc_module {
   FineRaster fine_raster;
   Interpolate interpolate;
   Rop rop;
+  Draw2dSetup draw2d_setup;
+  Engine2d engine2d;
 
+  // The triangle path in pipeline order, then the 2D path.
   std::vector<Stage*> stages() {
-    return {&command_fetch, &prim_assembly, &tri_setup, &coarse_raster, &fine_raster, &interpolate, &rop};
+    return {&command_fetch, &prim_assembly, &tri_setup, &coarse_raster, &fine_raster,
+            &interpolate,   &rop,           &draw2d_setup, &engine2d};
   }
   template <class F>
   void for_each_fifo(F&& f) {
@@ -60,6 +73,10 @@ struct RasterPipeline : sc_core::sc_module {
     f(tile_fifo);
     f(pixel_fifo);
     f(fragment_fifo);
+    f(draw2d_fifo);
+    f(op2d_fifo);
+    f(grant_2d);
+    f(done_2d);
   }
 };
 
@@ -81,7 +98,6 @@ SimResult simulate_scene(const Scene& scene, const Config& cfg, const SimOptions
   const auto t0 = std::chrono::steady_clock::now();
   const RasterState arch = raster_state_from_config(cfg);
   const TimingParams p = TimingParams::from_config(cfg);
-  reject_2d_commands(scene, "SystemC");
 
   setenv("SC_COPYRIGHT_MESSAGE", "DISABLE", 1);  // before the simulation context exists
   sc_core::sc_report_handler::set_actions(sc_core::SC_INFO, sc_core::SC_DO_NOTHING);
@@ -117,6 +133,8 @@ SimResult simulate_scene(const Scene& scene, const Config& cfg, const SimOptions
     s->finish(end);
     const StageStats& st = s->stats();
     r.stages.push_back({s->basename(), st.busy, st.stalled, st.starved, st.transactions_in, st.transactions_out});
+    // The 2D stages start behind command fetch's first header.
+    if (s == &top->draw2d_setup || s == &top->engine2d) fill = p.fetch_cycles_per_command;
     r.cycles_lower_bound = std::max(r.cycles_lower_bound, fill + st.busy);
     fill += (s == &top->command_fetch) ? p.fetch_cycles_per_command : 1;
     // Everything leaving setup or interpolation also waits out their pipeline latency.

@@ -7,8 +7,9 @@
 namespace rastsim::sc {
 
 Rop::Rop(sc_core::sc_module_name name, SimContext& ctx, const RasterState& arch, const TimingParams& p,
-         Link<FragmentItem>& in)
-    : Stage(name, ctx, 6), st_(arch), fb_(arch.fb_width, arch.fb_height), p_(p), in_(in) {
+         Link<FragmentItem>& in, Link<PortGrant>& grant_2d, Link<PortGrant>& done_2d)
+    : Stage(name, ctx, 6), st_(arch), fb_(arch.fb_width, arch.fb_height), p_(p), in_(in), grant_2d_(grant_2d),
+      done_2d_(done_2d) {
   // As render_scene: the depth buffer starts at the far value.
   fb_.clear_depth(static_cast<uint32_t>((uint64_t{1} << st_.depth_bits) - 1));
 }
@@ -16,6 +17,12 @@ Rop::Rop(sc_core::sc_module_name name, SimContext& ctx, const RasterState& arch,
 void Rop::body() {
   for (;;) {
     const FragmentItem in = read(in_);
+    if (in.state && std::holds_alternative<CmdDraw2d>(in.state->body)) {
+      write(grant_2d_, PortGrant{in.state});
+      read(done_2d_);
+      busy(1);
+      continue;
+    }
     if (in.state) {
       apply_state_command(*in.state, st_, fb_);
       const bool clear = std::holds_alternative<CmdClear>(in.state->body) ||

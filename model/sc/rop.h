@@ -6,10 +6,13 @@
 // - A batch of N fragments takes ceil(N / rop.pixels_per_cycle) cycles.
 // - A colour or depth clear takes ceil(W * H / rop.clear_pixels_per_cycle) cycles for
 //   the W x H framebuffer; viewport and scissor commands 1 cycle.
+// - A 2D command's marker: the ROP grants its framebuffer port to the 2D engine and
+//   holds until the engine is done (sc/engine2d.h), then 1 cycle.
 // - Counts fragments_passed.
 #pragma once
 
 #include "ref/framebuffer.h"
+#include "sc/engine2d.h"
 #include "sc/interpolate.h"
 
 namespace rastsim::sc {
@@ -17,7 +20,7 @@ namespace rastsim::sc {
 class Rop : public Stage {
  public:
   Rop(sc_core::sc_module_name name, SimContext& ctx, const RasterState& arch, const TimingParams& p,
-      Link<FragmentItem>& in);
+      Link<FragmentItem>& in, Link<PortGrant>& grant_2d, Link<PortGrant>& done_2d);
   Framebuffer& framebuffer() { return fb_; }
 
  private:
@@ -26,6 +29,8 @@ class Rop : public Stage {
   Framebuffer fb_;
   const TimingParams& p_;
   Link<FragmentItem>& in_;
+  Link<PortGrant>& grant_2d_;
+  Link<PortGrant>& done_2d_;
 };
 
 }  // namespace rastsim::sc

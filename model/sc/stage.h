@@ -63,6 +63,7 @@ class Stage : public sc_core::sc_module {
     Tx<P> t = in.read();
     if (t.ready > sc_core::sc_time_stamp()) wait(t.ready - sc_core::sc_time_stamp());
     stats_.starved += ctx_.to_cycles(sc_core::sc_time_stamp() - idle_since_);
+    idle_since_ = sc_core::sc_time_stamp();  // a second read in a row counts from here
     ++stats_.transactions_in;
     return std::move(t.payload);
   }

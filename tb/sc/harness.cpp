@@ -149,7 +149,7 @@ Scene repeat_scene(const Scene& s, int copies) {
 
 std::vector<std::string> shipped_traces() {
   std::vector<std::string> out;
-  for (const auto& e : std::filesystem::directory_iterator(std::string(RASTSIM_SOURCE_DIR) + "/traces"))
+  for (const auto& e : std::filesystem::recursive_directory_iterator(std::string(RASTSIM_SOURCE_DIR) + "/traces"))
     if (e.path().extension() == ".trace") out.push_back(e.path().string());
   std::sort(out.begin(), out.end());
   return out;

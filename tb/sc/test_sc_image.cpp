@@ -11,6 +11,7 @@
 #include <iostream>
 #include <random>
 
+#include "common/random_2d_trace.h"
 #include "harness.h"
 #include "scene/scene_io.h"
 
@@ -106,11 +107,36 @@ INSTANTIATE_TEST_SUITE_P(TileSizesAndFormats, ScImage,
                            return "Tile" + std::to_string(std::get<0>(info.param)) + "_" + f;
                          });
 
+// 2D commands mixed with triangles (tb/common/random_2d_trace.h): the timed model's
+// image and counters equal the reference's for every line method, with 1-deep FIFOs on
+// the 2D path and random stalls.
+class ScImage2d : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(ScImage2d, RandomMixedScenesMatchReference) {
+  for (uint64_t seed = 1; seed <= 6; ++seed) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    const Scene scene = parse_trace(testing::random_2d_trace(seed, 96, 80, 60), "random_2d");
+    std::vector<std::string> extra{"line.method=" + GetParam(), "display.width=96", "display.height=80"};
+    if (seed % 2 == 0) extra.insert(extra.end(), {"fifo.draw2d_depth=1", "fifo.op2d_depth=1", "fifo.command_depth=1"});
+    if (seed % 3 == 0) extra.insert(extra.end(), {"engine2d.fill_pixels_per_cycle=1", "engine2d.span_setup_cycles=0"});
+    sc::SimOptions stalls;
+    if (seed == 5) {
+      stalls.stall_seed = seed;
+      stalls.stall_probability = 0.3;
+    }
+    const Config cfg = make_config(extra);
+    expect_matches_reference(run_isolated([&] { return compare_with_reference(scene, cfg, stalls); }));
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(LineMethods, ScImage2d, ::testing::Values("diamond", "bresenham", "midpoint", "dda"));
+
 TEST(ScFifo, DepthOneNeverLosesOrReorders) {
   // Every FIFO one entry deep (and no pipeline latency slots): maximal backpressure. Link::read checks the sequence
   // numbers and simulate_scene checks writes == reads; the fragment stream must match.
   const Config cfg = make_config({"fifo.command_depth=1", "fifo.triangle_depth=1", "fifo.setup_depth=1",
                                   "fifo.tile_depth=1", "fifo.pixel_depth=1", "fifo.fragment_depth=1",
+                                  "fifo.draw2d_depth=1", "fifo.op2d_depth=1",
                                   "raster.tile_size=8", "setup.latency_cycles=2", "interp.latency_cycles=0"});
   const Scene scene = random_scene(11, 128, 128, 80);
   const auto r = run_isolated([&] { return compare_with_reference(scene, cfg); });
