@@ -5,6 +5,7 @@
 #include <iostream>
 
 #include "common.h"
+#include "report/stats_json.h"
 #include "rtl/cosim.h"
 #include "sc/raster_pipeline.h"
 #include "scene/scene_io.h"
@@ -45,6 +46,10 @@ void register_cosim(CLI::App& app) {
                         {"fragments_expected", r.fragments_expected},
                         {"fragments_compared", r.fragments_compared},
                         {"mismatches", r.mismatches},
+                        {"commands_2d", r.commands_2d},
+                        {"pixels_2d", r.pixels_2d},
+                        {"framebuffer_crc32_rtl", crc32_hex(r.crc_rtl)},
+                        {"framebuffer_crc32_ref", crc32_hex(r.crc_ref)},
                         {"first_mismatch", r.first_mismatch},
                         {"backpressure", co.backpressure},
                         {"seed", co.backpressure_seed},
@@ -53,6 +58,8 @@ void register_cosim(CLI::App& app) {
     std::cout << "cosim: RTL model " << r.rtl_config << ", " << r.triangles << " triangles, " << r.cycles_rtl
               << " cycles (" << r.wall_seconds << " s wall), " << r.fragments_compared << " fragments compared, "
               << r.mismatches << " mismatches";
+    if (r.commands_2d) std::cout << ", " << r.commands_2d << " 2D commands (" << r.pixels_2d << " pixels)";
+    std::cout << ", crc32 " << crc32_hex(r.crc_rtl) << (r.crc_rtl == r.crc_ref ? " (= reference)" : " (reference " + crc32_hex(r.crc_ref) + ")");
     if (co.backpressure > 0) std::cout << " (backpressure " << co.backpressure << ", seed " << co.backpressure_seed << ")";
     std::cout << "\n";
     if (!r.first_mismatch.empty()) std::cout << "cosim: first mismatch: " << r.first_mismatch << "\n";
@@ -68,7 +75,7 @@ void register_cosim(CLI::App& app) {
     if (!stats_path.empty()) write_json(stats_path, j);
     if (!no_model && max_error >= 0 && std::abs(j["cycle_error"].get<double>()) > max_error)
       throw std::runtime_error("cycle error of the SystemC model exceeds " + std::to_string(max_error));
-    if (r.mismatches) throw std::runtime_error(std::to_string(r.mismatches) + " fragment mismatches");
+    if (r.mismatches) throw std::runtime_error(std::to_string(r.mismatches) + " mismatches (fragments or framebuffer)");
   });
 }
 

@@ -33,11 +33,24 @@ void build(const Scene& scene, const Config& cfg, int tile_size, TbSetup& s) {
   Framebuffer fb(1, 1);  // state commands need one; the testbench ROP keeps no pixels
   TraversalCounters counters;
   for (const Command& cmd : scene.commands) {
+    if (const auto* d2 = std::get_if<CmdDraw2d>(&cmd.body)) {
+      TbItem m;
+      m.kind = TbItem::Marker;
+      m.cmd = &cmd;
+      m.fetch_cost = tp.fetch_draw2d_cycles(draw2d_vertex_count(*d2));
+      m.work2d = static_cast<int>(s.work2d.size());
+      TbWork2d w{draw2d_ops(*d2, cmd.loc, st), 0, cmd.loc.str()};
+      w.setup_cost = tp.setup2d_cycles(w.work.ops.size());
+      s.work2d.push_back(std::move(w));
+      s.items.push_back(m);
+      continue;
+    }
     const auto* prims = std::get_if<CmdPrimitives>(&cmd.body);
     if (!prims) {
       apply_state_command(cmd, st, fb);
       TbItem m;
       m.kind = TbItem::Marker;
+      m.cmd = &cmd;
       m.fetch_cost = cpc;
       const bool clear = std::holds_alternative<CmdClear>(cmd.body) || std::holds_alternative<CmdClearDepth>(cmd.body);
       m.rop_cost = clear ? tp.rop_clear_cycles(uint64_t(st.fb_width) * uint64_t(st.fb_height)) : 1;
@@ -96,7 +109,6 @@ std::vector<RtlModelInfo> rtl_models() {
 }
 
 CosimResult run_cosim(const Scene& scene, const Config& cfg, const CosimOptions& opts) {
-  reject_2d_commands(scene, "RTL");
   TbSetup s;
   s.opts = opts;
   s.params = rtl_params_from_config(cfg);
@@ -121,11 +133,16 @@ CosimResult run_cosim(const Scene& scene, const Config& cfg, const CosimOptions&
       continue;
     }
     s.params = models[i].params;  // the built widths and maximum tile size
+    s.arch = st;
+    s.arch.tile_size = tile;
+    RenderStats ref_stats;
+    s.reference = render_scene(scene, s.arch, ref_stats);
     build(scene, cfg, tile, s);
     CosimResult r;
     r.rtl_config = models[i].name;
     r.fragments_expected = s.expected.size();
     for (const TbItem& it : s.items) (it.kind == TbItem::Marker ? r.markers : r.triangles) += it.kind != TbItem::Null;
+    r.commands_2d = s.work2d.size();
     rtl_registry()[i].run(s, r);
     return r;
   }

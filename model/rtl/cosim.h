@@ -41,6 +41,9 @@ struct CosimResult {
   uint64_t mismatches = 0;         // differing or missing/extra fragments
   std::string first_mismatch;      // "" when none
   uint64_t triangles = 0, markers = 0;
+  uint64_t commands_2d = 0;        // 2D commands run through the 2D engine
+  uint64_t pixels_2d = 0;          // pixels the 2D engine wrote
+  uint32_t crc_rtl = 0, crc_ref = 0;  // colour CRC of the testbench framebuffer and the reference
   double wall_seconds = 0;         // the RTL simulation (testbench included)
 };
 

@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstring>
 #include <cstdint>
 #include <deque>
 #include <memory>
@@ -25,10 +26,13 @@
 #include <verilated.h>
 #include <verilated_fst_c.h>
 
+#include "Vrast_engine2d.h"
+
 #include "config/timing_params.h"
 #include "rtl/cosim.h"
 #include "ref/interpolate.h"
 #include "ref/pipeline.h"
+#include "ref/rop.h"
 
 namespace rastsim::cosim {
 
@@ -44,6 +48,14 @@ struct TbItem {
   int clip[4] = {};            // x0, y0, x1, y1
   int origin[2] = {};          // x, y
   int tri = -1;                // triangle index (names in TbSetup::tri_names)
+  const Command* cmd = nullptr;  // markers: the state or 2D command
+  int work2d = -1;             // 2D markers: index in TbSetup::work2d
+};
+// A 2D command's engine operations (ref/draw2d.h) and its front-end cost.
+struct TbWork2d {
+  Draw2dWork work;
+  uint64_t setup_cost = 1;     // 2D front end cycles (TimingParams::setup2d_cycles)
+  std::string name;            // "file:line"
 };
 
 struct Expected {
@@ -60,6 +72,9 @@ struct TbSetup {
   std::vector<TbItem> items;
   std::vector<Expected> expected;
   std::vector<std::string> tri_names;   // "file:line triangle k"
+  std::vector<TbWork2d> work2d;         // the 2D commands, in order
+  RasterState arch;                     // the config's state: the testbench ROP applies state commands to it
+  Framebuffer reference;                // the reference model's image of the scene
   TimingParams timing;                  // of the config being simulated: FIFO depths, ROP cost
   CosimOptions opts;
 };
@@ -108,7 +123,11 @@ class RtlBench {
  public:
   RtlBench(const TbSetup& s, CosimResult& r)
       : s_(s), p_(s.params), r_(r), rng_(s.opts.backpressure_seed), stall_(s.opts.backpressure),
-        cmd_depth_(size_t(s.timing.fifo_command)), frag_depth_(size_t(s.timing.fragment_fifo_entries())) {}
+        cmd_depth_(size_t(s.timing.fifo_command)), frag_depth_(size_t(s.timing.fragment_fifo_entries())),
+        d2_depth_(size_t(s.timing.fifo_draw2d)), op2d_depth_(size_t(s.timing.fifo_op2d)), st_(s.arch),
+        fb_(s.arch.fb_width, s.arch.fb_height) {
+    fb_.clear_depth(static_cast<uint32_t>((uint64_t{1} << st_.depth_bits) - 1));  // as render_scene
+  }
 
   void run() {
     const auto t0 = std::chrono::steady_clock::now();
@@ -127,6 +146,7 @@ class RtlBench {
     end_of_run_check();
     if (fst_) fst_->close();
     top_->final();
+    engine_->final();
     r_.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   }
 
@@ -143,6 +163,7 @@ class RtlBench {
     bool marker = false;
     size_t marker_item = 0;
     uint64_t pushed = 0;
+    std::vector<Fragment> frags;  // written into the testbench framebuffer by the ROP
   };
 
   // ---- The model, its waveform and its clock ----
@@ -150,6 +171,7 @@ class RtlBench {
     ctx_ = std::make_unique<VerilatedContext>();
     ctx_->traceEverOn(!s_.opts.fst_path.empty());
     top_ = std::make_unique<V>(ctx_.get(), "rast_top");
+    engine_ = std::make_unique<Vrast_engine2d>(ctx_.get(), "rast_engine2d");
     if (!s_.opts.fst_path.empty()) {
       fst_ = std::make_unique<VerilatedFstC>();
       top_->trace(fst_.get(), 99);
@@ -159,6 +181,8 @@ class RtlBench {
   void half(int clk) {
     top_->clk_i = clk;
     top_->eval();
+    engine_->clk_i = clk;
+    engine_->eval();
     if (fst_) fst_->dump(time_);
     ++time_;
   }
@@ -171,15 +195,26 @@ class RtlBench {
     top_->tri_valid_i = 0;
     top_->frag_ready_i = 0;
     top_->rst_ni = 0;
+    engine_->lanes_i = static_cast<uint8_t>(s_.timing.engine2d_fill_pixels_per_cycle);
+    engine_->span_setup_i = static_cast<uint8_t>(s_.timing.engine2d_span_setup);
+    engine_->rmw_i = static_cast<uint8_t>(s_.timing.engine2d_rmw);
+    engine_->blit_bytes_i = static_cast<uint8_t>(s_.timing.engine2d_blit_bytes_per_cycle);
+    engine_->in_valid_i = 0;
+    engine_->rst_ni = 0;
     half(0);
     half(1);
     top_->rst_ni = 1;
+    engine_->rst_ni = 1;
   }
 
   // One clock cycle t; true when the run is complete.
   bool cycle(uint64_t t) {
     rop_step(t);
     unblock_staging(t);
+    engine_take(t);
+    front_end_take(t);
+    front_end_step(t);
+    const bool op_valid = engine_drive();
     assembly_take(t);
     const bool tri_valid = assembly_.offering();
     drive_triangle(tri_valid);
@@ -189,6 +224,7 @@ class RtlBench {
     const bool tri_taken = tri_valid && top_->tri_ready_o;
     if (!top_->idle_o || top_->frag_valid_o || fetch_.active || assembly_.active) last_busy_ = std::max(last_busy_, t);
     if (top_->frag_valid_o && frag_ready) take_beat(t);
+    engine_memory_and_handshake(t, op_valid);
     assembly_step(tri_taken);
     fetch_step(t);
     half(1);
@@ -198,9 +234,21 @@ class RtlBench {
   // ---- Back end: the ROP as a memory model (model/sc/rop.cpp) ----
   // Starts the next visible batch when idle and counts its busy cycles.
   void rop_step(uint64_t t) {
+    if (rop_wait_2d_) {  // the port is lent to the 2D engine
+      last_busy_ = t;
+      return;
+    }
     if (rop_left_ == 0 && !frag_fifo_.empty() && frag_fifo_.front().pushed < t) {
-      const Batch b = frag_fifo_.front();
+      const Batch b = std::move(frag_fifo_.front());
       frag_fifo_.pop_front();
+      if (b.marker && s_.items[b.marker_item].work2d >= 0) {
+        rop_wait_2d_ = true;
+        grant_work_ = s_.items[b.marker_item].work2d;
+        last_busy_ = t;
+        return;
+      }
+      if (b.marker) apply_state_command(*s_.items[b.marker_item].cmd, st_, fb_);
+      for (const Fragment& f : b.frags) rop_write(fb_, f, st_.depth_func, st_.depth_write);
       rop_left_ = b.marker ? s_.items[b.marker_item].rop_cost : s_.timing.rop_fragment_cycles(b.fragments);
     }
     if (rop_left_ > 0) {
@@ -222,6 +270,138 @@ class RtlBench {
   }
   void unblock_staging(uint64_t t) {
     if (staging_blocked_) push_staging(t);
+  }
+
+  // ---- The 2D path (model/sc/draw2d_setup.cpp, engine2d.cpp) ----
+  // The engine takes the next visible operation batch when it has none.
+  void engine_take(uint64_t t) {
+    if (held_ < 0 && !engine_busy_ && !op2d_fifo_.empty() && op2d_fifo_.front().pushed < t) {
+      held_ = int(op2d_fifo_.front().item);
+      op2d_fifo_.pop_front();
+    }
+    // The ROP's grant and the held batch: the engine starts (its first cycle takes the port).
+    if (rop_wait_2d_ && held_ >= 0 && !engine_busy_) {
+      if (held_ != grant_work_) mismatch("2D engine holds " + s_.work2d[size_t(held_)].name + " but the ROP granted " +
+                                         s_.work2d[size_t(grant_work_)].name);
+      engine_busy_ = true;
+      next_op_ = 0;
+      if (s_.work2d[size_t(held_)].work.ops.empty()) engine_done(t);
+    }
+  }
+  void engine_done(uint64_t) {
+    engine_busy_ = false;
+    held_ = -1;
+    rop_wait_2d_ = false;
+    rop_left_ = 1;  // the ROP's own cycle for the marker, next cycle
+  }
+  // Drives the next operation and the command's paint state; true when one is offered.
+  bool engine_drive() {
+    if (!engine_busy_ || next_op_ >= s_.work2d[size_t(held_)].work.ops.size()) {
+      engine_->in_valid_i = 0;
+      return false;
+    }
+    const Draw2dWork& w = s_.work2d[size_t(held_)].work;
+    const Op2d& op = w.ops[next_op_];
+    auto rgb = [](const std::array<uint8_t, 3>& c) { return uint32_t(c[0]) | uint32_t(c[1]) << 8 | uint32_t(c[2]) << 16; };
+    const uint32_t mask = (1u << 20) - 1;  // Width = 20 bits of the engine's signed indices
+    engine_->rop3_i = w.paint.rop3;
+    engine_->fg_i = rgb(w.paint.fg);
+    engine_->bg_i = rgb(w.paint.bg);
+    uint64_t pat = 0;
+    for (int r = 0; r < 8; ++r) pat = pat << 8 | w.paint.pattern.rows[size_t(r)];
+    engine_->pattern_i = pat;
+    engine_->pattern_solid_i = w.paint.pattern.solid;
+    engine_->clip_x0_i = uint32_t(w.clip.x0) & mask;
+    engine_->clip_y0_i = uint32_t(w.clip.y0) & mask;
+    engine_->clip_x1_i = uint32_t(w.clip.x1) & mask;
+    engine_->clip_y1_i = uint32_t(w.clip.y1) & mask;
+    engine_->in_valid_i = 1;
+    engine_->op_kind_i = uint8_t(op.kind);
+    engine_->op_paint_i = uint8_t(op.paint);
+    engine_->op_midpoint_i = op.midpoint;
+    engine_->op_x0_i = uint32_t(op.x0) & mask;
+    engine_->op_y0_i = uint32_t(op.y0) & mask;
+    engine_->op_x1_i = uint32_t(op.x1) & mask;
+    engine_->op_y1_i = uint32_t(op.y1) & mask;
+    engine_->op_sx_i = uint32_t(op.sx) & mask;
+    engine_->op_sy_i = uint32_t(op.sy) & mask;
+    engine_->op_w_i = uint32_t(op.w) & mask;
+    engine_->op_h_i = uint32_t(op.h) & mask;
+    return true;
+  }
+  static int sext20(uint32_t v) { return int(int32_t(v << 12) >> 12); }
+  uint32_t fb_rgb(int x, int y) const {
+    if (x < 0 || y < 0 || x >= fb_.width || y >= fb_.height) return 0;
+    const uint8_t* p = fb_.pixel(x, y);
+    return uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16;
+  }
+  // The framebuffer port (asynchronous read, write at the edge), then the handshake.
+  void engine_memory_and_handshake(uint64_t t, bool op_valid) {
+    if (!engine_busy_) return;
+    last_busy_ = t;
+    const int x = sext20(engine_->mem_x_o), y = sext20(engine_->mem_y_o);
+    for (int k = 0; k < 8; ++k) set_lane(k, fb_rgb(x + k, y));
+    engine_->mem_s_i = fb_rgb(sext20(engine_->mem_sx_o), sext20(engine_->mem_sy_o));
+    engine_->eval();
+    if (engine_->mem_we_o) {
+      for (int k = 0; k < 8; ++k) {
+        if (!((engine_->mem_wmask_o >> k) & 1)) continue;
+        if (x + k < 0 || y < 0 || x + k >= fb_.width || y >= fb_.height) {
+          mismatch("cycle " + std::to_string(t) + ": the 2D engine wrote outside the framebuffer at (" +
+                   std::to_string(x + k) + ", " + std::to_string(y) + ")");
+          continue;
+        }
+        const uint32_t v = uint32_t(port_bits(engine_->mem_wdata_o, k * 24, 24));
+        uint8_t* p = fb_.pixel(x + k, y);
+        p[0] = uint8_t(v);
+        p[1] = uint8_t(v >> 8);
+        p[2] = uint8_t(v >> 16);
+        p[3] = 255;
+        ++r_.pixels_2d;
+      }
+    }
+    const size_t n = s_.work2d[size_t(held_)].work.ops.size();
+    const bool all_taken = next_op_ >= n;
+    if (op_valid && engine_->in_ready_o) ++next_op_;
+    if (all_taken && engine_->in_ready_o) engine_done(t);
+  }
+  void set_lane(int k, uint32_t v) {
+    for (int b = 0; b < 24; ++b) {
+      const int bit = k * 24 + b;
+      auto& word = engine_->mem_d_i[size_t(bit / 32)];
+      if ((v >> b) & 1) word |= (1u << (bit % 32));
+      else word &= ~(1u << (bit % 32));
+    }
+  }
+  // The 2D front end: takes a visible command, is busy its cost, pushes its operations.
+  void front_end_take(uint64_t t) {
+    if (!fe_.active && !d2_fifo_.empty() && d2_fifo_.front().pushed < t) {
+      fe_ = TbStage{true, s_.work2d[d2_fifo_.front().item].setup_cost, d2_fifo_.front().item};
+      d2_fifo_.pop_front();
+    }
+  }
+  // A stage that pushes in its last busy cycle starts its next item the cycle after; one
+  // that was blocked on a full FIFO pushes in the cycle the reader pops and starts its
+  // next item in that same cycle (the SystemC writer returns from its blocked write then).
+  void front_end_step(uint64_t t) {
+    for (;;) {
+      front_end_take(t);
+      if (!fe_.active) return;
+      last_busy_ = std::max(last_busy_, t);
+      if (fe_.left > 1) {
+        --fe_.left;
+        return;
+      }
+      if (op2d_fifo_.size() >= op2d_depth_) {
+        fe_blocked_ = true;
+        return;
+      }
+      op2d_fifo_.push_back(Entry{fe_.item, t});
+      fe_.active = false;
+      const bool was_blocked = fe_blocked_;
+      fe_blocked_ = false;
+      if (!was_blocked) return;
+    }
   }
 
   // ---- Front end: command fetch and primitive assembly (model/sc/command_fetch.cpp,
@@ -253,9 +433,18 @@ class RtlBench {
       --fetch_.left;
     } else if (s_.items[fetch_.item].kind == TbItem::Null) {
       fetch_.active = false;  // an empty primitive command: header only, nothing out
-    } else if (cmd_fifo_.size() < cmd_depth_) {
-      cmd_fifo_.push_back(Entry{fetch_.item, t});
-      fetch_.active = false;
+    } else {
+      // A 2D command goes to the 2D front end first, then as a marker down the triangle path.
+      const int w2 = s_.items[fetch_.item].work2d;
+      if (w2 >= 0 && !fetch_2d_pushed_ && d2_fifo_.size() < d2_depth_) {
+        d2_fifo_.push_back(Entry{size_t(w2), t});
+        fetch_2d_pushed_ = true;
+      }
+      if ((w2 < 0 || fetch_2d_pushed_) && cmd_fifo_.size() < cmd_depth_) {
+        cmd_fifo_.push_back(Entry{fetch_.item, t});
+        fetch_.active = false;
+        fetch_2d_pushed_ = false;
+      }
     }
   }
 
@@ -312,7 +501,8 @@ class RtlBench {
       for (int j = 0; j < p_.interp_fragments_per_cycle; ++j) {
         if (!(port_bits(top_->frag_lanes_o, j, 1) & 1)) continue;
         ++staging_.fragments;
-        compare(lane_fragment(j));
+        staging_.frags.push_back(lane_fragment(j));
+        compare(staging_.frags.back());
       }
     }
     if (top_->frag_marker_o || top_->frag_last_o) push_staging(t);
@@ -340,7 +530,8 @@ class RtlBench {
   bool done() const {
     return next_item_ >= s_.items.size() && !fetch_.active && cmd_fifo_.empty() && !assembly_.active &&
            top_->idle_o && !top_->frag_valid_o &&
-           !staging_blocked_ && staging_.fragments == 0 && !staging_.marker && frag_fifo_.empty() && rop_left_ == 0;
+           !staging_blocked_ && staging_.fragments == 0 && !staging_.marker && frag_fifo_.empty() && rop_left_ == 0 &&
+           d2_fifo_.empty() && !fe_.active && op2d_fifo_.empty() && held_ < 0 && !engine_busy_ && !rop_wait_2d_;
   }
   void end_of_run_check() {
     if (next_expected_ < s_.expected.size())
@@ -348,6 +539,16 @@ class RtlBench {
                std::to_string(next_expected_) + " of " + s_.tri_names[s_.expected[next_expected_].tri] + ": '" +
                fragment_trace_line(s_.expected[next_expected_].f) + "'");
     if (!markers_in_flight_.empty()) mismatch(std::to_string(markers_in_flight_.size()) + " markers lost in the RTL");
+    // The whole picture: the testbench framebuffer (fragments, clears and the 2D engine's
+    // writes) against the reference model's.
+    r_.crc_rtl = fb_.color_crc32();
+    r_.crc_ref = s_.reference.color_crc32();
+    for (int y = 0; y < fb_.height && r_.crc_rtl != r_.crc_ref; ++y)
+      for (int x = 0; x < fb_.width; ++x)
+        if (std::memcmp(fb_.pixel(x, y), s_.reference.pixel(x, y), 3) != 0) {
+          mismatch("framebuffer pixel (" + std::to_string(x) + ", " + std::to_string(y) + ") differs from the reference");
+          return;
+        }
   }
 
   const TbSetup& s_;
@@ -358,6 +559,7 @@ class RtlBench {
   const size_t cmd_depth_, frag_depth_;  // command FIFO; fragment FIFO with the interpolator's latency slots
   std::unique_ptr<VerilatedContext> ctx_;
   std::unique_ptr<V> top_;
+  std::unique_ptr<Vrast_engine2d> engine_;
   std::unique_ptr<VerilatedFstC> fst_;
   uint64_t time_ = 0;  // half cycles, the waveform's time
 
@@ -371,6 +573,19 @@ class RtlBench {
   uint64_t rop_left_ = 0;                 // ROP busy cycles left
   uint64_t last_busy_ = 0;                // last cycle any stage worked
   size_t next_expected_ = 0;
+  // The 2D path.
+  const size_t d2_depth_, op2d_depth_;
+  RasterState st_;                        // the ROP's state (depth function, clears)
+  Framebuffer fb_;                        // the memory: fragments, clears, 2D writes
+  std::deque<Entry> d2_fifo_, op2d_fifo_;  // fetch -> front end -> engine (items: work2d indices)
+  TbStage fe_;                            // the 2D front end
+  bool fe_blocked_ = false;               // the front end waited for op2d FIFO room
+  bool fetch_2d_pushed_ = false;          // fetch pushed its 2D command, the marker still to go
+  int held_ = -1;                         // the batch the engine holds (work2d index)
+  bool engine_busy_ = false;              // executing `held_` (the port is lent)
+  size_t next_op_ = 0;                    // next operation of `held_` to offer
+  bool rop_wait_2d_ = false;              // the ROP holds for the engine
+  int grant_work_ = -1;                   // the 2D command the ROP granted
 };
 
 template <class V>
