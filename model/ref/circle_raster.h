@@ -33,4 +33,19 @@ std::vector<std::pair<int, int>> circle_outline(int cx, int cy, int r);
 // Filled circle as spans, rows top to bottom.
 std::vector<PixelSpan> circle_fill(int cx, int cy, int r);
 
+// Arc: the outline pixels (circle_outline, same order) whose direction from the centre
+// lies in the sector swept counter-clockwise ON SCREEN from a0 to a1 degrees (from +x;
+// the direction of angle t is (cos t, -sin t) with y down). sweep = a1 - a0 >= 0; 360
+// or more is the whole circle. Exact rule: each end direction is the integer vector
+// round(2^24 * (cos t, sin t)) (double, round to nearest), and a pixel offset q = (x, -y)
+// is inside by integer cross products (both end rays included; a pixel on the ray
+// opposite an end direction is not on that end's ray). The centre pixel (r = 0) is drawn.
+std::vector<std::pair<int, int>> arc_outline(int cx, int cy, int r, double a0_deg, double a1_deg);
+// The end direction of angle t degrees: round(2^24 * (cos t, sin t)), y up.
+std::pair<int64_t, int64_t> arc_direction(double deg);
+// Whether offset (x, y) (screen, y down) lies in the sector from direction d0 to d1
+// (y up) of sweep `sweep_deg` in [0, 360).
+bool arc_contains(std::pair<int64_t, int64_t> d0, std::pair<int64_t, int64_t> d1, double sweep_deg, int64_t x,
+                  int64_t y);
+
 }  // namespace rastsim

@@ -56,6 +56,10 @@ class FrontEnd {
     }
   }
 
+  void operator()(const Draw2dArc& a) {
+    for (const auto& [x, y] : arc_outline(a.cx, a.cy, a.r, a.a0, a.a1)) pixel(x, y);
+  }
+
   void operator()(const Draw2dRect& r) {
     for (int64_t y = r.y; y < int64_t(r.y) + r.h; ++y) span(int(y), r.x, int(int64_t(r.x) + r.w));
   }

@@ -63,7 +63,9 @@ struct Draw2dCircle { int cx = 0, cy = 0, r = 0; bool fill = false; };
 struct Draw2dRect { int x = 0, y = 0, w = 0, h = 0; };
 struct Draw2dPolygon { std::vector<Vertex2d> vertices; };
 struct Draw2dBlit { int sx = 0, sy = 0, dx = 0, dy = 0, w = 0, h = 0; };
-using Draw2dShape = std::variant<Draw2dPoint, Draw2dLines, Draw2dCircle, Draw2dRect, Draw2dPolygon, Draw2dBlit>;
+struct Draw2dArc { int cx = 0, cy = 0, r = 0; double a0 = 0, a1 = 0; };  // degrees, a1 >= a0
+using Draw2dShape =
+    std::variant<Draw2dPoint, Draw2dLines, Draw2dCircle, Draw2dRect, Draw2dPolygon, Draw2dBlit, Draw2dArc>;
 struct CmdDraw2d {
   Draw2dShape shape;
   Style2d style;

@@ -78,6 +78,7 @@ class TraceParser {
         {"linestrip", &TraceParser::begin, true},   {"lineloop", &TraceParser::begin, true},
         {"polygon", &TraceParser::begin, true},     {"quads", &TraceParser::begin, true},
         {"quadstrip", &TraceParser::begin, true},   {"circle", &TraceParser::circle, true},
+        {"arc", &TraceParser::arc, true},
         {"rect", &TraceParser::rect, true},         {"blit", &TraceParser::blit, true},
         {"bgcolor", &TraceParser::bgcolor, false},  {"pattern", &TraceParser::pattern, false},
         {"rop3", &TraceParser::rop3, false}};
@@ -339,6 +340,16 @@ class TraceParser {
     draw2d(Draw2dCircle{int(pixel_int(t[1], "centre x")), int(pixel_int(t[2], "centre y")),
                         int(extent(t[3], "radius")), fill},
            "circle", fill);
+  }
+
+  void arc(const Tokens& t) {
+    args(t, 5, "cx cy r a0 a1: integer centre and radius, angles in degrees counter-clockwise from +x");
+    const double a0 = coord(t[4], "start angle").to_double(), a1 = coord(t[5], "end angle").to_double();
+    if (a1 < a0) fail("arc end angle " + std::string(t[5]) + " is below its start angle " + std::string(t[4]) +
+                      " (the arc runs counter-clockwise from a0 to a1; write a1 + 360)");
+    draw2d(Draw2dArc{int(pixel_int(t[1], "centre x")), int(pixel_int(t[2], "centre y")), int(extent(t[3], "radius")),
+                     a0, a1},
+           "arc", false);
   }
 
   void rect(const Tokens& t) {

@@ -62,6 +62,12 @@ inline std::string random_2d_trace(uint64_t seed, int w, int h, int commands) {
         t << "point_size " << ri(1, 6) << "\npoint " << coord(w) << " " << coord(h) << "\n";
         break;
       case 3:
+        if (ri(0, 2) == 0) {
+          const int a0 = ri(-360, 360);
+          t << "arc " << ri(-8, w + 8) << " " << ri(-8, h + 8) << " " << ri(0, w / 3) << " " << a0 << " "
+            << a0 + ri(0, 400) << "\n";
+          break;
+        }
         t << "circle " << ri(-8, w + 8) << " " << ri(-8, h + 8) << " " << ri(0, w / 3) << (ri(0, 1) ? " fill" : "")
           << "\n";
         break;
