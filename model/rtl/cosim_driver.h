@@ -423,28 +423,42 @@ class RtlBench {
       assembly_.active = false;
     }
   }
-  // Fetch starts the scene's next item and pushes it into the command FIFO when done.
+  // Fetch starts the scene's next item and pushes it into the command FIFO when done
+  // (a 2D command into the 2D front end's FIFO first). Like the front end: after a push
+  // that waited for FIFO room, the next item starts in the same cycle.
   void fetch_step(uint64_t t) {
-    if (!fetch_.active && next_item_ < s_.items.size())
-      fetch_ = TbStage{true, s_.items[next_item_].fetch_cost, next_item_++};
-    if (!fetch_.active) return;
-    last_busy_ = std::max(last_busy_, t);
-    if (fetch_.left > 1) {
-      --fetch_.left;
-    } else if (s_.items[fetch_.item].kind == TbItem::Null) {
-      fetch_.active = false;  // an empty primitive command: header only, nothing out
-    } else {
-      // A 2D command goes to the 2D front end first, then as a marker down the triangle path.
+    for (;;) {
+      if (!fetch_.active && next_item_ < s_.items.size())
+        fetch_ = TbStage{true, s_.items[next_item_].fetch_cost, next_item_++};
+      if (!fetch_.active) return;
+      last_busy_ = std::max(last_busy_, t);
+      if (fetch_.left > 1) {
+        --fetch_.left;
+        return;
+      }
+      if (s_.items[fetch_.item].kind == TbItem::Null) {
+        fetch_.active = false;  // an empty primitive command: header only, nothing out
+        return;
+      }
       const int w2 = s_.items[fetch_.item].work2d;
-      if (w2 >= 0 && !fetch_2d_pushed_ && d2_fifo_.size() < d2_depth_) {
+      if (w2 >= 0 && !fetch_2d_pushed_) {
+        if (d2_fifo_.size() >= d2_depth_) {
+          fetch_blocked_ = true;
+          return;
+        }
         d2_fifo_.push_back(Entry{size_t(w2), t});
         fetch_2d_pushed_ = true;
       }
-      if ((w2 < 0 || fetch_2d_pushed_) && cmd_fifo_.size() < cmd_depth_) {
-        cmd_fifo_.push_back(Entry{fetch_.item, t});
-        fetch_.active = false;
-        fetch_2d_pushed_ = false;
+      if (cmd_fifo_.size() >= cmd_depth_) {
+        fetch_blocked_ = true;
+        return;
       }
+      cmd_fifo_.push_back(Entry{fetch_.item, t});
+      fetch_.active = false;
+      fetch_2d_pushed_ = false;
+      const bool was_blocked = fetch_blocked_;
+      fetch_blocked_ = false;
+      if (!was_blocked) return;
     }
   }
 
@@ -580,6 +594,7 @@ class RtlBench {
   std::deque<Entry> d2_fifo_, op2d_fifo_;  // fetch -> front end -> engine (items: work2d indices)
   TbStage fe_;                            // the 2D front end
   bool fe_blocked_ = false;               // the front end waited for op2d FIFO room
+  bool fetch_blocked_ = false;            // fetch waited for command or 2D FIFO room
   bool fetch_2d_pushed_ = false;          // fetch pushed its 2D command, the marker still to go
   int held_ = -1;                         // the batch the engine holds (work2d index)
   bool engine_busy_ = false;              // executing `held_` (the port is lent)
