@@ -16,8 +16,9 @@
 //   line: 1 cycle to load the line unit, then one beat a pixel, clipped pixels walked;
 //   blit: per row span_setup_i cycles, then a byte-credit gate: each cycle adds
 //   blit_bytes_i, a pixel moves when the credit reaches its bytes (4 + 4 per S and D
-//   read), so a row of w takes ceil(w * bytes / blit_bytes_i) cycles. Rows bottom to top
-//   when the copy moves down, pixels right to left when it moves right along its rows.
+//   read), at most one a cycle, so a row of w takes max(w, ceil(w * bytes / blit_bytes_i))
+//   cycles. Rows bottom to top when the copy moves down, pixels right to left when it
+//   moves right along its rows.
 // - Framebuffer port: asynchronous read (the memory answers mem_d_i / mem_s_i for the
 //   addresses on mem_x_o/mem_y_o (lane k at x + k) and mem_sx_o/mem_sy_o in the same
 //   cycle), write at the clock edge where mem_we_o is high, lanes in mem_wmask_o.
@@ -73,6 +74,10 @@ module rast_engine2d #(
   typedef enum logic [2:0] {Idle, Setup, Span, Pixel, LineLoad, Line, Blit} state_e;
 
   localparam int CW = 8;  // bits of the blit byte credit (< 2 * 12)
+  // Credit kept at most this: a pixel needs at most 12 bytes and one moves a cycle at
+  // most, so a larger credit changes no firing (and a code reading 4 or 8 bytes a pixel
+  // at 8 bytes a cycle would otherwise grow it by up to 4 a cycle until it wrapped).
+  localparam logic [CW-1:0] CreditMax = CW'(16);
 
   state_e                  state_q;
   logic [1:0]              kind_q, paint_q;
@@ -100,6 +105,9 @@ module rast_engine2d #(
   assign blit_pixel_bytes_c = CW'(4) + (reads_s_c ? CW'(4) : CW'(0)) + (reads_d_c ? CW'(4) : CW'(0));
   assign credit_next_c      = credit_q + CW'(blit_bytes_i);
   assign blit_fire_c        = credit_next_c >= blit_pixel_bytes_c;
+  logic [CW-1:0] credit_left_c;  // after a pixel moves, saturated at CreditMax
+  assign credit_left_c = (credit_next_c - blit_pixel_bytes_c > CreditMax) ? CreditMax
+                                                                          : credit_next_c - blit_pixel_bytes_c;
 
   // Blit walk order: rows up when the copy moves down, right to left when it moves right
   // along the same rows.
@@ -241,7 +249,7 @@ module rast_engine2d #(
         end
         Pixel, Line: wait_q <= beat_end_c ? '0 : wait_q + 1'b1;
         Blit: begin
-          credit_q <= blit_fire_c ? credit_next_c - blit_pixel_bytes_c : credit_next_c;
+          credit_q <= blit_fire_c ? credit_left_c : credit_next_c;
           if (blit_fire_c) begin
             if (i_q + 1'b1 == w_q) begin  // row done: the next row starts with its set-up
               i_q      <= '0;

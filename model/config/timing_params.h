@@ -69,10 +69,12 @@ struct TimingParams {
   // beat a pixel (clipped pixels walked too).
   uint64_t engine2d_line_cycles(uint64_t n, bool reads_d) const { return 1 + n * engine2d_beat_cycles(reads_d); }
   // A clipped blit of h rows of w pixels: per row set-up, then the row's bytes at the
-  // blit bandwidth (4 written, 4 read for each of S and D the code reads).
+  // blit bandwidth (4 written, 4 read for each of S and D the code reads), and at most
+  // one pixel a cycle (the blitter has one lane: a code that reads no S, e.g. 00 or F0,
+  // moves 4 or 8 bytes a pixel, which a bandwidth of 8 would otherwise outrun).
   uint64_t engine2d_blit_cycles(uint64_t w, uint64_t h, bool reads_s, bool reads_d) const {
     const uint64_t bytes = 4 + (reads_s ? 4 : 0) + (reads_d ? 4 : 0);
-    return h * (engine2d_span_setup + ceil_div(w * bytes, engine2d_blit_bytes_per_cycle));
+    return h * (engine2d_span_setup + std::max(w, ceil_div(w * bytes, engine2d_blit_bytes_per_cycle)));
   }
   // Any engine operation of a command painted with ROP3 code `rop3`.
   uint64_t engine2d_op_cycles(const Op2d& op, uint8_t rop3) const;

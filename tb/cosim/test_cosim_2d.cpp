@@ -68,6 +68,21 @@ TEST_P(Cosim2d, RandomMixedScenesMatchReferenceAndSystemC) {
 
 INSTANTIATE_TEST_SUITE_P(LineMethods, Cosim2d, ::testing::Values("diamond", "bresenham", "midpoint", "dda"));
 
+// Codes that read no S move 4 or 8 bytes a pixel: at 8 bytes a cycle the blitter still
+// moves at most one pixel a cycle, and its byte credit must not wrap on a long row
+// (250 pixels: an unsaturated 8-bit credit growing 4 a cycle would wrap after 64).
+TEST(Cosim2dBlit, CodesWithoutSourceMoveAPixelACycle) {
+  for (const char* code : {"00", "F0", "55", "5A"}) {
+    SCOPED_TRACE(code);
+    const std::string t = std::string("viewport 254 32\nclear 1 2 3\ncolor 9 8 7\nrect 0 0 254 8\nrop3 ") + code +
+                          "\nblit 0 0 2 10 250 3\n";
+    const auto j = cosim(t, std::string("blit_") + code, " --set display.width=254 --set display.height=32 --set "
+                                                         "engine2d.blit_bytes_per_cycle=8");
+    expect_exact(j);
+    EXPECT_EQ(j["cycles_model"], j["cycles_rtl"]);
+  }
+}
+
 // Every ROP3 code through a blit into its own 4x4 cell (so every result stays visible),
 // over random triangles and rectangles; then the 16 codes without S as fills.
 TEST(Cosim2dRop3, All256CodesOnRandomData) {
