@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "ref/draw2d.h"
 
+#include <algorithm>
 #include <optional>
 #include <vector>
 
@@ -9,6 +10,7 @@
 #include "ref/point_raster.h"
 #include "ref/polygon_fill.h"
 #include "ref/raster2d.h"
+#include "ref/text_raster.h"
 
 namespace rastsim {
 
@@ -70,6 +72,16 @@ class FrontEnd {
     std::vector<std::pair<int64_t, int64_t>> raw;
     for (const Snapped& s : *v) raw.emplace_back(s.x, s.y);
     for (const PixelSpan& s : fill_polygon(raw, F_, st_.polygon_rule)) span(s.y, s.x0, s.x1);
+  }
+
+  // One rectangle fill per character cell, handed over as its runs: ink takes the
+  // pattern, paper (opaque fonts only) the background colour.
+  void operator()(const Draw2dText& t) {
+    text_runs(t.x, t.y, t.str, t.style, [&](int y, int64_t x0, int64_t x1, bool ink) {
+      constexpr int64_t kFar = int64_t(1) << 30;  // beyond any framebuffer, inside int
+      span(y, int(std::clamp(x0, -kFar, kFar)), int(std::clamp(x1, -kFar, kFar)),
+           ink ? Op2d::Paint::Pattern : Op2d::Paint::Background);
+    });
   }
 
   void operator()(const Draw2dBlit& b) {
@@ -181,6 +193,8 @@ uint64_t draw2d_vertex_count(const CmdDraw2d& cmd) {
   if (std::holds_alternative<Draw2dPoint>(cmd.shape)) return 1;
   if (const auto* l = std::get_if<Draw2dLines>(&cmd.shape)) return l->vertices.size();
   if (const auto* p = std::get_if<Draw2dPolygon>(&cmd.shape)) return p->vertices.size();
+  // A string's bytes travel 8 to a vertex-sized word (two 32-bit coordinates).
+  if (const auto* t = std::get_if<Draw2dText>(&cmd.shape)) return (t->str.size() + 7) / 8;
   return 0;
 }
 

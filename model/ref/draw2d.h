@@ -2,8 +2,8 @@
 // The reference 2D engine, in two halves that every level shares (docs/2d.md):
 //
 // - The front end, draw2d_ops: one CmdDraw2d (ref/scene.h) into a list of engine
-//   operations (Op2d) with the geometry of line_raster, point_raster, circle_raster
-//   and polygon_fill. It reads no pixel.
+//   operations (Op2d) with the geometry of line_raster, point_raster, circle_raster,
+//   polygon_fill and text_raster. It reads no pixel.
 // - The engine, execute_op2d: one operation on the framebuffer through the pattern and
 //   ROP3 (ref/raster2d.h). The SystemC engine2d stage and the RTL rast_engine2d execute
 //   the same operations; their cost equations are on TimingParams.
@@ -68,8 +68,9 @@ struct Draw2dWork {
 // SceneError naming `loc` for a coordinate outside the format.
 Draw2dWork draw2d_ops(const CmdDraw2d& cmd, const SourceLoc& loc, const RasterState& st);
 
-// Vertices a 2D command brings from memory (points, lines, polygons; 0 for the shapes
-// whose integers travel in the command header).
+// Vertices a 2D command brings from memory (points, lines, polygons; a text's string as
+// one vertex-sized word per 8 characters; 0 for the shapes whose integers travel in the
+// command header).
 uint64_t draw2d_vertex_count(const CmdDraw2d& cmd);
 
 // Engine: executes one operation. Returns the pixels written.

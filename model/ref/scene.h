@@ -64,8 +64,20 @@ struct Draw2dRect { int x = 0, y = 0, w = 0, h = 0; };
 struct Draw2dPolygon { std::vector<Vertex2d> vertices; };
 struct Draw2dBlit { int sx = 0, sy = 0, dx = 0, dy = 0, w = 0, h = 0; };
 struct Draw2dArc { int cx = 0, cy = 0, r = 0; double a0 = 0, a1 = 0; };  // degrees, a1 >= a0
-using Draw2dShape =
-    std::variant<Draw2dPoint, Draw2dLines, Draw2dCircle, Draw2dRect, Draw2dPolygon, Draw2dBlit, Draw2dArc>;
+// `font` state (docs/2d-text.md): integer scale, bold (double strike), underline,
+// fixed or proportional spacing, transparent or opaque (paper painted with bgcolor).
+struct TextStyle {
+  int scale = 1;  // 1..16 screen pixels per font pixel, each way
+  bool bold = false, underline = false, proportional = false, opaque = false;
+  bool operator==(const TextStyle&) const = default;
+};
+struct Draw2dText {                                       // text x y STRING
+  int x = 0, y = 0;                                       // top-left pixel of the first cell
+  std::string str;                                        // printable ASCII
+  TextStyle style;
+};
+using Draw2dShape = std::variant<Draw2dPoint, Draw2dLines, Draw2dCircle, Draw2dRect, Draw2dPolygon, Draw2dBlit,
+                                 Draw2dArc, Draw2dText>;
 struct CmdDraw2d {
   Draw2dShape shape;
   Style2d style;

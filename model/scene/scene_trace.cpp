@@ -21,6 +21,7 @@
 #include <sstream>
 #include <string_view>
 
+#include "ref/font.h"
 #include "ref/rop3.h"
 #include "ref/scene.h"
 #include "scene/scene_text.h"
@@ -81,7 +82,8 @@ class TraceParser {
         {"arc", &TraceParser::arc, true},
         {"rect", &TraceParser::rect, true},         {"blit", &TraceParser::blit, true},
         {"bgcolor", &TraceParser::bgcolor, false},  {"pattern", &TraceParser::pattern, false},
-        {"rop3", &TraceParser::rop3, false}};
+        {"rop3", &TraceParser::rop3, false},        {"text", &TraceParser::text, true},
+        {"font", &TraceParser::font, false}};
     for (const Entry& e : kCommands) {
       if (e.keyword != t[0]) continue;
       if (e.emits && open_)
@@ -368,6 +370,60 @@ class TraceParser {
          line_);
   }
 
+  // text x y STRING: the string is the rest of the line (inner blanks kept, a '#' still
+  // starts a comment), with the escapes \\ and \xHH for what a line cannot hold.
+  void text(const Tokens& t) {
+    if (t.size() < 4) fail("'text' takes x y STRING (integers, then the rest of the line), got " +
+                           std::to_string(t.size() - 1) + " argument" + (t.size() == 2 ? "" : "s"));
+    const std::string_view raw(t[3].data(), size_t(t.back().data() + t.back().size() - t[3].data()));
+    draw2d(Draw2dText{int(pixel_int(t[1], "text x")), int(pixel_int(t[2], "text y")), unescape_text(raw), font_},
+           "text", true);
+  }
+
+  std::string unescape_text(std::string_view raw) const {
+    std::string out;
+    auto bad = [&](size_t col, const std::string& what) {
+      fail("text character " + std::to_string(col + 1) + " of " + quote(raw) + ": " + what);
+    };
+    for (size_t i = 0; i < raw.size(); ++i) {
+      unsigned char c = static_cast<unsigned char>(raw[i]);
+      if (c == '\\') {
+        if (i + 1 < raw.size() && raw[i + 1] == '\\') {
+          ++i;
+        } else if (i + 3 < raw.size() && raw[i + 1] == 'x' && hex_digit(raw[i + 2]) >= 0 && hex_digit(raw[i + 3]) >= 0) {
+          c = static_cast<unsigned char>(hex_digit(raw[i + 2]) << 4 | hex_digit(raw[i + 3]));
+          i += 3;
+        } else {
+          bad(i, "a backslash starts \\\\ or \\xHH");
+        }
+      }
+      if (c < kFontFirstChar || c > kFontLastChar)
+        bad(i, "not printable ASCII (the font has 0x20..0x7E only)");
+      out += static_cast<char>(c);
+    }
+    return out;
+  }
+
+  // font SCALE [bold] [underline] [fixed|proportional] [transparent|opaque]: the whole
+  // text state at once; a flag not named is off (fixed, transparent).
+  void font(const Tokens& t) {
+    if (t.size() < 2) fail("'font' takes SCALE (1..16) and any of bold, underline, fixed|proportional, "
+                           "transparent|opaque");
+    TextStyle f;
+    f.scale = int(integer(t[1], "font scale", 1, 16));
+    for (size_t i = 2; i < t.size(); ++i) {
+      if (t[i] == "bold") f.bold = true;
+      else if (t[i] == "underline") f.underline = true;
+      else if (t[i] == "proportional") f.proportional = true;
+      else if (t[i] == "fixed") f.proportional = false;
+      else if (t[i] == "opaque") f.opaque = true;
+      else if (t[i] == "transparent") f.opaque = false;
+      else fail("font attribute " + quote(t[i]) + " is not one of bold, underline, fixed, proportional, "
+                "transparent, opaque");
+    }
+    font_ = f;
+  }
+
   void bgcolor(const Tokens& t) {
     args(t, 3, "R G B, 0..255");
     style_.bgcolor = {channel(t[1], "red"), channel(t[2], "green"), channel(t[3], "blue")};
@@ -411,6 +467,7 @@ class TraceParser {
   CmdPrimitives open_prims_;
   // 2D state: white, black background, solid pattern, PATCOPY, 1-pixel points.
   Style2d style_{{255, 255, 255}, {0, 0, 0}, {}, true, kRopPatCopy, 1};
+  TextStyle font_;  // `font 1`: scale 1, regular, fixed spacing, transparent
 };
 
 }  // namespace

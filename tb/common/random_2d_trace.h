@@ -3,7 +3,7 @@
 // 2D command of docs/trace-format.md mixed with triangles and scissor changes, random
 // colours, patterns and ROP3 codes (fills only take codes without S), lines in every
 // octant and both directions, overlapping blits in all four directions, shapes reaching
-// past the framebuffer edges.
+// past the framebuffer edges, text in random font states.
 #pragma once
 
 #include <cstdint>
@@ -44,7 +44,7 @@ inline std::string random_2d_trace(uint64_t seed, int w, int h, int commands) {
         t << "\n";
       }
     }
-    const int kind = ri(0, 11);
+    const int kind = ri(0, 12);
     if (kind != 10) t << "rop3 " << hex2(fill_code()) << "\n";
     switch (kind) {
       case 0:
@@ -100,6 +100,18 @@ inline std::string random_2d_trace(uint64_t seed, int w, int h, int commands) {
         const bool overlap = ri(0, 2) != 0;
         const int dx = overlap ? sx + ri(-4, 4) : ri(-8, w), dy = overlap ? sy + ri(-4, 4) : ri(-8, h);
         t << "blit " << sx << " " << sy << " " << dx << " " << dy << " " << bw << " " << bh << "\n";
+        break;
+      }
+      case 12: {
+        // Text in a random font state: ink spans, and paper spans when opaque.
+        t << "font " << ri(1, 3) << (ri(0, 1) ? " bold" : "") << (ri(0, 1) ? " underline" : "")
+          << (ri(0, 1) ? " proportional" : "") << (ri(0, 1) ? " opaque" : "") << "\n";
+        std::string str;
+        for (int n = ri(1, 10); n > 0; --n) {
+          const char c = char(ri(0x21, 0x7E));  // no blank at the ends; '#' and '\\' need escapes
+          str += c == '#' || c == '\\' ? 'k' : c;
+        }
+        t << "text " << ri(-16, w) << " " << ri(-16, h) << " " << str << "\n";
         break;
       }
     }
