@@ -19,9 +19,9 @@ std::vector<uint32_t> reference_masks(const std::vector<GridTri>& tris, const Ra
   for (size_t i = 0; i < tris.size(); ++i)
     for (int v = 0; v < 3; ++v) {
       SceneVertex sv;
-      // Raw 1/256 px -> Q64 (64 fraction bits): an exact shift, no rounding anywhere.
-      sv.x = Q64{i128(tris[i].x[v]) << (Q64::kFracBits - kSubpixelBits)};
-      sv.y = Q64{i128(tris[i].y[v]) << (Q64::kFracBits - kSubpixelBits)};
+      // Raw 2^-F px -> Q64 (64 fraction bits): an exact shift; only setup rounds (F > 8).
+      sv.x = Q64{i128(tris[i].x[v]) << (Q64::kFracBits - tris[i].frac_bits)};
+      sv.y = Q64{i128(tris[i].y[v]) << (Q64::kFracBits - tris[i].frac_bits)};
       sv.z = 0.5;
       // Constant colour = index + 1 (0 is the clear colour): interpolating a constant
       // gives it back exactly, so each fragment names its triangle.
@@ -42,12 +42,46 @@ std::vector<uint32_t> reference_masks(const std::vector<GridTri>& tris, const Ra
   return masks;
 }
 
+uint64_t tie_pixels(const GridTri& t, int width, int height) {
+  // Centre of pixel p in raw units: (2p + 1) * 2^(F-1). Coordinates < 2^24 raw, so every
+  // edge product below is < 2^49: int64 is exact.
+  const int f = t.frac_bits;
+  const int64_t area2 = (t.x[1] - t.x[0]) * (t.y[2] - t.y[0]) - (t.y[1] - t.y[0]) * (t.x[2] - t.x[0]);
+  if (area2 == 0) return 0;  // degenerate: neither rasterizer draws it
+  const int64_t sgn = area2 > 0 ? 1 : -1;
+  const auto lo = [&](int64_t a, int64_t b, int64_t c, int n) {
+    return int(std::clamp<int64_t>((std::min({a, b, c}) >> f) - 1, 0, n));
+  };
+  const auto hi = [&](int64_t a, int64_t b, int64_t c, int n) {
+    return int(std::clamp<int64_t>((std::max({a, b, c}) >> f) + 2, 0, n));
+  };
+  const int x0 = lo(t.x[0], t.x[1], t.x[2], width), x1 = hi(t.x[0], t.x[1], t.x[2], width);
+  const int y0 = lo(t.y[0], t.y[1], t.y[2], height), y1 = hi(t.y[0], t.y[1], t.y[2], height);
+  uint64_t ties = 0;
+  for (int py = y0; py < y1; ++py) {
+    const int64_t sy = (2 * int64_t(py) + 1) << (f - 1);
+    for (int px = x0; px < x1; ++px) {
+      const int64_t sx = (2 * int64_t(px) + 1) << (f - 1);
+      bool inside = true, on_edge = false;
+      for (int i = 0; i < 3 && inside; ++i) {
+        const int j = (i + 1) % 3;
+        const int64_t e = sgn * ((t.x[j] - t.x[i]) * (sy - t.y[i]) - (t.y[j] - t.y[i]) * (sx - t.x[i]));
+        inside = e >= 0;
+        on_edge |= e == 0;
+      }
+      ties += inside && on_edge;
+    }
+  }
+  return ties;
+}
+
 CompareStats& CompareStats::operator+=(const CompareStats& o) {
   triangles += o.triangles;
   passes += o.passes;
   decisions += o.decisions;
   covered += o.covered;
   mismatches += o.mismatches;
+  ties += o.ties;
   return *this;
 }
 
@@ -63,6 +97,7 @@ CompareStats compare_coverage(const std::vector<GridTri>& tris, const RasterStat
     ++s.passes;
     s.triangles += batch.size();
     s.decisions += uint64_t(batch.size()) * uint64_t(w) * uint64_t(h);
+    for (const GridTri& t : batch) s.ties += tie_pixels(t, w, h);
     for (size_t p = 0; p < ref.size(); ++p) {
       s.covered += uint64_t(std::popcount(ref[p]));
       for (uint32_t diff = ref[p] ^ lp[p]; diff; diff &= diff - 1) {

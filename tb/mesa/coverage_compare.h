@@ -36,8 +36,15 @@ struct CompareStats {
   uint64_t decisions = 0;      // (triangle, pixel) pairs compared: triangles * fb pixels
   uint64_t covered = 0;        // pairs the reference covers
   uint64_t mismatches = 0;     // pairs where the two disagree
+  uint64_t ties = 0;           // pairs whose pixel centre lies exactly on an edge (the
+                               // fill rule decides them), from tie_pixels
   CompareStats& operator+=(const CompareStats& o);
 };
+
+// Pixels of a width x height framebuffer whose centre lies on an edge of the closed
+// triangle (as given, before any snapping): the (triangle, pixel) pairs the fill rule
+// decides. Exact integer arithmetic, independent of both renderers. 0 for zero area.
+uint64_t tie_pixels(const GridTri& t, int width, int height);
 
 // Draws `tris` through both, 32 at a time; appends up to `max_report` mismatches.
 CompareStats compare_coverage(const std::vector<GridTri>& tris, const RasterState& st, OsMesaRenderer& gl,

@@ -88,7 +88,10 @@ std::vector<GridTri> sliver(Rng& rng, int n, int w, int h) {
 std::vector<GridTri> large(Rng& rng, int n, int w, int h) {
   std::vector<GridTri> out;
   const Grid g = scene_grid(rng);
-  const int64_t m = 256 * kOne;  // guard: 256 px beyond each framebuffer side
+  // Up to 64, 256 or 3000 px beyond each framebuffer side (llvmpipe's viewport reaches
+  // 4096 px, so nothing is clipped; large bounding boxes take its 64-bit setup path).
+  const int64_t margins[] = {64, 256, 3000};
+  const int64_t m = margins[rng.range(0, 2)] * kOne;
   for (int i = 0; i < n; ++i) {
     GridTri t;
     for (int v = 0; v < 3; ++v) {
@@ -163,11 +166,19 @@ std::vector<GridTri> fan(Rng& rng, int n, int w, int h) {
   return out;
 }
 
-std::string px(int64_t raw) {
-  // raw / 256 is exact in a double; print it with up to 12 significant digits (8 fraction digits suffice).
+std::string px(int64_t raw, int frac_bits) {
+  // raw / 2^F is exact in a double (|raw| < 2^53); 17 significant digits print it exactly.
   char buf[48];
-  std::snprintf(buf, sizeof buf, "%.12g", double(raw) / double(kOne));
+  std::snprintf(buf, sizeof buf, "%.17g", std::ldexp(double(raw), -frac_bits));
   return buf;
+}
+
+// splitmix64: a stateless hash, so equal coordinates get equal offsets.
+uint64_t mix(uint64_t z) {
+  z += 0x9e3779b97f4a7c15ull;
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+  return z ^ (z >> 31);
 }
 
 }  // namespace
@@ -197,8 +208,25 @@ std::vector<GridTri> make_scene(SceneKind kind, uint64_t seed, int approx_tris, 
 
 std::string describe(const GridTri& t) {
   std::string s;
-  for (int v = 0; v < 3; ++v) s += (v ? " (" : "(") + px(t.x[v]) + ", " + px(t.y[v]) + ")";
+  for (int v = 0; v < 3; ++v)
+    s += (v ? " (" : "(") + px(t.x[v], t.frac_bits) + ", " + px(t.y[v], t.frac_bits) + ")";
   return s;
+}
+
+std::vector<GridTri> off_grid(const std::vector<GridTri>& tris, int extra_bits, uint64_t seed) {
+  const int64_t half = int64_t{1} << (extra_bits - 1);  // half an 8-bit LSB in new units
+  const auto move = [&](int64_t c, uint64_t axis) {
+    const uint64_t r = mix(seed ^ mix(uint64_t(c) * 2 + axis));
+    return (c << extra_bits) + int64_t(r % uint64_t(2 * half + 1)) - half;  // offset in [-half, half]
+  };
+  std::vector<GridTri> out;
+  for (const GridTri& t : tris) {
+    GridTri o;
+    o.frac_bits = t.frac_bits + extra_bits;
+    for (int v = 0; v < 3; ++v) o.x[v] = move(t.x[v], 0), o.y[v] = move(t.y[v], 1);
+    out.push_back(o);
+  }
+  return out;
 }
 
 }  // namespace rastsim::mesa

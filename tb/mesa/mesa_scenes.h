@@ -4,7 +4,7 @@
 //
 // - Tiny: extents up to 3 px, many of them covering no pixel centre at all.
 // - Sliver: long (16..600 px) and a few 1/256 px wide, some exactly collinear.
-// - Large: vertices up to 256 px outside the 640 x 480 framebuffer on every side.
+// - Large: vertices up to 64, 256 or 3000 px outside the framebuffer on every side.
 // - Mesh: jittered grids, each quad split along a random diagonal (shared edges, so
 //   top-left ties between neighbours on pixel centres).
 // - Fan: triangles around one centre, spokes often through pixel centres and along
@@ -28,7 +28,12 @@ const char* to_string(SceneKind k);
 // width x height framebuffer; the same seed gives the same scene.
 std::vector<GridTri> make_scene(SceneKind kind, uint64_t seed, int approx_tris, int width, int height);
 
-// "(x0, y0) (x1, y1) (x2, y2)" in pixels, exact decimals (raw / 256).
+// "(x0, y0) (x1, y1) (x2, y2)" in pixels, exact decimals (raw / 2^frac_bits).
 std::string describe(const GridTri& t);
+
+// The same triangles with `extra_bits` more fraction bits, every coordinate moved by
+// an offset in [-1/2, +1/2] of an 8-bit LSB (endpoints included: exact ties), the same
+// offset for equal coordinates so shared vertices stay shared. Probes snapping.
+std::vector<GridTri> off_grid(const std::vector<GridTri>& tris, int extra_bits, uint64_t seed);
 
 }  // namespace rastsim::mesa

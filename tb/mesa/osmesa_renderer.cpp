@@ -72,15 +72,20 @@ std::string OsMesaRenderer::version() const { return reinterpret_cast<const char
 std::vector<uint32_t> OsMesaRenderer::coverage_masks(const std::vector<GridTri>& tris) {
   if (tris.size() > size_t(kMaxTrisPerPass)) throw std::invalid_argument("more than 32 triangles in one pass");
   glClear(GL_COLOR_BUFFER_BIT);
-  // raw (1/256 px) -> NDC: ndc = raw * 2 / (256 * P), a power of two (2^-20 for P = 8192).
-  const float scale = 2.0f / (float(1 << kSubpixelBits) * float(kViewport));
   glBegin(GL_TRIANGLES);
   for (size_t i = 0; i < tris.size(); ++i) {
     // Bit i of the RGBA8 pixel (R holds bits 0..7, A bits 24..31); OR keeps them all.
     const uint32_t bit = uint32_t{1} << i;
     glColor4ub(GLubyte(bit), GLubyte(bit >> 8), GLubyte(bit >> 16), GLubyte(bit >> 24));
-    for (int v = 0; v < 3; ++v)
-      glVertex3f(float(tris[i].x[v]) * scale, float(tris[i].y[v]) * scale, 0.0f);
+    // raw (2^-F px) -> NDC: ndc = raw * 2 / (2^F * P), a power of two (2^-20 for F = 8,
+    // P = 8192), so the product is exact.
+    const float scale = 2.0f / (float(int64_t{1} << tris[i].frac_bits) * float(kViewport));
+    for (int v = 0; v < 3; ++v) {
+      const float x = float(tris[i].x[v]), y = float(tris[i].y[v]);
+      if (int64_t(x) != tris[i].x[v] || int64_t(y) != tris[i].y[v])
+        throw std::invalid_argument("vertex not exact in binary32");
+      glVertex3f(x * scale, y * scale, 0.0f);
+    }
   }
   glEnd();
   std::vector<uint32_t> gl_rows(size_t(width_) * size_t(height_));

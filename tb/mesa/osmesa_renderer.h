@@ -6,9 +6,8 @@
 // - glClipControl(GL_UPPER_LEFT, GL_ZERO_TO_ONE): window y grows downwards as in
 //   rastsim's scenes, so llvmpipe applies the top-left fill rule in the same frame.
 // - Exact coordinates: identity matrices and a power-of-two viewport P x P placed at
-//   (-P/2, -P/2), so window = ndc * P/2 and ndc = 2 * pixel / P; every step is a
-//   power-of-two scale, exact in binary32 for points on the 1/256 grid with
-//   |coordinate| < 2^15 px (23 significant bits).
+//   so that window = ndc * P/2 and ndc = 2 * pixel / P; every step is a power-of-two
+//   scale, exact in binary32 for points on the 2^-F grid with |coordinate| * 2^F < 2^24.
 // - Coverage masks: up to 32 triangles per pass, triangle i drawn in colour bit i with
 //   glLogicOp(GL_OR), so one read-back gives, per pixel, the set of triangles that
 //   cover it, whatever their overlaps.
@@ -21,13 +20,15 @@
 
 namespace rastsim::mesa {
 
-// A triangle's vertices in raw units of 1/256 px from the framebuffer's top-left
-// corner (x right, y down): the 8-sub-pixel-bit grid both rasterizers use.
+inline constexpr int kSubpixelBits = 8;      // sub-pixel bits (D3D11, llvmpipe FIXED_ORDER)
+
+// A triangle's vertices in raw units of 2^-frac_bits px from the framebuffer's top-left
+// corner (x right, y down). frac_bits = 8 is the grid both rasterizers snap to (no
+// rounding); 9 or 10 puts vertices between grid points to probe the snapping itself.
 struct GridTri {
   std::array<int64_t, 3> x{}, y{};
+  int frac_bits = kSubpixelBits;  // 8..12
 };
-
-inline constexpr int kSubpixelBits = 8;      // sub-pixel bits (D3D11, llvmpipe FIXED_ORDER)
 inline constexpr int kMaxTrisPerPass = 32;   // bits in one RGBA8 pixel
 
 class OsMesaRenderer {

@@ -15,6 +15,8 @@
 // the seed of each scene it draws.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <bit>
 #include <chrono>
 #include <cstdint>
 #include <cstdlib>
@@ -112,24 +114,96 @@ TEST_P(MesaCoverage, IdenticalToReference) {
     const CompareStats cs = compare_coverage(tris, st, gl, report, kMaxReported);
     total += cs;
     std::cout << "mesa " << to_string(kc.kind) << " seed " << seed << ": " << cs.triangles << " triangles, "
-              << cs.covered << " covered pixels, " << cs.mismatches << " mismatches\n";
+              << cs.covered << " covered pixels (" << cs.ties << " on an edge), " << cs.mismatches << " mismatches\n";
     for (const Mismatch& m : report) ADD_FAILURE() << "seed " << seed << ": " << describe(m, tris);
     EXPECT_EQ(cs.mismatches, 0u) << "seed " << seed << " (rerun: RASTSIM_MESA_SEED=" << base_seed() << ")";
   }
   const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   std::cout << "mesa " << to_string(kc.kind) << " total: " << total.triangles << " triangles in " << total.passes
             << " passes, " << total.decisions << " (triangle, pixel) decisions, " << total.covered
-            << " covered, " << total.mismatches << " mismatches, " << ms << " ms\n";
+            << " covered, " << total.ties << " centres on an edge, " << total.mismatches << " mismatches, " << ms
+            << " ms\n";
   RecordProperty("triangles", std::to_string(total.triangles));
   RecordProperty("covered", std::to_string(total.covered));
   RecordProperty("mismatches", std::to_string(total.mismatches));
 }
 
+// Snapping probe: the same scenes with every coordinate moved by up to half an 8-bit
+// LSB (2^-9 or 2^-10 px grid, exact ties included), so both rasterizers must round.
+TEST_P(MesaCoverage, OffGridSnapping) {
+  const KindCase& kc = GetParam();
+  const RasterState st = d3d11_state();
+  OsMesaRenderer& gl = renderer(st);
+  CompareStats total;
+  for (int extra = 1; extra <= 2; ++extra)
+    for (int s = 0; s < kc.scenes; ++s) {
+      const uint64_t seed = base_seed() * 1000 + uint64_t(kc.kind) * 100 + uint64_t(s);
+      SCOPED_TRACE("scene " + std::string(to_string(kc.kind)) + " seed " + std::to_string(seed));
+      const std::vector<GridTri> tris =
+          off_grid(make_scene(kc.kind, seed, kc.tris_per_scene, st.fb_width, st.fb_height), extra, seed);
+      std::vector<Mismatch> report;
+      const CompareStats cs = compare_coverage(tris, st, gl, report, kMaxReported);
+      total += cs;
+      for (const Mismatch& m : report) ADD_FAILURE() << "seed " << seed << " +" << extra << " bits: " << describe(m, tris);
+      EXPECT_EQ(cs.mismatches, 0u) << "seed " << seed << " +" << extra << " bits";
+    }
+  const uint64_t seed0 = base_seed() * 1000 + uint64_t(kc.kind) * 100;
+  std::cout << "mesa off-grid " << to_string(kc.kind) << " seeds " << seed0 << ".." << seed0 + kc.scenes - 1
+            << " total: " << total.triangles << " triangles, "
+            << total.covered << " covered, " << total.mismatches << " mismatches\n";
+}
+
 INSTANTIATE_TEST_SUITE_P(Scenes, MesaCoverage,
-                         ::testing::Values(KindCase{SceneKind::Tiny, 8, 256}, KindCase{SceneKind::Sliver, 8, 128},
-                                           KindCase{SceneKind::Large, 4, 64}, KindCase{SceneKind::Mesh, 8, 192},
-                                           KindCase{SceneKind::Fan, 8, 160}),
+                         ::testing::Values(KindCase{SceneKind::Tiny, 16, 256}, KindCase{SceneKind::Sliver, 16, 128},
+                                           KindCase{SceneKind::Large, 8, 64}, KindCase{SceneKind::Mesh, 16, 192},
+                                           KindCase{SceneKind::Fan, 16, 160}),
                          [](const auto& info) { return std::string(to_string(info.param.kind)); });
+
+// Rounds off-grid triangles to the 1/256 grid on the test side, ties up (+inf) or to
+// even, written out here independently of the model's fixed_point.cpp.
+std::vector<GridTri> presnap(const std::vector<GridTri>& tris, bool ties_to_even) {
+  std::vector<GridTri> out;
+  for (const GridTri& t : tris) {
+    const int sh = t.frac_bits - kSubpixelBits;
+    const auto round = [&](int64_t c) {
+      const int64_t fl = c >> sh, rem = c - (fl << sh), half = int64_t{1} << (sh - 1);  // floor, remainder >= 0
+      if (rem > half || (rem == half && (!ties_to_even || (fl & 1)))) return fl + 1;
+      return fl;
+    };
+    GridTri o;
+    for (int v = 0; v < 3; ++v) o.x[v] = round(t.x[v]), o.y[v] = round(t.y[v]);
+    out.push_back(o);
+  }
+  return out;
+}
+
+// Which snapping llvmpipe does, without trusting rastsim's: llvmpipe is given a mesh
+// with coordinates up to half an LSB off the grid (2^-9 px: every offset is 0 or an
+// exact tie); the reference model is given the same mesh rounded on the test side.
+// Ties to even must agree everywhere, ties up must not, so the off-grid tests above
+// can see a rounding difference.
+TEST(MesaSnapping, LlvmpipeRoundsTiesToEven) {
+  const RasterState st = d3d11_state();
+  OsMesaRenderer& gl = renderer(st);
+  const uint64_t seed = base_seed() * 1000 + 998;
+  std::cout << "mesa snapping seed " << seed << "\n";
+  const std::vector<GridTri> off = off_grid(make_scene(SceneKind::Mesh, seed, 256, st.fb_width, st.fb_height), 1, seed);
+  uint64_t mismatches[2] = {};
+  for (int even = 0; even < 2; ++even) {
+    const std::vector<GridTri> snapped = presnap(off, even == 1);
+    for (size_t first = 0; first < off.size(); first += kMaxTrisPerPass) {
+      const size_t last = std::min(off.size(), first + kMaxTrisPerPass);
+      const std::vector<uint32_t> ref =
+          reference_masks({snapped.begin() + first, snapped.begin() + last}, st);
+      const std::vector<uint32_t> lp = gl.coverage_masks({off.begin() + first, off.begin() + last});
+      for (size_t p = 0; p < ref.size(); ++p) mismatches[even] += uint64_t(std::popcount(ref[p] ^ lp[p]));
+    }
+  }
+  std::cout << "llvmpipe (off grid) against reference (pre-rounded): ties up " << mismatches[0]
+            << " mismatches, ties to even " << mismatches[1] << "\n";
+  EXPECT_EQ(mismatches[1], 0u);
+  EXPECT_GT(mismatches[0], 0u);
+}
 
 // Negative control: the reference with the bottom-right rule must disagree with
 // llvmpipe on a mesh (ties on shared edges through pixel centres), or the comparison
