@@ -3,11 +3,13 @@
 // as an independent coverage oracle for the reference model (docs/mesa.md).
 //
 // - One off-screen RGBA8 colour buffer (no depth, stencil or accumulation buffer).
-// - glClipControl(GL_UPPER_LEFT, GL_ZERO_TO_ONE): window y grows downwards as in
-//   rastsim's scenes, so llvmpipe applies the top-left fill rule in the same frame.
+// - glClipControl(GL_UPPER_LEFT, GL_ZERO_TO_ONE): on OSMesa's window-system buffer this
+//   selects gallium's top-left rule in its top-down row space (osmesa_renderer.cpp).
 // - Exact coordinates: identity matrices and a power-of-two viewport P x P placed at
-//   so that window = ndc * P/2 and ndc = 2 * pixel / P; every step is a power-of-two
-//   scale, exact in binary32 for points on the 2^-F grid with |coordinate| * 2^F < 2^24.
+//   (-P/2, H - P/2), so that gallium's row = ndc_y * P/2 = scene y and likewise for x
+//   (ndc = 2 * pixel / P); every step is a power-of-two scale, exact in binary32 for
+//   points on the 2^-F grid with |coordinate| * 2^F < 2^24.
+// - Read-back rows are flipped so that row 0 is the scene's top row.
 // - Coverage masks: up to 32 triangles per pass, triangle i drawn in colour bit i with
 //   glLogicOp(GL_OR), so one read-back gives, per pixel, the set of triangles that
 //   cover it, whatever their overlaps.
