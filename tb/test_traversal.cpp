@@ -293,6 +293,58 @@ INSTANTIATE_TEST_SUITE_P(Arith, ScanlineErrors,
                          ::testing::Values(ScanCase{"f32", 1e-3}, ScanCase{"f64", 1e-9}, ScanCase{"fixed", 1e-3}),
                          [](const auto& info) { return std::string(info.param.arith); });
 
+// Hand-worked: the right triangle (0, 0) (10, 0) (0, 10) px relative to the origin
+// (64, 64) of a 128 x 128 viewport, in centre coordinates (63.5, 63.5) (73.5, 63.5)
+// (63.5, 73.5). Row y (64..73) runs from the left edge x = 63.5 to the hypotenuse
+// x = 137 - y: pixels ceil(63.5) = 64 to ceil(137 - y) - 1, i.e. [64, 137 - y); the
+// centre on the hypotenuse (a right edge) is out, so row 73 is empty. Every arithmetic
+// holds these values exactly.
+TEST(ScanlineSpans, HandWorkedRightTriangle) {
+  for (const char* arith : {"f32", "f64", "fixed"}) {
+    SCOPED_TRACE(arith);
+    const RasterState st = state_for({std::string("raster.scanline_arith=") + arith, "raster.traversal=scanline"});
+    std::array<SceneVertex, 3> v;
+    const int px[3][2] = {{64, 64}, {74, 64}, {64, 74}};  // absolute px
+    for (int i = 0; i < 3; ++i) {
+      v[i].x = Q64::from_int(px[i][0]);
+      v[i].y = Q64::from_int(px[i][1]);
+    }
+    SetupTriangle t;
+    ASSERT_EQ(setup_triangle(v, st, SourceLoc{}, t), SetupOutcome::Accepted);
+    std::vector<std::array<int, 3>> spans;
+    scanline_spans(t, st.scanline_arith, 16, [&](int y, int x0, int x1) { spans.push_back({y, x0, x1}); });
+    ASSERT_EQ(spans.size(), 10u);
+    for (int y = 64; y <= 73; ++y) {
+      const auto& sp = spans[size_t(y - 64)];
+      EXPECT_EQ(sp[0], y);
+      EXPECT_EQ(sp[1], 64);
+      EXPECT_EQ(std::max(sp[1], sp[2]), 137 - y);
+    }
+    EXPECT_EQ(emitted(t, st), brute_force(t, st));
+  }
+}
+
+// One hierarchy level equal to the tile size is the tiled walk: same order, same counters.
+TEST(HierarchicalTraversal, OneLevelIsTiled) {
+  const Scene scene = grid_mesh(11, 100, 90, 16, 6);
+  for (int tile : {4, 16, 64}) {
+    SCOPED_TRACE(tile);
+    const std::vector<std::string> base{"display.width=100", "display.height=90",
+                                        "raster.tile_size=" + std::to_string(tile)};
+    RenderStats a, b;
+    std::vector<std::string> fa, fb;
+    render_scene(scene, state_for(base), a, [&](const Fragment& f) { fa.push_back(fragment_trace_line(f)); });
+    auto sets = base;
+    sets.insert(sets.end(), {"raster.traversal=hierarchical", "raster.hier_levels=" + std::to_string(tile)});
+    render_scene(scene, state_for(sets), b, [&](const Fragment& f) { fb.push_back(fragment_trace_line(f)); });
+    EXPECT_EQ(fa, fb);  // in order
+    EXPECT_EQ(a.traversal.tiles_visited, b.traversal.tiles_visited);
+    EXPECT_EQ(a.traversal.tiles_accepted, b.traversal.tiles_accepted);
+    EXPECT_EQ(a.traversal.tiles_partial, b.traversal.tiles_partial);
+    EXPECT_EQ(a.traversal.pixel_tests, b.traversal.pixel_tests);
+  }
+}
+
 // CoverageCheck on hand-made pixel sets for two triangles sharing the diagonal of a
 // 4 x 4 square at pixels [0, 4)^2: the exact sets, one pixel dropped, one pixel doubled.
 TEST(CoverageCheck, CountsWrongPixelsCracksAndOverlaps) {
