@@ -32,12 +32,20 @@ void add_timing_params(std::vector<ParamDef>& s) {
        "Latency of triangle setup: cycles from a triangle entering to its edge equations leaving (>= interval)"});
   // ---- coarse raster ----
   add({"coarse.tiles_per_cycle", T::Int, int64_t{1}, "tiles/cycle", 1, 64, {},
-       "Tiles the coarse walker classifies (early-out / early-in) per cycle"});
+       "Tiles the coarse walker classifies (early-out / early-in) per cycle, at every level of "
+       "raster.traversal = hierarchical too"});
+  add({"coarse.scanline_setup_cycles", T::Int, int64_t{4}, "cycles", 1, 1024, {},
+       "raster.traversal = scanline: cycles of the edge walker's per-triangle setup (sort by y, three dx/dy "
+       "divisions, the first x-intersections); then one row a cycle"});
   // ---- fine raster ----
   add({"fine.samples_per_cycle", T::Int, int64_t{8}, "samples/cycle", 1, 4096, {},
        "Coverage tests per cycle on a partial tile; a footprint of A pixels takes ceil(A / this)"});
   add({"fine.accepted_tile_cycles", T::Int, int64_t{1}, "cycles", 1, 1024, {},
        "Cycles to emit a trivially accepted tile (whole-footprint mask, no tests)"});
+  add({"fine.span_setup_cycles", T::Int, int64_t{1}, "cycles", 0, 1024, {},
+       "raster.traversal = scanline: cycles the span filler spends on each span before its pixels"});
+  add({"fine.span_pixels_per_cycle", T::Int, int64_t{8}, "pixels/cycle", 1, 4096, {},
+       "raster.traversal = scanline: pixels of one span the span filler emits per cycle"});
   // ---- attribute interpolation ----
   add({"interp.fragments_per_cycle", T::Int, int64_t{4}, "fragments/cycle", 1, 1024, {},
        "Fragments whose colour and depth are interpolated per cycle"});

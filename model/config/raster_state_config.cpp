@@ -3,6 +3,8 @@
 // stage reads (model/ref/raster_state.h).
 #include "config/raster_state_config.h"
 
+#include "ref/traverse.h"
+
 namespace rastsim {
 
 namespace {
@@ -43,6 +45,12 @@ RasterState raster_state_from_config(const Config& cfg) {
   s.dda_arith = pick<DdaArith>(cfg.get_string("line.dda_arith"),
                                {{"f32", DdaArith::F32}, {"f64", DdaArith::F64}, {"fixed", DdaArith::Fixed}});
   s.polygon_rule = cfg.get_string("polygon.rule") == "nonzero" ? PolygonRule::NonZero : PolygonRule::EvenOdd;
+  s.traversal = pick<Traversal>(cfg.get_string("raster.traversal"),
+                                {{"tiled", Traversal::Tiled}, {"bbox", Traversal::Bbox},
+                                 {"hierarchical", Traversal::Hierarchical}, {"scanline", Traversal::Scanline}});
+  s.hier_levels = parse_hier_levels(cfg.get_string("raster.hier_levels"));
+  s.scanline_arith = pick<DdaArith>(cfg.get_string("raster.scanline_arith"),
+                                    {{"f32", DdaArith::F32}, {"f64", DdaArith::F64}, {"fixed", DdaArith::Fixed}});
   s.viewport_width = s.fb_width;
   s.viewport_height = s.fb_height;
   return s;

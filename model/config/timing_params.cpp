@@ -20,6 +20,9 @@ TimingParams TimingParams::from_config(const Config& cfg) {
   p.coarse_tiles_per_cycle = u("coarse.tiles_per_cycle");
   p.fine_samples_per_cycle = u("fine.samples_per_cycle");
   p.fine_accepted_tile_cycles = u("fine.accepted_tile_cycles");
+  p.coarse_scanline_setup = u("coarse.scanline_setup_cycles");
+  p.fine_span_setup = u("fine.span_setup_cycles");
+  p.fine_span_pixels_per_cycle = u("fine.span_pixels_per_cycle");
   p.interp_fragments_per_cycle = u("interp.fragments_per_cycle");
   p.interp_latency = u("interp.latency_cycles");
   p.rop_pixels_per_cycle = u("rop.pixels_per_cycle");

@@ -22,6 +22,7 @@ struct TimingParams {
   uint64_t setup_interval = 0, setup_latency = 0;
   uint64_t coarse_tiles_per_cycle = 0;
   uint64_t fine_samples_per_cycle = 0, fine_accepted_tile_cycles = 0;
+  uint64_t coarse_scanline_setup = 0, fine_span_setup = 0, fine_span_pixels_per_cycle = 0;
   uint64_t interp_fragments_per_cycle = 0, interp_latency = 0;
   uint64_t rop_pixels_per_cycle = 0, rop_clear_pixels_per_cycle = 0;
   uint64_t setup2d_ops_per_cycle = 0;
@@ -53,6 +54,17 @@ struct TimingParams {
   uint64_t rop_fragment_cycles(uint64_t fragments) const { return ceil_div(fragments, rop_pixels_per_cycle); }
   uint64_t rop_clear_cycles(uint64_t pixels) const { return ceil_div(pixels, rop_clear_pixels_per_cycle); }
 
+  // Traversal (docs/traversal.md). Coarse raster classifies coarse_tiles_per_cycle tiles a
+  // cycle at every level: tile i of a walk (counted from 0 over all levels, in walk order)
+  // leaves at cycle i / tiles_per_cycle + 1; a walk of V tiles takes max(1, ceil(V / this)).
+  uint64_t coarse_walk_cycles(uint64_t tiles) const { return std::max<uint64_t>(1, ceil_div(tiles, coarse_tiles_per_cycle)); }
+  // Fine raster: a partial footprint (a tile, or the whole bbox for raster.traversal =
+  // bbox) of A pixels tested at fine.samples_per_cycle.
+  uint64_t fine_partial_cycles(uint64_t pixels) const { return ceil_div(pixels, fine_samples_per_cycle); }
+  // Scanline: the edge walker's setup, then one row a cycle (rows inside the bbox, empty
+  // spans included); the span filler's setup plus the span's n pixels.
+  uint64_t scanline_walk_cycles(uint64_t rows) const { return coarse_scanline_setup + rows; }
+  uint64_t fine_span_cycles(uint64_t n) const { return fine_span_setup + ceil_div(n, fine_span_pixels_per_cycle); }
 
   // The 2D path (docs/2d.md, "Timing").
   // Front end: one command's N engine operations.

@@ -25,6 +25,7 @@ struct TraversalCounters {
   uint64_t tiles_visited = 0, tiles_rejected = 0, tiles_accepted = 0, tiles_partial = 0;
   uint64_t pixel_tests = 0;  // per-pixel coverage tests (partial tiles only)
   uint64_t fragments = 0;    // covered pixels emitted
+  uint64_t spans = 0;        // non-empty spans (raster.traversal = scanline only)
 };
 
 // The tile grid cells overlapping `bbox`, in tile units [tx0, tx1) x [ty0, ty1).

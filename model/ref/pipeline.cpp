@@ -2,9 +2,11 @@
 #include "ref/pipeline.h"
 
 #include <chrono>
+#include <optional>
 
 #include "ref/prim_assembly.h"
 #include "ref/rop.h"
+#include "ref/traverse.h"
 #include "ref/tri_setup.h"
 
 namespace rastsim {
@@ -78,6 +80,12 @@ Framebuffer render_scene(const Scene& scene, const RasterState& arch, RenderStat
   Framebuffer fb(st.fb_width, st.fb_height);
   fb.clear_depth(static_cast<uint32_t>((uint64_t{1} << st.depth_bits) - 1));
   const int F = st.coord_format.frac_bits;
+  const TraversalParams tp = traversal_params(st);
+  stats.traversal_method = tp.method;
+  // Only an inexact method is measured against the exact coverage.
+  std::optional<CoverageCheck> check;
+  if (!traversal_is_exact(tp.method)) check.emplace(st.fb_width, st.fb_height);
+  std::vector<std::pair<int, int>> pixels;  // one triangle's, for the check
   for (const Command& cmd : scene.commands) {
     if (apply_state_command(cmd, st, fb)) continue;
     if (const auto* d2 = std::get_if<CmdDraw2d>(&cmd.body)) {
@@ -90,13 +98,17 @@ Framebuffer render_scene(const Scene& scene, const RasterState& arch, RenderStat
       ++stats.triangles_in;
       SetupTriangle tri;
       if (!count_setup_outcome(setup_triangle(assemble_triangle(prims, k), st, cmd.loc, tri), stats)) continue;
-      traverse_triangle(tri, st.tile_size, F, stats.traversal, [&](int px, int py) {
+      pixels.clear();
+      traverse(tri, tp, stats.traversal, [&](int px, int py) {
+        if (check) pixels.emplace_back(px, py);
         const Fragment f = interpolate(tri, px, py, F);
         if (on_fragment) on_fragment(f);
         if (rop_write(fb, f, st.depth_func, st.depth_write)) ++stats.fragments_passed;
       });
+      if (check) check->add_triangle(tri, F, pixels, stats.coverage);
     }
   }
+  if (check) check->finish(stats.coverage);
   stats.framebuffer_crc32 = fb.color_crc32();
   stats.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return fb;

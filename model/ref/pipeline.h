@@ -14,6 +14,7 @@
 #include "ref/raster_state.h"
 #include "ref/scene.h"
 #include "ref/coarse_raster.h"
+#include "ref/coverage_check.h"
 
 namespace rastsim {
 
@@ -26,6 +27,8 @@ struct RenderStats {
   uint64_t triangles_outside_clip = 0;  // no pixel centre inside viewport/scissor box
   uint64_t triangles_rasterized = 0;    // reached the tile walker
   TraversalCounters traversal;
+  Traversal traversal_method = Traversal::Tiled;  // raster.traversal, for the stats
+  CoverageErrors coverage;            // inexact traversal against the exact rule
   uint64_t fragments_passed = 0;        // passed the depth test and were written
   Draw2dStats draw2d;                   // 2D primitives (points, lines, circles, fills, blits)
   uint32_t framebuffer_crc32 = 0;

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include "ref/fixed_point.h"
 #include "ref/line_raster.h"
@@ -15,6 +16,8 @@ enum class FillRule { TopLeft, BottomRight, Inclusive, Exclusive };
 enum class CullMode { None, Back, Front };
 enum class DepthFunc { Never, Less, LEqual, Equal, Greater, GEqual, NotEqual, Always };
 enum class OutOfRange { Error, Cull };
+// raster.traversal (ref/traverse.h, docs/traversal.md).
+enum class Traversal { Tiled, Bbox, Hierarchical, Scanline };
 
 // Half-open pixel rectangle [x0, x1) x [y0, y1).
 struct PixelRect {
@@ -43,6 +46,10 @@ struct RasterState {
   LineMethod line_method = LineMethod::Diamond;  // first enumerator: neutral
   DdaArith dda_arith = DdaArith::F32;
   PolygonRule polygon_rule = PolygonRule::EvenOdd;
+  // Triangle traversal (keys raster.traversal, raster.hier_levels, raster.scanline_arith).
+  Traversal traversal = Traversal::Tiled;
+  std::vector<int> hier_levels;  // px, strictly decreasing powers of two
+  DdaArith scanline_arith = DdaArith::F32;
 
   // Scene state (from commands).
   int viewport_width = 0, viewport_height = 0;

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "report/stats_json.h"
 
+#include "ref/traverse.h"
+
 #include <cstdio>
 
 namespace rastsim {
@@ -12,7 +14,7 @@ std::string crc32_hex(uint32_t crc) {
 }
 
 nlohmann::json to_json(const RenderStats& s) {
-  return {
+  nlohmann::json j = {
       {"triangles_in", s.triangles_in},
       {"triangles_culled", s.triangles_culled},
       {"triangles_zero_area", s.triangles_zero_area},
@@ -33,6 +35,16 @@ nlohmann::json to_json(const RenderStats& s) {
       {"framebuffer_crc32", crc32_hex(s.framebuffer_crc32)},
       {"wall_seconds", s.wall_seconds},
   };
+  // Keys of the other traversal methods only where they apply, so that a tiled run's
+  // stats are the same as before raster.traversal existed.
+  if (s.traversal_method != Traversal::Tiled) j["traversal"] = to_string(s.traversal_method);
+  if (s.traversal_method == Traversal::Scanline) j["spans"] = s.traversal.spans;
+  if (s.coverage.measured) {
+    j["pixels_wrong"] = s.coverage.pixels_wrong;
+    j["cracks"] = s.coverage.cracks;
+    j["overlaps"] = s.coverage.overlaps;
+  }
+  return j;
 }
 
 }  // namespace rastsim

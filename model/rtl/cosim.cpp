@@ -109,6 +109,12 @@ std::vector<RtlModelInfo> rtl_models() {
 }
 
 CosimResult run_cosim(const Scene& scene, const Config& cfg, const CosimOptions& opts) {
+  // The RTL has the tiled walker only; another method would be compared against the
+  // wrong expectation, so stop before building anything.
+  if (cfg.get_string("raster.traversal") != "tiled")
+    throw ConfigError(cfg.origin("raster.traversal") + ": raster.traversal = " + cfg.get_string("raster.traversal") +
+                      " has no RTL; the RTL (rtl/) walks tiles only: co-simulate with raster.traversal = tiled "
+                      "(render and simulate run every method)");
   TbSetup s;
   s.opts = opts;
   s.params = rtl_params_from_config(cfg);

@@ -6,10 +6,58 @@
 namespace rastsim::sc {
 
 void CoarseRaster::body() {
-  TraversalCounters& c = ctx_.render.traversal;
+  ctx_.render.traversal_method = tp_.method;
   for (;;) {
     const SetupItem in = read(in_);
     if (pass_state(in, out_)) continue;
+    switch (tp_.method) {
+      case Traversal::Tiled: walk_tiled(in); break;
+      case Traversal::Bbox: {
+        TraversalCounters& c = ctx_.render.traversal;
+        ++c.tiles_visited;
+        ++c.tiles_partial;
+        busy(p_.coarse_walk_cycles(1));
+        write(out_, TileItem{nullptr, TileWork{in.work, in.work->bbox, TileClass::Partial}});
+        break;
+      }
+      case Traversal::Hierarchical: walk_hierarchical(in); break;
+      case Traversal::Scanline: walk_scanline(in); break;
+    }
+  }
+}
+
+void CoarseRaster::walk_hierarchical(const SetupItem& in) {
+  TraversalCounters& c = ctx_.render.traversal;
+  const SetupTriangle& t = *in.work;
+  const uint64_t visited0 = c.tiles_visited;
+  uint64_t cycles_done = 0;
+  rastsim::walk_hierarchical(t, t.bbox, tp_.hier_levels, 0, frac_bits_, c, [&](const PixelRect& fp, TileClass cls) {
+    // This leaf was the (tiles_visited - visited0)-th tile classified, counted from 1.
+    const uint64_t leave_at = (c.tiles_visited - visited0 - 1) / p_.coarse_tiles_per_cycle + 1;
+    busy(leave_at - cycles_done);
+    cycles_done = leave_at;
+    write(out_, TileItem{nullptr, TileWork{in.work, fp, cls}});
+  });
+  busy(p_.coarse_walk_cycles(c.tiles_visited - visited0) - cycles_done);
+}
+
+void CoarseRaster::walk_scanline(const SetupItem& in) {
+  const SetupTriangle& t = *in.work;
+  std::vector<std::pair<int, int>> pixels;
+  busy(p_.scanline_walk_cycles(0));
+  scanline_spans(t, tp_.scan_arith, frac_bits_, [&](int py, int x0, int x1) {
+    busy(1);  // one row a cycle
+    if (x0 >= x1) return;
+    ++ctx_.render.traversal.spans;
+    for (int px = x0; px < x1; ++px) pixels.emplace_back(px, py);
+    write(out_, TileItem{nullptr, TileWork{in.work, PixelRect{x0, py, x1, py + 1}, TileClass::Accepted, true}});
+  });
+  check_->add_triangle(t, frac_bits_, pixels, ctx_.render.coverage);
+}
+
+void CoarseRaster::walk_tiled(const SetupItem& in) {
+  TraversalCounters& c = ctx_.render.traversal;
+  {
     const SetupTriangle& t = *in.work;
     const PixelRect tiles = tile_range(t.bbox, tile_size_);
     uint64_t visited = 0, cycles_done = 0;  // tiles classified; cycles of this walk spent

@@ -9,9 +9,22 @@
 //   FIFO at the end of the cycle that classified it (tile i, counted from 0 in walk
 //   order, leaves at cycle floor(i / tiles_per_cycle) + 1 of the walk).
 // - Counts tiles_visited / rejected / accepted / partial.
+// The other raster.traversal methods (docs/traversal.md), same functions as the
+// reference (ref/traverse.h):
+// - bbox: one partial "tile", the whole clipped bbox, in 1 cycle.
+// - hierarchical: walk_hierarchical at coarse.tiles_per_cycle tiles a cycle over every
+//   level's tiles (the tiled equation with V = the tiles of all levels); the leaves
+//   (accepted tiles of any level, partial tiles of the last) go to the tile FIFO.
+// - scanline: the edge walker. coarse.scanline_setup_cycles, then one row a cycle; each
+//   non-empty span leaves as one tile item (a one-row footprint marked `span`) at the
+//   end of its row's cycle. The spans are checked against the exact coverage here
+//   (ref/coverage_check.h), where the whole triangle's pixels are known.
 #pragma once
 
-#include "ref/coarse_raster.h"
+#include <optional>
+
+#include "ref/coverage_check.h"
+#include "ref/traverse.h"
 #include "sc/tri_setup.h"
 
 namespace rastsim::sc {
@@ -20,6 +33,7 @@ struct TileWork {
   std::shared_ptr<const SetupTriangle> tri;
   PixelRect footprint;  // the tile clipped to the triangle's bounding box
   TileClass cls = TileClass::Partial;  // Accepted or Partial
+  bool span = false;  // scanline: a span (one row, every pixel covered, no tests)
 };
 using TileItem = Item<TileWork>;
 
@@ -27,12 +41,24 @@ class CoarseRaster : public Stage {
  public:
   CoarseRaster(sc_core::sc_module_name name, SimContext& ctx, const RasterState& arch, const TimingParams& p,
                Link<SetupItem>& in, Link<TileItem>& out)
-      : Stage(name, ctx, 3), tile_size_(arch.tile_size), frac_bits_(arch.coord_format.frac_bits), p_(p),
-        in_(in), out_(out) {}
+      : Stage(name, ctx, 3), tile_size_(arch.tile_size), frac_bits_(arch.coord_format.frac_bits),
+        tp_(traversal_params(arch)), p_(p), in_(in), out_(out) {
+    if (!traversal_is_exact(tp_.method)) check_.emplace(arch.fb_width, arch.fb_height);
+  }
+  // Counts cracks and overlaps of every triangle walked into ctx.render.coverage (call
+  // once, after the simulation).
+  void finish_coverage() {
+    if (check_) check_->finish(ctx_.render.coverage);
+  }
 
  private:
   void body() override;
+  void walk_tiled(const SetupItem& in);
+  void walk_hierarchical(const SetupItem& in);
+  void walk_scanline(const SetupItem& in);
   int tile_size_, frac_bits_;
+  TraversalParams tp_;
+  std::optional<CoverageCheck> check_;
   const TimingParams& p_;
   Link<SetupItem>& in_;
   Link<TileItem>& out_;

@@ -13,13 +13,16 @@ void FineRaster::body() {
     batch->tri = tile.tri;
     auto emit = [&](int px, int py) { batch->pixels.push_back({px, py}); };
     uint64_t cost = 0;
-    if (tile.cls == TileClass::Accepted) {
+    if (tile.span) {
+      fine_raster_accepted(tile.footprint, emit);
+      cost = p_.fine_span_cycles(uint64_t(tile.footprint.area()));
+    } else if (tile.cls == TileClass::Accepted) {
       fine_raster_accepted(tile.footprint, emit);
       cost = p_.fine_accepted_tile_cycles;
     } else {
       const uint64_t tests = fine_raster_partial(*tile.tri, tile.footprint, frac_bits_, emit);
       c.pixel_tests += tests;
-      cost = ceil_div(tests, p_.fine_samples_per_cycle);
+      cost = p_.fine_partial_cycles(tests);
     }
     c.fragments += batch->pixels.size();
     busy(cost);

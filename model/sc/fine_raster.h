@@ -4,6 +4,8 @@
 //
 // - A partial footprint of A pixels takes ceil(A / fine.samples_per_cycle) cycles; an
 //   accepted footprint takes fine.accepted_tile_cycles (a full mask, no tests).
+// - A span (raster.traversal = scanline) of n pixels takes fine.span_setup_cycles +
+//   ceil(n / fine.span_pixels_per_cycle), no tests.
 // - A tile's covered pixels leave as ONE transaction (a batch, row-major), so no event
 //   exists per pixel; a tile with no covered pixel produces nothing.
 // - Counts pixel_tests and fragments.

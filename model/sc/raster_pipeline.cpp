@@ -147,6 +147,7 @@ SimResult simulate_scene(const Scene& scene, const Config& cfg, const SimOptions
       throw ModelError(std::string(f.name()) + ": " + std::to_string(f.writes() - f.reads()) +
                              " transactions left behind (pipeline deadlock)");
   });
+  top->coarse_raster.finish_coverage();
   r.render = ctx.render;
   r.fb = top->rop.framebuffer();
   r.render.framebuffer_crc32 = r.fb.color_crc32();

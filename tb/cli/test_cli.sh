@@ -84,10 +84,16 @@ expect_error "vertex outside the format" "far.trace:1: vertex 1 .*outside the s7
 "$BIN" render --scene "$TMP/far.trace" --set raster.out_of_range=cull --stats "$TMP/far.json" -q && \
   [ "$(json_field "$TMP/far.json" triangles_out_of_range)" = 1 ] && pass || fail "out_of_range=cull"
 expect_error "missing scene" "" -- "$BIN" render --scene "$TMP/none.trace"
+# Traversal methods: the RTL walks tiles only, so cosim refuses the others by name.
+expect_error "cosim with bbox traversal" "raster.traversal = bbox has no RTL" -- \
+  "$BIN" cosim --scene "$SCENE" --set raster.traversal=bbox
+expect_error "bad hier_levels" "raster.hier_levels .*powers of two" -- \
+  "$BIN" render --scene "$SCENE" --set raster.hier_levels=16/64 -o "$TMP/h.png"
 
 # 5. --help on every command; config --doc lists the keys.
 for c in render config; do "$BIN" $c --help | grep -q -- "--set" && pass || fail "$c --help"; done
 "$BIN" config --doc | grep -q "raster.tile_size" && pass || fail "config --doc"
+"$BIN" config --doc | grep -q "raster.traversal = \"tiled\"" && pass || fail "config --doc traversal"
 
 echo "cli: $passes passed, $fails failed"
 [ $fails -eq 0 ]
