@@ -11,6 +11,7 @@
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <set>
 #include <sstream>
 #include <thread>
 
@@ -175,17 +176,19 @@ size_t run_points(std::vector<Point>& points, const std::vector<Axis>& axes, con
   return failed;
 }
 
-// Columns: scene, swept keys, status, then every stat (first successful run's order).
+// Columns: scene, swept keys, status, then every stat any successful run reported, in
+// the order first seen (a method's own counters, e.g. scanline's pixels_wrong, appear
+// only in its rows; the other rows leave them empty).
 void write_csv(const std::string& out_path, const std::vector<Point>& points, const std::vector<Axis>& axes) {
   std::vector<std::string> stat_keys;
-  for (const auto& p : points)
-    if (p.status == 0) {
-      std::vector<std::pair<std::string, nlohmann::json>> flat;
-      flatten(p.stats, "", flat);
-      for (const auto& [k, v] : flat)
-        if (k != "scene") stat_keys.push_back(k);
-      break;
-    }
+  std::set<std::string> seen{"scene"};
+  for (const auto& p : points) {
+    if (p.status != 0) continue;
+    std::vector<std::pair<std::string, nlohmann::json>> flat;
+    flatten(p.stats, "", flat);
+    for (const auto& [k, v] : flat)
+      if (seen.insert(k).second) stat_keys.push_back(k);
+  }
   std::ofstream os(out_path);
   if (!os) throw std::runtime_error(out_path + ": cannot open for writing");
   os << "scene";

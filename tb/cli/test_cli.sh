@@ -89,6 +89,15 @@ expect_error "cosim with bbox traversal" "raster.traversal = bbox has no RTL" --
   "$BIN" cosim --scene "$SCENE" --set raster.traversal=bbox
 expect_error "bad hier_levels" "raster.hier_levels .*powers of two" -- \
   "$BIN" render --scene "$SCENE" --set raster.hier_levels=16/64 -o "$TMP/h.png"
+# A sweep over the methods: scanline's own counters get a column although the first row
+# (tiled) does not report them; empty there, a number in the scanline row.
+"$BIN" sweep --scene "$SRC/traces/state.trace" --set raster.traversal=tiled,scanline \
+  --set raster.scanline_arith=f32 --out "$TMP/methods.csv" >/dev/null 2>&1 &&
+  /usr/bin/python3 - "$TMP/methods.csv" <<'PY' && pass || fail "sweep keeps columns of later rows"
+import csv, sys
+rows = {r["raster.traversal"]: r for r in csv.DictReader(open(sys.argv[1]))}
+assert rows["tiled"]["pixels_wrong"] == "" and rows["scanline"]["pixels_wrong"].isdigit(), rows
+PY
 
 # 5. --help on every command; config --doc lists the keys.
 for c in render config; do "$BIN" $c --help | grep -q -- "--set" && pass || fail "$c --help"; done
