@@ -15,6 +15,8 @@ void add_timing_params(std::vector<ParamDef>& schema);
 void add_scanout_params(std::vector<ParamDef>& schema);
 // Keys of the 2D primitives (lines, polygons), declared in config_schema_2d.cpp.
 void add_2d_params(std::vector<ParamDef>& schema);
+// Keys of the attribute interpolation method, declared in config_schema_interp.cpp.
+void add_interp_params(std::vector<ParamDef>& schema);
 
 namespace {
 
@@ -73,6 +75,7 @@ std::vector<ParamDef> make_schema() {
   add_timing_params(s);
   add_scanout_params(s);
   add_2d_params(s);
+  add_interp_params(s);
   return s;
 }
 

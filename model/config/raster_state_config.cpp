@@ -43,6 +43,9 @@ RasterState raster_state_from_config(const Config& cfg) {
   s.dda_arith = pick<DdaArith>(cfg.get_string("line.dda_arith"),
                                {{"f32", DdaArith::F32}, {"f64", DdaArith::F64}, {"fixed", DdaArith::Fixed}});
   s.polygon_rule = cfg.get_string("polygon.rule") == "nonzero" ? PolygonRule::NonZero : PolygonRule::EvenOdd;
+  s.interp_method = cfg.get_string("interp.method") == "dda" ? InterpMethod::Dda : InterpMethod::Plane;
+  s.interp_arith = cfg.get_string("interp.dda_arith") == "f32" ? InterpArith::F32 : InterpArith::Fixed;
+  s.interp_frac_bits = static_cast<int>(cfg.get_int("interp.dda_frac_bits"));
   s.viewport_width = s.fb_width;
   s.viewport_height = s.fb_height;
   return s;

@@ -15,6 +15,10 @@ enum class FillRule { TopLeft, BottomRight, Inclusive, Exclusive };
 enum class CullMode { None, Back, Front };
 enum class DepthFunc { Never, Less, LEqual, Equal, Greater, GEqual, NotEqual, Always };
 enum class OutOfRange { Error, Cull };
+// Attribute interpolation (interp.method): plane equations, an exact rational a pixel
+// (the default), or the notes' incremental span DDA (ref/interpolate.h).
+enum class InterpMethod { Plane, Dda };
+enum class InterpArith { F32, Fixed };  // interp.dda_arith
 
 // Half-open pixel rectangle [x0, x1) x [y0, y1).
 struct PixelRect {
@@ -43,6 +47,10 @@ struct RasterState {
   LineMethod line_method = LineMethod::Diamond;  // first enumerator: neutral
   DdaArith dda_arith = DdaArith::F32;
   PolygonRule polygon_rule = PolygonRule::EvenOdd;
+  // Attribute interpolation (config keys interp.method, interp.dda_arith, interp.dda_frac_bits).
+  InterpMethod interp_method = InterpMethod::Plane;
+  InterpArith interp_arith = InterpArith::Fixed;
+  int interp_frac_bits = 16;  // fraction bits of the fixed-point DDA accumulator
 
   // Scene state (from commands).
   int viewport_width = 0, viewport_height = 0;

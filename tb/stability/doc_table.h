@@ -20,15 +20,15 @@ inline std::string trim(const std::string& s) {
 
 using DocRow = std::vector<std::string>;
 
-// Rows of the first table of section `section` of docs/stability.md (cells trimmed,
-// a "\|" inside a cell kept as "|").
-inline std::vector<DocRow> doc_table(const std::string& section) {
+// Rows of table number `index` (0: the first) of section `section` of docs/stability.md
+// (cells trimmed, a "\|" inside a cell kept as "|").
+inline std::vector<DocRow> doc_table(const std::string& section, int index = 0) {
   const std::string path = std::string(RASTSIM_SOURCE_DIR) + "/docs/stability.md";
   std::ifstream in(path);
   if (!in) throw std::runtime_error(path + ": cannot open");
   std::string line;
   bool in_section = false, in_table = false;
-  int table_line = 0;
+  int table_line = 0, tables_seen = 0;
   std::vector<DocRow> rows;
   while (std::getline(in, line)) {
     if (line.rfind("## ", 0) == 0) {
@@ -38,10 +38,13 @@ inline std::vector<DocRow> doc_table(const std::string& section) {
     }
     if (!in_section) continue;
     if (line.rfind("|", 0) != 0) {
-      if (in_table) break;  // the first table only
+      if (in_table && tables_seen++ == index) break;  // the end of the wanted table
+      in_table = false;
+      table_line = 0;
       continue;
     }
     in_table = true;
+    if (tables_seen != index) continue;
     if (table_line++ < 2) continue;  // header and |---| separator
     DocRow row;
     std::string cell;
@@ -52,13 +55,14 @@ inline std::vector<DocRow> doc_table(const std::string& section) {
     }
     rows.push_back(row);
   }
-  if (rows.empty()) throw std::runtime_error(path + ": no table in section \"" + section + "\"");
+  if (rows.empty())
+    throw std::runtime_error(path + ": no table " + std::to_string(index) + " in section \"" + section + "\"");
   return rows;
 }
 
-// The row whose first cell is `key`; throws when the doc has none.
-inline DocRow doc_row(const std::string& section, const std::string& key) {
-  for (const DocRow& r : doc_table(section))
+// The row whose first cell is `key` in table `index` of the section; throws when none.
+inline DocRow doc_row(const std::string& section, const std::string& key, int index = 0) {
+  for (const DocRow& r : doc_table(section, index))
     if (!r.empty() && r[0] == key) return r;
   throw std::runtime_error("docs/stability.md, \"" + section + "\": no row \"" + key + "\"");
 }
