@@ -5,8 +5,6 @@
 
 #include <algorithm>
 #include <map>
-#include <tuple>
-#include <unordered_map>
 #include <variant>
 
 #include "ref/pipeline.h"
