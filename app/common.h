@@ -94,5 +94,6 @@ void register_simulate(CLI::App& app);
 void register_sweep(CLI::App& app);
 void register_cosim(CLI::App& app), register_export_rtl(CLI::App& app);
 void register_scanout(CLI::App& app), register_monitor(CLI::App& app);
+void register_fit(CLI::App& app);
 
 }  // namespace rastsim::app

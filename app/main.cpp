@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
   rastsim::app::register_sweep(app);
   rastsim::app::register_cosim(app), rastsim::app::register_export_rtl(app);
   rastsim::app::register_scanout(app), rastsim::app::register_monitor(app);
+  rastsim::app::register_fit(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -14,48 +14,16 @@
 #include <utility>
 #include <vector>
 
+#include "common/exact_line.h"
 #include "ref/line_raster.h"
 
 namespace rastsim {
 namespace {
 
-using Pixels = std::vector<std::pair<int, int>>;
-
-int64_t floor_div(int64_t a, int64_t b) {  // b > 0
-  return (a >= 0) ? a / b : -((-a + b - 1) / b);
-}
-
-// The exact rule, stated per step k = 0..n of the major axis: the minor offset from the
-// start is round(k * |d_minor| / n), a tie rounded up (towards the end's minor
-// coordinate) when `tie_up`. Written from dx, dy directly, not through LineOctant.
-Pixels exact_index_line(int x0, int y0, int x1, int y1, bool tie_up) {
-  const int64_t dx = x1 - x0, dy = y1 - y0;
-  const bool xmaj = std::llabs(dx) >= std::llabs(dy);
-  const int64_t n = xmaj ? std::llabs(dx) : std::llabs(dy), dm = xmaj ? std::llabs(dy) : std::llabs(dx);
-  Pixels out;
-  for (int64_t k = 0; k <= n; ++k) {
-    int64_t off = 0;
-    if (n > 0) off = tie_up ? floor_div(2 * k * dm + n, 2 * n) : floor_div(2 * k * dm + n - 1, 2 * n);
-    const int64_t a = (xmaj ? dx : dy) < 0 ? -k : k;            // along the major axis
-    const int64_t b = (xmaj ? dy : dx) < 0 ? -off : off;        // along the minor axis
-    out.emplace_back(int(xmaj ? x0 + a : x0 + b), int(xmaj ? y0 + b : y0 + a));
-  }
-  return out;
-}
-
-// The exact DDA: minor = floor(start + k * d_minor / n + 1/2), in integers.
-Pixels exact_dda_line(int x0, int y0, int x1, int y1) {
-  const int64_t dx = x1 - x0, dy = y1 - y0;
-  const bool xmaj = std::llabs(dx) >= std::llabs(dy);
-  const int64_t n = xmaj ? std::llabs(dx) : std::llabs(dy), dmin = xmaj ? dy : dx, v0 = xmaj ? y0 : x0;
-  Pixels out;
-  for (int64_t k = 0; k <= n; ++k) {
-    const int64_t v = (n == 0) ? v0 : floor_div(2 * v0 * n + 2 * k * dmin + n, 2 * n);
-    const int64_t a = (xmaj ? dx : dy) < 0 ? -k : k;
-    out.emplace_back(int(xmaj ? x0 + a : v), int(xmaj ? v : y0 + a));
-  }
-  return out;
-}
+using testing::exact_dda_line;
+using testing::exact_index_line;
+using testing::floor_div;
+using testing::Pixels;
 
 template <class F>
 Pixels collect(F&& draw) {
@@ -102,7 +70,7 @@ TEST(LineRaster, AllOctantsAndDirectionsMatchTheExactRule) {
     const int span = (i % 4 == 0) ? 2000 : 40;
     std::uniform_int_distribution<int> c(-span, span);
     const int x0 = c(rng), y0 = c(rng), x1 = c(rng), y1 = c(rng);
-    SCOPED_TRACE(testing::Message() << "(" << x0 << "," << y0 << ")-(" << x1 << "," << y1 << ")");
+    SCOPED_TRACE(::testing::Message() << "(" << x0 << "," << y0 << ")-(" << x1 << "," << y1 << ")");
     ASSERT_EQ(bres(x0, y0, x1, y1), exact_index_line(x0, y0, x1, y1, true));
     ASSERT_EQ(mid(x0, y0, x1, y1), exact_index_line(x0, y0, x1, y1, false));
   }

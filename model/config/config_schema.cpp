@@ -17,6 +17,8 @@ void add_scanout_params(std::vector<ParamDef>& schema);
 void add_2d_params(std::vector<ParamDef>& schema);
 // Keys of the triangle traversal method, declared in config_schema_traversal.cpp.
 void add_traversal_params(std::vector<ParamDef>& schema);
+// Keys of the attribute interpolation method, declared in config_schema_interp.cpp.
+void add_interp_params(std::vector<ParamDef>& schema);
 
 namespace {
 
@@ -76,6 +78,7 @@ std::vector<ParamDef> make_schema() {
   add_timing_params(s);
   add_scanout_params(s);
   add_2d_params(s);
+  add_interp_params(s);
   return s;
 }
 

@@ -51,6 +51,9 @@ RasterState raster_state_from_config(const Config& cfg) {
   s.hier_levels = parse_hier_levels(cfg.get_string("raster.hier_levels"));
   s.scanline_arith = pick<DdaArith>(cfg.get_string("raster.scanline_arith"),
                                     {{"f32", DdaArith::F32}, {"f64", DdaArith::F64}, {"fixed", DdaArith::Fixed}});
+  s.interp_method = cfg.get_string("interp.method") == "dda" ? InterpMethod::Dda : InterpMethod::Plane;
+  s.interp_arith = cfg.get_string("interp.dda_arith") == "f32" ? InterpArith::F32 : InterpArith::Fixed;
+  s.interp_frac_bits = static_cast<int>(cfg.get_int("interp.dda_frac_bits"));
   s.viewport_width = s.fb_width;
   s.viewport_height = s.fb_height;
   return s;

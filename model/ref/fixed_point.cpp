@@ -42,6 +42,18 @@ FixedFormat FixedFormat::parse(std::string_view text) {
   return f;
 }
 
+DatapathWidths datapath_widths(const FixedFormat& f, int depth_bits) {
+  const int n = f.int_bits + f.frac_bits;  // N = I + F
+  DatapathWidths w;
+  w.coord = n + 1;
+  w.coef = n + 2;
+  w.edge = 2 * n + 3;  // |E| <= L^2 < 2^(2N+2), L = 2^(N+1) - 1, plus a sign bit
+  w.area = 2 * n + 2;
+  w.color_num = 2 * n + 2 + 8;
+  w.depth_num = 2 * n + 2 + depth_bits;
+  return w;
+}
+
 std::string FixedFormat::name() const {
   return "s" + std::to_string(int_bits) + "." + std::to_string(frac_bits);
 }

@@ -47,6 +47,21 @@ struct FixedFormat {
 // floor(n/2), fits in the format: -2^I <= -floor(n/2) and n - floor(n/2) <= 2^I - 2^-F.
 inline int64_t max_viewport_extent(const FixedFormat& f) { return (int64_t{2} << f.int_bits) - 2; }
 
+// The datapath widths that follow from a coordinate format (docs/fixed-point.md,
+// "Datapath widths"). The one place these equations are written: export-rtl
+// (model/rtl/rtl_params.cpp), `rastsim fit` and the stability tests all call it.
+// N = I + F; widths in bits, signed unless marked unsigned.
+struct DatapathWidths {
+  int coord = 0;      // snapped vertex x, y: N + 1
+  int coef = 0;       // edge a, b: N + 2
+  int edge = 0;       // edge c, E(x, y), E + bias: 2N + 3
+  int area = 0;       // area2 and barycentric weights, unsigned: 2N + 2
+  int color_num = 0;  // colour numerator sum w_k c_k (8-bit c_k), unsigned: 2N + 10
+  int depth_num = 0;  // depth numerator sum w_k z_k (D-bit z_k), unsigned: 2N + 2 + D
+  bool operator==(const DatapathWidths&) const = default;
+};
+DatapathWidths datapath_widths(const FixedFormat& f, int depth_bits);
+
 // Largest I + F the model supports: raw coordinates then fit in 32 bits and every
 // intermediate (edge values, interpolation numerators) fits in i128.
 inline constexpr int kMaxFormatBits = 31;

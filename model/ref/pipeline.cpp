@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "ref/pipeline.h"
 
+#include <algorithm>
 #include <chrono>
 #include <optional>
 
@@ -73,6 +74,17 @@ void reject_2d_commands(const Scene& scene, const char* level) {
                        " level yet; `rastsim render` draws it (docs/2d.md)");
 }
 
+void count_interp_error(const Fragment& got, const Fragment& exact, RenderStats& stats) {
+  const auto d = [](uint32_t a, uint32_t b) { return a > b ? a - b : b - a; };
+  for (uint32_t e : {d(got.r, exact.r), d(got.g, exact.g), d(got.b, exact.b)}) {
+    stats.max_attr_error_lsb = std::max(stats.max_attr_error_lsb, e);
+    stats.attr_error_sum += e;
+  }
+  const uint32_t ez = d(got.z, exact.z);
+  stats.max_depth_error_lsb = std::max(stats.max_depth_error_lsb, ez);
+  stats.depth_error_sum += ez;
+}
+
 Framebuffer render_scene(const Scene& scene, const RasterState& arch, RenderStats& stats,
                          const FragmentSink& on_fragment) {
   const auto t0 = std::chrono::steady_clock::now();
@@ -102,6 +114,7 @@ Framebuffer render_scene(const Scene& scene, const RasterState& arch, RenderStat
       traverse(tri, tp, stats.traversal, [&](int px, int py) {
         if (check) pixels.emplace_back(px, py);
         const Fragment f = interpolate(tri, px, py, F);
+        if (tri.interp_method != InterpMethod::Plane) count_interp_error(f, interpolate_plane(tri, px, py, F), stats);
         if (on_fragment) on_fragment(f);
         if (rop_write(fb, f, st.depth_func, st.depth_write)) ++stats.fragments_passed;
       });

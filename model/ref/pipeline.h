@@ -30,6 +30,10 @@ struct RenderStats {
   Traversal traversal_method = Traversal::Tiled;  // raster.traversal, for the stats
   CoverageErrors coverage;            // inexact traversal against the exact rule
   uint64_t fragments_passed = 0;        // passed the depth test and were written
+  // interp.method = dda only: |dda - plane| of each fragment's attributes, in LSBs of the
+  // attribute (colour channels: 8-bit LSBs; depth: raster.depth_bits LSBs). 0 for plane.
+  uint32_t max_attr_error_lsb = 0, max_depth_error_lsb = 0;
+  uint64_t attr_error_sum = 0, depth_error_sum = 0;  // sums, for the means (3 colour samples a fragment)
   Draw2dStats draw2d;                   // 2D primitives (points, lines, circles, fills, blits)
   uint32_t framebuffer_crc32 = 0;
   double wall_seconds = 0;
@@ -47,6 +51,10 @@ bool count_setup_outcome(SetupOutcome o, RenderStats& stats);
 // Throws SceneError naming the first 2D drawing command of `scene` for the levels that
 // have no 2D stage yet (`level`: "SystemC", "RTL").
 void reject_2d_commands(const Scene& scene, const char* level);
+
+// Adds one fragment's attribute error (a method's fragment against interpolate_plane's)
+// to the interpolation error stats (shared with the timed model).
+void count_interp_error(const Fragment& got, const Fragment& exact, RenderStats& stats);
 
 using FragmentSink = std::function<void(const Fragment&)>;
 

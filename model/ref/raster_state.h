@@ -18,6 +18,10 @@ enum class DepthFunc { Never, Less, LEqual, Equal, Greater, GEqual, NotEqual, Al
 enum class OutOfRange { Error, Cull };
 // raster.traversal (ref/traverse.h, docs/traversal.md).
 enum class Traversal { Tiled, Bbox, Hierarchical, Scanline };
+// Attribute interpolation (interp.method): plane equations, an exact rational a pixel
+// (the default), or the notes' incremental span DDA (ref/interpolate.h).
+enum class InterpMethod { Plane, Dda };
+enum class InterpArith { F32, Fixed };  // interp.dda_arith
 
 // Half-open pixel rectangle [x0, x1) x [y0, y1).
 struct PixelRect {
@@ -50,6 +54,10 @@ struct RasterState {
   Traversal traversal = Traversal::Tiled;
   std::vector<int> hier_levels;  // px, strictly decreasing powers of two
   DdaArith scanline_arith = DdaArith::F32;
+  // Attribute interpolation (config keys interp.method, interp.dda_arith, interp.dda_frac_bits).
+  InterpMethod interp_method = InterpMethod::Plane;
+  InterpArith interp_arith = InterpArith::Fixed;
+  int interp_frac_bits = 16;  // fraction bits of the fixed-point DDA accumulator
 
   // Scene state (from commands).
   int viewport_width = 0, viewport_height = 0;

@@ -52,6 +52,10 @@ SetupOutcome setup_triangle(const std::array<SceneVertex, 3>& v, const RasterSta
   const FixedFormat& fmt = st.coord_format;
   t.origin_x = st.origin_x();
   t.origin_y = st.origin_y();
+  t.interp_method = st.interp_method;
+  t.interp_arith = st.interp_arith;
+  t.interp_frac_bits = st.interp_frac_bits;
+  t.depth_bits = st.depth_bits;
   for (int i = 0; i < 3; ++i) {
     const auto sx = snap_coord(v[i].x, t.origin_x, fmt);
     const auto sy = snap_coord(v[i].y, t.origin_y, fmt);

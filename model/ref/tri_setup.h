@@ -52,6 +52,12 @@ struct SetupTriangle {
   std::array<uint32_t, 3> z{};      // depth, unorm raster.depth_bits
   std::array<std::array<uint8_t, 3>, 3> rgb{};  // per-vertex colour
   int64_t origin_x = 0, origin_y = 0;  // pixel of raw (0, 0), to map samples back
+  // How interpolation evaluates this triangle's attributes (from the state at setup, so
+  // every stage that interpolates, reference or timed, uses the same method).
+  InterpMethod interp_method = InterpMethod::Plane;
+  InterpArith interp_arith = InterpArith::Fixed;
+  int interp_frac_bits = 16;
+  int depth_bits = 24;  // raster.depth_bits: the range the dda method clamps depth to
 
   // Raw coordinate of the centre of pixel column px / row py.
   int64_t sample_x(int px, int frac_bits) const {

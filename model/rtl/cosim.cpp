@@ -124,6 +124,12 @@ CosimResult run_cosim(const Scene& scene, const Config& cfg, const CosimOptions&
   s.tile_log2 = std::countr_zero(static_cast<unsigned>(tile));
   // Fill rule, cull mode and front face: run-time inputs, from this config (not the model's).
   const RasterState st = raster_state_from_config(cfg);
+  // The RTL interpolator divides the plane-equation numerators (rtl/rast_interpolate.sv):
+  // the dda method has no RTL, and comparing against it would only count its error.
+  if (st.interp_method != InterpMethod::Plane)
+    throw std::runtime_error("interp.method = \"" + cfg.get_string("interp.method") +
+                             "\" has no RTL (the RTL interpolates by plane equations): co-simulate with "
+                             "interp.method = \"plane\"");
   s.fill_rule = static_cast<int>(st.fill_rule);
   s.cull_mode = static_cast<int>(st.cull);
   s.front_ccw = st.front_ccw ? 1 : 0;

@@ -107,16 +107,16 @@ std::string scanout_rtl_params_verilog(const ScanoutRtlParams& p, const std::str
 RtlParams rtl_params_from_config(const Config& cfg) {
   const RasterState st = raster_state_from_config(cfg);  // validates
   RtlParams p;
-  const int n = st.coord_format.int_bits + st.coord_format.frac_bits;  // N = I + F
   p.coord_int = st.coord_format.int_bits;
   p.coord_frac = st.coord_format.frac_bits;
-  // docs/fixed-point.md, "Datapath widths".
-  p.coord_w = n + 1;
-  p.coef_w = n + 2;
-  p.edge_w = 2 * n + 3;
-  p.area_w = 2 * n + 2;
-  p.color_num_w = 2 * n + 2 + 8;
-  p.depth_num_w = 2 * n + 2 + st.depth_bits;
+  // docs/fixed-point.md, "Datapath widths": written once, in ref/fixed_point.cpp.
+  const DatapathWidths w = datapath_widths(st.coord_format, st.depth_bits);
+  p.coord_w = w.coord;
+  p.coef_w = w.coef;
+  p.edge_w = w.edge;
+  p.area_w = w.area;
+  p.color_num_w = w.color_num;
+  p.depth_num_w = w.depth_num;
   p.depth_w = st.depth_bits;
   p.tile_log2_max = std::countr_zero(static_cast<unsigned>(st.tile_size));
   // Port widths from the schema's maxima, so every config's RTL has the same ports.

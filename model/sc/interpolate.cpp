@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "sc/interpolate.h"
 
+#include "ref/pipeline.h"
+
 namespace rastsim::sc {
 
 void Interpolate::body() {
@@ -12,6 +14,10 @@ void Interpolate::body() {
     frags->reserve(batch.pixels.size());
     for (const Pixel& px : batch.pixels) {
       frags->push_back(interpolate(*batch.tri, px.x, px.y, frac_bits_));
+      // interp.method = dda: its error against the plane equations, counted as the
+      // reference's render_scene counts it (same stats keys at both levels).
+      if (batch.tri->interp_method != InterpMethod::Plane)
+        count_interp_error(frags->back(), interpolate_plane(*batch.tri, px.x, px.y, frac_bits_), ctx_.render);
       if (ctx_.on_fragment) ctx_.on_fragment(frags->back());
     }
     busy(ceil_div(frags->size(), p_.interp_fragments_per_cycle));

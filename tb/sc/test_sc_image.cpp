@@ -131,6 +131,21 @@ TEST_P(ScImage2d, RandomMixedScenesMatchReference) {
 
 INSTANTIATE_TEST_SUITE_P(LineMethods, ScImage2d, ::testing::Values("diamond", "bresenham", "midpoint", "dda"));
 
+// interp.method = dda: the timed model's interpolation stage calls the same reference
+// function, so image, depth, fragments and the error stats equal the reference's.
+class ScInterpDda : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(ScInterpDda, RandomScenesMatchReference) {
+  for (uint64_t seed : {4u, 5u}) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    const Scene scene = random_scene(seed, 128, 96, 60);
+    const Config cfg = make_config({"interp.method=dda", "interp.dda_arith=" + GetParam(), "raster.depth_func=less"});
+    expect_matches_reference(run_isolated([&] { return compare_with_reference(scene, cfg); }));
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Arith, ScInterpDda, ::testing::Values("f32", "fixed"));
+
 TEST(ScFifo, DepthOneNeverLosesOrReorders) {
   // Every FIFO one entry deep (and no pipeline latency slots): maximal backpressure. Link::read checks the sequence
   // numbers and simulate_scene checks writes == reads; the fragment stream must match.

@@ -1,0 +1,120 @@
+// SPDX-License-Identifier: Apache-2.0
+// `rastsim fit`: the narrowest raster.coord_format a scene needs (ref/coord_fit.h) and
+// the datapath widths it implies (datapath_widths, as export-rtl); with --precision,
+// the coordinate-precision table of docs/stability.md for F = 0..16.
+#include <iostream>
+
+#include "common.h"
+#include "config/raster_state_config.h"
+#include "ref/coord_fit.h"
+#include "report/stats_json.h"
+#include "scene/scene_io.h"
+
+namespace rastsim::app {
+
+namespace {
+
+struct FitOptions {
+  ConfigOptions config;
+  std::string scene_path, stats_path;
+  bool format_only = false, precision = false;
+};
+
+nlohmann::json widths_json(const DatapathWidths& w) {
+  return {{"coord", w.coord}, {"edge_coef", w.coef}, {"edge", w.edge}, {"area", w.area},
+          {"color_num", w.color_num}, {"depth_num", w.depth_num}};
+}
+
+void run_fit_command(const FitOptions& o) {
+  const Config cfg = load_config(o.config);
+  const RasterState arch = raster_state_from_config(cfg);
+  const Scene scene = load_scene(o.scene_path, obj_placement(cfg));
+  const CoordFit fit = fit_coord_format(scene, arch);
+  nlohmann::json j;
+  j["config"] = cfg.source_name();
+  j["scene"] = o.scene_path;
+  j["coord_format"] = fit.format.name();
+  j["reference_format"] = fit.widest.name();
+  j["int_bits_viewport"] = fit.int_bits_viewport;
+  j["int_bits_vertices"] = fit.int_bits_vertices;
+  j["exact_at_zero_frac"] = fit.exact_at_zero_frac;
+  j["framebuffer_crc32"] = crc32_hex(fit.reference.color_crc32);
+  j["fragments_crc32"] = crc32_hex(fit.reference.fragments_crc32);
+  j["fragments"] = fit.reference.fragments;
+  j["widths"] = widths_json(fit.widths);
+  j["coverage_format"] = FixedFormat{fit.format.int_bits, fit.coverage_frac_bits}.name();
+  j["color_format"] = FixedFormat{fit.format.int_bits, fit.color_frac_bits}.name();
+  j["renders"] = fit.trials.size() + 1;
+  if (o.format_only) {
+    std::cout << fit.format.name() << "\n";
+  } else {
+    const DatapathWidths& w = fit.widths;
+    std::cout << "fit: " << o.scene_path << " (" << cfg.source_name() << ")\n"
+              << "  integer bits " << fit.widest.int_bits << ": viewport needs " << fit.int_bits_viewport
+              << ", vertices need " << fit.int_bits_vertices << "\n"
+              << "  reference " << fit.widest.name() << " (I + F = " << kMaxFormatBits << "): crc32 "
+              << crc32_hex(fit.reference.color_crc32) << ", " << fit.reference.fragments << " fragments (crc32 "
+              << crc32_hex(fit.reference.fragments_crc32) << ")\n"
+              << "  raster.coord_format = \"" << fit.format.name() << "\": identical framebuffer and fragment stream";
+    if (fit.format.frac_bits > 1)
+      std::cout << "; " << FixedFormat{fit.format.int_bits, fit.format.frac_bits - 1}.name() << " differs";
+    std::cout << "\n";
+    if (fit.format.frac_bits == 1)
+      std::cout << (fit.exact_at_zero_frac
+                        ? "  exact at 0 fraction bits: integer vertices render identically (F = 1 is the smallest "
+                          "format, pixel centres sit at +0.5)\n"
+                        : "  not exact at 0 fraction bits: integer vertices render differently\n");
+    std::cout << "  weaker identities, fewest F with the same coverage: "
+              << FixedFormat{fit.format.int_bits, fit.coverage_frac_bits}.name() << ", with the same colour buffer: "
+              << FixedFormat{fit.format.int_bits, fit.color_frac_bits}.name() << " (depth and colour see every vertex LSB)\n";
+    std::cout << "  widths (bits): vertex " << w.coord << ", edge a/b " << w.coef << ", edge c/E " << w.edge
+              << ", area " << w.area << " unsigned, colour numerator " << w.color_num
+              << " unsigned, depth numerator " << w.depth_num << " unsigned (docs/fixed-point.md)\n";
+  }
+  if (o.precision) {
+    const auto rows = measure_precision(scene, arch, fit.widest.int_bits, 16);
+    nlohmann::json pj = nlohmann::json::array();
+    if (!o.format_only) {
+      std::cout << "\n| F | format | pixels != F=16 | cracks | edge width |\n|---|---|---|---|---|\n";
+    }
+    for (const PrecisionRow& r : rows) {
+      nlohmann::json rj = {{"frac_bits", r.frac_bits}, {"format", r.format.name()}, {"edge_width", r.edge_width}};
+      if (r.ok) {
+        rj["pixels_different"] = r.pixels_different;
+        if (r.cracks) rj["cracks"] = *r.cracks;
+      } else {
+        rj["error"] = r.error;
+      }
+      pj.push_back(rj);
+      if (!o.format_only)
+        std::cout << "| " << r.frac_bits << " | " << (r.frac_bits == 0 ? "integer vertices in " : "")
+                  << r.format.name() << " | " << (r.ok ? std::to_string(r.pixels_different) : "render fails")
+                  << " | " << (r.cracks ? std::to_string(*r.cracks) : "n/a") << " | " << r.edge_width << " |\n";
+    }
+    j["precision"] = pj;
+  }
+  if (!o.stats_path.empty()) write_json(o.stats_path, j);
+}
+
+}  // namespace
+
+void register_fit(CLI::App& app) {
+  auto* cmd = app.add_subcommand(
+      "fit",
+      "The narrowest raster.coord_format whose render of a scene is identical (framebuffer CRC and fragment "
+      "stream) to the widest format with the same integer bits (I + F = 31), and the widths it implies");
+  static FitOptions o;
+  add_config_options(cmd, o.config);
+  cmd->add_option("--scene,-s", o.scene_path, "Scene: a trace (.trace) or a Wavefront OBJ (.obj)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  cmd->add_flag("--format-only", o.format_only,
+                "Print only the format, e.g. --set raster.coord_format=$(rastsim fit ... --format-only)");
+  cmd->add_option("--stats", o.stats_path, "Write the fit (and the precision table) as JSON to this file ('-' for stdout)");
+  cmd->add_flag("--precision", o.precision,
+                "Also measure F = 0..16 at the fitted integer bits: pixels different from F = 16, cracks of a closed "
+                "mesh, edge width (docs/stability.md)");
+  cmd->callback([] { run_fit_command(o); });
+}
+
+}  // namespace rastsim::app
