@@ -45,9 +45,8 @@ class Reader {
   // Decompressed bytes returned so far.
   uint64_t produced() const;
 
-  struct Impl;
-
  private:
+  struct Impl;  // the open file, its input chunk and the codec state
   std::unique_ptr<Impl> impl_;
 };
 
