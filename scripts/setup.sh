@@ -15,6 +15,8 @@ RASTSIM_PACKAGES=(
   libsystemc-dev verilator
   libgtest-dev libbenchmark-dev
   libtomlplusplus-dev libcli11-dev nlohmann-json3-dev libpng-dev zlib1g-dev
+  libzstd-dev   # zstd-compressed scenes (model/scene/scene_stream.cpp)
+  zstd          # the zstd tool: scripts/gen_scenes --compress zst, the CLI test
   python3-matplotlib
   gtkwave   # vcd2fst / fst2vcd for FST video signals (rastsim scanout --signal, monitor), and to view waveforms
   libosmesa6-dev   # OSMesa: Mesa's llvmpipe, headless, the independent renderer of ctest -L mesa (docs/mesa.md)

@@ -31,7 +31,8 @@ Scene load_obj(const std::string& path, const ObjPlacement& placement);
 Scene parse_obj(const std::string& text, const std::string& name, const ObjPlacement& placement,
                 const std::string& base_dir);
 
-// By extension: .obj -> load_obj, anything else -> load_trace.
+// By extension, after any .gz / .zst: .obj -> load_obj, anything else -> load_trace.
+// Every loader reads plain, gzip and zstd files alike (scene_stream.h).
 Scene load_scene(const std::string& path, const ObjPlacement& placement);
 
 }  // namespace rastsim

@@ -1,19 +1,17 @@
 // SPDX-License-Identifier: Apache-2.0
-// Text layer shared by the trace and OBJ parsers: file reading, line splitting with the
+// Text layer shared by the trace and OBJ parsers: file reading (through scene_stream), line splitting with the
 // NUL / line-length guards, '#' comments, whitespace tokens, strict number syntax, and
 // the one "file:line: what" error builder.
 #include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <cmath>
-#include <filesystem>
-#include <fstream>
 #include <functional>
 #include <limits>
 #include <optional>
-#include <sstream>
 #include <string_view>
 
+#include "scene/scene_stream.h"
 #include "scene/scene_text.h"
 
 namespace rastsim {
@@ -48,18 +46,9 @@ std::string quote(std::string_view tok) {
   return out + "'";
 }
 
-// Whole file as text. Only regular files: a directory or device (e.g. an mtllib that
-// names /dev/zero) would fail late or never end.
-std::string read_file(const std::string& path) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) throw SceneError(path + ": cannot open");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw SceneError(path + ": cannot open");
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  if (in.bad()) throw SceneError(path + ": cannot read");
-  return ss.str();
-}
+// Whole file as text, decompressed when it is gzip or zstd (scene_stream.h checks that
+// it is a regular file and bounds its size).
+std::string read_file(const std::string& path) { return scene_stream::read_all(path); }
 
 // Calls fn(line, tokens) for every line that has a token after comment stripping;
 // returns the number of lines. Lines split on '\n'; '\r' counts as whitespace, so

@@ -20,7 +20,7 @@ using LineFn = std::function<void(int line, const Tokens& tokens)>;
 [[noreturn]] void fail(const std::string& file, int line, const std::string& what);
 // A token as it appears in an error: quoted, control bytes escaped, long tokens cut.
 std::string quote(std::string_view tok);
-// Whole file, or SceneError "path: cannot open".
+// Whole file, decompressed if gzip or zstd (scene_stream.h); SceneError "path: ..." otherwise.
 std::string read_file(const std::string& path);
 // Calls fn(line, tokens) for every non-blank line with '#' comments removed; rejects NUL
 // bytes and overlong lines. Returns the number of lines.

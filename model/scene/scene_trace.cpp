@@ -26,6 +26,7 @@
 #include "ref/scene.h"
 #include "scene/scene_text.h"
 #include "scene/scene_io.h"
+#include "scene/scene_stream.h"
 
 namespace rastsim {
 
@@ -481,7 +482,8 @@ Scene parse_trace(const std::string& text, const std::string& name) {
 Scene load_trace(const std::string& path) { return parse_trace(scene_text::read_file(path), path); }
 
 Scene load_scene(const std::string& path, const ObjPlacement& placement) {
-  std::string ext = std::filesystem::path(path).extension().string();
+  // The parser follows the name without its compression suffix: a.obj.gz is an OBJ.
+  std::string ext = std::filesystem::path(scene_stream::strip_compression_suffix(path)).extension().string();
   for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   if (ext == ".obj") return load_obj(path, placement);
   return load_trace(path);

@@ -99,6 +99,25 @@ rows = {r["raster.traversal"]: r for r in csv.DictReader(open(sys.argv[1]))}
 assert rows["tiled"]["pixels_wrong"] == "" and rows["scanline"]["pixels_wrong"].isdigit(), rows
 PY
 
+# 4b. Compressed scenes (gzip always; zstd when its tool is installed) render the plain
+# scene's image, and a broken one is a clear error naming the file.
+"$BIN" render --scene "$SCENE" --stats "$TMP/plain.json" -q || fail "plain render for the compressed check"
+crc_plain="$(json_field "$TMP/plain.json" framebuffer_crc32 2>/dev/null)"
+gzip -c "$SCENE" > "$TMP/torus.trace.gz"
+zips=("$TMP/torus.trace.gz")
+if command -v zstd >/dev/null; then zstd -q -c "$SCENE" > "$TMP/torus.trace.zst"; zips+=("$TMP/torus.trace.zst"); fi
+for z in "${zips[@]}"; do
+  if "$BIN" render --scene "$z" --stats "$TMP/z.json" -q; then
+    [ "$(json_field "$TMP/z.json" framebuffer_crc32)" = "$crc_plain" ] && pass || fail "$z: crc differs from the plain scene"
+  else
+    fail "render --scene $z"
+  fi
+done
+head -c 200 "$TMP/torus.trace.gz" > "$TMP/cut.trace.gz"
+expect_error "truncated gzip scene" "cut.trace.gz: truncated gzip data" -- "$BIN" render --scene "$TMP/cut.trace.gz"
+printf 'viewport 64 64\ntri 0 0 10 0 0 zz\n' | gzip -c > "$TMP/badline.trace.gz"
+expect_error "error line in a gzip scene" "badline.trace.gz:2:" -- "$BIN" render --scene "$TMP/badline.trace.gz"
+
 # 5. --help on every command; config --doc lists the keys.
 for c in render config; do "$BIN" $c --help | grep -q -- "--set" && pass || fail "$c --help"; done
 "$BIN" config --doc | grep -q "raster.tile_size" && pass || fail "config --doc"
