@@ -31,8 +31,8 @@ inline constexpr std::array<const char*, 9> kEstimateStageNames = {
     "command_fetch", "prim_assembly", "tri_setup",    "coarse_raster", "fine_raster",
     "interpolate",   "rop",           "draw2d_setup", "engine2d"};
 
-// Where between the bounds the point estimate sits (docs/estimate.md: the median of
-// (SystemC - lower) / (upper - lower) over the shipped traces and configs).
+// Where between the bounds the point estimate sits: the median of (SystemC - lower) /
+// (upper - lower) over the shipped traces and configs (docs/estimate.md), which is 0.
 inline constexpr double kEstimateBlend = 0.0;
 
 struct EstimateStage {

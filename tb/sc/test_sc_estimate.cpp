@@ -11,6 +11,8 @@
 //   (the upper bound does not cover injected stalls, which are not work).
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstdio>
 #include <filesystem>
 
 #include "common/random_2d_trace.h"
@@ -109,6 +111,54 @@ TEST(ScEstimate, EmptySceneIsZero) {
   EXPECT_EQ(r.cycles_lower_bound, 0u);
   EXPECT_EQ(r.cycles_upper_bound, 0u);
   EXPECT_EQ(r.cycles_estimate, 0u);
+}
+
+}  // namespace
+}  // namespace rastsim::sctest
+
+namespace rastsim::sctest {
+namespace {
+
+// The measured table of docs/estimate.md (not a check; disabled unless asked for):
+//   rastsim_sc_tests --gtest_also_run_disabled_tests --gtest_filter='*EstimateTable'
+// Per shipped trace x config: the bounds, the estimate, SystemC's cycles, the
+// estimate's error, and the median of 3 wall times of each level's own work
+// (estimate_scene vs simulate_scene's sim_wall_seconds, scene parsing excluded).
+TEST(ScEstimate, DISABLED_EstimateTable) {
+  std::printf("| trace | config | lower | estimate | upper | SystemC | estimate error | (SystemC-lower)/(upper-lower) "
+              "| estimate wall | simulate wall | ratio |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+  const auto median3 = [](std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v[1];
+  };
+  for (const std::string& trace : shipped_traces()) {
+    for (const std::string& config_path : files_in("configs", ".toml")) {
+      Config cfg;
+      cfg.load_file(config_path);
+      cfg.validate();
+      const Scene scene = load_trace(trace);
+      std::vector<double> est_wall, sim_wall;
+      EstimateResult est;
+      uint64_t cycles = 0;
+      for (int run = 0; run < 3; ++run) {
+        est = estimate_scene(scene, cfg);
+        const nlohmann::json sim = run_isolated([&] { return simulate_stats(scene, cfg); });
+        ASSERT_FALSE(sim.contains("error")) << sim["error"];
+        cycles = sim["cycles"];
+        est_wall.push_back(est.wall_seconds);
+        sim_wall.push_back(sim["sim_wall_seconds"]);
+      }
+      const double te = median3(est_wall), ts = median3(sim_wall);
+      const double gap = double(est.cycles_upper_bound - est.cycles_lower_bound);
+      std::printf("| %s | %s | %llu | %llu | %llu | %llu | %+.1f %% | %.2f | %.3f ms | %.3f ms | %.0fx |\n",
+                  std::filesystem::path(trace).filename().c_str(),
+                  std::filesystem::path(config_path).stem().c_str(), (unsigned long long)est.cycles_lower_bound,
+                  (unsigned long long)est.cycles_estimate, (unsigned long long)est.cycles_upper_bound,
+                  (unsigned long long)cycles, 100.0 * (double(est.cycles_estimate) - double(cycles)) / double(cycles),
+                  gap > 0 ? (double(cycles) - double(est.cycles_lower_bound)) / gap : 0.0, te * 1e3, ts * 1e3,
+                  ts / te);
+    }
+  }
 }
 
 }  // namespace
