@@ -58,6 +58,14 @@ struct SimulateOptions {
 };
 void run_simulate_command(const SimulateOptions& o);
 
+// `rastsim estimate` as a plain function: the analytic bounds and estimate, no simulation.
+struct EstimateOptions {
+  ConfigOptions config;
+  std::string scene_path, stats_path;
+  bool quiet = false;
+};
+void run_estimate_command(const EstimateOptions& o);
+
 // `rastsim monitor` as a plain function: every option of the command, then the run.
 struct MonitorOptions {
   ConfigOptions config;
@@ -95,5 +103,6 @@ void register_sweep(CLI::App& app);
 void register_cosim(CLI::App& app), register_export_rtl(CLI::App& app);
 void register_scanout(CLI::App& app), register_monitor(CLI::App& app);
 void register_fit(CLI::App& app);
+void register_estimate(CLI::App& app);
 
 }  // namespace rastsim::app

@@ -48,6 +48,18 @@ TimingParams TimingParams::from_config(const Config& cfg) {
   return p;
 }
 
+uint64_t TimingParams::stage_fill_cycles(int stage) const {
+  // The 2D stages start behind command fetch's first header.
+  if (stage >= 7) return fetch_cycles_per_command;
+  uint64_t fill = 0;
+  for (int s = 0; s < stage; ++s) {
+    fill += (s == 0) ? fetch_cycles_per_command : 1;  // every cost is >= 1 cycle (schema minimums)
+    if (s == 2) fill += setup_latency - setup_interval;
+    if (s == 5) fill += interp_latency;
+  }
+  return fill;
+}
+
 uint64_t TimingParams::engine2d_op_cycles(const Op2d& op, uint8_t rop3) const {
   const bool reads_d = rop3_reads_destination(rop3);
   switch (op.kind) {

@@ -49,10 +49,31 @@ struct TimingParams {
   uint64_t fetch_draw2d_cycles(uint64_t vertices) const {
     return fetch_cycles_per_command + ceil_div(vertices, fetch_vertices_per_cycle);
   }
+  // Command fetch of a state command (viewport, scissor, clear) or of a primitives
+  // command with no triangle: its header alone.
+  uint64_t fetch_header_cycles() const { return fetch_cycles_per_command; }
+  // Any stage's issue slot for a state command or 2D marker it passes on (Stage::pass_state).
+  static constexpr uint64_t state_pass_cycles() { return 1; }
+  // Primitive assembly of one triangle; triangle setup's issue slot for one triangle
+  // (its initiation interval; the rest of setup.latency_cycles is pipeline latency).
+  uint64_t assembly_triangle_cycles() const { return assembly_cycles_per_triangle; }
+  uint64_t setup_triangle_cycles() const { return setup_interval; }
+  // Cycles a transaction leaving setup waits beyond setup's issue slot (its pipeline).
+  uint64_t setup_pipeline_latency() const { return setup_latency - setup_interval; }
+  // Fine raster of an accepted footprint (a full mask, no tests), any size.
+  uint64_t fine_accepted_cycles() const { return fine_accepted_tile_cycles; }
+  // Interpolation of a batch of n fragments (one tile's or span's), excluding its latency.
+  uint64_t interp_batch_cycles(uint64_t fragments) const { return ceil_div(fragments, interp_fragments_per_cycle); }
   // ROP: a batch of fragments; a clear (colour or depth) of the whole framebuffer at the
   // fast-clear rate; any other state command passes in one cycle.
   uint64_t rop_fragment_cycles(uint64_t fragments) const { return ceil_div(fragments, rop_pixels_per_cycle); }
   uint64_t rop_clear_cycles(uint64_t pixels) const { return ceil_div(pixels, rop_clear_pixels_per_cycle); }
+  // ROP of a state command: a clear of the fb_pixels framebuffer, or 1 cycle.
+  uint64_t rop_state_cycles(bool is_clear, uint64_t fb_pixels) const {
+    return is_clear ? rop_clear_cycles(fb_pixels) : state_pass_cycles();
+  }
+  // ROP on a 2D command's marker: 1 cycle after the 2D engine hands its port back.
+  static constexpr uint64_t rop_draw2d_marker_cycles() { return 1; }
 
   // Traversal (docs/traversal.md). Coarse raster classifies coarse_tiles_per_cycle tiles a
   // cycle at every level: tile i of a walk (counted from 0 over all levels, in walk order)
@@ -88,8 +109,17 @@ struct TimingParams {
     const uint64_t bytes = 4 + (reads_s ? 4 : 0) + (reads_d ? 4 : 0);
     return h * (engine2d_span_setup + std::max(w, ceil_div(w * bytes, engine2d_blit_bytes_per_cycle)));
   }
+  // Engine: taking the ROP's framebuffer port at the start of each 2D command.
+  static constexpr uint64_t engine2d_grant_cycles() { return 1; }
   // Any engine operation of a command painted with ROP3 code `rop3`.
   uint64_t engine2d_op_cycles(const Op2d& op, uint8_t rop3) const;
+
+  // The earliest cycle stage `stage` (the SystemC stage index: 0 command_fetch,
+  // 1 prim_assembly, 2 tri_setup, 3 coarse_raster, 4 fine_raster, 5 interpolate, 6 rop,
+  // 7 draw2d_setup, 8 engine2d) can start its first busy cycle: fetch's first header,
+  // then at least one cycle in each stage upstream, plus the pipeline latencies of
+  // setup and interpolation, which every transaction (state markers too) waits.
+  uint64_t stage_fill_cycles(int stage) const;
 
   // Reads and cross-checks the keys (setup.latency_cycles >= setup.interval_cycles);
   // throws ConfigError naming the keys.

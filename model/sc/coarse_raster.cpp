@@ -77,7 +77,7 @@ void CoarseRaster::walk_tiled(const SetupItem& in) {
         write(out_, TileItem{nullptr, TileWork{in.work, fp, cls}});
       }
     }
-    busy(std::max<uint64_t>(1, ceil_div(visited, p_.coarse_tiles_per_cycle)) - cycles_done);
+    busy(p_.coarse_walk_cycles(visited) - cycles_done);
   }
 }
 

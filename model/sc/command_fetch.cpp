@@ -17,12 +17,12 @@ void CommandFetch::body() {
     const auto* prims = std::get_if<CmdPrimitives>(&cmd.body);
     if (!prims) {
       apply_state_command(cmd, st_, no_fb_);  // viewport, scissor
-      busy(p_.fetch_cycles_per_command);
+      busy(p_.fetch_header_cycles());
       write(out_, CommandItem{&cmd, {}});
       continue;
     }
     const size_t n = triangle_count(*prims);
-    if (n == 0) busy(p_.fetch_cycles_per_command);
+    if (n == 0) busy(p_.fetch_header_cycles());
     for (size_t k = 0; k < n; ++k) {
       const uint64_t new_vertices = (k == 0 || prims->topology == Topology::List) ? 3 : 1;
       busy(p_.fetch_triangle_cycles(k == 0, new_vertices));

@@ -12,7 +12,7 @@ void Engine2d::body() {
     if (g.cmd != in.work.cmd)
       throw ModelError(std::string(name()) + ": the ROP granted " + g.cmd->loc.str() + " but the next 2D command is " +
                        in.work.cmd->loc.str());
-    busy(1);  // taking the port
+    busy(TimingParams::engine2d_grant_cycles());  // taking the port
     const Draw2dWork& w = *in.work.work;
     for (const Op2d& op : w.ops) {
       ctx_.render.draw2d.pixels += execute_op2d(fb_, w, op);

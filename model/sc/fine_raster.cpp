@@ -18,7 +18,7 @@ void FineRaster::body() {
       cost = p_.fine_span_cycles(uint64_t(tile.footprint.area()));
     } else if (tile.cls == TileClass::Accepted) {
       fine_raster_accepted(tile.footprint, emit);
-      cost = p_.fine_accepted_tile_cycles;
+      cost = p_.fine_accepted_cycles();
     } else {
       const uint64_t tests = fine_raster_partial(*tile.tri, tile.footprint, frac_bits_, emit);
       c.pixel_tests += tests;

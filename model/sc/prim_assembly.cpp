@@ -11,7 +11,7 @@ void PrimAssembly::body() {
     if (pass_state(in, out_)) continue;
     const auto& prims = std::get<CmdPrimitives>(in.work.cmd->body);
     TriangleItem out{nullptr, AssembledTriangle{assemble_triangle(prims, in.work.index), in.work.cmd}};
-    busy(p_.assembly_cycles_per_triangle);
+    busy(p_.assembly_triangle_cycles());
     write(out_, std::move(out));
   }
 }

@@ -128,18 +128,14 @@ SimResult simulate_scene(const Scene& scene, const Config& cfg, const SimOptions
   SimResult r;
   r.core_mhz = p.core_mhz;
   r.cycles = ctx.to_cycles(end);
-  uint64_t fill = 0;  // earliest cycle the stage can start: one transaction upstream each
+  int index = 0;
   for (Stage* s : top->stages()) {
     s->finish(end);
     const StageStats& st = s->stats();
     r.stages.push_back({s->basename(), st.busy, st.stalled, st.starved, st.transactions_in, st.transactions_out});
-    // The 2D stages start behind command fetch's first header.
-    if (s == &top->draw2d_setup || s == &top->engine2d) fill = p.fetch_cycles_per_command;
-    r.cycles_lower_bound = std::max(r.cycles_lower_bound, fill + st.busy);
-    fill += (s == &top->command_fetch) ? p.fetch_cycles_per_command : 1;
-    // Everything leaving setup or interpolation also waits out their pipeline latency.
-    if (s == &top->tri_setup) fill += p.setup_latency - p.setup_interval;
-    if (s == &top->interpolate) fill += p.interp_latency;
+    // A stage with work starts no earlier than its fill (TimingParams::stage_fill_cycles).
+    if (st.busy > 0) r.cycles_lower_bound = std::max(r.cycles_lower_bound, p.stage_fill_cycles(index) + st.busy);
+    ++index;
   }
   top->for_each_fifo([&](auto& f) {
     r.fifos.push_back({f.basename(), f.depth(), f.writes(), f.reads()});

@@ -20,14 +20,14 @@ void Rop::body() {
     if (in.state && std::holds_alternative<CmdDraw2d>(in.state->body)) {
       write(grant_2d_, PortGrant{in.state});
       read(done_2d_);
-      busy(1);
+      busy(TimingParams::rop_draw2d_marker_cycles());
       continue;
     }
     if (in.state) {
       apply_state_command(*in.state, st_, fb_);
       const bool clear = std::holds_alternative<CmdClear>(in.state->body) ||
                          std::holds_alternative<CmdClearDepth>(in.state->body);
-      busy(clear ? p_.rop_clear_cycles(uint64_t(fb_.width) * uint64_t(fb_.height)) : 1);
+      busy(p_.rop_state_cycles(clear, uint64_t(fb_.width) * uint64_t(fb_.height)));
       continue;
     }
     for (const Fragment& f : *in.work)

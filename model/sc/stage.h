@@ -18,6 +18,7 @@
 
 #include "sc/link.h"
 #include "sc/sim_context.h"
+#include "config/timing_params.h"
 
 namespace rastsim::sc {
 
@@ -96,7 +97,7 @@ class Stage : public sc_core::sc_module {
   template <class In, class Out>
   bool pass_state(const Item<In>& in, Link<Item<Out>>& out, uint64_t extra_latency = 0) {
     if (!in.state) return false;
-    busy(1);
+    busy(TimingParams::state_pass_cycles());
     write(out, Item<Out>{in.state, {}}, extra_latency);
     return true;
   }

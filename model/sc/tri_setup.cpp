@@ -9,13 +9,13 @@ void TriSetup::body() {
   for (;;) {
     const TriangleItem in = read(in_);
     if (in.state) apply_state_command(*in.state, st_, no_fb_);  // viewport, scissor
-    if (pass_state(in, out_, p_.setup_latency - p_.setup_interval)) continue;
+    if (pass_state(in, out_, p_.setup_pipeline_latency())) continue;
     ++ctx_.render.triangles_in;
     auto tri = std::make_shared<SetupTriangle>();
     const SetupOutcome outcome = setup_triangle(in.work.v, st_, in.work.cmd->loc, *tri);
-    busy(p_.setup_interval);
+    busy(p_.setup_triangle_cycles());
     if (count_setup_outcome(outcome, ctx_.render))
-      write(out_, SetupItem{nullptr, std::move(tri)}, p_.setup_latency - p_.setup_interval);
+      write(out_, SetupItem{nullptr, std::move(tri)}, p_.setup_pipeline_latency());
   }
 }
 

@@ -118,6 +118,23 @@ expect_error "truncated gzip scene" "cut.trace.gz: truncated gzip data" -- "$BIN
 printf 'viewport 64 64\ntri 0 0 10 0 0 zz\n' | gzip -c > "$TMP/badline.trace.gz"
 expect_error "error line in a gzip scene" "badline.trace.gz:2:" -- "$BIN" render --scene "$TMP/badline.trace.gz"
 
+# 6. estimate: bounds and per-stage busy in the stats, lower <= estimate <= upper; a bad
+#    config is one error line naming the file and line.
+if "$BIN" estimate --config "$CFG" --scene "$SCENE" --stats "$TMP/e.json" -q; then
+  for k in cycles_lower_bound cycles_upper_bound cycles_estimate wall_seconds; do
+    json_field "$TMP/e.json" "$k" >/dev/null 2>&1 && pass || fail "estimate stats lack $k"
+  done
+  /usr/bin/python3 -c "import json,sys; j=json.load(open(sys.argv[1]))
+assert j['cycles_lower_bound'] <= j['cycles_estimate'] <= j['cycles_upper_bound'], j
+assert j['stages']['rop']['busy'] > 0" "$TMP/e.json" && pass || fail "estimate bounds out of order"
+else
+  fail "estimate of the demo scene failed"
+fi
+"$BIN" estimate --help | grep -q -- "cycles_upper_bound" && pass || fail "estimate --help"
+printf '[fine]\nsamples_per_cycle = 0\n' > "$TMP/bad_est.toml"
+expect_error "estimate bad config" "bad_est.toml:2:.*samples_per_cycle" -- "$BIN" estimate --config "$TMP/bad_est.toml" --scene "$SCENE"
+expect_error "estimate missing scene" "scene" -- "$BIN" estimate --config "$CFG" --scene "$TMP/none.trace"
+
 # 5. --help on every command; config --doc lists the keys.
 for c in render config; do "$BIN" $c --help | grep -q -- "--set" && pass || fail "$c --help"; done
 "$BIN" config --doc | grep -q "raster.tile_size" && pass || fail "config --doc"

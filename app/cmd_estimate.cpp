@@ -1,0 +1,48 @@
+// SPDX-License-Identifier: Apache-2.0
+// `rastsim estimate`: the analytic fidelity level (docs/estimate.md). The timed model's
+// per-stage busy cycles from the reference model's geometry, a lower and an upper bound
+// on its cycle count and a point estimate, without event simulation.
+#include <iostream>
+
+#include "common.h"
+#include "estimate/estimate.h"
+#include "scene/scene_io.h"
+
+namespace rastsim::app {
+
+void run_estimate_command(const EstimateOptions& o) {
+  const Config cfg = load_config(o.config);
+  const Scene scene = load_scene(o.scene_path, obj_placement(cfg));
+  const EstimateResult r = estimate_scene(scene, cfg);
+  nlohmann::json j = r.to_json();
+  j["config"] = cfg.source_name();
+  j["scene"] = o.scene_path;
+  if (!o.stats_path.empty()) write_json(o.stats_path, j);
+  if (!o.quiet) {
+    size_t busiest = 0;
+    for (size_t s = 0; s < r.stages.size(); ++s)
+      if (r.stages[s].busy > r.stages[busiest].busy) busiest = s;
+    std::cout << "estimate: " << r.cycles_estimate << " cycles (lower bound " << r.cycles_lower_bound
+              << ", upper bound " << r.cycles_upper_bound << ", busiest stage " << kEstimateStageNames[busiest] << " "
+              << r.stages[busiest].busy << "), " << r.render.triangles_in << " triangles, "
+              << r.render.traversal.tiles_visited << " tiles, " << r.render.traversal.fragments << " fragments, "
+              << r.wall_seconds << " s wall\n";
+  }
+}
+
+void register_estimate(CLI::App& app) {
+  auto* cmd = app.add_subcommand(
+      "estimate", "Bound and estimate the SystemC model's cycles analytically, without simulating (docs/estimate.md)");
+  static EstimateOptions o;
+  add_config_options(cmd, o.config);
+  cmd->add_option("--scene,-s", o.scene_path, "Scene: a trace (.trace) or a Wavefront OBJ (.obj)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--stats", o.stats_path,
+                  "Write the stats as JSON ('-' for stdout): cycles_lower_bound, cycles_upper_bound, "
+                  "cycles_estimate, wall_seconds, stages.<stage>.busy, and the geometry counters");
+  cmd->add_flag("--quiet,-q", o.quiet, "Do not print the summary line");
+  cmd->callback([] { run_estimate_command(o); });
+}
+
+}  // namespace rastsim::app

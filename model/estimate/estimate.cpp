@@ -1,0 +1,223 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "estimate/estimate.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "config/raster_state_config.h"
+#include "ref/framebuffer.h"
+#include "ref/prim_assembly.h"
+#include "ref/traverse.h"
+#include "ref/tri_setup.h"
+#include "report/stats_json.h"
+
+namespace rastsim {
+
+namespace {
+
+enum StageIndex { Fetch, Assembly, Setup, Coarse, Fine, Interp, Rop, Setup2d, Engine2d };
+
+// One pass over the scene in program order. Every stage of the timed model sees the
+// transactions in program order and keeps no state that changes a cost except the
+// raster state (viewport, scissor), which fetch and setup update at the same commands,
+// so one walk of the commands with one RasterState gives every stage's transactions.
+class Walker {
+ public:
+  Walker(const RasterState& arch, const TimingParams& p, EstimateResult& r)
+      : st_(arch), tp_(traversal_params(arch)), p_(p), r_(r),
+        fb_pixels_(uint64_t(arch.fb_width) * uint64_t(arch.fb_height)) {
+    r_.render.traversal_method = tp_.method;
+  }
+
+  void command(const Command& cmd) {
+    if (const auto* d2 = std::get_if<CmdDraw2d>(&cmd.body)) return draw2d(cmd, *d2);
+    const auto* prims = std::get_if<CmdPrimitives>(&cmd.body);
+    if (!prims) {
+      Framebuffer no_fb;  // clears pass to the ROP; only viewport and scissor matter here
+      apply_state_command(cmd, st_, no_fb);
+      work(Fetch, p_.fetch_header_cycles());
+      const bool clear = std::holds_alternative<CmdClear>(cmd.body) || std::holds_alternative<CmdClearDepth>(cmd.body);
+      return marker(p_.rop_state_cycles(clear, fb_pixels_), false);
+    }
+    const size_t n = triangle_count(*prims);
+    if (n == 0) r_.stages[Fetch].busy += p_.fetch_header_cycles();  // a header, no transaction
+    for (size_t k = 0; k < n; ++k) {
+      work(Fetch, p_.fetch_triangle_cycles(k == 0, (k == 0 || prims->topology == Topology::List) ? 3 : 1));
+      work(Assembly, p_.assembly_triangle_cycles());
+      ++r_.render.triangles_in;
+      SetupTriangle tri;
+      const SetupOutcome outcome = setup_triangle(assemble_triangle(*prims, k), st_, cmd.loc, tri);
+      r_.stages[Setup].busy += p_.setup_triangle_cycles();
+      if (!count_setup_outcome(outcome, r_.render)) continue;  // culled: no transaction out
+      emit(Setup);
+      r_.latency_waits += p_.setup_pipeline_latency();
+      traverse(tri);
+    }
+  }
+
+ private:
+  // A stage spends `cycles` on one transaction and writes it to the next FIFO.
+  void work(StageIndex s, uint64_t cycles) {
+    r_.stages[s].busy += cycles;
+    emit(s);
+  }
+  void emit(StageIndex s) { ++r_.stages[s].transactions_out; }
+
+  // A state command or 2D marker after fetch: one issue slot in each stage from assembly
+  // to interpolation (Stage::pass_state), with setup's and interpolation's latencies,
+  // then `rop_cycles` in the ROP (which writes a port grant only for a 2D marker).
+  void marker(uint64_t rop_cycles, bool is_2d) {
+    for (StageIndex s : {Assembly, Setup, Coarse, Fine, Interp}) work(s, TimingParams::state_pass_cycles());
+    r_.latency_waits += p_.setup_pipeline_latency() + p_.interp_latency;
+    r_.stages[Rop].busy += rop_cycles;
+    if (is_2d) emit(Rop);
+  }
+
+  void draw2d(const Command& cmd, const CmdDraw2d& d2) {
+    // Fetch writes the command to the 2D front end and its marker down the triangle path.
+    work(Fetch, p_.fetch_draw2d_cycles(draw2d_vertex_count(d2)));
+    emit(Fetch);
+    const Draw2dWork w = draw2d_ops(d2, cmd.loc, st_);
+    ++(w.culled ? r_.render.draw2d.primitives_culled : r_.render.draw2d.primitives);
+    work(Setup2d, p_.setup2d_cycles(w.ops.size()));
+    uint64_t engine = TimingParams::engine2d_grant_cycles();
+    for (const Op2d& op : w.ops) engine += p_.engine2d_op_cycles(op, w.paint.rop3);
+    work(Engine2d, engine);  // its "done" back to the ROP
+    marker(TimingParams::rop_draw2d_marker_cycles(), true);
+  }
+
+  // Coarse raster's walk of one set-up triangle by raster.traversal, as sc/coarse_raster.
+  void traverse(const SetupTriangle& t) {
+    TraversalCounters& c = r_.render.traversal;
+    const int F = tp_.frac_bits;
+    switch (tp_.method) {
+      case Traversal::Tiled: {
+        const PixelRect tiles = tile_range(t.bbox, tp_.tile_size);
+        uint64_t visited = 0;
+        for (int ty = tiles.y0; ty < tiles.y1; ++ty) {
+          for (int tx = tiles.x0; tx < tiles.x1; ++tx, ++visited) {
+            const PixelRect fp = tile_footprint(t.bbox, tp_.tile_size, tx, ty);
+            ++c.tiles_visited;
+            const TileClass cls = classify_tile(t, fp, F);
+            if (cls == TileClass::Rejected) {
+              ++c.tiles_rejected;
+              continue;
+            }
+            ++(cls == TileClass::Accepted ? c.tiles_accepted : c.tiles_partial);
+            tile(t, fp, cls, false);
+          }
+        }
+        r_.stages[Coarse].busy += p_.coarse_walk_cycles(visited);
+        break;
+      }
+      case Traversal::Bbox:
+        ++c.tiles_visited;
+        ++c.tiles_partial;
+        tile(t, t.bbox, TileClass::Partial, false);
+        r_.stages[Coarse].busy += p_.coarse_walk_cycles(1);
+        break;
+      case Traversal::Hierarchical: {
+        const uint64_t visited0 = c.tiles_visited;
+        walk_hierarchical(t, t.bbox, tp_.hier_levels, 0, F, c,
+                          [&](const PixelRect& fp, TileClass cls) { tile(t, fp, cls, false); });
+        r_.stages[Coarse].busy += p_.coarse_walk_cycles(c.tiles_visited - visited0);
+        break;
+      }
+      case Traversal::Scanline: {
+        uint64_t rows = 0;
+        scanline_spans(t, tp_.scan_arith, F, [&](int py, int x0, int x1) {
+          ++rows;
+          if (x0 >= x1) return;
+          ++c.spans;
+          tile(t, PixelRect{x0, py, x1, py + 1}, TileClass::Accepted, true);
+        });
+        r_.stages[Coarse].busy += p_.scanline_walk_cycles(rows);
+        break;
+      }
+    }
+  }
+
+  // One tile item through fine raster, interpolation and the ROP, as sc/fine_raster.
+  void tile(const SetupTriangle& t, const PixelRect& fp, TileClass cls, bool span) {
+    emit(Coarse);
+    TraversalCounters& c = r_.render.traversal;
+    uint64_t n = 0, cost = 0;  // covered pixels; fine raster cycles
+    if (span) {
+      n = uint64_t(fp.area());
+      cost = p_.fine_span_cycles(n);
+    } else if (cls == TileClass::Accepted) {
+      n = uint64_t(fp.area());
+      cost = p_.fine_accepted_cycles();
+    } else {
+      const uint64_t tests = fine_raster_partial(t, fp, tp_.frac_bits, [&](int, int) { ++n; });
+      c.pixel_tests += tests;
+      cost = p_.fine_partial_cycles(tests);
+    }
+    c.fragments += n;
+    r_.stages[Fine].busy += cost;
+    if (n == 0) return;  // an empty tile leaves nothing
+    emit(Fine);
+    work(Interp, p_.interp_batch_cycles(n));
+    r_.latency_waits += p_.interp_latency;
+    r_.stages[Rop].busy += p_.rop_fragment_cycles(n);
+  }
+
+  RasterState st_;
+  TraversalParams tp_;
+  const TimingParams& p_;
+  EstimateResult& r_;
+  uint64_t fb_pixels_;
+};
+
+}  // namespace
+
+EstimateResult estimate_scene(const Scene& scene, const Config& cfg) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const RasterState arch = raster_state_from_config(cfg);
+  const TimingParams p = TimingParams::from_config(cfg);
+  EstimateResult r;
+  r.core_mhz = p.core_mhz;
+  Walker walker(arch, p, r);
+  for (const Command& cmd : scene.commands) walker.command(cmd);
+
+  // Lower bound: a stage with work cannot start before its fill and is busy for all its
+  // cycles (docs/estimate.md). Upper bound: until the simulation ends some stage is
+  // always in a timed wait (busy, or a reader waiting out a transaction's pipeline
+  // latency); otherwise SystemC would have no event left and stop.
+  uint64_t busy_sum = 0;
+  for (size_t s = 0; s < r.stages.size(); ++s) {
+    busy_sum += r.stages[s].busy;
+    if (r.stages[s].busy > 0)
+      r.cycles_lower_bound = std::max(r.cycles_lower_bound, p.stage_fill_cycles(int(s)) + r.stages[s].busy);
+  }
+  r.cycles_upper_bound = busy_sum + r.latency_waits;
+  r.cycles_estimate = r.cycles_lower_bound +
+                      uint64_t(std::llround(kEstimateBlend * double(r.cycles_upper_bound - r.cycles_lower_bound)));
+  r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return r;
+}
+
+nlohmann::json EstimateResult::to_json() const {
+  nlohmann::json j;
+  j["cycles_lower_bound"] = cycles_lower_bound;
+  j["cycles_upper_bound"] = cycles_upper_bound;
+  j["cycles_estimate"] = cycles_estimate;
+  j["latency_wait_cycles"] = latency_waits;
+  j["core_mhz"] = core_mhz;
+  j["estimated_seconds"] = double(cycles_estimate) / (core_mhz * 1e6);
+  j["wall_seconds"] = wall_seconds;
+  for (size_t s = 0; s < stages.size(); ++s)
+    j["stages"][kEstimateStageNames[s]] = {{"busy", stages[s].busy}, {"transactions_out", stages[s].transactions_out}};
+  // The geometry counters the walk produces (the same values as render/simulate); the
+  // ones it does not compute (depth test, image, interpolation error, 2D pixels) are left out.
+  const nlohmann::json all = rastsim::to_json(render);
+  for (const char* key : {"triangles_in", "triangles_culled", "triangles_zero_area", "triangles_facing_culled",
+                          "triangles_out_of_range", "triangles_outside_clip", "triangles_rasterized", "tiles_visited",
+                          "tiles_rejected", "tiles_accepted", "tiles_partial", "pixel_tests", "fragments",
+                          "primitives_2d", "primitives_2d_culled", "traversal", "spans"})
+    if (all.contains(key)) j[key] = all[key];
+  return j;
+}
+
+}  // namespace rastsim

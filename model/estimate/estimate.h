@@ -1,0 +1,60 @@
+// SPDX-License-Identifier: Apache-2.0
+// The analytic fidelity level: cycles of the timed pipeline (model/sc) bounded and
+// estimated without event simulation (docs/estimate.md).
+//
+// - Walks the scene's transactions stage by stage with the reference model's functions
+//   (assemble_triangle, setup_triangle, the tile walks, fine_raster_partial, draw2d_ops)
+//   and sums each transaction's cost through the SAME TimingParams functions the
+//   SystemC stages call, so each stage's busy total equals the SystemC stage's `busy`.
+// - No interpolation, depth test or framebuffer: costs depend only on counts.
+// - Lower bound: max over stages with work of stage_fill_cycles + busy.
+// - Upper bound: sum of every stage's busy cycles plus every pipeline-latency wait
+//   (setup's and interpolation's extra latency times the transactions they emit).
+// - Point estimate: lower + kEstimateBlend * (upper - lower).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "config/config.h"
+#include "config/timing_params.h"
+#include "ref/pipeline.h"
+#include "ref/scene.h"
+
+namespace rastsim {
+
+// The timed model's stages, in the SystemC stage-index order (TimingParams::stage_fill_cycles).
+inline constexpr std::array<const char*, 9> kEstimateStageNames = {
+    "command_fetch", "prim_assembly", "tri_setup",    "coarse_raster", "fine_raster",
+    "interpolate",   "rop",           "draw2d_setup", "engine2d"};
+
+// Where between the bounds the point estimate sits: the median of (SystemC - lower) /
+// (upper - lower) over the shipped traces and configs (docs/estimate.md), which is 0.
+inline constexpr double kEstimateBlend = 0.0;
+
+struct EstimateStage {
+  uint64_t busy = 0;              // cycles, equal to the SystemC stage's busy
+  uint64_t transactions_out = 0;  // written to the next FIFO (as the SystemC stage's)
+};
+
+struct EstimateResult {
+  std::array<EstimateStage, kEstimateStageNames.size()> stages{};
+  RenderStats render;  // geometry counters only (no fragments_passed, CRC, interp error)
+  uint64_t latency_waits = 0;  // the upper bound's sum of pipeline-latency waits, cycles
+  uint64_t cycles_lower_bound = 0, cycles_upper_bound = 0, cycles_estimate = 0;
+  double core_mhz = 0;
+  double wall_seconds = 0;
+
+  // cycles_lower_bound, cycles_upper_bound, cycles_estimate, wall_seconds, core_mhz,
+  // stages.<name>.{busy,transactions_out}, and the geometry counters.
+  nlohmann::json to_json() const;
+};
+
+// The analytic estimate of `scene` on `cfg`. Throws SceneError on bad input (the
+// reference model's message), ConfigError on bad timing keys.
+EstimateResult estimate_scene(const Scene& scene, const Config& cfg);
+
+}  // namespace rastsim
