@@ -8,8 +8,8 @@ int main(int argc, char** argv) {
   CLI::App app{
       "rastsim: cycle-approximate GPU rasterizer model.\n"
       "Bit-exact reference rendering (render), the SystemC timed model (simulate, sweep), the\n"
-      "Verilog RTL in Verilator (cosim), scan-out through video timing and a DAC (scanout,\n"
-      "monitor). Every command takes --config FILE and --set section.key=value; see\n"
+      "Verilog RTL in Verilator (cosim) and its area in Yosys (area), scan-out through video\n"
+      "timing and a DAC (scanout, monitor). Every command takes --config FILE and --set section.key=value; see\n"
       "`rastsim COMMAND --help` and `rastsim config --doc`."};
   app.require_subcommand(1);
   app.set_help_all_flag("--help-all", "Help for every command");
@@ -17,7 +17,7 @@ int main(int argc, char** argv) {
   rastsim::app::register_render(app);
   rastsim::app::register_simulate(app);
   rastsim::app::register_sweep(app);
-  rastsim::app::register_cosim(app), rastsim::app::register_export_rtl(app);
+  rastsim::app::register_cosim(app), rastsim::app::register_export_rtl(app), rastsim::app::register_area(app);
   rastsim::app::register_scanout(app), rastsim::app::register_monitor(app);
   try {
     app.parse(argc, argv);
