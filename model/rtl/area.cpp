@@ -28,16 +28,25 @@ constexpr const char* kMethodVersion = "rastsim-area-1";
 // The Yosys script of one run. @DIR@ is the run's directory (sources, rast_params.vh),
 // @FILES@ the sources, @ROOT@ the hierarchy's top (rast_top or rast_engine2d), @RETOP@
 // empty or the lines that make one module under rast_top the top.
-// - synth -noabc: generic coarse-to-fine synthesis, hierarchy kept (per-module stat).
+// - synth's coarse steps (proc, fsm, wreduce, alumacc, share, memory), hierarchy kept
+//   for the per-module stat; then its fine steps with `opt -fast` where synth runs
+//   `opt -full` after memory_map: on rast_top that loop alone ran over 10 CPU minutes
+//   (hundreds of opt_expr rounds shaving a few cells each), abc cleans up the same.
 // - async2sync + dfflegalize: every flop a plain positive-edge D flop, its asynchronous
 //   reset and enable turned into gates, because `stat -tech cmos` prices only $_DFF_P_/N_.
 // - abc -fast: logic optimisation in seconds (plain abc takes minutes on the multipliers).
 constexpr const char* kScript = R"(read_verilog -sv -I@DIR@ @FILES@
 hierarchy -top @ROOT@
-@RETOP@synth -noabc
+@RETOP@synth -noabc -run begin:fine
+opt -fast -full
+memory_map
+opt -fast
+techmap
+opt -fast
 async2sync
 dfflegalize -cell $_DFF_P_ 01
 abc -fast
+opt -fast
 opt_clean
 tee -q -o @DIR@/stat.json stat -json -tech cmos
 )";
@@ -307,8 +316,9 @@ AreaReport synthesize_area(const RtlParams& p, const AreaOptions& o) {
       c.from_cache = true;
       c.key = r.key;
       return c;
-    } catch (const std::exception&) {
+    } catch (const std::exception& e) {
       // A truncated or older entry: synthesise again and overwrite it.
+      if (o.progress) o.progress("cache entry " + cache.string() + " unreadable (" + e.what() + "), synthesising");
     }
   }
 
@@ -396,7 +406,8 @@ AreaReport area_from_json(const nlohmann::json& j) {
   r.synth_seconds = j.value("synth_seconds", 0.0);
   r.from_cache = j.value("from_cache", false);
   // Params as written (nlohmann's object is sorted by name, not in table order).
-  for (const auto& [k, v] : j.value("parameters", nlohmann::json::object()).items()) r.parameters.emplace_back(k, v.get<int>());
+  const nlohmann::json params = j.value("parameters", nlohmann::json::object());
+  for (const auto& [k, v] : params.items()) r.parameters.emplace_back(k, v.get<int>());
   return r;
 }
 
