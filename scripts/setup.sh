@@ -17,6 +17,7 @@ RASTSIM_PACKAGES=(
   libtomlplusplus-dev libcli11-dev nlohmann-json3-dev libpng-dev zlib1g-dev
   python3-matplotlib
   gtkwave   # vcd2fst / fst2vcd for FST video signals (rastsim scanout --signal, monitor), and to view waveforms
+  yosys     # rastsim area, sweep --area: the RTL synthesised into generic gates (docs/area.md)
 )
 
 install_missing_packages() {
