@@ -2,6 +2,7 @@
 #include "rtl/area.h"
 
 #include <sys/wait.h>
+#include <csignal>
 #include <unistd.h>
 
 #include <chrono>
@@ -35,6 +36,9 @@ constexpr const char* kMethodVersion = "rastsim-area-1";
 // - async2sync + dfflegalize: every flop a plain positive-edge D flop, its asynchronous
 //   reset and enable turned into gates, because `stat -tech cmos` prices only $_DFF_P_/N_.
 // - abc -fast: logic optimisation in seconds (plain abc takes minutes on the multipliers).
+// - No top module at `stat`: with one, Yosys 0.23 appends its "design hierarchy" listing,
+//   whose lines below the second level land unquoted inside the JSON. The per-module
+//   totals are summed here (area_from_yosys_stat) instead.
 constexpr const char* kScript = R"(read_verilog -sv -I@DIR@ @FILES@
 hierarchy -top @ROOT@
 @RETOP@synth -noabc -run begin:fine
@@ -48,6 +52,7 @@ dfflegalize -cell $_DFF_P_ 01
 abc -fast
 opt -fast
 opt_clean
+setattr -mod -unset top *
 tee -q -o @DIR@/stat.json stat -json -tech cmos
 )";
 
@@ -163,6 +168,10 @@ void run_yosys(const std::string& yosys, const fs::path& dir, const std::string&
     for (const auto& l : tail)
       if (l.find("ERROR") != std::string::npos) msg = l;
     if (msg.empty() && !tail.empty()) msg = tail.back();
+    // The shell reports a killed child as 128 + signal: SIGKILL is most often the
+    // kernel's out-of-memory killer (rast_top of the wide configs needs several GB).
+    if (WIFEXITED(status) && WEXITSTATUS(status) == 128 + SIGKILL)
+      msg = "killed (SIGKILL: out of memory? try --top with one stage module)";
     throw std::runtime_error("yosys failed on " + label + ": " + msg + " (log: " + (dir / "yosys.log").string() + ")");
   }
 }
@@ -299,61 +308,75 @@ AreaReport synthesize_area(const RtlParams& p, const AreaOptions& o) {
   // The header's banner names no file, so two configs with the same parameters share a key.
   const std::string params_vh = rtl_params_verilog(p, "rastsim area");
 
-  Fnv64 h;
-  h.add(kMethodVersion);
-  h.add(r.yosys_version);
-  h.add(kScript);
-  h.add(o.top);
-  h.add(params_vh);
-  for (const auto& s : rtl_sources()) h.add(s.name), h.add(s.text);
-  r.key = h.hex();
+  // One synthesis a part: the whole design is rast_top (split into its stages) and
+  // rast_engine2d; --top is one part. Each part is cached on its own under a hash of what
+  // decides it; rast_engine2d takes no config parameter, so one entry serves every config.
+  struct Part {
+    std::string root, stage;
+    bool split;
+  };
+  std::vector<Part> parts;
+  if (o.top.empty()) parts = {{"rast_top", "", true}, {"rast_engine2d", "", false}};
+  else if (o.top == "rast_top" || o.top == "rast_engine2d") parts = {{o.top, "", o.top == "rast_top"}};
+  else parts = {{"rast_top", o.top, false}};  // a module under rast_top, with the parameters rast_top derives
 
-  const fs::path cache = fs::path(o.cache_dir.empty() ? area_cache_dir() : o.cache_dir) / (r.key + ".json");
-  if (o.use_cache && fs::exists(cache)) {
-    try {
-      std::ifstream is(cache);
-      AreaReport c = area_from_json(nlohmann::json::parse(is));
-      c.from_cache = true;
-      c.key = r.key;
-      return c;
-    } catch (const std::exception& e) {
-      // A truncated or older entry: synthesise again and overwrite it.
-      if (o.progress) o.progress("cache entry " + cache.string() + " unreadable (" + e.what() + "), synthesising");
+  const fs::path dir = o.cache_dir.empty() ? area_cache_dir() : o.cache_dir;
+  Fnv64 whole;
+  std::string last_key;
+  r.from_cache = true;
+  r.total.instances = 0;
+  for (const Part& part : parts) {
+    Fnv64 h;
+    h.add(kMethodVersion);
+    h.add(r.yosys_version);
+    h.add(kScript);
+    h.add(part.root);
+    h.add(part.stage);
+    h.add(part.split ? "split" : "whole");
+    h.add(part.root == "rast_top" ? params_vh : "");
+    for (const auto& s : rtl_sources()) h.add(s.name), h.add(s.text);
+    whole.add(h.hex());
+    last_key = h.hex();
+    const fs::path cache = dir / (h.hex() + ".json");
+
+    AreaReport got;
+    bool hit = false;
+    if (o.use_cache && fs::exists(cache)) {
+      try {
+        std::ifstream is(cache);
+        got = area_from_json(nlohmann::json::parse(is));
+        hit = true;
+      } catch (const std::exception& e) {
+        // A truncated or older entry: synthesise again and overwrite it.
+        if (o.progress) o.progress("cache entry " + cache.string() + " unreadable (" + e.what() + "), synthesising");
+      }
     }
-  }
-
-  const auto t0 = std::chrono::steady_clock::now();
-  if (o.top.empty()) {
-    // The whole design: the raster pipeline split into its stages, the 2D engine beside it.
-    for (const auto& root : kRoots) {
-      const AreaReport part = synth_run(yosys, params_vh, root, "", root == "rast_top", o.progress);
-      for (const auto& [name, c] : part.stages) r.stages[name] = c;
-      r.total += part.total;
+    if (!hit) {
+      const auto t0 = std::chrono::steady_clock::now();
+      got = synth_run(yosys, params_vh, part.root, part.stage, part.split, o.progress);
+      got.synth_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      got.yosys_version = r.yosys_version;
+      got.top = part.stage.empty() ? part.root : part.stage;
+      got.key = h.hex();
+      if (o.use_cache) {
+        std::error_code ec;
+        fs::create_directories(dir, ec);
+        const fs::path tmp = cache.string() + ".tmp" + std::to_string(getpid());
+        std::ofstream os(tmp);
+        os << area_to_json(got).dump(2) << "\n";
+        os.close();
+        // Renamed into place, so a concurrent reader (a parallel sweep) never sees half a file.
+        if (os) fs::rename(tmp, cache, ec);
+        if (!os || ec) fs::remove(tmp, ec);
+      }
     }
-    r.total.instances = 1;
-  } else if (o.top == "rast_top" || o.top == "rast_engine2d") {
-    const AreaReport part = synth_run(yosys, params_vh, o.top, "", o.top == "rast_top", o.progress);
-    r.total = part.total;
-    r.stages = part.stages;
-  } else {
-    // A module under rast_top, with the parameters rast_top derives for it.
-    const AreaReport part = synth_run(yosys, params_vh, "rast_top", o.top, false, o.progress);
-    r.total = part.total;
-    r.stages = part.stages;
+    r.from_cache = r.from_cache && hit;
+    r.synth_seconds += got.synth_seconds;
+    for (const auto& [name, c] : got.stages) r.stages[name] = c;
+    r.total += got.total;
   }
-  r.synth_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-
-  if (o.use_cache) {
-    std::error_code ec;
-    fs::create_directories(cache.parent_path(), ec);
-    const fs::path tmp = cache.string() + ".tmp" + std::to_string(getpid());
-    std::ofstream os(tmp);
-    os << area_to_json(r).dump(2) << "\n";
-    os.close();
-    // Renamed into place, so a concurrent reader (a parallel sweep) never sees half a file.
-    if (os) fs::rename(tmp, cache, ec);
-    if (!os || ec) fs::remove(tmp, ec);
-  }
+  r.total.instances = 1;
+  r.key = parts.size() == 1 ? last_key : whole.hex();  // one part: its cache file's name
   return r;
 }
 

@@ -9,9 +9,11 @@
 //   library, no wires, no placement.
 // - Per stage: the modules rast_top instantiates (grouped by module, instances summed),
 //   rast_top's own glue logic, and rast_engine2d; each counted with its submodules.
-// - Cache: one JSON a run, named by a hash of everything that decides the result (Yosys
-//   version, the script, the embedded RTL sources, the parameter header, the top), in
-//   area_cache_dir(): a second call with the same RTL parameters reads it back at once.
+// - Cache: one JSON a Yosys run (rast_top, rast_engine2d, or the one --top module), named
+//   by a hash of everything that decides it (Yosys version, the script, the embedded RTL
+//   sources, the parameter header when the run uses it, the top), in area_cache_dir(): a
+//   second call with the same RTL parameters reads it back at once, and rast_engine2d (no
+//   config parameter) is synthesised once for every config.
 // - The RTL sources are compiled into the binary (rtl_sources.h), so no run reads the
 //   source tree.
 #pragma once
@@ -42,9 +44,9 @@ struct AreaReport {
   std::map<std::string, AreaCounts> stages; // module name -> its figures ("rast_top.glue": rast_top's own logic)
   std::string top;                          // "" = rast_top and rast_engine2d; else the one module synthesised
   std::string yosys_version;
-  std::string key;                          // cache key (hex)
-  double synth_seconds = 0;                 // Yosys wall time when it ran (the cached value on a hit)
-  bool from_cache = false;
+  std::string key;                          // cache key (hex): the cache file's name for one run, else a hash of the runs' keys
+  double synth_seconds = 0;                 // Yosys wall time of the runs when they ran (the cached value on a hit)
+  bool from_cache = false;                  // every run read from the cache
   std::vector<std::pair<std::string, int>> parameters;  // the exported RTL parameters
 };
 
