@@ -11,6 +11,7 @@
 #include <deque>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <regex>
 #include <sstream>
 #include <stdexcept>
@@ -38,7 +39,8 @@ constexpr const char* kMethodVersion = "rastsim-area-1";
 // - abc -fast: logic optimisation in seconds (plain abc takes minutes on the multipliers).
 // - No top module at `stat`: with one, Yosys 0.23 appends its "design hierarchy" listing,
 //   whose lines below the second level land unquoted inside the JSON. The per-module
-//   totals are summed here (area_from_yosys_stat) instead.
+//   totals are summed here (area_from_yosys_stat) instead. (Without a top it leaves a
+//   trailing comma, removed before parsing.)
 constexpr const char* kScript = R"(read_verilog -sv -I@DIR@ @FILES@
 hierarchy -top @ROOT@
 @RETOP@synth -noabc -run begin:fine
@@ -211,7 +213,13 @@ AreaReport synth_run(const std::string& yosys, const std::string& params_vh, con
   std::ifstream is(dir / "stat.json");
   if (!is) throw std::runtime_error("yosys wrote no statistics for " + label + " (log: " + (dir / "yosys.log").string() + ")");
   const AreaReport r = [&] {
-    const nlohmann::json stat = nlohmann::json::parse(is);
+    std::string text((std::istreambuf_iterator<char>(is)), std::istreambuf_iterator<char>());
+    // Without a top module Yosys 0.23 ends the JSON with "},\n\n}": drop that comma.
+    if (const size_t end = text.find_last_of('}'); end != std::string::npos && end > 0) {
+      const size_t prev = text.find_last_not_of(" \t\r\n", end - 1);
+      if (prev != std::string::npos && text[prev] == ',') text.erase(prev, 1);
+    }
+    const nlohmann::json stat = nlohmann::json::parse(text);
     AreaReport rep = area_from_yosys_stat(stat, label);
     if (!split_children) rep.stages = {{label, rep.total}};
     return rep;
