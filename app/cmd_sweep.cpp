@@ -16,6 +16,7 @@
 #include <thread>
 
 #include "common.h"
+#include "rtl/area.h"
 
 namespace rastsim::app {
 
@@ -211,6 +212,34 @@ void write_csv(const std::string& out_path, const std::vector<Point>& points, co
   }
 }
 
+// `--area`: each point's RTL area (rastsim area, model/rtl/area.h) under "area" in its
+// stats, so the CSV gains area.cells, area.flip_flops and area.transistors. Synthesised
+// once a distinct RTL parameter set (a tile-size sweep over three scenes: one run a tile
+// size), the rest from this map or the on-disk cache.
+void add_area(std::vector<Point>& points, const std::vector<Axis>& axes, const ConfigOptions& base) {
+  std::map<std::vector<std::pair<std::string, int>>, AreaReport> done;
+  for (auto& p : points) {
+    ConfigOptions c = base;
+    for (size_t i = 0; i < axes.size(); ++i) c.sets.push_back(axes[i].key + "=" + p.values[i]);
+    const RtlParams rp = rtl_params_from_config(load_config(c));
+    const auto key = rtl_params_named(rp);
+    auto it = done.find(key);
+    if (it == done.end()) {
+      AreaOptions ao;
+      ao.progress = [&](const std::string& line) { std::cerr << "\r\033[Ksweep: area " << line << std::flush; };
+      if (!isatty(2)) ao.progress = {};
+      std::cerr << "sweep: area of " << describe(p, axes) << (isatty(2) ? "" : "\n");
+      it = done.emplace(key, synthesize_area(rp, ao)).first;
+      if (isatty(2)) std::cerr << "\r\033[K";
+      std::cerr << "sweep: area " << (it->second.from_cache ? "from the cache" : "synthesised") << ": "
+                << it->second.total.cells << " cells\n";
+    }
+    if (p.status != 0) continue;
+    const AreaCounts& t = it->second.total;
+    p.stats["area"] = {{"cells", t.cells}, {"flip_flops", t.flip_flops}, {"transistors", t.transistors}};
+  }
+}
+
 }  // namespace
 
 void run_sweep_command(SweepOptions o) {
@@ -220,6 +249,7 @@ void run_sweep_command(SweepOptions o) {
   std::filesystem::create_directories(tmp);
   std::vector<Point> points = make_points(o.scenes, axes, tmp);
   const size_t failed = run_points(points, axes, o.base, o.jobs);
+  if (o.area) add_area(points, axes, o.base);
   write_csv(o.out_path, points, axes);
   std::filesystem::remove_all(tmp);
   std::cerr << "sweep: wrote " << points.size() << " rows to " << o.out_path << "\n";
@@ -240,6 +270,9 @@ void register_sweep(CLI::App& app) {
       ->type_name("KEY=VALUES")
       ->allow_extra_args(false);
   cmd->add_option("--out,-o", o.out_path, "CSV to write: scene, each swept key, then every stat")->required();
+  cmd->add_flag("--area", o.area,
+                "Add area.cells, area.flip_flops, area.transistors (rastsim area, Yosys; cached per RTL "
+                "parameter set) to every row");
   cmd->add_option("--jobs,-j", o.jobs, "Simulations run at once (default: the number of cores)")
       ->check(CLI::Range(1u, 1024u));
   cmd->callback([] { run_sweep_command(o); });

@@ -92,15 +92,24 @@ struct SweepOptions {
   std::vector<std::string> scenes, set_args;
   std::string out_path;
   unsigned jobs = 1;
+  bool area = false;  // add area.cells, area.flip_flops, area.transistors (rastsim area) to each row
 };
 void run_sweep_command(SweepOptions o);
+
+// `rastsim area` as a plain function: every option of the command, then the run.
+struct AreaCommandOptions {
+  ConfigOptions config;
+  std::string stats_path, top;
+  bool no_cache = false, quiet = false;
+};
+void run_area_command(const AreaCommandOptions& o);
 
 // Each subcommand registers itself; main() calls these in order.
 void register_config(CLI::App& app);
 void register_render(CLI::App& app);
 void register_simulate(CLI::App& app);
 void register_sweep(CLI::App& app);
-void register_cosim(CLI::App& app), register_export_rtl(CLI::App& app);
+void register_cosim(CLI::App& app), register_export_rtl(CLI::App& app), register_area(CLI::App& app);
 void register_scanout(CLI::App& app), register_monitor(CLI::App& app);
 void register_fit(CLI::App& app);
 void register_estimate(CLI::App& app);

@@ -8,9 +8,9 @@ int main(int argc, char** argv) {
   CLI::App app{
       "rastsim: cycle-approximate GPU rasterizer model.\n"
       "Bit-exact reference rendering (render), the SystemC timed model (simulate, sweep) and its\n"
-      "analytic bounds (estimate), the Verilog RTL in Verilator (cosim), scan-out through video\n"
-      "timing and a DAC (scanout, monitor). Every command takes --config FILE and --set\n"
-      "section.key=value; see `rastsim COMMAND --help` and `rastsim config --doc`."};
+      "analytic bounds (estimate), the Verilog RTL in Verilator (cosim) and its area in Yosys (area),\n"
+      "scan-out through video timing and a DAC (scanout, monitor). Every command takes --config FILE\n"
+      "and --set section.key=value; see `rastsim COMMAND --help` and `rastsim config --doc`."};
   app.require_subcommand(1);
   app.set_help_all_flag("--help-all", "Help for every command");
   rastsim::app::register_config(app);
@@ -18,7 +18,7 @@ int main(int argc, char** argv) {
   rastsim::app::register_simulate(app);
   rastsim::app::register_estimate(app);
   rastsim::app::register_sweep(app);
-  rastsim::app::register_cosim(app), rastsim::app::register_export_rtl(app);
+  rastsim::app::register_cosim(app), rastsim::app::register_export_rtl(app), rastsim::app::register_area(app);
   rastsim::app::register_scanout(app), rastsim::app::register_monitor(app);
   rastsim::app::register_fit(app);
   try {

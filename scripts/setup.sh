@@ -20,6 +20,7 @@ RASTSIM_PACKAGES=(
   python3-matplotlib
   gtkwave   # vcd2fst / fst2vcd for FST video signals (rastsim scanout --signal, monitor), and to view waveforms
   libosmesa6-dev   # OSMesa: Mesa's llvmpipe, headless, the independent renderer of ctest -L mesa (docs/mesa.md)
+  yosys     # rastsim area, sweep --area: the RTL synthesised into generic gates (docs/area.md)
 )
 
 install_missing_packages() {

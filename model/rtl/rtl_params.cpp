@@ -154,6 +154,12 @@ std::string rtl_params_values(const RtlParams& p) {
   return s + "}";
 }
 
+std::vector<std::pair<std::string, int>> rtl_params_named(const RtlParams& p) {
+  std::vector<std::pair<std::string, int>> out;
+  for (const auto& f : kFields) out.emplace_back(f.name, p.*f.member);
+  return out;
+}
+
 RtlParams rtl_params_from_values(const std::vector<int>& values) {
   if (values.size() != std::size(kFields))
     throw std::invalid_argument("RTL parameter list has " + std::to_string(values.size()) + " values, expected " +

@@ -21,6 +21,7 @@
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "config/config.h"
@@ -62,6 +63,9 @@ std::string rtl_params_verilog(const RtlParams& p, const std::string& source);
 // reads it back (throws std::invalid_argument on a wrong count).
 std::string rtl_params_values(const RtlParams& p);
 RtlParams rtl_params_from_values(const std::vector<int>& values);
+
+// Every parameter as (Verilog name, value), in the export table's order (reports).
+std::vector<std::pair<std::string, int>> rtl_params_named(const RtlParams& p);
 
 // An RTL built with `built` can run `wanted` (tile size as a run-time input up to the
 // built maximum). On false, `why` says which parameter differs.

@@ -1,0 +1,88 @@
+// SPDX-License-Identifier: Apache-2.0
+// `rastsim area`: the RTL built with a config's exported parameters, synthesised with
+// Yosys into generic gates (model/rtl/area.h): cells, flip-flops and the CMOS transistor
+// estimate of each stage module and of the whole design, cached per parameter set.
+#include <unistd.h>
+
+#include <cstdio>
+#include <iomanip>
+#include <iostream>
+
+#include "common.h"
+#include "rtl/area.h"
+
+namespace rastsim::app {
+
+namespace {
+
+// Yosys' progress on stderr: one rewritten status line on a terminal, else one line a pass.
+std::function<void(const std::string&)> progress_printer(bool quiet) {
+  if (quiet) return {};
+  const bool tty = isatty(2);
+  return [tty](const std::string& line) {
+    if (tty) std::cerr << "\r\033[Karea: " << line << std::flush;
+    else std::cerr << "area: " << line << "\n";
+  };
+}
+
+void print_table(std::ostream& os, const AreaReport& r) {
+  os << std::left << std::setw(22) << "module" << std::right << std::setw(6) << "inst" << std::setw(12) << "cells"
+     << std::setw(12) << "flip-flops" << std::setw(14) << "transistors" << "\n";
+  const auto row = [&](const std::string& name, const AreaCounts& c, bool inst) {
+    os << std::left << std::setw(22) << name << std::right << std::setw(6) << (inst ? std::to_string(c.instances) : "")
+       << std::setw(12) << c.cells << std::setw(12) << c.flip_flops << std::setw(14) << c.transistors << "\n";
+  };
+  for (const auto& [name, c] : r.stages) row(name, c, true);
+  row("total", r.total, false);
+  os << "cells by type (total):";
+  for (const auto& [type, n] : r.total.cells_by_type) os << " " << type << " " << n;
+  os << "\n";
+}
+
+}  // namespace
+
+void run_area_command(const AreaCommandOptions& o) {
+  const Config cfg = load_config(o.config);
+  const RtlParams p = rtl_params_from_config(cfg);
+  AreaOptions ao;
+  ao.top = o.top;
+  ao.use_cache = !o.no_cache;
+  ao.progress = progress_printer(o.quiet);
+  const bool tty = isatty(2);
+  const AreaReport r = synthesize_area(p, ao);
+  if (!o.quiet && tty) std::cerr << "\r\033[K" << std::flush;
+  if (!o.quiet) {
+    std::cout << "area: " << cfg.source_name() << ", " << (r.top.empty() ? "rast_top + rast_engine2d" : r.top) << ", "
+              << r.yosys_version << ", "
+              << (r.from_cache ? "from the cache (" + r.key + ")"
+                               : "synthesised in " + std::to_string(static_cast<int>(r.synth_seconds + 0.5)) + " s")
+              << "\n";
+    print_table(std::cout, r);
+  }
+  if (!o.stats_path.empty()) {
+    nlohmann::json j = area_to_json(r);
+    j["config"] = cfg.source_name();
+    write_json(o.stats_path, j);
+  }
+}
+
+void register_area(CLI::App& app) {
+  auto* cmd = app.add_subcommand(
+      "area", "Synthesise the RTL with Yosys: cells, flip-flops and transistors per stage module (cached)");
+  static AreaCommandOptions o;
+  add_config_options(cmd, o.config);
+  cmd->add_option("--stats", o.stats_path,
+                  "Write cells, flip_flops, transistors, cells_by_type and stages.<module>.* as JSON ('-' for stdout)");
+  cmd->add_option("--top", o.top,
+                  "Synthesise one module only: rast_top (the raster pipeline), rast_engine2d, or a stage module "
+                  "under rast_top such as rast_fine_raster (default: rast_top and rast_engine2d)");
+  cmd->add_flag("--no-cache", o.no_cache, "Synthesise even when the cache holds this parameter set (and do not store)");
+  cmd->add_flag("--quiet,-q", o.quiet, "Print neither progress nor the table");
+  cmd->footer(
+      "Relative area: generic gates with Yosys' CMOS transistor estimate, no cell library, no wires "
+      "(docs/area.md). Needs Yosys (Debian package yosys). Results are cached per RTL parameter set and "
+      "RTL source in $RASTSIM_CACHE/area (default ~/.cache/rastsim/area).");
+  cmd->callback([] { run_area_command(o); });
+}
+
+}  // namespace rastsim::app

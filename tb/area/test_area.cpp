@@ -1,0 +1,160 @@
+// SPDX-License-Identifier: Apache-2.0
+// `rastsim area`: the hierarchical sums by hand (no Yosys), then Yosys on the fine
+// raster of a deliberately small parameter set (16 px display, s4.2, 4 px tiles, about
+// 10 CPU seconds a synthesis): the JSON keys, positive counts, more lanes giving more
+// cells (monotonicity, an independent sanity check of the flow), the cache hit, and the
+// command line's errors.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "common.h"
+#include "rtl/area.h"
+
+namespace rastsim {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path temp_path(const std::string& name) {
+  return fs::temp_directory_path() / ("rastsim_area_tests_" + std::to_string(::getpid()) + "_" + name);
+}
+
+bool have_yosys() {
+  try {
+    find_yosys();
+    return true;
+  } catch (const std::exception&) {
+    return false;
+  }
+}
+
+// The small parameter set; `lanes` is fine.samples_per_cycle.
+app::ConfigOptions small_config(int lanes) {
+  app::ConfigOptions c;
+  c.sets = {"display.width=16", "display.height=16", "raster.coord_format=s4.2", "raster.tile_size=4",
+            "fine.samples_per_cycle=" + std::to_string(lanes)};
+  return c;
+}
+
+// Runs `rastsim ARGS` through the shell; returns the exit status, stdout+stderr in `out`.
+int run_cli(const std::string& args, std::string& out, const std::string& env = "") {
+  const fs::path log = temp_path("cli.log");
+  const int rc = std::system((env + " " + RASTSIM_BINARY + " " + args + " > " + log.string() + " 2>&1").c_str());
+  std::ifstream is(log);
+  std::stringstream ss;
+  ss << is.rdbuf();
+  out = ss.str();
+  fs::remove(log);
+  return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
+}
+
+// A hand-made `stat -json` of top { 2 AND, 1 DFF, 3 x leaf, 1 x mid { 1 XOR, 1 x leaf } },
+// leaf { 1 NOT, 2 DFF }: the totals worked out by hand below.
+TEST(AreaStat, SumsSubmodulesByHand) {
+  const nlohmann::json stat = nlohmann::json::parse(R"({
+    "modules": {
+      "\\top": {"num_cells_by_type": {"$_AND_": 2, "$_DFF_P_": 1, "$paramod$ab\\leaf": 3, "\\mid": 1},
+                "estimated_num_transistors": "28+"},
+      "\\mid": {"num_cells_by_type": {"$_XOR_": 1, "$paramod$ab\\leaf": 1}, "estimated_num_transistors": "12+"},
+      "$paramod$ab\\leaf": {"num_cells_by_type": {"$_NOT_": 1, "$_DFF_P_": 2}, "estimated_num_transistors": "34"}
+    }})");
+  const AreaReport r = area_from_yosys_stat(stat, "top");
+  // top: own 3 + 3 leaves of 3 + mid (1 + a leaf of 3) = 16 cells.
+  EXPECT_EQ(r.total.cells, 16u);
+  EXPECT_EQ(r.total.flip_flops, 1u + 3 * 2 + 2);
+  EXPECT_EQ(r.total.transistors, 28u + 3 * 34 + (12 + 34));
+  EXPECT_EQ(r.total.cells_by_type.at("$_DFF_P_"), 9u);
+  ASSERT_EQ(r.stages.size(), 3u);
+  EXPECT_EQ(r.stages.at("leaf").instances, 3u);
+  EXPECT_EQ(r.stages.at("leaf").cells, 9u);
+  EXPECT_EQ(r.stages.at("mid").cells, 4u);
+  EXPECT_EQ(r.stages.at("mid").transistors, 46u);
+  EXPECT_EQ(r.stages.at("top_glue").cells, 3u);
+  EXPECT_EQ(r.stages.at("top_glue").flip_flops, 1u);
+  EXPECT_THROW(area_from_yosys_stat(stat, "absent"), std::runtime_error);
+}
+
+TEST(Area, StatsJsonKeysPositiveAndSecondCallFromCache) {
+  if (!have_yosys()) GTEST_SKIP() << "yosys not installed";
+  const fs::path cache = temp_path("cache");
+  setenv("RASTSIM_CACHE", cache.c_str(), 1);
+  app::AreaCommandOptions o;
+  o.config = small_config(2);
+  o.top = "rast_fine_raster";
+  o.stats_path = temp_path("area.json").string();
+  o.quiet = true;
+  app::run_area_command(o);
+  std::ifstream is(o.stats_path);
+  const nlohmann::json j = nlohmann::json::parse(is);
+  for (const char* k : {"cells", "flip_flops", "transistors"}) {
+    SCOPED_TRACE(k);
+    ASSERT_TRUE(j.contains(k));
+    EXPECT_GT(j.at(k).get<int64_t>(), 0);
+    EXPECT_GT(j.at("stages").at("rast_fine_raster").at(k).get<int64_t>(), 0);
+  }
+  EXPECT_FALSE(j.at("from_cache").get<bool>());
+  EXPECT_EQ(j.at("parameters").at("FineSamplesPerCycle"), 2);
+  // A CMOS transistor estimate is at least 2 transistors a cell (an inverter).
+  EXPECT_GE(j.at("transistors").get<int64_t>(), 2 * j.at("cells").get<int64_t>());
+  EXPECT_EQ(fs::exists(cache / "area" / (j.at("key").get<std::string>() + ".json")), true);
+
+  const auto t0 = std::chrono::steady_clock::now();
+  app::run_area_command(o);
+  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::ifstream is2(o.stats_path);
+  const nlohmann::json j2 = nlohmann::json::parse(is2);
+  EXPECT_TRUE(j2.at("from_cache").get<bool>());
+  EXPECT_EQ(j2.at("cells"), j.at("cells"));
+  EXPECT_EQ(j2.at("transistors"), j.at("transistors"));
+  EXPECT_LT(s, 2.0) << "a cache hit runs only `yosys -V`";
+  fs::remove_all(cache);
+  fs::remove(o.stats_path);
+}
+
+// Independent of the numbers themselves: four sample lanes cannot take fewer gates than one.
+TEST(Area, MoreFineLanesMoreCells) {
+  if (!have_yosys()) GTEST_SKIP() << "yosys not installed";
+  AreaOptions ao;
+  ao.top = "rast_fine_raster";
+  ao.use_cache = false;
+  const auto area_of = [&](int lanes) { return synthesize_area(rtl_params_from_config(app::load_config(small_config(lanes))), ao); };
+  const AreaReport one = area_of(1), four = area_of(4);
+  EXPECT_GT(four.total.cells, one.total.cells);
+  EXPECT_GT(four.total.transistors, one.total.transistors);
+  EXPECT_GE(four.total.flip_flops, one.total.flip_flops);
+}
+
+TEST(AreaCli, HelpBadConfigMissingYosys) {
+  std::string out;
+  EXPECT_EQ(run_cli("area --help", out), 0);
+  EXPECT_NE(out.find("--stats"), std::string::npos);
+  EXPECT_NE(out.find("--top"), std::string::npos);
+
+  EXPECT_NE(run_cli("area --config /nonexistent/config.toml", out), 0);
+  EXPECT_NE(out.find("/nonexistent/config.toml"), std::string::npos) << out;
+
+  const fs::path bad = temp_path("bad.toml");
+  std::ofstream(bad) << "[raster]\nno_such_key = 1\n";
+  EXPECT_EQ(run_cli("area --config " + bad.string(), out), 1);
+  EXPECT_NE(out.find("no_such_key"), std::string::npos) << out;
+  fs::remove(bad);
+
+  // No yosys on PATH: the error names the Debian package.
+  EXPECT_EQ(run_cli("area --top rast_fine_raster", out, "env PATH=/nonexistent RASTSIM_YOSYS="), 1);
+  EXPECT_NE(out.find("package `yosys`"), std::string::npos) << out;
+
+  EXPECT_EQ(run_cli("area --top no_such_module", out), 1);
+  EXPECT_NE(out.find("not an RTL module"), std::string::npos) << out;
+}
+
+}  // namespace
+}  // namespace rastsim
