@@ -68,7 +68,7 @@ void run_simulate_command(const SimulateOptions& o) {
   }
   sim.vcd_path = o.vcd_path;
   sim.timeline_path = o.timeline_path;
-  sim.timeline_max_events = o.timeline_max_events;
+  if (o.timeline_max_events) sim.timeline_max_events = o.timeline_max_events;
   sim.heatmap = !o.heatmap_path.empty() || !o.heatmap_data_path.empty();
   for (const std::string* p : {&o.out_path, &o.stats_path, &o.timeline_path, &o.heatmap_path, &o.heatmap_data_path})
     check_writable(*p);
@@ -127,7 +127,8 @@ void register_simulate(CLI::App& app) {
                   "trace-event JSON (open in ui.perfetto.dev or chrome://tracing; 1 us shown = 1 cycle)");
   cmd->add_option("--timeline-max-events", o.timeline_max_events,
                   "Above this many events the timeline is merged into power-of-two cycle buckets (sums stay exact)")
-      ->check(CLI::Range(uint64_t{1000}, uint64_t{1} << 40));
+      ->check(CLI::Range(uint64_t{1000}, uint64_t{1} << 40))
+      ->default_val(sc::SimOptions{}.timeline_max_events);
   cmd->add_option("--heatmap", o.heatmap_path,
                   "Write a PNG of the busy cycles each screen tile cost, over the dimmed frame, with a colour bar");
   cmd->add_option("--heatmap-stage", o.heatmap_stage, "Stage the heatmap shows (default all four summed)")

@@ -91,10 +91,10 @@ Framebuffer draw_heatmap(const Framebuffer& frame, const TileGrid& g, const std:
   const uint8_t tick[3] = {235, 235, 235};
   for (int i = 0; i <= 4; ++i) {
     const int y = by1 - (by1 - by0) * i / 4;
-    for (int x = bx + kBarWidth; x < bx + kBarWidth + 5; ++x) put(out, x, y, tick);
-    text(out, bx + kBarWidth + 8, y - kFontRows * kTextScale / 2, std::to_string(max * uint64_t(i) / 4));
+    for (int x = bx + kBarWidth; x < bx + kBarWidth + 3; ++x) put(out, x, y, tick);
+    text(out, bx + kBarWidth + 10, y - kFontRows * kTextScale / 2, std::to_string(max * uint64_t(i) / 4));
   }
-  text(out, bx, by1 + 6, "cycles");
+  text(out, bx, kHeader - kLine, "cycles");  // the bar's unit, above it
   return out;
 }
 

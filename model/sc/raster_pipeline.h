@@ -30,9 +30,9 @@ struct SimOptions {
   double stall_probability = 0;  // 0 = off
   FragmentSink on_fragment;      // every fragment leaving interpolation, in order
   // Trace-event JSON of every stage's state and FIFO's occupancy ("" = none; sc/timeline.h),
-  // quantized to fit timeline_max_events events.
+  // quantized to fit timeline_max_events events (250,000: about 10-17 MB, docs/timeline.md).
   std::string timeline_path;
-  uint64_t timeline_max_events = 1'000'000;
+  uint64_t timeline_max_events = 250'000;
   bool heatmap = false;  // fill SimResult::heat (busy cycles per screen tile)
 };
 
