@@ -98,7 +98,7 @@ TimelineWriteStats Timeline::write_trace_json(const std::string& path, uint64_t 
   for (;;) {
     iv.clear();
     cs.clear();
-    uint64_t n = 0;
+    uint64_t n = fifos_.size();  // each FIFO's initial zero (below)
     for (const StateTrack& t : stages_) {
       iv.push_back(r == 1 ? t.intervals() : quantize(t.intervals(), r));
       n += iv.back().size();
@@ -150,12 +150,15 @@ TimelineWriteStats Timeline::write_trace_json(const std::string& path, uint64_t 
       os << R"({"name":")" << kStateName[v.state] << R"(","ph":"X","pid":1,"tid":)" << i + 1 << ",\"ts\":" << v.t0
          << ",\"dur\":" << v.t1 - v.t0 << '}';
     }
-  for (size_t i = 0; i < fifos_.size(); ++i)
+  for (size_t i = 0; i < fifos_.size(); ++i) {
+    // Every FIFO starts empty: say so at cycle 0, so an unused FIFO still gets its counter track.
+    if (cs[i].empty() || cs[i].front().t > 0) cs[i].insert(cs[i].begin(), CounterSample{0, 0});
     for (const CounterSample& c : cs[i]) {
       sep();
       os << R"({"name":")" << fifos_[i].name() << R"(","ph":"C","pid":2,"tid":)" << i + 1 << ",\"ts\":" << c.t
          << R"(,"args":{"occupancy":)" << c.value << "}}";
     }
+  }
   os << "\n]}\n";
   st.bytes = uint64_t(os.tellp());
   os.close();
