@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 // `rastsim simulate`: the SystemC cycle-approximate model on one scene; the same image
-// and stats as `render`, plus cycles and per-stage busy/stalled/starved cycles.
+// and stats as `render`, plus cycles and per-stage busy/stalled/starved cycles, and on
+// request where they went: a timeline (sc/timeline.h) and a tile heatmap (sc/tile_heat.h,
+// display/heatmap.h); docs/timeline.md.
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -10,9 +12,47 @@
 #include "sc/scanout.h"
 #include "sc/raster_pipeline.h"
 #include "scene/scene_io.h"
+#include "display/heatmap.h"
 #include "display/image_io.h"
 
 namespace rastsim::app {
+
+namespace {
+
+// Fails before a long simulation, not after it, when an output cannot be written.
+void check_writable(const std::string& path) {
+  if (path.empty() || path == "-") return;
+  std::ofstream os(path, std::ios::app);
+  if (!os) throw std::runtime_error(path + ": cannot open for writing");
+}
+
+// --heatmap-data: every attributed stage's busy cycles per tile, and its cycles of no tile.
+nlohmann::json heat_json(const sc::SimResult& r, const std::string& shown) {
+  const sc::TileHeat& h0 = r.heat.front();
+  nlohmann::json j = {{"tile_size", h0.tile_size}, {"tiles_x", h0.tiles_x}, {"tiles_y", h0.tiles_y},
+                      {"width", r.fb.width},       {"height", r.fb.height}, {"shown", shown},
+                      {"unit", "busy cycles per tile, row-major"}};
+  for (const sc::TileHeat& h : r.heat) {
+    uint64_t busy = 0;
+    for (const auto& s : r.stages)
+      if (s.name == h.stage) busy = s.busy;
+    j["stages"][h.stage] = {{"busy", busy}, {"unattributed", h.unattributed}, {"tiles", h.cycles}};
+  }
+  return j;
+}
+
+// The heatmap of one stage or of all four summed.
+void write_heatmap(const sc::SimResult& r, const std::string& stage, const std::string& path) {
+  TileGrid g{r.heat.front().tile_size, r.heat.front().tiles_x, r.heat.front().tiles_y,
+             std::vector<uint64_t>(r.heat.front().cycles.size(), 0)};
+  for (const sc::TileHeat& h : r.heat)
+    if (stage == "all" || stage == h.stage)
+      for (size_t i = 0; i < g.cycles.size(); ++i) g.cycles[i] += h.cycles[i];
+  const std::string title = stage == "all" ? "busy cycles: coarse+fine+interpolate+rop" : "busy cycles: " + stage;
+  write_image(draw_heatmap(r.fb, g, title), path);
+}
+
+}  // namespace
 
 void run_simulate_command(const SimulateOptions& o) {
   const Config cfg = load_config(o.config);
@@ -27,11 +67,22 @@ void run_simulate_command(const SimulateOptions& o) {
     sim.on_fragment = [&](const Fragment& f) { frag_os << fragment_trace_line(f) << '\n'; };
   }
   sim.vcd_path = o.vcd_path;
+  sim.timeline_path = o.timeline_path;
+  if (o.timeline_max_events) sim.timeline_max_events = o.timeline_max_events;
+  sim.heatmap = !o.heatmap_path.empty() || !o.heatmap_data_path.empty();
+  for (const std::string* p : {&o.out_path, &o.stats_path, &o.timeline_path, &o.heatmap_path, &o.heatmap_data_path})
+    check_writable(*p);
   const sc::SimResult r = sc::simulate_scene(scene, cfg, sim);
   if (!o.out_path.empty()) write_image(r.fb, o.out_path);
   nlohmann::json j = r.to_json();
   j["config"] = cfg.source_name();
   j["scene"] = o.scene_path;
+  if (!o.timeline_path.empty())
+    j["timeline"] = {{"events", r.timeline.events},
+                     {"bytes", r.timeline.bytes},
+                     {"resolution_cycles", r.timeline.resolution_cycles}};
+  if (!o.heatmap_path.empty()) write_heatmap(r, o.heatmap_stage, o.heatmap_path);
+  if (!o.heatmap_data_path.empty()) write_json(o.heatmap_data_path, heat_json(r, o.heatmap_stage));
   // Did the frame finish before scan-out needed it? The analytic deadline of the timed
   // scan-out (model/sc/scanout.h; its simulation agrees with it, tb/scanout), at the
   // configured core and pixel clocks. A second SystemC elaboration is not possible in
@@ -71,6 +122,19 @@ void register_simulate(CLI::App& app) {
                   "stages.<stage>.{busy,stalled,starved}, sim_wall_seconds, simulated_cycles_per_second");
   cmd->add_option("--vcd", o.vcd_path, "Write a VCD of every FIFO's occupancy and every stage's state "
                                       "(0 starved, 1 busy, 2 stalled); 1 ns = 1 cycle");
+  cmd->add_option("--timeline", o.timeline_path,
+                  "Write the stages' busy/stalled/starved intervals and the FIFOs' occupancy as Chrome/Perfetto "
+                  "trace-event JSON (open in ui.perfetto.dev or chrome://tracing; 1 us shown = 1 cycle)");
+  cmd->add_option("--timeline-max-events", o.timeline_max_events,
+                  "Above this many events the timeline is merged into power-of-two cycle buckets (sums stay exact)")
+      ->check(CLI::Range(uint64_t{1000}, uint64_t{1} << 40))
+      ->default_val(sc::SimOptions{}.timeline_max_events);
+  cmd->add_option("--heatmap", o.heatmap_path,
+                  "Write a PNG of the busy cycles each screen tile cost, over the dimmed frame, with a colour bar");
+  cmd->add_option("--heatmap-stage", o.heatmap_stage, "Stage the heatmap shows (default all four summed)")
+      ->check(CLI::IsMember({"all", "coarse_raster", "fine_raster", "interpolate", "rop"}));
+  cmd->add_option("--heatmap-data", o.heatmap_data_path,
+                  "Write the per-tile busy cycles of every attributed stage as JSON ('-' for stdout)");
   cmd->add_option("--fragments", o.frag_path,
                   "Write every fragment leaving interpolation, one 'x y z r g b' line each (as `render`)");
   cmd->add_option("--stall-seed", o.stall_seed, "Seed of the random stall injection (testing)");

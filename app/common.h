@@ -52,6 +52,10 @@ void run_render_command(const RenderOptions& o);
 struct SimulateOptions {
   ConfigOptions config;
   std::string scene_path, out_path, stats_path, vcd_path, frag_path;
+  std::string timeline_path;                // trace-event JSON ("" = none)
+  uint64_t timeline_max_events = 0;  // above it the timeline is quantized (0: sc::SimOptions's)
+  std::string heatmap_path, heatmap_data_path;  // PNG and per-tile JSON ("" = none)
+  std::string heatmap_stage = "all";        // coarse_raster, fine_raster, interpolate, rop or all
   uint64_t stall_seed = 0;
   double stall_probability = 0;  // 0 = off
   bool quiet = false;

@@ -16,6 +16,7 @@ void CoarseRaster::body() {
         TraversalCounters& c = ctx_.render.traversal;
         ++c.tiles_visited;
         ++c.tiles_partial;
+        attribute_to(in.work->bbox.x0, in.work->bbox.y0);
         busy(p_.coarse_walk_cycles(1));
         write(out_, TileItem{nullptr, TileWork{in.work, in.work->bbox, TileClass::Partial}});
         break;
@@ -31,9 +32,11 @@ void CoarseRaster::walk_hierarchical(const SetupItem& in) {
   const SetupTriangle& t = *in.work;
   const uint64_t visited0 = c.tiles_visited;
   uint64_t cycles_done = 0;
+  attribute_to(t.bbox.x0, t.bbox.y0);  // no leaf: the walk's cycles go to its first tile
   rastsim::walk_hierarchical(t, t.bbox, tp_.hier_levels, 0, frac_bits_, c, [&](const PixelRect& fp, TileClass cls) {
     // This leaf was the (tiles_visited - visited0)-th tile classified, counted from 1.
     const uint64_t leave_at = (c.tiles_visited - visited0 - 1) / p_.coarse_tiles_per_cycle + 1;
+    attribute_to(fp.x0, fp.y0);  // the walk up to this leaf, and the rest after the last
     busy(leave_at - cycles_done);
     cycles_done = leave_at;
     write(out_, TileItem{nullptr, TileWork{in.work, fp, cls}});
@@ -44,8 +47,10 @@ void CoarseRaster::walk_hierarchical(const SetupItem& in) {
 void CoarseRaster::walk_scanline(const SetupItem& in) {
   const SetupTriangle& t = *in.work;
   std::vector<std::pair<int, int>> pixels;
+  attribute_to(t.bbox.x0, t.bbox.y0);  // the edge walker's setup
   busy(p_.scanline_walk_cycles(0));
   scanline_spans(t, tp_.scan_arith, frac_bits_, [&](int py, int x0, int x1) {
+    attribute_to(x0 < x1 ? x0 : t.bbox.x0, py);  // the span's row (its first pixel's tile)
     busy(1);  // one row a cycle
     if (x0 >= x1) return;
     ++ctx_.render.traversal.spans;
@@ -61,6 +66,7 @@ void CoarseRaster::walk_tiled(const SetupItem& in) {
     const SetupTriangle& t = *in.work;
     const PixelRect tiles = tile_range(t.bbox, tile_size_);
     uint64_t visited = 0, cycles_done = 0;  // tiles classified; cycles of this walk spent
+    attribute_to(t.bbox.x0, t.bbox.y0);
     for (int ty = tiles.y0; ty < tiles.y1; ++ty) {
       for (int tx = tiles.x0; tx < tiles.x1; ++tx, ++visited) {
         const PixelRect fp = tile_footprint(t.bbox, tile_size_, tx, ty);
@@ -72,10 +78,16 @@ void CoarseRaster::walk_tiled(const SetupItem& in) {
         }
         ++(cls == TileClass::Accepted ? c.tiles_accepted : c.tiles_partial);
         const uint64_t leave_at = visited / p_.coarse_tiles_per_cycle + 1;
+        attribute_to(fp.x0, fp.y0);  // the walk up to this tile, rejected tiles included
         busy(leave_at - cycles_done);
         cycles_done = leave_at;
         write(out_, TileItem{nullptr, TileWork{in.work, fp, cls}});
       }
+    }
+    // The rest of the walk (rejected tiles after the last written one): the last tile's.
+    if (!tiles.empty()) {
+      const PixelRect last = tile_footprint(t.bbox, tile_size_, tiles.x1 - 1, tiles.y1 - 1);
+      attribute_to(last.x0, last.y0);
     }
     busy(p_.coarse_walk_cycles(visited) - cycles_done);
   }

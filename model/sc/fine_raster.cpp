@@ -25,6 +25,7 @@ void FineRaster::body() {
       cost = p_.fine_partial_cycles(tests);
     }
     c.fragments += batch->pixels.size();
+    attribute_to(tile.footprint.x0, tile.footprint.y0);
     busy(cost);
     if (!batch->pixels.empty()) write(out_, PixelItem{nullptr, std::move(batch)});
   }

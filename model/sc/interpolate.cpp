@@ -20,6 +20,7 @@ void Interpolate::body() {
         count_interp_error(frags->back(), interpolate_plane(*batch.tri, px.x, px.y, frac_bits_), ctx_.render);
       if (ctx_.on_fragment) ctx_.on_fragment(frags->back());
     }
+    if (!frags->empty()) attribute_to(frags->front().x, frags->front().y);  // the batch's tile
     busy(p_.interp_batch_cycles(frags->size()));
     write(out_, FragmentItem{nullptr, std::move(frags)}, p_.interp_latency);
   }

@@ -7,7 +7,10 @@
 //   transaction is ready; see Stage::read);
 // - an order check: the writer numbers transactions, the reader checks it receives
 //   0, 1, 2, ... (a lost or reordered transaction is an error, never silent);
-// - an occupancy signal for the VCD, updated only when a transaction enters or leaves.
+// - an occupancy signal for the VCD, updated only when a transaction enters or leaves;
+// - an optional timeline counter (sc/timeline.h) of the same occupancy, counted as
+//   writes - reads when a write or read returns (a slot is taken when write() returns
+//   and freed when read() returns, so it never exceeds the depth).
 #pragma once
 
 #include <cstdint>
@@ -17,6 +20,7 @@
 #include <systemc>
 
 #include "sc/model_error.h"
+#include "sc/timeline.h"
 
 namespace rastsim::sc {
 
@@ -45,13 +49,19 @@ class Link : public sc_core::sc_module {
     }
   }
 
-  void write(P payload, const sc_core::sc_time& ready) { fifo_.write(Tx<P>{std::move(payload), ready, writes_++}); }
+  void write(P payload, const sc_core::sc_time& ready) {
+    fifo_.write(Tx<P>{std::move(payload), ready, writes_++});
+    if (counter_) record();
+  }
   Tx<P> read() {
     Tx<P> t = fifo_.read();
     check_order(name(), reads_, t.seq);
     ++reads_;
+    if (counter_) record();
     return t;
   }
+  // --timeline: this FIFO's occupancy track, or null (before sc_start).
+  void set_timeline(CounterTrack* c) { counter_ = c; }
 
   int depth() const { return depth_; }
   uint64_t writes() const { return writes_; }
@@ -60,10 +70,15 @@ class Link : public sc_core::sc_module {
 
  private:
   void track() { occupancy_.write(fifo_.num_available()); }
+  void record() {  // at the current time, in cycles (one cycle is 1 ns: SimContext::cycle)
+    const sc_core::sc_time& now = sc_core::sc_time_stamp();
+    counter_->set(uint64_t(now.value() / sc_core::sc_time(1, sc_core::SC_NS).value()), int(writes_ - reads_));
+  }
   int depth_;
   sc_core::sc_fifo<Tx<P>> fifo_;
   sc_core::sc_signal<int> occupancy_;
   uint64_t writes_ = 0, reads_ = 0;
+  CounterTrack* counter_ = nullptr;
 };
 
 }  // namespace rastsim::sc

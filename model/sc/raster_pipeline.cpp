@@ -112,6 +112,19 @@ SimResult simulate_scene(const Scene& scene, const Config& cfg, const SimOptions
   if (top) throw std::logic_error("simulate_scene: SystemC elaborates only once per process");
   top = new RasterPipeline("pipeline", ctx, scene, arch, p);
 
+  // Optional recorders, attached before the simulation starts.
+  Timeline timeline;
+  if (!opts.timeline_path.empty()) {
+    for (Stage* s : top->stages()) s->set_timeline(&timeline.add_stage(s->basename()));
+    top->for_each_fifo([&](auto& f) { f.set_timeline(&timeline.add_fifo(f.basename(), f.depth())); });
+  }
+  std::vector<TileHeat> heat;
+  if (opts.heatmap) {
+    const std::vector<Stage*> attributed = {&top->coarse_raster, &top->fine_raster, &top->interpolate, &top->rop};
+    heat.reserve(attributed.size());  // the stages keep pointers into it
+    for (Stage* s : attributed) s->set_heat(&heat.emplace_back(s->basename(), arch.fb_width, arch.fb_height, arch.tile_size));
+  }
+
   sc_core::sc_trace_file* tf = nullptr;
   if (ctx.tracing) {
     tf = sc_core::sc_create_vcd_trace_file(strip_suffix(opts.vcd_path, ".vcd").c_str());
@@ -137,6 +150,9 @@ SimResult simulate_scene(const Scene& scene, const Config& cfg, const SimOptions
     if (st.busy > 0) r.cycles_lower_bound = std::max(r.cycles_lower_bound, p.stage_fill_cycles(index) + st.busy);
     ++index;
   }
+  if (!opts.timeline_path.empty())
+    r.timeline = timeline.write_trace_json(opts.timeline_path, r.cycles, opts.timeline_max_events);
+  r.heat = std::move(heat);
   top->for_each_fifo([&](auto& f) {
     r.fifos.push_back({f.basename(), f.depth(), f.writes(), f.reads()});
     if (f.writes() != f.reads())

@@ -19,6 +19,8 @@
 #include "config/config.h"
 #include "ref/pipeline.h"
 #include "config/timing_params.h"
+#include "sc/tile_heat.h"
+#include "sc/timeline.h"
 
 namespace rastsim::sc {
 
@@ -27,6 +29,11 @@ struct SimOptions {
   uint64_t stall_seed = 0;       // random stall injection at every FIFO write (tests)
   double stall_probability = 0;  // 0 = off
   FragmentSink on_fragment;      // every fragment leaving interpolation, in order
+  // Trace-event JSON of every stage's state and FIFO's occupancy ("" = none; sc/timeline.h),
+  // quantized to fit timeline_max_events events (250,000: about 10-17 MB, docs/timeline.md).
+  std::string timeline_path;
+  uint64_t timeline_max_events = 250'000;
+  bool heatmap = false;  // fill SimResult::heat (busy cycles per screen tile)
 };
 
 struct StageReport {
@@ -50,6 +57,10 @@ struct SimResult {
   std::vector<FifoReport> fifos;     // in pipeline order
   double core_mhz = 0;
   double sim_wall_seconds = 0;       // elaboration + simulation
+  TimelineWriteStats timeline;       // what --timeline wrote (events 0 when off)
+  // --heatmap: busy cycles per tile of coarse_raster, fine_raster, interpolate and rop,
+  // in that order (empty when off).
+  std::vector<TileHeat> heat;
 
   // RenderStats::to_json plus cycles, cycles_lower_bound, simulated_seconds,
   // sim_wall_seconds, simulated_cycles_per_second, stages.<name>.{busy,...}, fifos.<name>.

@@ -20,6 +20,7 @@ void Rop::body() {
     if (in.state && std::holds_alternative<CmdDraw2d>(in.state->body)) {
       write(grant_2d_, PortGrant{in.state});
       read(done_2d_);
+      attribute_to_no_tile();
       busy(TimingParams::rop_draw2d_marker_cycles());
       continue;
     }
@@ -27,11 +28,13 @@ void Rop::body() {
       apply_state_command(*in.state, st_, fb_);
       const bool clear = std::holds_alternative<CmdClear>(in.state->body) ||
                          std::holds_alternative<CmdClearDepth>(in.state->body);
+      attribute_to_no_tile();
       busy(p_.rop_state_cycles(clear, uint64_t(fb_.width) * uint64_t(fb_.height)));
       continue;
     }
     for (const Fragment& f : *in.work)
       if (rop_write(fb_, f, st_.depth_func, st_.depth_write)) ++ctx_.render.fragments_passed;
+    if (!in.work->empty()) attribute_to(in.work->front().x, in.work->front().y);  // the batch's tile
     busy(p_.rop_fragment_cycles(in.work->size()));
   }
 }

@@ -7,7 +7,9 @@
 // - write(): blocks on a full output FIFO (plus injected stalls)           -> stalled
 //
 // Every cycle of a stage is exactly one of busy, stalled or starved, so the three add
-// up to the simulated cycle count. The VCD state signal changes only at these calls.
+// up to the simulated cycle count. The VCD state signal changes only at these calls, and
+// so do the two optional recorders (null unless asked for; one branch each when off):
+// the timeline's state track (sc/timeline.h) and the per-tile heat (sc/tile_heat.h).
 #pragma once
 
 #include <cstdint>
@@ -19,6 +21,8 @@
 #include "sc/link.h"
 #include "sc/sim_context.h"
 #include "config/timing_params.h"
+#include "sc/tile_heat.h"
+#include "sc/timeline.h"
 
 namespace rastsim::sc {
 
@@ -51,9 +55,15 @@ class Stage : public sc_core::sc_module {
   sc_core::sc_signal<int>& state_signal() { return state_; }
   // At the end of the run: the idle time since the stage last blocked is starved time.
   void finish(const sc_core::sc_time& end) {
-    if (end > idle_since_) stats_.starved += ctx_.to_cycles(end - idle_since_);
+    if (end > idle_since_) {
+      stats_.starved += ctx_.to_cycles(end - idle_since_);
+      record(StageState::Starved, idle_since_, end);
+    }
     idle_since_ = end;
   }
+  // Recorders (before sc_start): the stage's timeline track and tile heat, or null.
+  void set_timeline(StateTrack* t) { track_ = t; }
+  void set_heat(TileHeat* h) { heat_ = h; }
 
  protected:
   virtual void body() = 0;
@@ -64,6 +74,7 @@ class Stage : public sc_core::sc_module {
     Tx<P> t = in.read();
     if (t.ready > sc_core::sc_time_stamp()) wait(t.ready - sc_core::sc_time_stamp());
     stats_.starved += ctx_.to_cycles(sc_core::sc_time_stamp() - idle_since_);
+    record(StageState::Starved, idle_since_, sc_core::sc_time_stamp());
     idle_since_ = sc_core::sc_time_stamp();  // a second read in a row counts from here
     ++stats_.transactions_in;
     return std::move(t.payload);
@@ -72,8 +83,11 @@ class Stage : public sc_core::sc_module {
   void busy(uint64_t cycles) {
     if (cycles == 0) return;
     set_state(StageState::Busy);
+    const sc_core::sc_time t0 = sc_core::sc_time_stamp();
     wait(double(cycles) * ctx_.cycle);
     stats_.busy += cycles;
+    record(StageState::Busy, t0, sc_core::sc_time_stamp());
+    if (heat_) heat_->charge(heat_tile_, cycles);
     idle_since_ = sc_core::sc_time_stamp();
   }
 
@@ -86,6 +100,7 @@ class Stage : public sc_core::sc_module {
       wait(double(std::uniform_int_distribution<int>(1, ctx_.stall_max_cycles)(rng_)) * ctx_.cycle);
     out.write(std::move(payload), t0 + double(extra_latency) * ctx_.cycle);
     stats_.stalled += ctx_.to_cycles(sc_core::sc_time_stamp() - t0);
+    record(StageState::Stalled, t0, sc_core::sc_time_stamp());
     ++stats_.transactions_out;
     idle_since_ = sc_core::sc_time_stamp();
   }
@@ -97,14 +112,25 @@ class Stage : public sc_core::sc_module {
   template <class In, class Out>
   bool pass_state(const Item<In>& in, Link<Item<Out>>& out, uint64_t extra_latency = 0) {
     if (!in.state) return false;
+    attribute_to_no_tile();
     busy(TimingParams::state_pass_cycles());
     write(out, Item<Out>{in.state, {}}, extra_latency);
     return true;
   }
 
+  // The tile the following busy() cycles are charged to (--heatmap): pixel (x, y)'s,
+  // or none (state commands and other work of no tile).
+  void attribute_to(int x, int y) {
+    if (heat_) heat_tile_ = heat_->tile_of(x, y);
+  }
+  void attribute_to_no_tile() { heat_tile_ = -1; }
+
   SimContext& ctx_;
 
  private:
+  void record(StageState s, const sc_core::sc_time& t0, const sc_core::sc_time& t1) {
+    if (track_) track_->add(uint8_t(s), ctx_.to_cycles(t0), ctx_.to_cycles(t1));
+  }
   void thread() {
     try {
       body();
@@ -120,6 +146,9 @@ class Stage : public sc_core::sc_module {
   sc_core::sc_signal<int> state_;
   StageStats stats_;
   sc_core::sc_time idle_since_ = sc_core::SC_ZERO_TIME;  // end of the last busy/write
+  StateTrack* track_ = nullptr;  // --timeline: this stage's intervals
+  TileHeat* heat_ = nullptr;     // --heatmap: this stage's busy cycles per tile
+  int heat_tile_ = -1;           // tile the next busy() is charged to (-1: none)
 };
 
 }  // namespace rastsim::sc

@@ -140,5 +140,36 @@ for c in render config; do "$BIN" $c --help | grep -q -- "--set" && pass || fail
 "$BIN" config --doc | grep -q "raster.tile_size" && pass || fail "config --doc"
 "$BIN" config --doc | grep -q "raster.traversal = \"tiled\"" && pass || fail "config --doc traversal"
 
+# 6. Where the cycles go: simulate --timeline writes trace-event JSON with a track per
+# stage and FIFO, --heatmap a PNG (with --heatmap-data's per-tile cycles summing to the
+# attributed stages' busy cycles), --help lists both, and an unwritable path is a clear
+# error before the simulation.
+if "$BIN" simulate --config "$CFG" --scene "$SCENE" --timeline "$TMP/t.json" --heatmap "$TMP/h.png" \
+     --heatmap-data "$TMP/h.json" --stats "$TMP/s.json" -q; then
+  /usr/bin/python3 - "$TMP/t.json" "$TMP/s.json" "$TMP/h.json" <<'PY' && pass || fail "timeline/heatmap contents"
+import json, sys
+t, s, h = (json.load(open(p)) for p in sys.argv[1:4])
+names = {e["args"]["name"] for e in t["traceEvents"] if e["ph"] == "M" and e["name"] == "thread_name"}
+assert set(s["stages"]) <= names, names
+assert all(any(n.startswith(f + " ") for n in names) for f in s["fifos"]), names
+assert any(e["ph"] == "X" for e in t["traceEvents"]) and any(e["ph"] == "C" for e in t["traceEvents"])
+assert s["timeline"]["events"] == sum(1 for _ in t["traceEvents"])
+for name, st in h["stages"].items():
+    assert sum(st["tiles"]) + st["unattributed"] == s["stages"][name]["busy"], name
+PY
+  head -c 8 "$TMP/h.png" | od -An -c | grep -q "P   N   G" && pass || fail "heatmap is not a PNG"
+else
+  fail "simulate --timeline --heatmap failed"
+fi
+"$BIN" simulate --config "$CFG" --scene "$SCENE" --heatmap "$TMP/r.png" --heatmap-stage rop -q && [ -s "$TMP/r.png" ] \
+  && pass || fail "--heatmap-stage rop"
+expect_error "unwritable timeline" "nope/t.json: cannot open for writing" -- \
+  "$BIN" simulate --config "$CFG" --scene "$SCENE" --timeline "$TMP/nope/t.json" -q
+expect_error "bad heatmap stage" "heatmap-stage" -- \
+  "$BIN" simulate --config "$CFG" --scene "$SCENE" --heatmap "$TMP/x.png" --heatmap-stage nosuch -q
+for o in --timeline --heatmap --heatmap-stage; do
+  "$BIN" simulate --help | grep -q -- "$o" && pass || fail "simulate --help lacks $o"
+done
+
 echo "cli: $passes passed, $fails failed"
 [ $fails -eq 0 ]
