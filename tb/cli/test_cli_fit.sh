@@ -5,26 +5,9 @@
 # framebuffer CRC and fragment stream as the widest format; one fraction bit fewer
 # differs), the stats JSON, and clear one-line errors for bad input.
 # usage: test_cli_fit.sh RASTSIM_BINARY SOURCE_DIR
-set -u
 BIN="$1"
 SRC="$2"
-TMP="$(mktemp -d)"
-trap 'rm -rf "$TMP"' EXIT
-fails=0 passes=0
-pass() { passes=$((passes + 1)); }
-fail() { echo "FAIL: $*"; fails=$((fails + 1)); }
-
-# expect_error NAME PATTERN -- command...: non-zero exit, no crash, stderr matching PATTERN.
-expect_error() {
-  local name="$1" pattern="$2"; shift 3
-  local out rc
-  out="$("$@" 2>&1 >/dev/null)"; rc=$?
-  if [ $rc -eq 0 ]; then fail "$name: exit 0, expected an error"; return; fi
-  if [ $rc -ge 128 ]; then fail "$name: crashed (rc $rc): $out"; return; fi
-  if ! grep -Eq -- "$pattern" <<<"$out"; then fail "$name: error '$out' does not match '$pattern'"; return; fi
-  pass
-}
-json_field() { /usr/bin/python3 -c "import json,sys; print(json.load(open(sys.argv[1]))[sys.argv[2]])" "$1" "$2"; }
+source "$(dirname "$0")/cli_checks.sh"
 CFG="$SRC/configs/default.toml"
 
 # render_same A B SCENE: the renders with coord formats A and B give the same colour CRC
