@@ -16,18 +16,13 @@
 
 #include <unistd.h>
 
+#include "scene_test.h"
 #include "ref/pipeline.h"
 #include "ref/scene.h"
 #include "scene/scene_io.h"
 #include "scene/scene_stream.h"
 
 namespace rastsim {
-namespace scene_test {  // defined in test_scene_trace.cpp
-::testing::AssertionResult SceneFails(const std::function<void()>& fn, const std::string& where,
-                                      const std::string& phrase);
-RenderStats render_default(const Scene& scene);
-}  // namespace scene_test
-
 namespace {
 
 namespace fs = std::filesystem;

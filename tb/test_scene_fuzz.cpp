@@ -15,15 +15,12 @@
 #include <iterator>
 #include <random>
 
+#include "scene_test.h"
 #include "ref/pipeline.h"
 #include "ref/scene.h"
 #include "scene/scene_io.h"
 
 namespace rastsim {
-namespace scene_test {  // defined in test_scene_trace.cpp
-RenderStats render_default(const Scene& scene);
-}  // namespace scene_test
-
 namespace {
 
 const std::string kData = RASTSIM_TEST_DATA;

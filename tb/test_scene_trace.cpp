@@ -10,6 +10,7 @@
 
 #include <unistd.h>
 
+#include "scene_test.h"
 #include "ref/pipeline.h"
 #include "ref/prim_assembly.h"
 #include "ref/scene.h"
@@ -19,9 +20,7 @@
 namespace rastsim {
 namespace scene_test {
 
-// Shared with test_scene_obj.cpp and test_scene_fuzz.cpp (declared there).
-// Success when fn throws a SceneError whose message starts with `where` + " " (e.g.
-// "t.trace:3:") and contains `phrase`.
+// Declared in scene_test.h.
 ::testing::AssertionResult SceneFails(const std::function<void()>& fn, const std::string& where,
                                       const std::string& phrase) {
   try {

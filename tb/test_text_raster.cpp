@@ -12,17 +12,13 @@
 #include <random>
 #include <set>
 
+#include "scene_test.h"
 #include "config/raster_state_config.h"
 #include "ref/font.h"
 #include "ref/pipeline.h"
 #include "scene/scene_io.h"
 
 namespace rastsim {
-namespace scene_test {
-::testing::AssertionResult SceneFails(const std::function<void()>& fn, const std::string& where,
-                                      const std::string& phrase);
-}  // namespace scene_test
-
 namespace {
 
 Framebuffer render(const std::string& text, const std::string& set = "") {

@@ -1,0 +1,23 @@
+// SPDX-License-Identifier: Apache-2.0
+// Helpers of the scene-reader tests, defined in test_scene_trace.cpp and shared by the
+// other scene, 2D and text tests.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <functional>
+#include <string>
+
+#include "ref/pipeline.h"
+#include "ref/scene.h"
+
+namespace rastsim::scene_test {
+
+// Success when fn throws a SceneError whose message starts with `where` + " " (e.g.
+// "t.trace:3:") and contains `phrase`.
+::testing::AssertionResult SceneFails(const std::function<void()>& fn, const std::string& where,
+                                      const std::string& phrase);
+// The scene rendered by the reference pipeline with the default config.
+RenderStats render_default(const Scene& scene);
+
+}  // namespace rastsim::scene_test
