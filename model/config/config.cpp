@@ -197,9 +197,11 @@ const std::string& Config::get_string(const std::string& key) const {
 const std::string& Config::origin(const std::string& key) const { return origins_.at(key); }
 
 void validate_traversal(const Config& cfg);  // config_schema_traversal.cpp
+void validate_aa(const Config& cfg);         // config_schema_aa.cpp
 
 void Config::validate() const {
   validate_traversal(*this);
+  validate_aa(*this);
   const FixedFormat fmt = FixedFormat::parse(get_string("raster.coord_format"));
   const int64_t max_extent = max_viewport_extent(fmt);
   for (const char* k : {"display.width", "display.height"}) {

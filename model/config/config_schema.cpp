@@ -17,6 +17,7 @@ void add_scanout_params(std::vector<ParamDef>& schema);
 void add_2d_params(std::vector<ParamDef>& schema);
 // Keys of the triangle traversal method, declared in config_schema_traversal.cpp.
 void add_traversal_params(std::vector<ParamDef>& schema);
+void add_aa_params(std::vector<ParamDef>& schema);
 // Keys of the attribute interpolation method, declared in config_schema_interp.cpp.
 void add_interp_params(std::vector<ParamDef>& schema);
 
@@ -68,6 +69,7 @@ std::vector<ParamDef> make_schema() {
   add({"raster.out_of_range", T::Enum, std::string("error"), "", 1, 0, {"error", "cull"},
        "A vertex outside the coordinate format's range: stop with an error, or cull its triangle and count it"});
   add_traversal_params(s);
+  add_aa_params(s);
   // ---- scene: how OBJ meshes are placed on screen (not architecture) ----
   add({"scene.obj_yaw_deg", T::Float, 30.0, "deg", -360, 360, {},
        "OBJ placement: rotation of the mesh about its vertical axis"});

@@ -56,6 +56,9 @@ void add_timing_params(std::vector<ParamDef>& s) {
        "Fragments depth-tested and written per cycle"});
   add({"rop.clear_pixels_per_cycle", T::Int, int64_t{64}, "pixels/cycle", 1, 1 << 20, {},
        "Pixels a colour or depth clear writes per cycle (fast-clear bandwidth)"});
+  add({"rop.resolve_bytes_per_cycle", T::Int, int64_t{64}, "bytes/cycle", 1, 1 << 20, {},
+       "Bandwidth of the frame-end multisample resolve pass (raster.samples > 1): it reads W x H x samples x 4 "
+       "bytes and writes W x H x 4"});
   // ---- FIFOs between stages (depth in transactions) ----
   // The 2D path (docs/2d.md, "Timing"): command fetch -> 2D front end -> 2D engine, the
   // engine writing the framebuffer through the ROP's port while the ROP holds for it.

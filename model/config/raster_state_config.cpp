@@ -54,6 +54,8 @@ RasterState raster_state_from_config(const Config& cfg) {
   s.interp_method = cfg.get_string("interp.method") == "dda" ? InterpMethod::Dda : InterpMethod::Plane;
   s.interp_arith = cfg.get_string("interp.dda_arith") == "f32" ? InterpArith::F32 : InterpArith::Fixed;
   s.interp_frac_bits = static_cast<int>(cfg.get_int("interp.dda_frac_bits"));
+  s.samples = static_cast<int>(cfg.get_int("raster.samples"));
+  s.aa_mode = cfg.get_string("raster.aa_mode") == "ssaa" ? AaMode::Ssaa : AaMode::Msaa;
   s.viewport_width = s.fb_width;
   s.viewport_height = s.fb_height;
   return s;

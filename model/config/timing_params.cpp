@@ -27,6 +27,7 @@ TimingParams TimingParams::from_config(const Config& cfg) {
   p.interp_latency = u("interp.latency_cycles");
   p.rop_pixels_per_cycle = u("rop.pixels_per_cycle");
   p.rop_clear_pixels_per_cycle = u("rop.clear_pixels_per_cycle");
+  p.rop_resolve_bytes_per_cycle = u("rop.resolve_bytes_per_cycle");
   p.setup2d_ops_per_cycle = u("setup2d.ops_per_cycle");
   p.engine2d_fill_pixels_per_cycle = u("engine2d.fill_pixels_per_cycle");
   p.engine2d_span_setup = u("engine2d.span_setup_cycles");

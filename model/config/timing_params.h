@@ -5,6 +5,7 @@
 #pragma once
 
 #include <algorithm>
+#include <bit>
 #include <cstdint>
 
 #include "config/config.h"
@@ -24,7 +25,7 @@ struct TimingParams {
   uint64_t fine_samples_per_cycle = 0, fine_accepted_tile_cycles = 0;
   uint64_t coarse_scanline_setup = 0, fine_span_setup = 0, fine_span_pixels_per_cycle = 0;
   uint64_t interp_fragments_per_cycle = 0, interp_latency = 0;
-  uint64_t rop_pixels_per_cycle = 0, rop_clear_pixels_per_cycle = 0;
+  uint64_t rop_pixels_per_cycle = 0, rop_clear_pixels_per_cycle = 0, rop_resolve_bytes_per_cycle = 0;
   uint64_t setup2d_ops_per_cycle = 0;
   uint64_t engine2d_fill_pixels_per_cycle = 0, engine2d_span_setup = 0, engine2d_rmw = 0;
   uint64_t engine2d_blit_bytes_per_cycle = 0;
@@ -66,7 +67,23 @@ struct TimingParams {
   uint64_t interp_batch_cycles(uint64_t fragments) const { return ceil_div(fragments, interp_fragments_per_cycle); }
   // ROP: a batch of fragments; a clear (colour or depth) of the whole framebuffer at the
   // fast-clear rate; any other state command passes in one cycle.
-  uint64_t rop_fragment_cycles(uint64_t fragments) const { return ceil_div(fragments, rop_pixels_per_cycle); }
+  // With raster.samples = S > 1 the ROP's unit of work is an access, not a fragment
+  // (docs/antialiasing.md): a fragment whose mask is full writes its pixel once (all
+  // samples one value: the compression rule), any other fragment one access per covered
+  // sample. rop.pixels_per_cycle accesses a cycle. A one-sample fragment is 1 access.
+  static uint64_t rop_accesses(uint32_t mask, int samples) {
+    const uint32_t full = samples >= 32 ? ~0u : (1u << samples) - 1;
+    return (samples == 1 || mask == full) ? 1 : uint64_t(std::popcount(mask));
+  }
+  uint64_t rop_fragment_cycles(uint64_t accesses) const { return ceil_div(accesses, rop_pixels_per_cycle); }
+  // The frame-end resolve pass of a W x H framebuffer of S samples: W H S 4 bytes read and
+  // W H 4 written at rop.resolve_bytes_per_cycle; 0 cycles for S = 1 (no pass). A clear of
+  // a multisampled buffer costs what a one-sample clear does (rop_clear_cycles of W x H:
+  // every pixel's samples get one value, written compressed once).
+  uint64_t resolve_cycles(uint64_t fb_pixels, int samples) const {
+    if (samples == 1) return 0;
+    return ceil_div(fb_pixels * uint64_t(samples) * 4 + fb_pixels * 4, rop_resolve_bytes_per_cycle);
+  }
   uint64_t rop_clear_cycles(uint64_t pixels) const { return ceil_div(pixels, rop_clear_pixels_per_cycle); }
   // ROP of a state command: a clear of the fb_pixels framebuffer, or 1 cycle.
   uint64_t rop_state_cycles(bool is_clear, uint64_t fb_pixels) const {
@@ -80,8 +97,10 @@ struct TimingParams {
   // leaves at cycle i / tiles_per_cycle + 1; a walk of V tiles takes max(1, ceil(V / this)).
   uint64_t coarse_walk_cycles(uint64_t tiles) const { return std::max<uint64_t>(1, ceil_div(tiles, coarse_tiles_per_cycle)); }
   // Fine raster: a partial footprint (a tile, or the whole bbox for raster.traversal =
-  // bbox) of A pixels tested at fine.samples_per_cycle.
-  uint64_t fine_partial_cycles(uint64_t pixels) const { return ceil_div(pixels, fine_samples_per_cycle); }
+  // bbox) of A pixels, i.e. A x raster.samples coverage tests, at fine.samples_per_cycle.
+  uint64_t fine_partial_cycles(uint64_t pixels, int samples = 1) const {
+    return ceil_div(pixels * uint64_t(samples), fine_samples_per_cycle);
+  }
   // Scanline: the edge walker's setup, then one row a cycle (rows inside the bbox, empty
   // spans included); the span filler's setup plus the span's n pixels.
   uint64_t scanline_walk_cycles(uint64_t rows) const { return coarse_scanline_setup + rows; }

@@ -3,6 +3,8 @@
 
 #include <algorithm>
 
+#include "ref/sample_pattern.h"
+
 namespace rastsim {
 
 namespace {
@@ -21,8 +23,9 @@ PixelRect tile_footprint(const PixelRect& bbox, int tile_size, int tx, int ty) {
 }
 
 TileClass classify_tile(const SetupTriangle& t, const PixelRect& fp, int frac_bits) {
-  const int64_t sx_lo = t.sample_x(fp.x0, frac_bits), sx_hi = t.sample_x(fp.x1 - 1, frac_bits);
-  const int64_t sy_lo = t.sample_y(fp.y0, frac_bits), sy_hi = t.sample_y(fp.y1 - 1, frac_bits);
+  const SamplePattern& p = sample_pattern(t.samples, frac_bits);
+  const int64_t sx_lo = t.sample_x(fp.x0, frac_bits) + p.dx_min, sx_hi = t.sample_x(fp.x1 - 1, frac_bits) + p.dx_max;
+  const int64_t sy_lo = t.sample_y(fp.y0, frac_bits) + p.dy_min, sy_hi = t.sample_y(fp.y1 - 1, frac_bits) + p.dy_max;
   bool all_inside = true;
   for (const auto& e : t.edge) {
     // Corner where the edge is largest / smallest over the footprint's sample grid.

@@ -9,8 +9,11 @@
 //   the signs of a and b: if some edge's maximum (with bias) is < 0 the tile is
 //   rejected (early-out); if every edge's minimum is >= 0 it is accepted whole
 //   (early-in, no per-pixel tests); otherwise it is partial and tested per pixel.
+//   With raster.samples > 1 the two corners move by the sample offsets' bounding box
+//   (ref/sample_pattern.h), so both decisions hold for every sample of the footprint.
 #pragma once
 
+#include <bit>
 #include <cstdint>
 
 #include "ref/fine_raster.h"
@@ -26,6 +29,27 @@ struct TraversalCounters {
   uint64_t pixel_tests = 0;  // per-pixel coverage tests (partial tiles only)
   uint64_t fragments = 0;    // covered pixels emitted
   uint64_t spans = 0;        // non-empty spans (raster.traversal = scanline only)
+  // Multisampling (raster.samples = S; with S = 1: sample_tests = pixel_tests,
+  // samples_covered = fragments, pixels_partially_covered = 0).
+  uint64_t sample_tests = 0;              // pixel_tests x S
+  uint64_t samples_covered = 0;           // covered samples of the emitted pixels
+  uint64_t pixels_partially_covered = 0;  // emitted pixels whose mask is not full
+
+  // Counts one emitted pixel of mask m (S = samples).
+  void count_pixel(uint32_t m, int samples) {
+    ++fragments;
+    const int n = std::popcount(m);
+    samples_covered += uint64_t(n);
+    pixels_partially_covered += n != samples;
+  }
+  void count_accepted(int64_t area, int samples) {
+    fragments += uint64_t(area);
+    samples_covered += uint64_t(area) * uint64_t(samples);
+  }
+  void count_tests(uint64_t pixels, int samples) {
+    pixel_tests += pixels;
+    sample_tests += pixels * uint64_t(samples);
+  }
 };
 
 // The tile grid cells overlapping `bbox`, in tile units [tx0, tx1) x [ty0, ty1).
@@ -51,15 +75,15 @@ void traverse_triangle(const SetupTriangle& t, int tile_size, int frac_bits, Tra
         case TileClass::Rejected: ++c.tiles_rejected; break;
         case TileClass::Accepted:
           ++c.tiles_accepted;
-          c.fragments += static_cast<uint64_t>(fp.area());
-          fine_raster_accepted(fp, emit);
+          c.count_accepted(fp.area(), t.samples);
+          fine_raster_accepted(fp, emit, t.full_mask());
           break;
         case TileClass::Partial:
           ++c.tiles_partial;
-          c.pixel_tests += fine_raster_partial(t, fp, frac_bits, [&](int px, int py) {
-            ++c.fragments;
-            emit(px, py);
-          });
+          c.count_tests(fine_raster_partial(t, fp, frac_bits, [&](int px, int py, uint32_t m) {
+            c.count_pixel(m, t.samples);
+            emit_pixel(emit, px, py, m);
+          }), t.samples);
           break;
       }
     }

@@ -4,13 +4,48 @@
 //
 // - A partial footprint is walked row by row, stepping each edge value by a * 2^F per
 //   pixel and b * 2^F per row (exact integers, i128).
+// - With raster.samples = S > 1 each pixel's coverage is an S-bit mask: bit s is set when
+//   every edge, at the centre plus the edge's constant offset a dx_s + b dy_s
+//   (ref/sample_pattern.h), is >= 0 with bias. A pixel is emitted when its mask is not
+//   zero; an accepted footprint emits full masks. sample_tests = footprint area x S.
+// - emit may take (px, py) or (px, py, mask); a one-sample triangle's mask is 1.
 #pragma once
 
+#include <array>
+#include <bit>
 #include <cstdint>
+#include <type_traits>
 
+#include "ref/sample_pattern.h"
 #include "ref/tri_setup.h"
 
 namespace rastsim {
+
+// Calls emit(px, py, mask) or, for a callable of two arguments, emit(px, py).
+template <class Emit>
+inline void emit_pixel(Emit& emit, int px, int py, uint32_t mask) {
+  if constexpr (std::is_invocable_v<Emit&, int, int, uint32_t>) emit(px, py, mask);
+  else emit(px, py);
+}
+
+// Per-edge offsets of every sample: off[i][s] = a_i dx_s + b_i dy_s (raw^2 units; |a|,
+// |dx| < 2^(I+F+2), 2^(F-1), so it fits 64 bits for any format the model accepts).
+struct SampleEdgeOffsets {
+  std::array<std::array<int64_t, kMaxSamples>, 3> off{};
+  int count = 1;
+  SampleEdgeOffsets(const SetupTriangle& t, int frac_bits) : count(t.samples) {
+    const SamplePattern& p = sample_pattern(t.samples, frac_bits);
+    for (int i = 0; i < 3; ++i)
+      for (int s = 0; s < count; ++s) off[size_t(i)][size_t(s)] = t.edge[size_t(i)].a * p.dx[size_t(s)] + t.edge[size_t(i)].b * p.dy[size_t(s)];
+  }
+  // Mask of the samples covered, given the three edge values (bias included) at the centre.
+  uint32_t mask(i128 e0, i128 e1, i128 e2) const {
+    uint32_t m = 0;
+    for (int s = 0; s < count; ++s)
+      if (e0 + off[0][size_t(s)] >= 0 && e1 + off[1][size_t(s)] >= 0 && e2 + off[2][size_t(s)] >= 0) m |= 1u << s;
+    return m;
+  }
+};
 
 // Coverage of one pixel (fill-rule bias included).
 inline bool pixel_covered(const SetupTriangle& t, int px, int py, int frac_bits) {
@@ -20,8 +55,18 @@ inline bool pixel_covered(const SetupTriangle& t, int px, int py, int frac_bits)
   return true;
 }
 
-// Fine raster of a partial footprint: calls emit(px, py) for each covered pixel in
-// row-major order; returns the number of pixel tests made (= footprint area).
+// Coverage mask of one pixel's samples (bit s: sample s covered; one sample: 0 or 1).
+inline uint32_t pixel_sample_mask(const SetupTriangle& t, int px, int py, int frac_bits) {
+  if (t.samples == 1) return pixel_covered(t, px, py, frac_bits) ? 1u : 0u;
+  const int64_t sx = t.sample_x(px, frac_bits), sy = t.sample_y(py, frac_bits);
+  return SampleEdgeOffsets(t, frac_bits)
+      .mask(t.edge[0].eval(sx, sy) + t.edge[0].bias, t.edge[1].eval(sx, sy) + t.edge[1].bias,
+            t.edge[2].eval(sx, sy) + t.edge[2].bias);
+}
+
+// Fine raster of a partial footprint: calls emit(px, py[, mask]) for each pixel with a
+// covered sample, in row-major order; returns the number of pixel tests made (= footprint
+// area; sample tests are that times t.samples).
 template <class Emit>
 uint64_t fine_raster_partial(const SetupTriangle& t, const PixelRect& fp, int frac_bits, Emit&& emit) {
   const int64_t sx0 = t.sample_x(fp.x0, frac_bits), sy0 = t.sample_y(fp.y0, frac_bits);
@@ -31,10 +76,24 @@ uint64_t fine_raster_partial(const SetupTriangle& t, const PixelRect& fp, int fr
     step_x[i] = i128(t.edge[i].a) << frac_bits;
     step_y[i] = i128(t.edge[i].b) << frac_bits;
   }
+  if (t.samples > 1) {
+    const SampleEdgeOffsets so(t, frac_bits);
+    for (int py = fp.y0; py < fp.y1; ++py) {
+      i128 e0 = row[0], e1 = row[1], e2 = row[2];
+      for (int px = fp.x0; px < fp.x1; ++px) {
+        if (const uint32_t m = so.mask(e0, e1, e2)) emit_pixel(emit, px, py, m);
+        e0 += step_x[0];
+        e1 += step_x[1];
+        e2 += step_x[2];
+      }
+      for (int i = 0; i < 3; ++i) row[i] += step_y[i];
+    }
+    return static_cast<uint64_t>(fp.area());
+  }
   for (int py = fp.y0; py < fp.y1; ++py) {
     i128 e0 = row[0], e1 = row[1], e2 = row[2];
     for (int px = fp.x0; px < fp.x1; ++px) {
-      if (e0 >= 0 && e1 >= 0 && e2 >= 0) emit(px, py);
+      if (e0 >= 0 && e1 >= 0 && e2 >= 0) emit_pixel(emit, px, py, 1u);
       e0 += step_x[0];
       e1 += step_x[1];
       e2 += step_x[2];
@@ -44,11 +103,11 @@ uint64_t fine_raster_partial(const SetupTriangle& t, const PixelRect& fp, int fr
   return static_cast<uint64_t>(fp.area());
 }
 
-// Whole-footprint emission of an accepted tile (no tests).
+// Whole-footprint emission of an accepted tile (no tests): every mask full.
 template <class Emit>
-void fine_raster_accepted(const PixelRect& fp, Emit&& emit) {
+void fine_raster_accepted(const PixelRect& fp, Emit&& emit, uint32_t full_mask = 1u) {
   for (int py = fp.y0; py < fp.y1; ++py)
-    for (int px = fp.x0; px < fp.x1; ++px) emit(px, py);
+    for (int px = fp.x0; px < fp.x1; ++px) emit_pixel(emit, px, py, full_mask);
 }
 
 }  // namespace rastsim

@@ -67,22 +67,26 @@ void dda_span_values(i128 num0, i128 dnum, i128 den, int64_t n, InterpArith arit
   walk_span(num0, dnum, den, n, arith, frac_bits, bits, [&](int64_t k, uint32_t v) { out[size_t(k)] = v; });
 }
 
-Fragment interpolate_plane(const SetupTriangle& t, int px, int py, int frac_bits) {
-  const int64_t sx = t.sample_x(px, frac_bits), sy = t.sample_y(py, frac_bits);
+Fragment interpolate_plane_at(const SetupTriangle& t, int px, int py, int64_t sx, int64_t sy) {
   // Weight of vertex k is the edge opposite it: edge (k+1)%3 runs between the other two.
   const i128 w[3] = {t.edge[1].eval(sx, sy), t.edge[2].eval(sx, sy), t.edge[0].eval(sx, sy)};
-  auto lerp = [&](uint32_t a0, uint32_t a1, uint32_t a2) {
+  auto lerp = [&](uint32_t a0, uint32_t a1, uint32_t a2, int bits) {
     const i128 num = w[0] * a0 + w[1] * a1 + w[2] * a2;
-    return static_cast<uint32_t>(div_round(num, t.area2, Rounding::HalfUp));
+    return clamp_attr(div_round(num, t.area2, Rounding::HalfUp), bits);
   };
   Fragment f;
   f.x = px;
   f.y = py;
-  f.z = lerp(t.z[0], t.z[1], t.z[2]);
-  f.r = static_cast<uint8_t>(lerp(t.rgb[0][0], t.rgb[1][0], t.rgb[2][0]));
-  f.g = static_cast<uint8_t>(lerp(t.rgb[0][1], t.rgb[1][1], t.rgb[2][1]));
-  f.b = static_cast<uint8_t>(lerp(t.rgb[0][2], t.rgb[1][2], t.rgb[2][2]));
+  f.z = lerp(t.z[0], t.z[1], t.z[2], t.depth_bits);
+  f.r = static_cast<uint8_t>(lerp(t.rgb[0][0], t.rgb[1][0], t.rgb[2][0], 8));
+  f.g = static_cast<uint8_t>(lerp(t.rgb[0][1], t.rgb[1][1], t.rgb[2][1], 8));
+  f.b = static_cast<uint8_t>(lerp(t.rgb[0][2], t.rgb[1][2], t.rgb[2][2], 8));
+  f.samples = static_cast<uint8_t>(t.samples);
   return f;
+}
+
+Fragment interpolate_plane(const SetupTriangle& t, int px, int py, int frac_bits) {
+  return interpolate_plane_at(t, px, py, t.sample_x(px, frac_bits), t.sample_y(py, frac_bits));
 }
 
 Fragment interpolate(const SetupTriangle& t, int px, int py, int frac_bits) {

@@ -28,6 +28,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "ref/sample_pattern.h"
 #include "ref/tri_setup.h"
 
 namespace rastsim {
@@ -36,6 +37,8 @@ struct Fragment {
   int x = 0, y = 0;        // pixel
   uint32_t z = 0;          // unorm raster.depth_bits
   uint8_t r = 0, g = 0, b = 0;
+  uint16_t mask = 1;       // the samples it writes (raster.samples > 1)
+  uint8_t samples = 1;     // raster.samples: how many bits of mask are meaningful
   bool operator==(const Fragment&) const = default;
 };
 
@@ -43,6 +46,20 @@ struct Fragment {
 Fragment interpolate(const SetupTriangle& t, int px, int py, int frac_bits);
 // The same by plane equations, whatever the triangle's method (the exact reference).
 Fragment interpolate_plane(const SetupTriangle& t, int px, int py, int frac_bits);
+// Plane equations at raw point (sx, sy) for pixel (px, py). Outside the triangle (a
+// multisampled pixel whose centre is not covered) the weights go negative and the
+// rational is extrapolated; the rounded value is clamped to the attribute's range
+// [0, 2^bits - 1] (a no-op inside the triangle).
+Fragment interpolate_plane_at(const SetupTriangle& t, int px, int py, int64_t sx, int64_t sy);
+
+// The fragments of one pixel whose sample coverage mask is m (docs/antialiasing.md):
+// - one sample: interpolate() at the centre, mask 1 (any interp.method);
+// - msaa: one fragment, plane equations at the pixel centre (extrapolated when the centre
+//   is outside), mask m: its colour and depth go to every covered sample;
+// - ssaa: one fragment per covered sample s, in sample order, plane equations at the
+//   sample's own position, mask 1 << s.
+template <class Emit>
+void shade_pixel(const SetupTriangle& t, int px, int py, uint32_t m, int frac_bits, Emit&& emit);
 
 // One DDA span value: the attribute (bits wide) at step k of a span whose exact start
 // value is num0 / den and exact step dnum / den (den > 0), in the given arithmetic.
@@ -51,5 +68,27 @@ uint32_t dda_span_value(i128 num0, i128 dnum, i128 den, int64_t k, InterpArith a
 // tb/stability/test_interp_dda.cpp): out[k] == dda_span_value(..., k, ...).
 void dda_span_values(i128 num0, i128 dnum, i128 den, int64_t n, InterpArith arith, int frac_bits, int bits,
                      std::vector<uint32_t>& out);
+
+template <class Emit>
+void shade_pixel(const SetupTriangle& t, int px, int py, uint32_t m, int frac_bits, Emit&& emit) {
+  if (t.samples == 1) {
+    emit(interpolate(t, px, py, frac_bits));
+    return;
+  }
+  const int64_t cx = t.sample_x(px, frac_bits), cy = t.sample_y(py, frac_bits);
+  if (t.aa_mode == AaMode::Msaa) {
+    Fragment f = interpolate_plane_at(t, px, py, cx, cy);
+    f.mask = static_cast<uint16_t>(m);
+    emit(f);
+    return;
+  }
+  const SamplePattern& p = sample_pattern(t.samples, frac_bits);
+  for (int s = 0; s < t.samples; ++s) {
+    if (!((m >> s) & 1)) continue;
+    Fragment f = interpolate_plane_at(t, px, py, cx + p.dx[size_t(s)], cy + p.dy[size_t(s)]);
+    f.mask = static_cast<uint16_t>(1u << s);
+    emit(f);
+  }
+}
 
 }  // namespace rastsim

@@ -67,6 +67,23 @@ bool apply_state_command(const Command& cmd, RasterState& st, Framebuffer& fb) {
       cmd.body);
 }
 
+void count_multisample_footprint(const RasterState& st, RenderStats& stats) {
+  const uint64_t pixels = uint64_t(st.fb_width) * uint64_t(st.fb_height), S = uint64_t(st.samples);
+  stats.samples = st.samples;
+  stats.aa_mode = st.aa_mode;
+  stats.color_buffer_bytes = pixels * S * 4;
+  stats.depth_buffer_bytes = pixels * S * uint64_t((st.depth_bits + 7) / 8);
+  stats.resolve_bytes = S > 1 ? pixels * S * 4 + pixels * 4 : 0;
+}
+
+void check_2d_sample_count(const Command& cmd, const RasterState& st) {
+  if (st.samples == 1) return;
+  if (const auto* d2 = std::get_if<CmdDraw2d>(&cmd.body))
+    throw SceneError(cmd.loc.str() + ": '" + d2->keyword + "' (2D drawing) with raster.samples = " +
+                     std::to_string(st.samples) + ": the 2D engine writes pixels, not samples; draw 2D with "
+                     "raster.samples = 1 (docs/antialiasing.md)");
+}
+
 void reject_2d_commands(const Scene& scene, const char* level) {
   for (const Command& cmd : scene.commands)
     if (const auto* d2 = std::get_if<CmdDraw2d>(&cmd.body))
@@ -89,7 +106,8 @@ Framebuffer render_scene(const Scene& scene, const RasterState& arch, RenderStat
                          const FragmentSink& on_fragment) {
   const auto t0 = std::chrono::steady_clock::now();
   RasterState st = arch;
-  Framebuffer fb(st.fb_width, st.fb_height);
+  Framebuffer fb(st.fb_width, st.fb_height, st.samples);
+  count_multisample_footprint(st, stats);
   fb.clear_depth(static_cast<uint32_t>((uint64_t{1} << st.depth_bits) - 1));
   const int F = st.coord_format.frac_bits;
   const TraversalParams tp = traversal_params(st);
@@ -101,6 +119,7 @@ Framebuffer render_scene(const Scene& scene, const RasterState& arch, RenderStat
   for (const Command& cmd : scene.commands) {
     if (apply_state_command(cmd, st, fb)) continue;
     if (const auto* d2 = std::get_if<CmdDraw2d>(&cmd.body)) {
+      check_2d_sample_count(cmd, st);
       draw_2d(*d2, cmd.loc, st, fb, stats.draw2d);
       continue;
     }
@@ -111,25 +130,30 @@ Framebuffer render_scene(const Scene& scene, const RasterState& arch, RenderStat
       SetupTriangle tri;
       if (!count_setup_outcome(setup_triangle(assemble_triangle(prims, k), st, cmd.loc, tri), stats)) continue;
       pixels.clear();
-      traverse(tri, tp, stats.traversal, [&](int px, int py) {
+      traverse(tri, tp, stats.traversal, [&](int px, int py, uint32_t mask) {
         if (check) pixels.emplace_back(px, py);
-        const Fragment f = interpolate(tri, px, py, F);
-        if (tri.interp_method != InterpMethod::Plane) count_interp_error(f, interpolate_plane(tri, px, py, F), stats);
-        if (on_fragment) on_fragment(f);
-        if (rop_write(fb, f, st.depth_func, st.depth_write)) ++stats.fragments_passed;
+        shade_pixel(tri, px, py, mask, F, [&](const Fragment& f) {
+          if (tri.interp_method != InterpMethod::Plane) count_interp_error(f, interpolate_plane(tri, px, py, F), stats);
+          ++stats.fragments_shaded;
+          if (on_fragment) on_fragment(f);
+          if (rop_write(fb, f, st.depth_func, st.depth_write, &stats.samples_passed)) ++stats.fragments_passed;
+        });
       });
       if (check) check->add_triangle(tri, F, pixels, stats.coverage);
     }
   }
   if (check) check->finish(stats.coverage);
+  if (fb.samples > 1) fb = fb.resolve();  // the frame-end resolve pass
   stats.framebuffer_crc32 = fb.color_crc32();
   stats.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return fb;
 }
 
 std::string fragment_trace_line(const Fragment& f) {
-  return std::to_string(f.x) + " " + std::to_string(f.y) + " " + std::to_string(f.z) + " " +
-         std::to_string(f.r) + " " + std::to_string(f.g) + " " + std::to_string(f.b);
+  std::string line = std::to_string(f.x) + " " + std::to_string(f.y) + " " + std::to_string(f.z) + " " +
+                     std::to_string(f.r) + " " + std::to_string(f.g) + " " + std::to_string(f.b);
+  if (f.samples > 1) line += " " + std::to_string(f.mask);
+  return line;
 }
 
 }  // namespace rastsim

@@ -35,6 +35,14 @@ struct RenderStats {
   uint32_t max_attr_error_lsb = 0, max_depth_error_lsb = 0;
   uint64_t attr_error_sum = 0, depth_error_sum = 0;  // sums, for the means (3 colour samples a fragment)
   Draw2dStats draw2d;                   // 2D primitives (points, lines, circles, fills, blits)
+  // Multisampling (raster.samples = S, docs/antialiasing.md).
+  int samples = 1;
+  AaMode aa_mode = AaMode::Msaa;
+  uint64_t samples_passed = 0;          // samples written by the ROP
+  uint64_t fragments_shaded = 0;        // fragments out of interpolation (ssaa: one a covered sample)
+  uint64_t color_buffer_bytes = 0;      // W x H x S x 4 (RGBA8)
+  uint64_t depth_buffer_bytes = 0;      // W x H x S x ceil(raster.depth_bits / 8)
+  uint64_t resolve_bytes = 0;           // the resolve pass: W H S 4 read + W H 4 written; 0 for S = 1
   uint32_t framebuffer_crc32 = 0;
   double wall_seconds = 0;
 };
@@ -47,6 +55,14 @@ bool apply_state_command(const Command& cmd, RasterState& st, Framebuffer& fb);
 // Counts one triangle-setup outcome in the triangle stats (shared with the timed model);
 // returns true when the triangle goes on to traversal.
 bool count_setup_outcome(SetupOutcome o, RenderStats& stats);
+
+// Sets the multisample figures of the stats that follow from the state alone (sample
+// count, mode, buffer sizes, resolve traffic); shared with the timed model.
+void count_multisample_footprint(const RasterState& st, RenderStats& stats);
+
+// Throws SceneError naming `cmd` when it is a 2D drawing command and raster.samples > 1:
+// the 2D engine writes pixels, not samples (docs/antialiasing.md).
+void check_2d_sample_count(const Command& cmd, const RasterState& st);
 
 // Throws SceneError naming the first 2D drawing command of `scene` for the levels that
 // have no 2D stage yet (`level`: "SystemC", "RTL").
@@ -63,7 +79,8 @@ using FragmentSink = std::function<void(const Fragment&)>;
 Framebuffer render_scene(const Scene& scene, const RasterState& arch, RenderStats& stats,
                          const FragmentSink& on_fragment = {});
 
-// One fragment as a line of the shared fragment-trace format: "x y z r g b" (decimal).
+// One fragment as a line of the shared fragment-trace format: "x y z r g b" (decimal),
+// followed by " mask" (decimal) when raster.samples > 1.
 std::string fragment_trace_line(const Fragment& f);
 
 }  // namespace rastsim

@@ -22,6 +22,10 @@ enum class Traversal { Tiled, Bbox, Hierarchical, Scanline };
 // (the default), or the notes' incremental span DDA (ref/interpolate.h).
 enum class InterpMethod { Plane, Dda };
 enum class InterpArith { F32, Fixed };  // interp.dda_arith
+// raster.aa_mode (docs/antialiasing.md): with raster.samples > 1, shade once a pixel at its
+// centre and write that colour to every covered sample (msaa), or shade every covered
+// sample at its own position (ssaa).
+enum class AaMode { Msaa, Ssaa };
 
 // Half-open pixel rectangle [x0, x1) x [y0, y1).
 struct PixelRect {
@@ -58,6 +62,10 @@ struct RasterState {
   InterpMethod interp_method = InterpMethod::Plane;
   InterpArith interp_arith = InterpArith::Fixed;
   int interp_frac_bits = 16;  // fraction bits of the fixed-point DDA accumulator
+  // Multisampling (raster.samples, raster.aa_mode; ref/sample_pattern.h). 1: today's
+  // single sample at the pixel centre.
+  int samples = 1;
+  AaMode aa_mode = AaMode::Msaa;
 
   // Scene state (from commands).
   int viewport_width = 0, viewport_height = 0;

@@ -17,16 +17,25 @@ bool depth_test(DepthFunc func, uint32_t z, uint32_t stored) {
   return false;
 }
 
-bool rop_write(Framebuffer& fb, const Fragment& f, DepthFunc func, bool depth_write) {
-  uint32_t& stored = fb.depth[size_t(f.y) * fb.width + f.x];
-  if (!depth_test(func, f.z, stored)) return false;
-  if (depth_write) stored = f.z;
-  uint8_t* p = fb.pixel(f.x, f.y);
-  p[0] = f.r;
-  p[1] = f.g;
-  p[2] = f.b;
-  p[3] = 255;
-  return true;
+bool rop_write(Framebuffer& fb, const Fragment& f, DepthFunc func, bool depth_write, uint64_t* samples_passed) {
+  uint32_t n = 0;
+  const int samples = fb.samples;
+  const uint32_t mask = samples == 1 ? 1u : f.mask;
+  for (int s = 0; s < samples; ++s) {
+    if (!((mask >> s) & 1)) continue;
+    const size_t i = fb.sample_index(f.x, f.y, s);
+    uint32_t& stored = fb.depth[i];
+    if (!depth_test(func, f.z, stored)) continue;
+    if (depth_write) stored = f.z;
+    uint8_t* p = &fb.rgba[i * 4];
+    p[0] = f.r;
+    p[1] = f.g;
+    p[2] = f.b;
+    p[3] = 255;
+    ++n;
+  }
+  if (samples_passed) *samples_passed += n;
+  return n > 0;
 }
 
 }  // namespace rastsim

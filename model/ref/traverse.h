@@ -11,7 +11,8 @@
 //   level's tiles, a partial tile of the last level tested per pixel. Exact: the same
 //   classify_tile and fine raster as tiled, on smaller footprints.
 // - scanline: the lecture notes' screen coordinate setup (ref/scanline.h). Inexact in
-//   f32/f64/fixed; counted against the exact coverage (ref/coverage_check.h).
+//   f32/f64/fixed; counted against the exact coverage (ref/coverage_check.h). One
+//   sample a pixel only (the config rejects raster.samples > 1 with it).
 //
 // The exact methods emit the same SET of pixels as tiled, in a different order (bbox:
 // row-major over the box; hierarchical: depth-first in tile walk order, row-major inside
@@ -77,7 +78,8 @@ inline TraversalParams traversal_params(const RasterState& st) {
   return {st.traversal, st.tile_size, st.hier_levels, st.scanline_arith, st.coord_format.frac_bits};
 }
 
-// One triangle by the configured method; emit(px, py) per covered pixel.
+// One triangle by the configured method; emit(px, py) or emit(px, py, mask) per pixel with
+// a covered sample.
 template <class Emit>
 void traverse(const SetupTriangle& t, const TraversalParams& p, TraversalCounters& c, Emit&& emit) {
   const int F = p.frac_bits;
@@ -87,21 +89,21 @@ void traverse(const SetupTriangle& t, const TraversalParams& p, TraversalCounter
       // One "tile": the whole box, tested pixel by pixel.
       ++c.tiles_visited;
       ++c.tiles_partial;
-      c.pixel_tests += fine_raster_partial(t, t.bbox, F, [&](int px, int py) {
-        ++c.fragments;
-        emit(px, py);
-      });
+      c.count_tests(fine_raster_partial(t, t.bbox, F, [&](int px, int py, uint32_t m) {
+        c.count_pixel(m, t.samples);
+        emit_pixel(emit, px, py, m);
+      }), t.samples);
       break;
     case Traversal::Hierarchical:
       walk_hierarchical(t, t.bbox, p.hier_levels, 0, F, c, [&](const PixelRect& fp, TileClass cls) {
         if (cls == TileClass::Accepted) {
-          c.fragments += static_cast<uint64_t>(fp.area());
-          fine_raster_accepted(fp, emit);
+          c.count_accepted(fp.area(), t.samples);
+          fine_raster_accepted(fp, emit, t.full_mask());
         } else {
-          c.pixel_tests += fine_raster_partial(t, fp, F, [&](int px, int py) {
-            ++c.fragments;
-            emit(px, py);
-          });
+          c.count_tests(fine_raster_partial(t, fp, F, [&](int px, int py, uint32_t m) {
+            c.count_pixel(m, t.samples);
+            emit_pixel(emit, px, py, m);
+          }), t.samples);
         }
       });
       break;
@@ -110,7 +112,8 @@ void traverse(const SetupTriangle& t, const TraversalParams& p, TraversalCounter
         if (x0 >= x1) return;
         ++c.spans;
         c.fragments += static_cast<uint64_t>(x1 - x0);
-        for (int px = x0; px < x1; ++px) emit(px, py);
+        c.samples_covered += static_cast<uint64_t>(x1 - x0);  // one sample: config validation
+        for (int px = x0; px < x1; ++px) emit_pixel(emit, px, py, 1u);
       });
       break;
   }

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "ref/tri_setup.h"
 
+#include "ref/sample_pattern.h"
+
 #include <algorithm>
 
 namespace rastsim {
@@ -56,6 +58,8 @@ SetupOutcome setup_triangle(const std::array<SceneVertex, 3>& v, const RasterSta
   t.interp_arith = st.interp_arith;
   t.interp_frac_bits = st.interp_frac_bits;
   t.depth_bits = st.depth_bits;
+  t.samples = st.samples;
+  t.aa_mode = st.aa_mode;
   for (int i = 0; i < 3; ++i) {
     const auto sx = snap_coord(v[i].x, t.origin_x, fmt);
     const auto sy = snap_coord(v[i].y, t.origin_y, fmt);
@@ -104,10 +108,15 @@ SetupOutcome setup_triangle(const std::array<SceneVertex, 3>& v, const RasterSta
   }
   if (sign < 0) t.area2 = -t.area2;
 
-  // Bounding box of pixel centres inside the snapped vertices' hull, clipped.
+  // Bounding box of pixel centres inside the snapped vertices' hull, clipped. A pixel
+  // whose sample s sits at centre + d_s is in the box when some sample may be, so the
+  // hull is widened by the pattern's offset box (0 for one sample).
   const int F = fmt.frac_bits;
-  const int64_t xmin = std::min({t.x[0], t.x[1], t.x[2]}), xmax = std::max({t.x[0], t.x[1], t.x[2]});
-  const int64_t ymin = std::min({t.y[0], t.y[1], t.y[2]}), ymax = std::max({t.y[0], t.y[1], t.y[2]});
+  const SamplePattern& pat = sample_pattern(st.samples, F);
+  const int64_t xmin = std::min({t.x[0], t.x[1], t.x[2]}) - pat.dx_max;
+  const int64_t xmax = std::max({t.x[0], t.x[1], t.x[2]}) - pat.dx_min;
+  const int64_t ymin = std::min({t.y[0], t.y[1], t.y[2]}) - pat.dy_max;
+  const int64_t ymax = std::max({t.y[0], t.y[1], t.y[2]}) - pat.dy_min;
   const PixelRect clip = st.clip_rect();
   const int64_t bx0 = std::max<int64_t>(first_pixel_at_or_after(xmin, t.origin_x, F), clip.x0);
   const int64_t by0 = std::max<int64_t>(first_pixel_at_or_after(ymin, t.origin_y, F), clip.y0);

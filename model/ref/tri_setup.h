@@ -8,7 +8,9 @@
 // - Three edge equations E(x, y) = A*x + B*y + C in raw units, oriented so that the
 //   interior is E > 0 for either winding, with the fill-rule bias folded in so that a
 //   sample is covered exactly when E + bias >= 0 (bias is 0 or -1).
-// - Bounding box of the snapped vertices in pixels, clamped to viewport and scissor.
+// - Bounding box of the snapped vertices in pixels, clamped to viewport and scissor:
+//   the pixels whose centre, or with raster.samples > 1 whose sample positions' bounding
+//   box, may be covered.
 // - Per-vertex attributes (RGB8, depth quantised to raster.depth_bits).
 #pragma once
 
@@ -58,6 +60,8 @@ struct SetupTriangle {
   InterpArith interp_arith = InterpArith::Fixed;
   int interp_frac_bits = 16;
   int depth_bits = 24;  // raster.depth_bits: the range the dda method clamps depth to
+  int samples = 1;      // raster.samples: coverage is a mask of this many bits a pixel
+  AaMode aa_mode = AaMode::Msaa;
 
   // Raw coordinate of the centre of pixel column px / row py.
   int64_t sample_x(int px, int frac_bits) const {
@@ -66,6 +70,7 @@ struct SetupTriangle {
   int64_t sample_y(int py, int frac_bits) const {
     return ((int64_t(py) - origin_y) << frac_bits) + (int64_t{1} << (frac_bits - 1));
   }
+  uint32_t full_mask() const { return samples >= 32 ? ~0u : (1u << samples) - 1; }
 };
 
 // Sets up one triangle. On CulledOutOfRange with raster.out_of_range = error it throws

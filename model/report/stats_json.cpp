@@ -28,6 +28,15 @@ nlohmann::json to_json(const RenderStats& s) {
       {"tiles_partial", s.traversal.tiles_partial},
       {"pixel_tests", s.traversal.pixel_tests},
       {"fragments", s.traversal.fragments},
+      {"samples", s.samples},
+      {"sample_tests", s.traversal.sample_tests},
+      {"samples_covered", s.traversal.samples_covered},
+      {"pixels_partially_covered", s.traversal.pixels_partially_covered},
+      {"samples_passed", s.samples_passed},
+      {"fragments_shaded", s.fragments_shaded},
+      {"color_buffer_bytes", s.color_buffer_bytes},
+      {"depth_buffer_bytes", s.depth_buffer_bytes},
+      {"resolve_bytes", s.resolve_bytes},
       {"fragments_passed", s.fragments_passed},
       {"max_attr_error_lsb", s.max_attr_error_lsb},
       {"mean_attr_error_lsb", s.traversal.fragments ? double(s.attr_error_sum) / double(3 * s.traversal.fragments) : 0.0},
@@ -43,6 +52,7 @@ nlohmann::json to_json(const RenderStats& s) {
   // stats are the same as before raster.traversal existed.
   if (s.traversal_method != Traversal::Tiled) j["traversal"] = to_string(s.traversal_method);
   if (s.traversal_method == Traversal::Scanline) j["spans"] = s.traversal.spans;
+  if (s.samples > 1) j["aa_mode"] = s.aa_mode == AaMode::Ssaa ? "ssaa" : "msaa";
   if (s.coverage.measured) {
     j["pixels_wrong"] = s.coverage.pixels_wrong;
     j["cracks"] = s.coverage.cracks;
