@@ -35,7 +35,11 @@ void run_render_command(const RenderOptions& o) {
               << stats.traversal.tiles_visited << " tiles (" << stats.traversal.tiles_rejected << " rejected, "
               << stats.traversal.tiles_accepted << " accepted, " << stats.traversal.tiles_partial
               << " partial), " << stats.traversal.pixel_tests << " pixel tests, " << stats.traversal.fragments
-              << " fragments, crc32 " << crc32_hex(stats.framebuffer_crc32) << ", " << stats.wall_seconds << " s\n";
+              << " fragments, ";
+    if (stats.samples > 1)
+      std::cout << stats.samples << " samples (" << (stats.aa_mode == AaMode::Ssaa ? "ssaa" : "msaa") << ", "
+                << stats.traversal.samples_covered << " covered), ";
+    std::cout << "crc32 " << crc32_hex(stats.framebuffer_crc32) << ", " << stats.wall_seconds << " s\n";
   }
 }
 

@@ -4,7 +4,8 @@
 // Seeded random triangulations that tile the viewport exactly (or a larger region in
 // the guard band, clipped) are rendered and every fragment is counted through the
 // FragmentSink: each viewport pixel must be hit exactly once, none outside it, so the
-// total is width * height. Mesh kinds:
+// total is width * height; and with raster.samples = 2, 4, 8, 16 each SAMPLE of each
+// viewport pixel exactly once (the top-left rule per sample). Mesh kinds:
 // - jittered grids: border vertices on the viewport border, interior vertices jittered
 //   (some exactly on pixel centres or corners), each quad split along a random
 //   diagonal, each triangle given a random winding;
@@ -32,6 +33,7 @@
 
 #include "config/raster_state_config.h"
 #include "ref/pipeline.h"
+#include "ref/sample_pattern.h"
 
 namespace rastsim {
 namespace {
@@ -134,28 +136,64 @@ class Watertight : public ::testing::TestWithParam<WtCase> {
     scene.commands.push_back({CmdViewport{c.vw, c.vh}, {"gen", 1}});
     scene.commands.push_back({CmdClear{0, 0, 0}, {"gen", 2}});
     scene.commands.push_back({std::move(prims), {"gen", 3}});
-    RasterState st = raster_state_from_config(Config{});
-    st.coord_format = c.fmt;
-    st.tile_size = c.tile;
-    st.fill_rule = FillRule::TopLeft;
-    st.fb_width = c.vw + 3;  // a framebuffer margin the viewport must keep clear
-    st.fb_height = c.vh + 2;
-    RenderStats stats;
-    std::vector<uint32_t> hits(size_t(st.fb_width) * st.fb_height, 0);
-    uint64_t outside = 0;
-    render_scene(scene, st, stats, [&](const Fragment& f) {
-      if (f.x < 0 || f.y < 0 || f.x >= c.vw || f.y >= c.vh) ++outside;
-      else ++hits[size_t(f.y) * st.fb_width + f.x];
-    });
-    EXPECT_EQ(outside, 0u);
-    EXPECT_EQ(stats.traversal.fragments, uint64_t(c.vw) * c.vh);
-    EXPECT_EQ(stats.triangles_in, tris.size());
-    int reported = 0;
-    for (int y = 0; y < c.vh; ++y)
-      for (int x = 0; x < c.vw; ++x)
-        if (hits[size_t(y) * st.fb_width + x] != 1 && reported++ < 5)
-          ADD_FAILURE() << "pixel (" << x << ", " << y << ") hit " << hits[size_t(y) * st.fb_width + x]
-                        << " times";
+    // Every sample count: each sample of each viewport pixel is hit exactly once (the
+    // mask bits of the fragments) when its position lies in the mesh's half-open
+    // bounding rectangle (top-left rule on its left and top sides), never otherwise:
+    // W x H x S samples in all when F >= 4, where every offset is inside [-8, 7]/16 px;
+    // on a coarser grid an offset can snap to +1/2 px, onto the pixel's right or bottom
+    // edge, which on the last column or row is the mesh's excluded boundary.
+    int64_t mx0 = INT64_MAX, my0 = INT64_MAX, mx1 = INT64_MIN, my1 = INT64_MIN;
+    for (const auto& t : tris)
+      for (const GridPt& p : t) {
+        mx0 = std::min(mx0, p.a), mx1 = std::max(mx1, p.a);
+        my0 = std::min(my0, p.b), my1 = std::max(my1, p.b);
+      }
+    for (int S : {1, 2, 4, 8, 16}) {
+      SCOPED_TRACE("raster.samples = " + std::to_string(S));
+      RasterState st = raster_state_from_config(Config{});
+      st.coord_format = c.fmt;
+      st.tile_size = c.tile;
+      st.fill_rule = FillRule::TopLeft;
+      st.samples = S;
+      st.fb_width = c.vw + 3;  // a framebuffer margin the viewport must keep clear
+      st.fb_height = c.vh + 2;
+      RenderStats stats;
+      std::vector<uint32_t> hits(size_t(st.fb_width) * st.fb_height * S, 0);
+      uint64_t outside = 0;
+      render_scene(scene, st, stats, [&](const Fragment& f) {
+        if (f.x < 0 || f.y < 0 || f.x >= c.vw || f.y >= c.vh) ++outside;
+        else
+          for (int s = 0; s < S; ++s)
+            if ((f.mask >> s) & 1) ++hits[(size_t(f.y) * st.fb_width + f.x) * S + s];
+      });
+      EXPECT_EQ(outside, 0u);
+      const SamplePattern& pat = sample_pattern(S, F);
+      auto inside = [&](int x, int y, int s) {
+        const int64_t sx = int64_t(x) * one + one / 2 + pat.dx[size_t(s)];
+        const int64_t sy = int64_t(y) * one + one / 2 + pat.dy[size_t(s)];
+        return sx >= mx0 && sx < mx1 && sy >= my0 && sy < my1;
+      };
+      uint64_t expected = 0;
+      for (int y = 0; y < c.vh; ++y)
+        for (int x = 0; x < c.vw; ++x)
+          for (int s = 0; s < S; ++s) expected += inside(x, y, s);
+      if (F >= 4) {
+        EXPECT_EQ(expected, uint64_t(c.vw) * c.vh * S);
+      }
+      EXPECT_EQ(stats.traversal.samples_covered, expected);
+      if (S == 1) {
+        EXPECT_EQ(stats.traversal.fragments, uint64_t(c.vw) * c.vh);
+      }
+      EXPECT_EQ(stats.triangles_in, tris.size());
+      int reported = 0;
+      for (int y = 0; y < c.vh; ++y)
+        for (int x = 0; x < c.vw; ++x)
+          for (int s = 0; s < S; ++s) {
+            const uint32_t h = hits[(size_t(y) * st.fb_width + x) * S + s];
+            if (h != (inside(x, y, s) ? 1u : 0u) && reported++ < 5)
+              ADD_FAILURE() << "pixel (" << x << ", " << y << ") sample " << s << " hit " << h << " times";
+          }
+    }
   }
 
   int F = 0;
