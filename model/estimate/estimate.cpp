@@ -2,6 +2,7 @@
 #include "estimate/estimate.h"
 
 #include <algorithm>
+#include <bit>
 #include <chrono>
 #include <cmath>
 
@@ -26,8 +27,20 @@ class Walker {
  public:
   Walker(const RasterState& arch, const TimingParams& p, EstimateResult& r)
       : st_(arch), tp_(traversal_params(arch)), p_(p), r_(r),
-        fb_pixels_(uint64_t(arch.fb_width) * uint64_t(arch.fb_height)) {
+        fb_pixels_(uint64_t(arch.fb_width) * uint64_t(arch.fb_height)),
+        depth_bytes_(uint64_t((arch.depth_bits + 7) / 8)) {
     r_.render.traversal_method = tp_.method;
+    count_multisample_footprint(arch, r_.render);
+  }
+
+  // After the last command, with raster.samples > 1: the end-of-frame marker (fetched
+  // like a command header) and the ROP's resolve pass, as sc/command_fetch and sc/rop.
+  void end_of_frame() {
+    if (st_.samples == 1) return;
+    work(Fetch, p_.fetch_header_cycles());
+    r_.resolve_cycles = p_.resolve_cycles(fb_pixels_, st_.samples);
+    r_.framebuffer_bytes += r_.render.resolve_bytes;
+    marker(r_.resolve_cycles, false);
   }
 
   void command(const Command& cmd) {
@@ -37,7 +50,9 @@ class Walker {
       Framebuffer no_fb;  // clears pass to the ROP; only viewport and scissor matter here
       apply_state_command(cmd, st_, no_fb);
       work(Fetch, p_.fetch_header_cycles());
-      const bool clear = std::holds_alternative<CmdClear>(cmd.body) || std::holds_alternative<CmdClearDepth>(cmd.body);
+      const bool color = std::holds_alternative<CmdClear>(cmd.body);
+      const bool clear = color || std::holds_alternative<CmdClearDepth>(cmd.body);
+      if (clear) r_.framebuffer_bytes += fb_pixels_ * (color ? 4 : depth_bytes_);
       return marker(p_.rop_state_cycles(clear, fb_pixels_), false);
     }
     const size_t n = triangle_count(*prims);
@@ -75,6 +90,7 @@ class Walker {
   }
 
   void draw2d(const Command& cmd, const CmdDraw2d& d2) {
+    check_2d_sample_count(cmd, st_);
     // Fetch writes the command to the 2D front end and its marker down the triangle path.
     work(Fetch, p_.fetch_draw2d_cycles(draw2d_vertex_count(d2)));
     emit(Fetch);
@@ -139,35 +155,54 @@ class Walker {
   }
 
   // One tile item through fine raster, interpolation and the ROP, as sc/fine_raster.
+  // Per covered pixel of mask m (S = raster.samples): interpolation shades 1 fragment
+  // (S = 1, msaa) or popcount(m) (ssaa), and the ROP makes rop_accesses(m, S) accesses
+  // (msaa) or one per shaded fragment (ssaa: one sample each), as sc/interpolate, sc/rop.
   void tile(const SetupTriangle& t, const PixelRect& fp, TileClass cls, bool span) {
     emit(Coarse);
     TraversalCounters& c = r_.render.traversal;
-    uint64_t n = 0, cost = 0;  // covered pixels; fine raster cycles
+    const int S = t.samples;
+    const bool ssaa = S > 1 && t.aa_mode == AaMode::Ssaa;
+    uint64_t n = 0, cost = 0;     // covered pixels; fine raster cycles
+    uint64_t shaded = 0, acc = 0;  // fragments out of interpolation; ROP accesses
+    auto pixel = [&](uint32_t m) {
+      ++n;
+      const uint64_t k = ssaa ? uint64_t(std::popcount(m)) : 1;
+      shaded += k;
+      acc += ssaa ? k : TimingParams::rop_accesses(m, S);
+    };
     if (span) {
-      n = uint64_t(fp.area());
+      for (int64_t i = 0; i < fp.area(); ++i) pixel(1u);
+      c.count_accepted(fp.area(), 1);
       cost = p_.fine_span_cycles(n);
     } else if (cls == TileClass::Accepted) {
-      n = uint64_t(fp.area());
+      for (int64_t i = 0; i < fp.area(); ++i) pixel(t.full_mask());
+      c.count_accepted(fp.area(), S);
       cost = p_.fine_accepted_cycles();
     } else {
-      const uint64_t tests = fine_raster_partial(t, fp, tp_.frac_bits, [&](int, int) { ++n; });
-      c.pixel_tests += tests;
-      cost = p_.fine_partial_cycles(tests);
+      const uint64_t tests = fine_raster_partial(t, fp, tp_.frac_bits, [&](int, int, uint32_t m) {
+        c.count_pixel(m, S);
+        pixel(m);
+      });
+      c.count_tests(tests, S);
+      cost = p_.fine_partial_cycles(tests, S);
     }
-    c.fragments += n;
+    r_.render.fragments_shaded += shaded;
+    r_.rop_accesses += acc;
+    r_.framebuffer_bytes += acc * (4 + depth_bytes_);
     r_.stages[Fine].busy += cost;
     if (n == 0) return;  // an empty tile leaves nothing
     emit(Fine);
-    work(Interp, p_.interp_batch_cycles(n));
+    work(Interp, p_.interp_batch_cycles(shaded));
     r_.latency_waits += p_.interp_latency;
-    r_.stages[Rop].busy += p_.rop_fragment_cycles(n);
+    r_.stages[Rop].busy += p_.rop_fragment_cycles(acc);
   }
 
   RasterState st_;
   TraversalParams tp_;
   const TimingParams& p_;
   EstimateResult& r_;
-  uint64_t fb_pixels_;
+  uint64_t fb_pixels_, depth_bytes_;
 };
 
 }  // namespace
@@ -180,6 +215,7 @@ EstimateResult estimate_scene(const Scene& scene, const Config& cfg) {
   r.core_mhz = p.core_mhz;
   Walker walker(arch, p, r);
   for (const Command& cmd : scene.commands) walker.command(cmd);
+  walker.end_of_frame();
 
   // Lower bound: a stage with work cannot start before its fill and is busy for all its
   // cycles (docs/estimate.md). Upper bound: until the simulation ends some stage is
@@ -207,6 +243,9 @@ nlohmann::json EstimateResult::to_json() const {
   j["core_mhz"] = core_mhz;
   j["estimated_seconds"] = double(cycles_estimate) / (core_mhz * 1e6);
   j["wall_seconds"] = wall_seconds;
+  j["rop_accesses"] = rop_accesses;
+  j["framebuffer_bytes"] = framebuffer_bytes;
+  j["resolve_cycles"] = resolve_cycles;
   for (size_t s = 0; s < stages.size(); ++s)
     j["stages"][kEstimateStageNames[s]] = {{"busy", stages[s].busy}, {"transactions_out", stages[s].transactions_out}};
   // The geometry counters the walk produces (the same values as render/simulate); the
@@ -215,6 +254,8 @@ nlohmann::json EstimateResult::to_json() const {
   for (const char* key : {"triangles_in", "triangles_culled", "triangles_zero_area", "triangles_facing_culled",
                           "triangles_out_of_range", "triangles_outside_clip", "triangles_rasterized", "tiles_visited",
                           "tiles_rejected", "tiles_accepted", "tiles_partial", "pixel_tests", "fragments",
+                          "samples", "aa_mode", "sample_tests", "samples_covered", "pixels_partially_covered",
+                          "fragments_shaded", "color_buffer_bytes", "depth_buffer_bytes", "resolve_bytes",
                           "primitives_2d", "primitives_2d_culled", "traversal", "spans"})
     if (all.contains(key)) j[key] = all[key];
   return j;

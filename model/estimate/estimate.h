@@ -6,7 +6,9 @@
 //   (assemble_triangle, setup_triangle, the tile walks, fine_raster_partial, draw2d_ops)
 //   and sums each transaction's cost through the SAME TimingParams functions the
 //   SystemC stages call, so each stage's busy total equals the SystemC stage's `busy`.
-// - No interpolation, depth test or framebuffer: costs depend only on counts.
+// - No interpolation, depth test or framebuffer: costs depend only on counts (with
+//   raster.samples > 1, on the coverage masks: fine tests x S, ROP accesses by the
+//   compression rule, shaded fragments per aa mode, and the frame-end resolve pass).
 // - Lower bound: max over stages with work of stage_fill_cycles + busy.
 // - Upper bound: sum of every stage's busy cycles plus every pipeline-latency wait
 //   (setup's and interpolation's extra latency times the transactions they emit).
@@ -43,13 +45,17 @@ struct EstimateStage {
 struct EstimateResult {
   std::array<EstimateStage, kEstimateStageNames.size()> stages{};
   RenderStats render;  // geometry counters only (no fragments_passed, CRC, interp error)
+  // The ROP's traffic, as SimResult's (exact: accesses follow from the coverage masks
+  // and aa mode alone, not from the depth test).
+  uint64_t rop_accesses = 0, framebuffer_bytes = 0, resolve_cycles = 0;
   uint64_t latency_waits = 0;  // the upper bound's sum of pipeline-latency waits, cycles
   uint64_t cycles_lower_bound = 0, cycles_upper_bound = 0, cycles_estimate = 0;
   double core_mhz = 0;
   double wall_seconds = 0;
 
   // cycles_lower_bound, cycles_upper_bound, cycles_estimate, wall_seconds, core_mhz,
-  // stages.<name>.{busy,transactions_out}, and the geometry counters.
+  // rop_accesses, framebuffer_bytes, resolve_cycles, stages.<name>.{busy,transactions_out},
+  // and the geometry counters (with the multisample ones).
   nlohmann::json to_json() const;
 };
 

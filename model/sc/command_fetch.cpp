@@ -9,6 +9,7 @@ namespace rastsim::sc {
 void CommandFetch::body() {
   for (const Command& cmd : scene_.commands) {
     if (const auto* d2 = std::get_if<CmdDraw2d>(&cmd.body)) {
+      check_2d_sample_count(cmd, st_);
       busy(p_.fetch_draw2d_cycles(draw2d_vertex_count(*d2)));
       write(out_2d_, Draw2dItem{nullptr, Draw2dJob{&cmd, std::make_shared<const RasterState>(st_)}});
       write(out_, CommandItem{&cmd, {}});
@@ -28,6 +29,12 @@ void CommandFetch::body() {
       busy(p_.fetch_triangle_cycles(k == 0, new_vertices));
       write(out_, CommandItem{nullptr, TriangleRef{&cmd, k}});
     }
+  }
+  // Multisampling: the frame ends with the resolve pass, ordered after every fragment by
+  // a marker fetched like a command header (sc/rop.h).
+  if (st_.samples > 1) {
+    busy(p_.fetch_header_cycles());
+    write(out_, CommandItem{&ctx_.end_of_frame, {}});
   }
 }
 

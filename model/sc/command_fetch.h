@@ -13,6 +13,9 @@
 //   fetch.vertices_per_cycle) per triangle (3 new vertices in a list, 1 in a strip or
 //   fan after its first triangle); a 2D command its header plus ceil(vertices /
 //   fetch.vertices_per_cycle).
+// - With raster.samples > 1, after the last command: the end-of-frame marker
+//   (SimContext::end_of_frame), one command header, down the triangle path; a 2D
+//   command is an error there (check_2d_sample_count).
 #pragma once
 
 #include <cstddef>

@@ -11,20 +11,25 @@ void FineRaster::body() {
     const TileWork& tile = in.work;
     auto batch = std::make_shared<PixelBatch>();
     batch->tri = tile.tri;
-    auto emit = [&](int px, int py) { batch->pixels.push_back({px, py}); };
+    const int samples = tile.tri->samples;
+    auto emit = [&](int px, int py, uint32_t m) { batch->pixels.push_back({px, py, m}); };
     uint64_t cost = 0;
-    if (tile.span) {
+    if (tile.span) {  // one sample (the config rejects scanline with raster.samples > 1)
       fine_raster_accepted(tile.footprint, emit);
+      c.count_accepted(tile.footprint.area(), 1);
       cost = p_.fine_span_cycles(uint64_t(tile.footprint.area()));
     } else if (tile.cls == TileClass::Accepted) {
-      fine_raster_accepted(tile.footprint, emit);
+      fine_raster_accepted(tile.footprint, emit, tile.tri->full_mask());
+      c.count_accepted(tile.footprint.area(), samples);
       cost = p_.fine_accepted_cycles();
     } else {
-      const uint64_t tests = fine_raster_partial(*tile.tri, tile.footprint, frac_bits_, emit);
-      c.pixel_tests += tests;
-      cost = p_.fine_partial_cycles(tests);
+      const uint64_t tests = fine_raster_partial(*tile.tri, tile.footprint, frac_bits_, [&](int px, int py, uint32_t m) {
+        c.count_pixel(m, samples);
+        emit(px, py, m);
+      });
+      c.count_tests(tests, samples);
+      cost = p_.fine_partial_cycles(tests, samples);
     }
-    c.fragments += batch->pixels.size();
     attribute_to(tile.footprint.x0, tile.footprint.y0);
     busy(cost);
     if (!batch->pixels.empty()) write(out_, PixelItem{nullptr, std::move(batch)});

@@ -13,12 +13,15 @@ void Interpolate::body() {
     auto frags = std::make_shared<std::vector<Fragment>>();
     frags->reserve(batch.pixels.size());
     for (const Pixel& px : batch.pixels) {
-      frags->push_back(interpolate(*batch.tri, px.x, px.y, frac_bits_));
-      // interp.method = dda: its error against the plane equations, counted as the
-      // reference's render_scene counts it (same stats keys at both levels).
-      if (batch.tri->interp_method != InterpMethod::Plane)
-        count_interp_error(frags->back(), interpolate_plane(*batch.tri, px.x, px.y, frac_bits_), ctx_.render);
-      if (ctx_.on_fragment) ctx_.on_fragment(frags->back());
+      shade_pixel(*batch.tri, px.x, px.y, px.mask, frac_bits_, [&](const Fragment& f) {
+        frags->push_back(f);
+        // interp.method = dda: its error against the plane equations, counted as the
+        // reference's render_scene counts it (same stats keys at both levels).
+        if (batch.tri->interp_method != InterpMethod::Plane)
+          count_interp_error(f, interpolate_plane(*batch.tri, px.x, px.y, frac_bits_), ctx_.render);
+        ++ctx_.render.fragments_shaded;
+        if (ctx_.on_fragment) ctx_.on_fragment(f);
+      });
     }
     if (!frags->empty()) attribute_to(frags->front().x, frags->front().y);  // the batch's tile
     busy(p_.interp_batch_cycles(frags->size()));

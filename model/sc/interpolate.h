@@ -1,9 +1,12 @@
 // SPDX-License-Identifier: Apache-2.0
 // Attribute interpolation: colour and depth of each covered pixel (ref/interpolate.h:
-// interpolate), a tile's batch at a time.
+// shade_pixel), a tile's batch at a time.
 //
-// - A batch of N pixels takes ceil(N / interp.fragments_per_cycle) cycles; its fragments
-//   are ready for the ROP interp.latency_cycles later (divider pipeline).
+// - Each pixel gives its fragments by shade_pixel: one (one sample, or msaa: centre-
+//   shaded, carrying the pixel's mask), or one per covered sample (ssaa).
+// - A batch shading N fragments takes ceil(N / interp.fragments_per_cycle) cycles; its
+//   fragments are ready for the ROP interp.latency_cycles later (divider pipeline).
+// - Counts fragments_shaded.
 // - Every fragment leaving here goes to the fragment sink, in order: the same stream
 //   (ref/pipeline.h: fragment_trace_line) as the reference model's.
 #pragma once

@@ -107,6 +107,7 @@ SimResult simulate_scene(const Scene& scene, const Config& cfg, const SimOptions
   ctx.stall_seed = opts.stall_seed;
   ctx.stall_probability = opts.stall_probability;
   ctx.on_fragment = opts.on_fragment;
+  count_multisample_footprint(arch, ctx.render);
   // Built once and kept: SystemC does not support tearing a design down.
   static RasterPipeline* top = nullptr;
   if (top) throw std::logic_error("simulate_scene: SystemC elaborates only once per process");
@@ -161,6 +162,9 @@ SimResult simulate_scene(const Scene& scene, const Config& cfg, const SimOptions
   });
   top->coarse_raster.finish_coverage();
   r.render = ctx.render;
+  r.rop_accesses = ctx.rop_accesses;
+  r.framebuffer_bytes = ctx.framebuffer_bytes;
+  r.resolve_cycles = ctx.resolve_cycles;
   r.fb = top->rop.framebuffer();
   r.render.framebuffer_crc32 = r.fb.color_crc32();
   r.sim_wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -176,6 +180,9 @@ nlohmann::json SimResult::to_json() const {
   j["simulated_seconds"] = double(cycles) / (core_mhz * 1e6);
   j["sim_wall_seconds"] = sim_wall_seconds;
   j["simulated_cycles_per_second"] = sim_wall_seconds > 0 ? double(cycles) / sim_wall_seconds : 0.0;
+  j["rop_accesses"] = rop_accesses;
+  j["framebuffer_bytes"] = framebuffer_bytes;
+  j["resolve_cycles"] = resolve_cycles;
   for (const StageReport& s : stages)
     j["stages"][s.name] = {{"busy", s.busy},
                            {"stalled", s.stalled},

@@ -51,6 +51,11 @@ struct FifoReport {
 struct SimResult {
   Framebuffer fb;
   RenderStats render;                // the reference model's counters (same names)
+  // The ROP's framebuffer traffic (sc/rop.h, docs/microarchitecture.md "Multisampling"):
+  // accesses (rop_accesses summed over every fragment), bytes moved (accesses x (4 +
+  // depth bytes) + clears + resolve_bytes), and the resolve pass's cycles (0 for one
+  // sample), which are the ROP's busy cycles at the end of the frame.
+  uint64_t rop_accesses = 0, framebuffer_bytes = 0, resolve_cycles = 0;
   uint64_t cycles = 0;               // first command to the end of the last transaction
   uint64_t cycles_lower_bound = 0;   // max over stages of fill latency + busy cycles
   std::vector<StageReport> stages;   // in pipeline order
@@ -63,7 +68,8 @@ struct SimResult {
   std::vector<TileHeat> heat;
 
   // RenderStats::to_json plus cycles, cycles_lower_bound, simulated_seconds,
-  // sim_wall_seconds, simulated_cycles_per_second, stages.<name>.{busy,...}, fifos.<name>.
+  // sim_wall_seconds, simulated_cycles_per_second, rop_accesses, framebuffer_bytes,
+  // resolve_cycles, stages.<name>.{busy,...}, fifos.<name>.
   nlohmann::json to_json() const;
 };
 

@@ -8,7 +8,8 @@ namespace rastsim::sc {
 
 Rop::Rop(sc_core::sc_module_name name, SimContext& ctx, const RasterState& arch, const TimingParams& p,
          Link<FragmentItem>& in, Link<PortGrant>& grant_2d, Link<PortGrant>& done_2d)
-    : Stage(name, ctx, 6), st_(arch), fb_(arch.fb_width, arch.fb_height), p_(p), in_(in), grant_2d_(grant_2d),
+    : Stage(name, ctx, 6), st_(arch), fb_(arch.fb_width, arch.fb_height, arch.samples),
+      depth_bytes_(uint64_t((arch.depth_bits + 7) / 8)), p_(p), in_(in), grant_2d_(grant_2d),
       done_2d_(done_2d) {
   // As render_scene: the depth buffer starts at the far value.
   fb_.clear_depth(static_cast<uint32_t>((uint64_t{1} << st_.depth_bits) - 1));
@@ -24,18 +25,34 @@ void Rop::body() {
       busy(TimingParams::rop_draw2d_marker_cycles());
       continue;
     }
-    if (in.state) {
-      apply_state_command(*in.state, st_, fb_);
-      const bool clear = std::holds_alternative<CmdClear>(in.state->body) ||
-                         std::holds_alternative<CmdClearDepth>(in.state->body);
+    const uint64_t fb_pixels = uint64_t(fb_.width) * uint64_t(fb_.height);
+    if (in.state && ctx_.is_end_of_frame(in.state)) {  // the multisample resolve pass
+      fb_ = fb_.resolve();
+      ctx_.resolve_cycles = p_.resolve_cycles(fb_pixels, st_.samples);
+      ctx_.framebuffer_bytes += ctx_.render.resolve_bytes;
       attribute_to_no_tile();
-      busy(p_.rop_state_cycles(clear, uint64_t(fb_.width) * uint64_t(fb_.height)));
+      busy(ctx_.resolve_cycles);
       continue;
     }
-    for (const Fragment& f : *in.work)
-      if (rop_write(fb_, f, st_.depth_func, st_.depth_write)) ++ctx_.render.fragments_passed;
+    if (in.state) {
+      apply_state_command(*in.state, st_, fb_);
+      const bool color = std::holds_alternative<CmdClear>(in.state->body);
+      const bool clear = color || std::holds_alternative<CmdClearDepth>(in.state->body);
+      if (clear) ctx_.framebuffer_bytes += fb_pixels * (color ? 4 : depth_bytes_);
+      attribute_to_no_tile();
+      busy(p_.rop_state_cycles(clear, fb_pixels));
+      continue;
+    }
+    uint64_t accesses = 0;
+    for (const Fragment& f : *in.work) {
+      accesses += TimingParams::rop_accesses(f.mask, fb_.samples);
+      if (rop_write(fb_, f, st_.depth_func, st_.depth_write, &ctx_.render.samples_passed))
+        ++ctx_.render.fragments_passed;
+    }
+    ctx_.rop_accesses += accesses;
+    ctx_.framebuffer_bytes += accesses * (4 + depth_bytes_);
     if (!in.work->empty()) attribute_to(in.work->front().x, in.work->front().y);  // the batch's tile
-    busy(p_.rop_fragment_cycles(in.work->size()));
+    busy(p_.rop_fragment_cycles(accesses));
   }
 }
 

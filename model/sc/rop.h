@@ -3,12 +3,21 @@
 // the clears, in program order (ref/pipeline.h: apply_state_command). Owns the
 // framebuffer.
 //
-// - A batch of N fragments takes ceil(N / rop.pixels_per_cycle) cycles.
+// - A batch of fragments takes ceil(A / rop.pixels_per_cycle) cycles, A the sum of
+//   TimingParams::rop_accesses over its fragments: 1 a fragment with one sample or a full
+//   mask (a fully covered pixel is written once: the compression rule), else one per
+//   covered sample (ssaa fragments carry one sample each: 1 access).
 // - A colour or depth clear takes ceil(W * H / rop.clear_pixels_per_cycle) cycles for
-//   the W x H framebuffer; viewport and scissor commands 1 cycle.
+//   the W x H framebuffer, whatever raster.samples; viewport and scissor commands 1 cycle.
+// - The end-of-frame marker (raster.samples = S > 1, SimContext::end_of_frame): the
+//   resolve pass, TimingParams::resolve_cycles(W H, S) = ceil((W H S 4 + W H 4) /
+//   rop.resolve_bytes_per_cycle) cycles; the framebuffer becomes the resolved one
+//   (Framebuffer::resolve, as render_scene's).
 // - A 2D command's marker: the ROP grants its framebuffer port to the 2D engine and
 //   holds until the engine is done (sc/engine2d.h), then 1 cycle.
-// - Counts fragments_passed.
+// - Counts fragments_passed, samples_passed, and the traffic (SimContext::rop_accesses,
+//   framebuffer_bytes, resolve_cycles): framebuffer_bytes = accesses x (4 + depth
+//   bytes) + (W H 4 a colour clear, W H depth bytes a depth clear) + resolve bytes.
 #pragma once
 
 #include "ref/framebuffer.h"
@@ -27,6 +36,7 @@ class Rop : public Stage {
   void body() override;
   RasterState st_;
   Framebuffer fb_;
+  uint64_t depth_bytes_;  // bytes of one depth value: ceil(raster.depth_bits / 8)
   const TimingParams& p_;
   Link<FragmentItem>& in_;
   Link<PortGrant>& grant_2d_;

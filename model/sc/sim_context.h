@@ -28,6 +28,15 @@ struct SimContext {
   int stall_max_cycles = 8;
 
   RenderStats render;       // the same counters as the reference model, stage by stage
+  // The ROP's framebuffer traffic (docs/microarchitecture.md, "Multisampling"): accesses
+  // (TimingParams::rop_accesses summed over every fragment), bytes moved, and the cycles
+  // of the frame-end resolve pass.
+  uint64_t rop_accesses = 0, framebuffer_bytes = 0, resolve_cycles = 0;
+  // The end-of-frame marker: with raster.samples > 1 command fetch sends it after the
+  // last command, down the triangle path like a state command; the ROP resolves on it.
+  // Identified by address; its body is never applied.
+  const Command end_of_frame{CmdScissor{}, SourceLoc{"end of frame", 0}};
+  bool is_end_of_frame(const Command* c) const { return c == &end_of_frame; }
   FragmentSink on_fragment;  // sees each fragment leaving interpolation, in order
 
   std::exception_ptr error;  // first exception raised in any stage (null when none)

@@ -8,7 +8,7 @@ namespace rastsim::sc {
 void TriSetup::body() {
   for (;;) {
     const TriangleItem in = read(in_);
-    if (in.state) apply_state_command(*in.state, st_, no_fb_);  // viewport, scissor
+    if (in.state && !ctx_.is_end_of_frame(in.state)) apply_state_command(*in.state, st_, no_fb_);  // viewport, scissor
     if (pass_state(in, out_, p_.setup_pipeline_latency())) continue;
     ++ctx_.render.triangles_in;
     auto tri = std::make_shared<SetupTriangle>();

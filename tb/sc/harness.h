@@ -30,6 +30,11 @@ nlohmann::json run_isolated(const std::function<nlohmann::json()>& fn);
 // "stats" (SimResult::to_json)}.
 nlohmann::json compare_with_reference(const Scene& scene, const Config& cfg, const sc::SimOptions& opts = {});
 
+// Checks a compare_with_reference() summary with gtest: same image, depth, fragments,
+// counters, and sane timing (cycles >= bound; busy + stalled + starved = cycles per
+// stage).
+void expect_matches_reference(const nlohmann::json& r);
+
 // In a child: the stats of one simulation (SimResult::to_json).
 nlohmann::json simulate_stats(const Scene& scene, const Config& cfg, const sc::SimOptions& opts = {});
 

@@ -18,25 +18,6 @@
 namespace rastsim::sctest {
 namespace {
 
-// Checks a compare_with_reference() summary: same image, depth, fragments, counters,
-// and sane timing (cycles >= bound; busy + stalled + starved = cycles per stage).
-void expect_matches_reference(const nlohmann::json& r) {
-  ASSERT_FALSE(r.contains("error")) << r["error"];
-  EXPECT_EQ(r["crc_sim"], r["crc_ref"]);
-  EXPECT_TRUE(r["depth_equal"].get<bool>());
-  EXPECT_TRUE(r["render_stats_equal"].get<bool>()) << r["stats"].dump();
-  EXPECT_EQ(r["fragments_sim"], r["fragments_ref"]);
-  EXPECT_EQ(r["first_mismatch"], -1) << "first differing fragment #" << r["first_mismatch"] << ": "
-                                     << r["mismatch"].get<std::string>();
-  const auto& s = r["stats"];
-  const uint64_t cycles = s["cycles"];
-  EXPECT_GE(cycles, s["cycles_lower_bound"].get<uint64_t>());
-  for (const auto& [name, st] : s["stages"].items()) {
-    SCOPED_TRACE(name);
-    EXPECT_EQ(st["busy"].get<uint64_t>() + st["stalled"].get<uint64_t>() + st["starved"].get<uint64_t>(), cycles);
-  }
-}
-
 // (tile size, coordinate format)
 using Arch = std::tuple<int, std::string>;
 
