@@ -11,24 +11,34 @@
 
 namespace rastsim::mesa {
 
-std::vector<uint32_t> reference_masks(const std::vector<GridTri>& tris, const RasterState& st) {
+std::array<SceneVertex, 3> scene_vertices(const GridTri& t, size_t index) {
+  std::array<SceneVertex, 3> out;
+  for (int v = 0; v < 3; ++v) {
+    SceneVertex& sv = out[size_t(v)];
+    // Raw 2^-F px -> Q64 (64 fraction bits): an exact shift; only setup rounds (F > 8).
+    sv.x = Q64{i128(t.x[v]) << (Q64::kFracBits - t.frac_bits)};
+    sv.y = Q64{i128(t.y[v]) << (Q64::kFracBits - t.frac_bits)};
+    sv.z = 0.5;
+    // Constant colour = index + 1 (0 is the clear colour): interpolating a constant
+    // gives it back exactly, so each fragment names its triangle.
+    sv.r = uint8_t(index + 1), sv.g = 0, sv.b = 0;
+  }
+  return out;
+}
+
+Scene indexed_scene(const std::vector<GridTri>& tris) {
   if (tris.size() > size_t(kMaxTrisPerPass)) throw std::invalid_argument("more than 32 triangles in one pass");
   Scene scene;
   scene.source = "mesa";
   CmdPrimitives prims;  // a triangle list
   for (size_t i = 0; i < tris.size(); ++i)
-    for (int v = 0; v < 3; ++v) {
-      SceneVertex sv;
-      // Raw 2^-F px -> Q64 (64 fraction bits): an exact shift; only setup rounds (F > 8).
-      sv.x = Q64{i128(tris[i].x[v]) << (Q64::kFracBits - tris[i].frac_bits)};
-      sv.y = Q64{i128(tris[i].y[v]) << (Q64::kFracBits - tris[i].frac_bits)};
-      sv.z = 0.5;
-      // Constant colour = index + 1 (0 is the clear colour): interpolating a constant
-      // gives it back exactly, so each fragment names its triangle.
-      sv.r = uint8_t(i + 1), sv.g = 0, sv.b = 0;
-      prims.vertices.push_back(sv);
-    }
+    for (const SceneVertex& sv : scene_vertices(tris[i], i)) prims.vertices.push_back(sv);
   scene.commands.push_back({std::move(prims), {"mesa", 1}});
+  return scene;
+}
+
+std::vector<uint32_t> reference_masks(const std::vector<GridTri>& tris, const RasterState& st) {
+  const Scene scene = indexed_scene(tris);
   std::vector<uint32_t> masks(size_t(st.fb_width) * size_t(st.fb_height), 0);
   RenderStats stats;
   render_scene(scene, st, stats, [&](const Fragment& f) {

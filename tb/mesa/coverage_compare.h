@@ -10,14 +10,22 @@
 //   mismatch naming the triangle, the pixel and both answers.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
 
 #include "osmesa_renderer.h"
 #include "ref/raster_state.h"
+#include "ref/scene.h"
 
 namespace rastsim::mesa {
+
+// The vertices of tris[index] as the reference model takes them: exact Q64 positions,
+// z = 0.5, constant colour (index + 1, 0, 0) so that every fragment names its triangle.
+std::array<SceneVertex, 3> scene_vertices(const GridTri& t, size_t index);
+// One triangle list of up to 32 such triangles.
+Scene indexed_scene(const std::vector<GridTri>& tris);
 
 // Per pixel (row-major, fb_width x fb_height), bit i set when the reference model emits
 // a fragment of tris[i] there (tris.size() <= 32). Throws std::logic_error if a

@@ -229,4 +229,21 @@ std::vector<GridTri> off_grid(const std::vector<GridTri>& tris, int extra_bits, 
   return out;
 }
 
+std::vector<GridTri> snap_to_grid(const std::vector<GridTri>& tris, bool ties_to_even) {
+  std::vector<GridTri> out;
+  for (const GridTri& t : tris) {
+    const int sh = t.frac_bits - kSubpixelBits;
+    const auto round = [&](int64_t c) {
+      if (sh == 0) return c;
+      const int64_t fl = c >> sh, rem = c - (fl << sh), half = int64_t{1} << (sh - 1);  // floor, remainder >= 0
+      if (rem > half || (rem == half && (!ties_to_even || (fl & 1)))) return fl + 1;
+      return fl;
+    };
+    GridTri o;
+    for (int v = 0; v < 3; ++v) o.x[v] = round(t.x[v]), o.y[v] = round(t.y[v]);
+    out.push_back(o);
+  }
+  return out;
+}
+
 }  // namespace rastsim::mesa

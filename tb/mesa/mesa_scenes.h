@@ -36,4 +36,8 @@ std::string describe(const GridTri& t);
 // offset for equal coordinates so shared vertices stay shared. Probes snapping.
 std::vector<GridTri> off_grid(const std::vector<GridTri>& tris, int extra_bits, uint64_t seed);
 
+// The same triangles rounded to the 1/256 grid (frac_bits 8) on the test side, ties up
+// (+inf) or to even, written out independently of the model's fixed_point.cpp.
+std::vector<GridTri> snap_to_grid(const std::vector<GridTri>& tris, bool ties_to_even);
+
 }  // namespace rastsim::mesa

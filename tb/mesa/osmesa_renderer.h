@@ -32,6 +32,25 @@ struct GridTri {
   int frac_bits = kSubpixelBits;  // 8..12
 };
 inline constexpr int kMaxTrisPerPass = 32;   // bits in one RGBA8 pixel
+// Viewport side (px), a power of two so that pixel <-> NDC is an exact scale by 2/P.
+// 8192 keeps vertices up to +-4096 px inside the clip volume (no clipping, so no new
+// vertices), far inside llvmpipe's 16384 viewport limit.
+inline constexpr int kViewport = 8192;
+
+// A new llvmpipe OSMesa context (compatibility profile, RGBA, no depth, stencil or
+// accumulation buffer), as an opaque OSMesaContext. Sets LP_NUM_THREADS=1 and
+// GALLIUM_DRIVER=llvmpipe unless the environment sets them. Throws std::runtime_error.
+void* create_llvmpipe_context();
+
+// The current context's state for coverage passes: identity matrices; culling, depth
+// test, dither, blending and alpha-to-coverage off; flat shading; logic op OR (not
+// enabled); clear colour 0; multisampling on or off.
+void set_coverage_state(bool multisample);
+
+// Draws tris with glBegin(GL_TRIANGLES) in the current context, raw 2^-F px -> NDC by
+// the exact scale 2 / (2^F P): triangle i in colour bit i (colour_bits) or in white.
+// Throws std::invalid_argument for a vertex that is not exact in binary32.
+void draw_triangles(const std::vector<GridTri>& tris, bool colour_bits);
 
 class OsMesaRenderer {
  public:

@@ -159,24 +159,6 @@ INSTANTIATE_TEST_SUITE_P(Scenes, MesaCoverage,
                                            KindCase{SceneKind::Fan, 16, 160}),
                          [](const auto& info) { return std::string(to_string(info.param.kind)); });
 
-// Rounds off-grid triangles to the 1/256 grid on the test side, ties up (+inf) or to
-// even, written out here independently of the model's fixed_point.cpp.
-std::vector<GridTri> presnap(const std::vector<GridTri>& tris, bool ties_to_even) {
-  std::vector<GridTri> out;
-  for (const GridTri& t : tris) {
-    const int sh = t.frac_bits - kSubpixelBits;
-    const auto round = [&](int64_t c) {
-      const int64_t fl = c >> sh, rem = c - (fl << sh), half = int64_t{1} << (sh - 1);  // floor, remainder >= 0
-      if (rem > half || (rem == half && (!ties_to_even || (fl & 1)))) return fl + 1;
-      return fl;
-    };
-    GridTri o;
-    for (int v = 0; v < 3; ++v) o.x[v] = round(t.x[v]), o.y[v] = round(t.y[v]);
-    out.push_back(o);
-  }
-  return out;
-}
-
 // Which snapping llvmpipe does, without trusting rastsim's: llvmpipe is given a mesh
 // with coordinates up to half an LSB off the grid (2^-9 px: every offset is 0 or an
 // exact tie); the reference model is given the same mesh rounded on the test side.
@@ -190,7 +172,7 @@ TEST(MesaSnapping, LlvmpipeRoundsTiesToEven) {
   const std::vector<GridTri> off = off_grid(make_scene(SceneKind::Mesh, seed, 256, st.fb_width, st.fb_height), 1, seed);
   uint64_t mismatches[2] = {};
   for (int even = 0; even < 2; ++even) {
-    const std::vector<GridTri> snapped = presnap(off, even == 1);
+    const std::vector<GridTri> snapped = snap_to_grid(off, even == 1);
     for (size_t first = 0; first < off.size(); first += kMaxTrisPerPass) {
       const size_t last = std::min(off.size(), first + kMaxTrisPerPass);
       const std::vector<uint32_t> ref =
