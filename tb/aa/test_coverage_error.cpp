@@ -57,6 +57,22 @@ TEST(CoverageError, SubPixelTriangle) {
   }
 }
 
+// The exact traversals emit the same masks (docs/traversal.md), so the same figures.
+TEST(CoverageError, SameForEveryExactTraversal) {
+  const Scene scene = load_scene(std::string(RASTSIM_SOURCE_DIR) + "/traces/aa/thin.trace", ObjPlacement{});
+  RasterState st = default_state();
+  const CoverageErrorResult tiled = measure_coverage_error(scene, st, kCounts);
+  for (Traversal m : {Traversal::Bbox, Traversal::Hierarchical}) {
+    st.traversal = m;
+    const CoverageErrorResult r = measure_coverage_error(scene, st, kCounts);
+    for (size_t i = 0; i < kCounts.size(); ++i) {
+      EXPECT_EQ(r.per_samples[i].edge_pixels, tiled.per_samples[i].edge_pixels);
+      EXPECT_EQ(r.per_samples[i].error_sum, tiled.per_samples[i].error_sum);
+      EXPECT_EQ(r.per_samples[i].error_max, tiled.per_samples[i].error_max);
+    }
+  }
+}
+
 TEST(CoverageError, RejectsBadCounts) {
   const Scene scene = parse_trace("viewport 128 128\ntri 0 0 8 0 0 8\n", "diag.trace");
   EXPECT_THROW(measure_coverage_error(scene, default_state(), {3}), std::invalid_argument);
