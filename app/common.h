@@ -117,5 +117,6 @@ void register_cosim(CLI::App& app), register_export_rtl(CLI::App& app), register
 void register_scanout(CLI::App& app), register_monitor(CLI::App& app);
 void register_fit(CLI::App& app);
 void register_estimate(CLI::App& app);
+void register_coverage_error(CLI::App& app);  // model/aa: masks against exact area coverage
 
 }  // namespace rastsim::app

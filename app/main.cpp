@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
   rastsim::app::register_cosim(app), rastsim::app::register_export_rtl(app), rastsim::app::register_area(app);
   rastsim::app::register_scanout(app), rastsim::app::register_monitor(app);
   rastsim::app::register_fit(app);
+  rastsim::app::register_coverage_error(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -19,6 +19,7 @@ RASTSIM_PACKAGES=(
   zstd          # the zstd tool: scripts/gen_scenes --compress zst, the CLI test
   python3-matplotlib
   gtkwave   # vcd2fst / fst2vcd for FST video signals (rastsim scanout --signal, monitor), and to view waveforms
+  libgmp-dev   # GMP's mpq_class: exact area coverage (model/aa, docs/exact-coverage.md)
   libosmesa6-dev   # OSMesa: Mesa's llvmpipe, headless, the independent renderer of ctest -L mesa (docs/mesa.md)
   yosys     # rastsim area, sweep --area: the RTL synthesised into generic gates (docs/area.md)
 )

@@ -12,6 +12,7 @@
 #include <sstream>
 #include <string>
 
+#include "common/default_state.h"
 #include "config/raster_state_config.h"
 #include "ref/coord_fit.h"
 #include "scene/scene_io.h"
@@ -19,11 +20,7 @@
 namespace rastsim {
 namespace {
 
-RasterState default_state() {
-  Config cfg;
-  cfg.load_file(std::string(RASTSIM_SOURCE_DIR) + "/configs/default.toml");
-  return raster_state_from_config(cfg);
-}
+using testing_common::default_state;
 
 // Checks the three properties of a fit; returns it.
 CoordFit check_fit(const Scene& scene, const RasterState& arch) {

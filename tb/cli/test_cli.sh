@@ -177,5 +177,26 @@ done
 expect_error "2D with samples" "raster.samples = 4" -- \
   "$BIN" simulate --scene "$SRC/traces/2d/test_card.trace" --set raster.samples=4 -q
 
+# 8. coverage-error: the JSON keys per sample count, the mean falling from 1 to 16 samples
+#    on a near-horizontal scene, a bad count and a scanline traversal refused; --help.
+if "$BIN" coverage-error --config "$CFG" --scene "$SRC/traces/aa/near_horizontal.trace" --samples 1,4,16 \
+     --stats "$TMP/ce.json" -q; then
+  /usr/bin/python3 -c "import json,sys; j=json.load(open(sys.argv[1]))['samples']
+for n in ('1', '4', '16'):
+    for k in ('edge_pixels', 'coverage_error_mean', 'coverage_error_rms', 'coverage_error_max'):
+        assert k in j[n], (n, k)
+assert j['1']['edge_pixels'] == j['16']['edge_pixels'] > 0, j
+assert j['1']['coverage_error_mean'] > j['4']['coverage_error_mean'] > j['16']['coverage_error_mean'], j" \
+    "$TMP/ce.json" && pass || fail "coverage-error stats"
+else
+  fail "coverage-error of near_horizontal failed"
+fi
+expect_error "coverage-error bad count" "--samples 3" -- "$BIN" coverage-error --scene "$SRC/traces/aa/thin.trace" --samples 3
+expect_error "coverage-error scanline" "exact traversal" -- \
+  "$BIN" coverage-error --scene "$SRC/traces/aa/thin.trace" --samples 4 --set raster.traversal=scanline
+for o in --samples --stats --scene --config --set --quiet; do
+  "$BIN" coverage-error --help | grep -q -- "$o" && pass || fail "coverage-error --help lacks $o"
+done
+
 echo "cli: $passes passed, $fails failed"
 [ $fails -eq 0 ]
