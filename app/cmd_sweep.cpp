@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: Apache-2.0
 // `rastsim sweep`: the cross product of scenes and swept config values, each point one
-// `rastsim simulate` child process of this same binary (SystemC elaborates only once a
-// process), run --jobs at a time; one CSV row a point with every swept key and stat.
+// `rastsim simulate` run of this same binary (SystemC elaborates only once a process):
+// child processes, --jobs at a time (--backend local), or a Slurm job array (--backend
+// slurm, sweep_slurm.cpp); one CSV row a point with every swept key and stat, appended as
+// each finishes (sweep_csv.cpp), and --resume runs only the points the CSV lacks.
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -17,23 +19,13 @@
 
 #include "common.h"
 #include "rtl/area.h"
+#include "sweep.h"
 
 namespace rastsim::app {
 
+using namespace sweep;
+
 namespace {
-
-struct Axis {
-  std::string key;
-  std::vector<std::string> values;
-};
-
-struct Point {
-  std::string scene;
-  std::vector<std::string> values;  // one per axis
-  std::string stats_path, err_path;
-  int status = -1;                  // exit status; -1 = not run
-  nlohmann::json stats;
-};
 
 Axis parse_axis(const std::string& arg) {
   const auto eq = arg.find('=');
@@ -44,38 +36,6 @@ Axis parse_axis(const std::string& arg) {
   for (std::string v; std::getline(ss, v, ',');)
     if (!v.empty()) a.values.push_back(v);
   return a;
-}
-
-// "stages": {"rop": {"busy": 3}} -> "stages.rop.busy" = 3, in document order.
-void flatten(const nlohmann::json& j, const std::string& prefix, std::vector<std::pair<std::string, nlohmann::json>>& out) {
-  for (const auto& [k, v] : j.items()) {
-    const std::string key = prefix.empty() ? k : prefix + "." + k;
-    if (v.is_object()) flatten(v, key, out);
-    else out.emplace_back(key, v);
-  }
-}
-
-std::string csv_field(const std::string& s) {
-  if (s.find_first_of(",\"\n") == std::string::npos) return s;
-  std::string q = "\"";
-  for (char c : s) q += (c == '"') ? std::string("\"\"") : std::string(1, c);
-  return q + "\"";
-}
-std::string csv_value(const nlohmann::json& v) { return csv_field(v.is_string() ? v.get<std::string>() : v.dump()); }
-
-std::string describe(const Point& p, const std::vector<Axis>& axes) {
-  std::string s = "scene=" + p.scene;
-  for (size_t i = 0; i < axes.size(); ++i) s += " " + axes[i].key + "=" + p.values[i];
-  return s;
-}
-
-// Starts `rastsim simulate` for one point; stdout discarded, stderr to the point's file.
-pid_t spawn(const Point& p, const std::vector<Axis>& axes, const ConfigOptions& base) {
-  std::vector<std::string> args{"simulate", "--quiet", "--scene", p.scene, "--stats", p.stats_path};
-  if (!base.config_path.empty()) args.insert(args.end(), {"--config", base.config_path});
-  for (const auto& s : base.sets) args.insert(args.end(), {"--set", s});
-  for (size_t i = 0; i < axes.size(); ++i) args.insert(args.end(), {"--set", axes[i].key + "=" + p.values[i]});
-  return spawn_self(args, p.err_path);
 }
 
 class Progress {
@@ -122,19 +82,25 @@ void validate_axes(const Config& cfg, const std::vector<Axis>& axes) {
     }
 }
 
-// The cross product, scene-major; each point's stats and stderr files live in `tmp`.
+// The cross product, scene-major, each point with its config's hash and its simulate
+// arguments.
 std::vector<Point> make_points(const std::vector<std::string>& scenes, const std::vector<Axis>& axes,
-                               const std::filesystem::path& tmp) {
+                               const ConfigOptions& base) {
   std::vector<Point> points;
   for (const auto& scene : scenes) {
     std::vector<size_t> idx(axes.size(), 0);
     for (;;) {
       Point p;
       p.scene = scene;
-      for (size_t i = 0; i < axes.size(); ++i) p.values.push_back(axes[i].values[idx[i]]);
-      const std::string n = std::to_string(points.size());
-      p.stats_path = (tmp / (n + ".json")).string();
-      p.err_path = (tmp / (n + ".err")).string();
+      ConfigOptions c = base;
+      for (size_t i = 0; i < axes.size(); ++i) {
+        p.values.push_back(axes[i].values[idx[i]]);
+        c.sets.push_back(axes[i].key + "=" + p.values.back());
+      }
+      p.config_hash = config_hash(load_config(c));
+      p.args = {"simulate", "--quiet", "--scene", scene};
+      if (!c.config_path.empty()) p.args.insert(p.args.end(), {"--config", c.config_path});
+      for (const auto& s : c.sets) p.args.insert(p.args.end(), {"--set", s});
       points.push_back(std::move(p));
       size_t i = axes.size();
       while (i > 0 && ++idx[i - 1] == axes[i - 1].values.size()) idx[--i] = 0;
@@ -144,16 +110,20 @@ std::vector<Point> make_points(const std::vector<std::string>& scenes, const std
   return points;
 }
 
-// Runs every point, `jobs` child processes at once; returns how many failed.
-size_t run_points(std::vector<Point>& points, const std::vector<Axis>& axes, const ConfigOptions& base,
-                  unsigned jobs) {
-  Progress progress(points.size());
+// --backend local: runs the points `todo`, `jobs` child processes at once, their stats and
+// stderr in `tmp`; returns how many failed.
+size_t run_local(std::vector<Point>& points, const std::vector<size_t>& todo, const std::vector<Axis>& axes,
+                 unsigned jobs, const std::filesystem::path& tmp, const OnDone& on_done) {
+  Progress progress(todo.size());
   std::map<pid_t, size_t> running;
+  const auto file = [&](size_t i, const char* ext) { return (tmp / (std::to_string(i) + ext)).string(); };
   size_t next = 0, done = 0, failed = 0;
-  while (done < points.size()) {
-    while (next < points.size() && running.size() < jobs) {
-      running[spawn(points[next], axes, base)] = next;
-      ++next;
+  while (done < todo.size()) {
+    while (next < todo.size() && running.size() < jobs) {
+      const size_t i = todo[next++];
+      std::vector<std::string> args = points[i].args;
+      args.insert(args.end(), {"--stats", file(i, ".json")});
+      running[spawn_self(args, file(i, ".err"))] = i;
     }
     int status = 0;
     const pid_t pid = waitpid(-1, &status, 0);
@@ -161,98 +131,112 @@ size_t run_points(std::vector<Point>& points, const std::vector<Axis>& axes, con
     const auto it = running.find(pid);
     if (it == running.end()) continue;
     Point& p = points[it->second];
+    const size_t i = it->second;
     running.erase(it);
     ++done;
     p.status = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
     if (p.status == 0) {
-      std::ifstream is(p.stats_path);
+      std::ifstream is(file(i, ".json"));
       p.stats = nlohmann::json::parse(is);
     } else {
       ++failed;
+      p.error = last_line(file(i, ".err"));
       if (progress.tty()) std::cerr << "\n";
-      std::cerr << "sweep: point " << describe(p, axes) << " failed: " << last_line(p.err_path) << "\n";
+      std::cerr << "sweep: point " << describe(p, axes) << " failed: " << p.error << "\n";
     }
+    std::filesystem::remove(file(i, ".json")), std::filesystem::remove(file(i, ".err"));
+    on_done(i);
     progress.update(done, failed, describe(p, axes) + (p.status == 0 ? " ok" : " FAILED"));
   }
   return failed;
 }
 
-// Columns: scene, swept keys, status, then every stat any successful run reported, in
-// the order first seen (a method's own counters, e.g. scanline's pixels_wrong, appear
-// only in its rows; the other rows leave them empty).
-void write_csv(const std::string& out_path, const std::vector<Point>& points, const std::vector<Axis>& axes) {
-  std::vector<std::string> stat_keys;
-  std::set<std::string> seen{"scene"};
-  for (const auto& p : points) {
-    if (p.status != 0) continue;
-    std::vector<std::pair<std::string, nlohmann::json>> flat;
-    flatten(p.stats, "", flat);
-    for (const auto& [k, v] : flat)
-      if (seen.insert(k).second) stat_keys.push_back(k);
-  }
-  std::ofstream os(out_path);
-  if (!os) throw std::runtime_error(out_path + ": cannot open for writing");
-  os << "scene";
-  for (const auto& a : axes) os << "," << csv_field(a.key);
-  os << ",status";
-  for (const auto& k : stat_keys) os << "," << csv_field(k);
-  os << "\n";
-  for (const auto& p : points) {
-    os << csv_field(p.scene);
-    for (const auto& v : p.values) os << "," << csv_field(v);
-    os << "," << csv_field(p.status == 0 ? "ok" : last_line(p.err_path));
-    std::map<std::string, nlohmann::json> flat_map;
-    if (p.status == 0) {
-      std::vector<std::pair<std::string, nlohmann::json>> flat;
-      flatten(p.stats, "", flat);
-      flat_map.insert(flat.begin(), flat.end());
-    }
-    for (const auto& k : stat_keys) os << "," << (flat_map.count(k) ? csv_value(flat_map[k]) : "");
-    os << "\n";
-  }
-}
-
-// `--area`: each point's RTL area (rastsim area, model/rtl/area.h) under "area" in its
-// stats, so the CSV gains area.cells, area.flip_flops and area.transistors. Synthesised
-// once a distinct RTL parameter set (a tile-size sweep over three scenes: one run a tile
-// size), the rest from this map or the on-disk cache.
-void add_area(std::vector<Point>& points, const std::vector<Axis>& axes, const ConfigOptions& base) {
-  std::map<std::vector<std::pair<std::string, int>>, AreaReport> done;
-  for (auto& p : points) {
+// `--area`: a point's RTL area (rastsim area, model/rtl/area.h) under "area" in its stats,
+// so the CSV gains area.cells, area.flip_flops and area.transistors. Synthesised once a
+// distinct RTL parameter set (a tile-size sweep over three scenes: one run a tile size),
+// the rest from this map or the on-disk cache.
+class AreaColumns {
+ public:
+  void add(Point& p, const std::vector<Axis>& axes, const ConfigOptions& base) {
     ConfigOptions c = base;
     for (size_t i = 0; i < axes.size(); ++i) c.sets.push_back(axes[i].key + "=" + p.values[i]);
     const RtlParams rp = rtl_params_from_config(load_config(c));
     const auto key = rtl_params_named(rp);
-    auto it = done.find(key);
-    if (it == done.end()) {
+    auto it = done_.find(key);
+    if (it == done_.end()) {
       AreaOptions ao;
       ao.progress = [&](const std::string& line) { std::cerr << "\r\033[Ksweep: area " << line << std::flush; };
       if (!isatty(2)) ao.progress = {};
       std::cerr << "sweep: area of " << describe(p, axes) << (isatty(2) ? "" : "\n");
-      it = done.emplace(key, synthesize_area(rp, ao)).first;
+      it = done_.emplace(key, synthesize_area(rp, ao)).first;
       if (isatty(2)) std::cerr << "\r\033[K";
       std::cerr << "sweep: area " << (it->second.from_cache ? "from the cache" : "synthesised") << ": "
                 << it->second.total.cells << " cells\n";
     }
-    if (p.status != 0) continue;
     const AreaCounts& t = it->second.total;
     p.stats["area"] = {{"cells", t.cells}, {"flip_flops", t.flip_flops}, {"transistors", t.transistors}};
   }
-}
+
+ private:
+  std::map<std::vector<std::pair<std::string, int>>, AreaReport> done_;
+};
 
 }  // namespace
 
+namespace sweep {
+
+volatile std::sig_atomic_t interrupted = 0;
+
+std::string describe(const Point& p, const std::vector<Axis>& axes) {
+  std::string s = "scene=" + p.scene;
+  for (size_t i = 0; i < axes.size(); ++i) s += " " + axes[i].key + "=" + p.values[i];
+  return s;
+}
+
+std::string config_hash(const Config& cfg) {
+  uint64_t h = 14695981039346656037ull;
+  for (const auto& [k, v] : cfg.values())
+    for (char c : k + "=" + to_string(v) + "\n") h = (h ^ uint8_t(c)) * 1099511628211ull;
+  char buf[17];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+  return buf;
+}
+
+}  // namespace sweep
+
 void run_sweep_command(SweepOptions o) {
+  if (o.backend != "local" && o.backend != "slurm")
+    throw std::runtime_error("--backend " + o.backend + ": expected local or slurm");
   std::vector<Axis> axes = split_axes(o.set_args, o.base);
   validate_axes(load_config(o.base), axes);
-  const auto tmp = std::filesystem::temp_directory_path() / ("rastsim-sweep-" + std::to_string(getpid()));
-  std::filesystem::create_directories(tmp);
-  std::vector<Point> points = make_points(o.scenes, axes, tmp);
-  const size_t failed = run_points(points, axes, o.base, o.jobs);
-  if (o.area) add_area(points, axes, o.base);
-  write_csv(o.out_path, points, axes);
-  std::filesystem::remove_all(tmp);
-  std::cerr << "sweep: wrote " << points.size() << " rows to " << o.out_path << "\n";
+  std::vector<Point> points = make_points(o.scenes, axes, o.base);
+  Csv csv(o.out_path, axes);
+  if (o.resume) {
+    const size_t found = csv.resume(points);
+    std::cerr << "sweep: --resume: " << found << " of " << points.size() << " rows already in " << o.out_path << "\n";
+  }
+  csv.write_all(points);
+  std::vector<size_t> todo;
+  for (size_t i = 0; i < points.size(); ++i)
+    if (points[i].status != 0) todo.push_back(i);
+  AreaColumns area;
+  const OnDone on_done = [&](size_t i) {
+    if (o.area && points[i].status == 0) area.add(points[i], axes, o.base);
+    csv.add(points[i], i);
+  };
+  size_t failed = 0;
+  if (o.backend == "slurm") {
+    failed = run_slurm(points, todo, axes, o.slurm, o.out_path, on_done);
+  } else {
+    const auto tmp = std::filesystem::temp_directory_path() / ("rastsim-sweep-" + std::to_string(getpid()));
+    std::filesystem::create_directories(tmp);
+    failed = run_local(points, todo, axes, o.jobs, tmp, on_done);
+    std::filesystem::remove_all(tmp);
+  }
+  csv.write_all(points);
+  std::cerr << "sweep: wrote " << points.size() << " rows to " << o.out_path
+            << (todo.size() < points.size() ? " (" + std::to_string(points.size() - todo.size()) + " resumed)" : "")
+            << "\n";
   if (failed) throw std::runtime_error(std::to_string(failed) + " of " + std::to_string(points.size()) +
                                        " sweep points failed (see above)");
 }
@@ -269,12 +253,41 @@ void register_sweep(CLI::App& app) {
                   "KEY=V fixes one")
       ->type_name("KEY=VALUES")
       ->allow_extra_args(false);
-  cmd->add_option("--out,-o", o.out_path, "CSV to write: scene, each swept key, then every stat")->required();
+  cmd->add_option("--out,-o", o.out_path,
+                  "CSV to write: scene, each swept key, config_hash, status, then every stat; each row is "
+                  "appended as its run finishes, and at the end the rows are put in sweep order")
+      ->required();
+  cmd->add_flag("--resume", o.resume,
+                "Keep the rows already in --out whose scene and config_hash (a hash of the whole resolved "
+                "config) are points of this sweep and whose status is ok; run only the others (failed rows "
+                "run again)");
   cmd->add_flag("--area", o.area,
                 "Add area.cells, area.flip_flops, area.transistors (rastsim area, Yosys; cached per RTL "
                 "parameter set) to every row");
-  cmd->add_option("--jobs,-j", o.jobs, "Simulations run at once (default: the number of cores)")
+  cmd->add_option("--jobs,-j", o.jobs, "Local backend: simulations run at once (default: the number of cores)")
       ->check(CLI::Range(1u, 1024u));
+  cmd->add_option("--backend", o.backend,
+                  "local: child processes on this machine; slurm: one Slurm job array (sbatch --array), a task "
+                  "a point, then the rows gathered into --out (the binary, scenes, config and --slurm-workdir "
+                  "must be at the same paths on the compute nodes)")
+      ->check(CLI::IsMember({"local", "slurm"}))
+      ->capture_default_str();
+  cmd->add_option("--slurm-partition", o.slurm.partition, "Slurm backend: sbatch --partition (default: the cluster's)");
+  cmd->add_option("--slurm-time", o.slurm.time,
+                  "Slurm backend: sbatch --time, the limit of one task, e.g. 10:00 or 1-00:00:00 (default: the "
+                  "partition's)");
+  cmd->add_option("--slurm-workdir", o.slurm.workdir,
+                  "Slurm backend: where the job script and each task's stats, exit status and output go, in a "
+                  "subdirectory per sweep removed when every task succeeded (default: OUT.slurm beside --out; "
+                  "must be shared with the compute nodes)");
+  cmd->add_option("--slurm-arg", o.slurm.sbatch_args,
+                  "Slurm backend: one more sbatch option, verbatim (repeatable), e.g. --slurm-arg=--mem=2G "
+                  "--slurm-arg=--account=arch")
+      ->allow_extra_args(false);
+  cmd->add_option("--slurm-poll", o.slurm.poll_seconds,
+                  "Slurm backend: seconds between squeue polls while waiting for the array")
+      ->check(CLI::Range(0.1, 3600.0))
+      ->capture_default_str();
   cmd->callback([] { run_sweep_command(o); });
 }
 

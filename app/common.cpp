@@ -3,6 +3,7 @@
 #include "scene/scene_io.h"
 
 #include <fcntl.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -49,9 +50,13 @@ void write_json(const std::string& path, const nlohmann::json& j) {
 pid_t spawn_self(const std::vector<std::string>& args, const std::string& err_path) {
   std::vector<std::string> argv_s{"rastsim"};
   argv_s.insert(argv_s.end(), args.begin(), args.end());
+  const pid_t parent = getpid();
   const pid_t pid = fork();
   if (pid < 0) throw std::runtime_error("fork failed");
   if (pid != 0) return pid;
+  // The child ends with its parent (a killed sweep leaves no simulations running on).
+  prctl(PR_SET_PDEATHSIG, SIGTERM);
+  if (getppid() != parent) _exit(1);
   const int null_fd = open("/dev/null", O_WRONLY);
   const int err_fd = open(err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   if (null_fd >= 0) dup2(null_fd, 1);

@@ -32,7 +32,8 @@ void write_json(const std::string& path, const nlohmann::json& j);
 
 // Starts this same binary as a child process running `rastsim ARGS...` (args[0] is the
 // subcommand), stdout to /dev/null, stderr to `err_path`. SystemC elaborates one design
-// per process, so commands that need several simulations run them this way.
+// per process, so commands that need several simulations run them this way. The child
+// gets SIGTERM when its parent dies.
 pid_t spawn_self(const std::vector<std::string>& args, const std::string& err_path);
 // The last non-empty line of a file (a child's error message), or "(no message)".
 std::string last_line(const std::string& path);
@@ -89,14 +90,25 @@ struct ScanoutOptions {
 };
 void run_scanout_command(const ScanoutOptions& o);
 
+// `rastsim sweep --backend slurm`: where the job array goes and how it is watched.
+struct SweepSlurmOptions {
+  std::string partition, time;           // sbatch --partition, --time ("" = the cluster's default)
+  std::string workdir;                   // per-task files ("" = OUT.slurm next to the CSV)
+  std::vector<std::string> sbatch_args;  // more sbatch options, verbatim
+  double poll_seconds = 5;               // squeue every this often
+};
+
 // `rastsim sweep` as a plain function: base config, scenes, --set arguments, CSV path,
-// simulations run at once.
+// simulations run at once, the backend and --resume.
 struct SweepOptions {
   ConfigOptions base;
   std::vector<std::string> scenes, set_args;
   std::string out_path;
   unsigned jobs = 1;
   bool area = false;  // add area.cells, area.flip_flops, area.transistors (rastsim area) to each row
+  bool resume = false;             // keep the rows already in out_path; run only the others
+  std::string backend = "local";   // "local" (child processes) or "slurm" (a job array)
+  SweepSlurmOptions slurm;
 };
 void run_sweep_command(SweepOptions o);
 

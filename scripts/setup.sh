@@ -22,6 +22,11 @@ RASTSIM_PACKAGES=(
   libgmp-dev   # GMP's mpq_class: exact area coverage (model/aa, docs/exact-coverage.md)
   libosmesa6-dev   # OSMesa: Mesa's llvmpipe, headless, the independent renderer of ctest -L mesa (docs/mesa.md)
   yosys     # rastsim area, sweep --area: the RTL synthesised into generic gates (docs/area.md)
+  # rastsim sweep --backend slurm, tested for real by scripts/slurm_local (ctest -L slurm) on
+  # a one-node cluster. Installed always, as CI runs every label anyway: about 13 MB with
+  # their libraries. The script starts daemons of its own (own files and ports) and never
+  # uses the system services the packages install (on a systemd host, munge's starts).
+  slurm-wlm munge
 )
 
 install_missing_packages() {
