@@ -43,7 +43,8 @@ class Walker {
     marker(r_.resolve_cycles, false);
   }
 
-  void command(const Command& cmd) {
+  void command(size_t index, const Command& cmd, const EstimateProgress& progress) {
+    if (progress && !std::holds_alternative<CmdPrimitives>(cmd.body)) progress(index, 0, r_);
     if (const auto* d2 = std::get_if<CmdDraw2d>(&cmd.body)) return draw2d(cmd, *d2);
     const auto* prims = std::get_if<CmdPrimitives>(&cmd.body);
     if (!prims) {
@@ -56,8 +57,10 @@ class Walker {
       return marker(p_.rop_state_cycles(clear, fb_pixels_), false);
     }
     const size_t n = triangle_count(*prims);
+    if (n == 0 && progress) progress(index, 0, r_);
     if (n == 0) r_.stages[Fetch].busy += p_.fetch_header_cycles();  // a header, no transaction
     for (size_t k = 0; k < n; ++k) {
+      if (progress) progress(index, k, r_);
       work(Fetch, p_.fetch_triangle_cycles(k == 0, (k == 0 || prims->topology == Topology::List) ? 3 : 1));
       work(Assembly, p_.assembly_triangle_cycles());
       ++r_.render.triangles_in;
@@ -207,14 +210,14 @@ class Walker {
 
 }  // namespace
 
-EstimateResult estimate_scene(const Scene& scene, const Config& cfg) {
+EstimateResult estimate_scene(const Scene& scene, const Config& cfg, const EstimateProgress& progress) {
   const auto t0 = std::chrono::steady_clock::now();
   const RasterState arch = raster_state_from_config(cfg);
   const TimingParams p = TimingParams::from_config(cfg);
   EstimateResult r;
   r.core_mhz = p.core_mhz;
   Walker walker(arch, p, r);
-  for (const Command& cmd : scene.commands) walker.command(cmd);
+  for (size_t i = 0; i < scene.commands.size(); ++i) walker.command(i, scene.commands[i], progress);
   walker.end_of_frame();
 
   // Lower bound: a stage with work cannot start before its fill and is busy for all its

@@ -16,7 +16,9 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -59,8 +61,14 @@ struct EstimateResult {
   nlohmann::json to_json() const;
 };
 
+// Called before each fetch transaction of the walk: each command (triangle 0), and each
+// triangle k of a primitive command, with the totals so far (stages' busy and
+// transactions_out, counters). Differences between calls give a piece of the scene's
+// per-stage work (the sampled level's auxiliary variable, model/fidelity/sampled.h).
+using EstimateProgress = std::function<void(size_t command, size_t triangle, const EstimateResult& so_far)>;
+
 // The analytic estimate of `scene` on `cfg`. Throws SceneError on bad input (the
 // reference model's message), ConfigError on bad timing keys.
-EstimateResult estimate_scene(const Scene& scene, const Config& cfg);
+EstimateResult estimate_scene(const Scene& scene, const Config& cfg, const EstimateProgress& progress = {});
 
 }  // namespace rastsim

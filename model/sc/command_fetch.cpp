@@ -8,6 +8,10 @@ namespace rastsim::sc {
 
 void CommandFetch::body() {
   for (const Command& cmd : scene_.commands) {
+    const auto mark = [&](size_t k) {
+      if (ctx_.on_fetch) ctx_.on_fetch(cmd, k, ctx_.to_cycles(sc_core::sc_time_stamp()));
+    };
+    if (!std::holds_alternative<CmdPrimitives>(cmd.body)) mark(0);
     if (const auto* d2 = std::get_if<CmdDraw2d>(&cmd.body)) {
       check_2d_sample_count(cmd, st_);
       busy(p_.fetch_draw2d_cycles(draw2d_vertex_count(*d2)));
@@ -23,8 +27,10 @@ void CommandFetch::body() {
       continue;
     }
     const size_t n = triangle_count(*prims);
+    if (n == 0) mark(0);
     if (n == 0) busy(p_.fetch_header_cycles());
     for (size_t k = 0; k < n; ++k) {
+      mark(k);
       const uint64_t new_vertices = (k == 0 || prims->topology == Topology::List) ? 3 : 1;
       busy(p_.fetch_triangle_cycles(k == 0, new_vertices));
       write(out_, CommandItem{nullptr, TriangleRef{&cmd, k}});

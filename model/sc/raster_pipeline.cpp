@@ -107,6 +107,7 @@ SimResult simulate_scene(const Scene& scene, const Config& cfg, const SimOptions
   ctx.stall_seed = opts.stall_seed;
   ctx.stall_probability = opts.stall_probability;
   ctx.on_fragment = opts.on_fragment;
+  ctx.on_fetch = opts.on_fetch;
   count_multisample_footprint(arch, ctx.render);
   // Built once and kept: SystemC does not support tearing a design down.
   static RasterPipeline* top = nullptr;

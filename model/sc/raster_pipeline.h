@@ -10,6 +10,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -29,6 +30,9 @@ struct SimOptions {
   uint64_t stall_seed = 0;       // random stall injection at every FIFO write (tests)
   double stall_probability = 0;  // 0 = off
   FragmentSink on_fragment;      // every fragment leaving interpolation, in order
+  // Command fetch starting each transaction: a command, or triangle k of a primitive
+  // command, with the cycle (SimContext::on_fetch; the sampled level's unit boundaries).
+  std::function<void(const Command& cmd, size_t triangle, uint64_t cycle)> on_fetch;
   // Trace-event JSON of every stage's state and FIFO's occupancy ("" = none; sc/timeline.h),
   // quantized to fit timeline_max_events events (250,000: about 10-17 MB, docs/timeline.md).
   std::string timeline_path;

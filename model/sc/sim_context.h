@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <exception>
+#include <functional>
 #include <string>
 
 #include <systemc>
@@ -38,6 +39,9 @@ struct SimContext {
   const Command end_of_frame{CmdScissor{}, SourceLoc{"end of frame", 0}};
   bool is_end_of_frame(const Command* c) const { return c == &end_of_frame; }
   FragmentSink on_fragment;  // sees each fragment leaving interpolation, in order
+  // Sees command fetch start each transaction (a command, or triangle k of a primitive
+  // command) at `cycle`, in program order (the sampled level's unit boundaries).
+  std::function<void(const Command& cmd, size_t triangle, uint64_t cycle)> on_fetch;
 
   std::exception_ptr error;  // first exception raised in any stage (null when none)
 
