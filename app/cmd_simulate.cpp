@@ -3,11 +3,17 @@
 // and stats as `render`, plus cycles and per-stage busy/stalled/starved cycles, and on
 // request where they went: a timeline (sc/timeline.h) and a tile heatmap (sc/tile_heat.h,
 // display/heatmap.h); docs/timeline.md.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
 
 #include "common.h"
+#include "estimate/estimate.h"
+#include "fidelity/run_child.h"
+#include "fidelity/sampled.h"
 #include "report/stats_json.h"
 #include "sc/scanout.h"
 #include "sc/raster_pipeline.h"
@@ -52,10 +58,126 @@ void write_heatmap(const sc::SimResult& r, const std::string& stage, const std::
   write_image(draw_heatmap(r.fb, g, title), path);
 }
 
+// "2%", "2" (percent) -> 0.02. Anything else, or outside (0, 100), is an error.
+double parse_tolerance(const std::string& text) {
+  std::string t = text;
+  if (!t.empty() && t.back() == '%') t.pop_back();
+  size_t used = 0;
+  double v = 0;
+  try {
+    v = std::stod(t, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (t.empty() || used != t.size() || !(v > 0 && v < 100))
+    throw std::runtime_error("--tolerance: '" + text + "' is not a percentage in (0, 100), e.g. 2%");
+  return v / 100;
+}
+
+void print_level(const nlohmann::json& j) {
+  std::cout << "simulate: " << j["cycles"].get<uint64_t>() << " cycles (" << j["fidelity_level"].get<std::string>()
+            << " level";
+  if (j.contains("cycles_ci_low"))
+    std::cout << ", " << j["confidence"].get<double>() * 100 << " % interval [" << j["cycles_ci_low"].get<double>()
+              << ", " << j["cycles_ci_high"].get<double>() << "], " << j["units_simulated"] << " of "
+              << j["units_total"] << " units simulated";
+  if (j.contains("cycles_error_bound")) std::cout << ", error bound " << j["cycles_error_bound"].get<double>() * 100 << " %";
+  std::cout << "), " << j["wall_seconds"].get<double>() << " s wall\n";
+  if (j.contains("fidelity_reason")) std::cout << "  " << j["fidelity_reason"].get<std::string>() << "\n";
+}
+
+// The sampled level's relative error bound: the interval's farther end from the estimate.
+double sampled_error(const nlohmann::json& s) {
+  const double c = s["cycles"].get<double>();
+  return c > 0 ? std::max(s["cycles_ci_high"].get<double>() - c, c - s["cycles_ci_low"].get<double>()) / c : 0.0;
+}
+
+// --tolerance: analytic if its bounds are within P of their midpoint; else sampled (a
+// pilot at F = 0.1, then the F its variance predicts, each in a child process) if its
+// interval is; else the full SystemC run. docs/fidelity.md, "Tolerance".
+nlohmann::json choose_level(const Scene& scene, const Config& cfg, double tol, uint64_t seed, bool& run_full,
+                            std::string& reason) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const auto wall = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
+  char buf[400];
+  const EstimateResult est = estimate_scene(scene, cfg);
+  const double lo = double(est.cycles_lower_bound), hi = double(est.cycles_upper_bound);
+  const double mid = 0.5 * (lo + hi), half = mid > 0 ? 0.5 * (hi - lo) / mid : 0.0;
+  if (half <= tol) {
+    std::snprintf(buf, sizeof buf, "the analytic bounds [%.0f, %.0f] are within %.2f %% of their midpoint (<= %.2f %%)",
+                  lo, hi, 100 * half, 100 * tol);
+    return {{"fidelity_level", "analytic"}, {"cycles", uint64_t(std::llround(mid))}, {"cycles_error_bound", half},
+            {"cycles_lower_bound", est.cycles_lower_bound}, {"cycles_upper_bound", est.cycles_upper_bound},
+            {"fidelity_reason", buf}, {"wall_seconds", wall()}};
+  }
+  double f = 0.1, err = 0;
+  nlohmann::json s;
+  for (int attempt = 0; attempt < 2; ++attempt) {
+    s = fidelity::run_in_child([&] { return fidelity::simulate_sampled(scene, cfg, f, seed).to_json(); });
+    err = sampled_error(s);
+    if (s["units_simulated"] == s["units_total"]) break;  // nothing left out: no cheaper than the full run
+    if (err <= tol) {
+      std::snprintf(buf, sizeof buf,
+                    "the analytic bounds are %.2f %% wide, the sampled level's %.0f %% interval at F = %.3f is "
+                    "within %.2f %% (<= %.2f %%)",
+                    100 * half, 100 * s["confidence"].get<double>(), f, 100 * err, 100 * tol);
+      s["cycles_error_bound"] = err;
+      s["fidelity_reason"] = buf;
+      s["wall_seconds"] = wall();
+      return s;
+    }
+    // Half-width ~ sqrt((1 - f) / f): the f that would reach the tolerance, with a 1.2 margin.
+    const double want = (1 - f) / f * (tol / (1.2 * err)) * (tol / (1.2 * err));
+    const double next = 1 / (1 + want);
+    if (next > 0.5 || next <= f) break;  // sampling half the frame or more is not cheaper
+    f = next;
+  }
+  std::snprintf(buf, sizeof buf,
+                "the analytic bounds are %.2f %% wide and the sampled interval %.2f %% at F = %.3f, above %.2f %%: "
+                "the full SystemC run answers",
+                100 * half, 100 * err, f, 100 * tol);
+  reason = buf;
+  run_full = true;
+  return {};
+}
+
 }  // namespace
 
 void run_simulate_command(const SimulateOptions& o) {
   const Config cfg = load_config(o.config);
+  if (o.sample != 0 && !o.tolerance.empty()) throw std::runtime_error("--sample and --tolerance exclude each other");
+  if (o.sample != 0 && !(o.sample > 0 && o.sample <= 1))
+    throw std::runtime_error("--sample: the fraction must be in (0, 1], got " + std::to_string(o.sample));
+  const bool level_mode = o.sample != 0 || !o.tolerance.empty();
+  if (level_mode) {
+    const double tol = o.tolerance.empty() ? 0 : parse_tolerance(o.tolerance);
+    for (const std::string* p : {&o.out_path, &o.vcd_path, &o.timeline_path, &o.heatmap_path,
+                                 &o.heatmap_data_path, &o.frag_path})
+      if (!p->empty())
+        throw std::runtime_error(std::string(o.sample != 0 ? "--sample" : "--tolerance") +
+                                 " makes no image, VCD, timeline, heatmap or fragment stream: drop " + *p);
+    check_writable(o.stats_path);
+    const Scene scene = load_scene(o.scene_path, obj_placement(cfg));
+    nlohmann::json j;
+    if (o.sample != 0) {
+      j = fidelity::simulate_sampled(scene, cfg, o.sample, o.sample_seed).to_json();
+    } else {
+      bool full = false;
+      std::string reason;
+      j = choose_level(scene, cfg, tol, o.sample_seed, full, reason);
+      if (full) {
+        const sc::SimResult r = sc::simulate_scene(scene, cfg);
+        j = {{"fidelity_level", "systemc"}, {"cycles", r.cycles},  {"cycles_error_bound", 0.0},
+             {"fidelity_reason", reason},   {"wall_seconds", r.sim_wall_seconds}};
+      }
+      j["tolerance"] = tol;
+    }
+    j["config"] = cfg.source_name();
+    j["scene"] = o.scene_path;
+    if (!o.stats_path.empty()) write_json(o.stats_path, j);
+    if (!o.quiet) print_level(j);
+    return;
+  }
   const Scene scene = load_scene(o.scene_path, obj_placement(cfg));
   sc::SimOptions sim;
   sim.stall_seed = o.stall_seed;
@@ -75,6 +197,7 @@ void run_simulate_command(const SimulateOptions& o) {
   const sc::SimResult r = sc::simulate_scene(scene, cfg, sim);
   if (!o.out_path.empty()) write_image(r.fb, o.out_path);
   nlohmann::json j = r.to_json();
+  j["fidelity_level"] = "systemc";
   j["config"] = cfg.source_name();
   j["scene"] = o.scene_path;
   if (!o.timeline_path.empty())
@@ -141,6 +264,16 @@ void register_simulate(CLI::App& app) {
   cmd->add_option("--stall-probability", o.stall_probability,
                   "Probability that a FIFO write is delayed by 1..8 extra cycles (testing; 0 = off)")
       ->check(CLI::Range(0.0, 1.0));
+  cmd->add_option("--sample", o.sample,
+                  "Sampled level: simulate a stratified random fraction F (0 < F <= 1) of the triangle batches and "
+                  "extrapolate cycles with a 95 % interval (stats cycles, cycles_ci_low, cycles_ci_high; no image, "
+                  "-o is an error; docs/fidelity.md)");
+  cmd->add_option("--sample-seed", o.sample_seed, "Seed of --sample's (and --tolerance's) random choice of batches")
+      ->default_val(1);
+  cmd->add_option("--tolerance", o.tolerance,
+                  "Answer with the cheapest level whose bound or 95 % interval is within P of the cycles, e.g. 2%: "
+                  "analytic, else sampled, else the full SystemC run (stats fidelity_level, cycles, "
+                  "cycles_error_bound, fidelity_reason; no image; docs/fidelity.md)");
   cmd->add_flag("--quiet,-q", o.quiet, "Do not print the summary line");
   cmd->callback([] { run_simulate_command(o); });
 }

@@ -59,6 +59,9 @@ struct SimulateOptions {
   std::string heatmap_stage = "all";        // coarse_raster, fine_raster, interpolate, rop or all
   uint64_t stall_seed = 0;
   double stall_probability = 0;  // 0 = off
+  double sample = 0;             // --sample F: the sampled level (0 = off; docs/fidelity.md)
+  uint64_t sample_seed = 1;      // --sample-seed
+  std::string tolerance;         // --tolerance P%: the cheapest level within P ("" = off)
   bool quiet = false;
 };
 void run_simulate_command(const SimulateOptions& o);

@@ -1,0 +1,346 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "fidelity/sampled.h"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <random>
+#include <stdexcept>
+
+#include "fidelity/student_t.h"
+#include "config/timing_params.h"
+#include "ref/prim_assembly.h"
+#include "sc/raster_pipeline.h"
+
+namespace rastsim::fidelity {
+
+namespace {
+
+constexpr size_t kStages = kEstimateStageNames.size();
+using Busy = std::array<uint64_t, kStages>;
+
+// A stratum with fewer uncertain units than this is simulated whole: a ratio and its
+// residual variance need a few units.
+constexpr size_t kMinStratumUnits = 4;
+
+bool is_triangle_command(const Command& c) {
+  const auto* p = std::get_if<CmdPrimitives>(&c.body);
+  return p && triangle_count(*p) > 0;
+}
+
+Busy busy_of(const EstimateResult& r) {
+  Busy b{};
+  for (size_t s = 0; s < kStages; ++s) b[s] = r.stages[s].busy;
+  return b;
+}
+
+// Triangles [k0, k1) of a primitive command as a command of their own: a list keeps its
+// vertices 3k0..3k1, a strip k0..k1+1 (k0 is even, so the winding is the original's),
+// a fan its centre and k0+1..k1+1.
+Command slice(const Command& c, size_t k0, size_t k1) {
+  const auto& p = std::get<CmdPrimitives>(c.body);
+  CmdPrimitives out;
+  out.topology = p.topology;
+  const auto& v = p.vertices;
+  switch (p.topology) {
+    case Topology::List:
+      out.vertices.assign(v.begin() + long(3 * k0), v.begin() + long(3 * k1));
+      break;
+    case Topology::Strip:
+      out.vertices.assign(v.begin() + long(k0), v.begin() + long(k1 + 2));
+      break;
+    case Topology::Fan:
+      out.vertices.push_back(v[0]);
+      out.vertices.insert(out.vertices.end(), v.begin() + long(k0 + 1), v.begin() + long(k1 + 2));
+      break;
+  }
+  return Command{std::move(out), c.loc};
+}
+
+}  // namespace
+
+UnitPlan plan_units(const Scene& scene, const Config& cfg, size_t batch) {
+  struct Mark {
+    size_t cmd, k;
+    Busy busy;
+  };
+  std::vector<Mark> marks;
+  UnitPlan plan;
+  plan.analytic = estimate_scene(scene, cfg, [&](size_t c, size_t k, const EstimateResult& r) {
+    marks.push_back({c, k, busy_of(r)});
+  });
+  const uint64_t triangles = plan.analytic.render.triangles_in;
+  // Every FIFO's entries: how far (in triangles, one an entry at least) command fetch can
+  // run ahead of the bottleneck, so how much of a batch's measured cycles its context
+  // (the batch before it in the sampled run) can shift.
+  const TimingParams p = TimingParams::from_config(cfg);
+  const uint64_t fill = uint64_t(p.fifo_command + p.fifo_triangle + p.setup_fifo_entries() + p.fifo_tile +
+                                 p.fifo_pixel + p.fragment_fifo_entries());
+  if (batch == 0) batch = std::max<size_t>({8, size_t((triangles + 199) / 200), size_t(2 * fill)});
+  batch += batch % 2;
+  plan.batch = batch;
+
+  // Cut the marks into units: [begin, end) ranges of marks.
+  std::vector<std::pair<size_t, size_t>> ranges;
+  std::vector<bool> whole;
+  for (size_t i = 0; i < marks.size();) {
+    const Command& c = scene.commands[marks[i].cmd];
+    if (!is_triangle_command(c)) {
+      ranges.emplace_back(i, i + 1);
+      whole.push_back(true);
+      ++i;
+      continue;
+    }
+    size_t j = i, tris = 0;
+    while (j < marks.size() && is_triangle_command(scene.commands[marks[j].cmd])) {
+      if (tris >= batch && marks[j].k % 2 == 0) break;  // a strip restarts on an even triangle
+      ++tris;
+      ++j;
+    }
+    ranges.emplace_back(i, j);
+    whole.push_back(false);
+    i = j;
+  }
+
+  const Busy end_busy = busy_of(plan.analytic);
+  for (size_t u = 0; u < ranges.size(); ++u) {
+    const auto [b, e] = ranges[u];
+    Unit unit;
+    const Busy& b0 = marks[b].busy;
+    const Busy& b1 = e < marks.size() ? marks[e].busy : end_busy;
+    for (size_t s = 0; s < kStages; ++s) {
+      const double w = double(b1[s] - b0[s]);
+      if (w > unit.x || unit.stratum < 0) {
+        unit.x = w;
+        unit.stratum = int(s);
+      }
+    }
+    if (whole[u]) {
+      unit.pieces.push_back({marks[b].cmd, 0, 0, true});
+    } else {
+      for (size_t m = b; m < e; ++m) {
+        if (unit.pieces.empty() || unit.pieces.back().command != marks[m].cmd)
+          unit.pieces.push_back({marks[m].cmd, marks[m].k, marks[m].k, false});
+        unit.pieces.back().k1 = marks[m].k + 1;
+        ++unit.triangles;
+      }
+    }
+    // Certain: other commands, the first batch after one (or the first of all: pipeline
+    // fill, a clear's ROP time), the last unit (drain, resolve pass).
+    unit.certain = whole[u] || u == 0 || whole[u - 1] || u + 1 == ranges.size();
+    plan.units.push_back(std::move(unit));
+  }
+  // Certain head: until every FIFO could have filled (one triangle an entry at least),
+  // command fetch runs ahead of the bottleneck and a batch's measured cycles are short.
+  plan.head_triangles = fill;
+  uint64_t seen = 0;
+  for (Unit& u : plan.units) {
+    if (seen >= fill) break;
+    u.certain = true;
+    seen += u.triangles;
+  }
+  // Strata too small to sample are simulated whole.
+  std::map<int, size_t> count;
+  for (const Unit& u : plan.units)
+    if (!u.certain) ++count[u.stratum];
+  for (Unit& u : plan.units)
+    if (!u.certain && count[u.stratum] < kMinStratumUnits) u.certain = true;
+  return plan;
+}
+
+std::vector<bool> draw_sample(const UnitPlan& plan, double fraction, uint64_t seed) {
+  if (!(fraction > 0 && fraction <= 1)) throw std::invalid_argument("sample fraction must be in (0, 1]");
+  std::vector<bool> chosen(plan.units.size(), false);
+  std::map<int, std::vector<size_t>> strata;
+  double x_total = 0;
+  size_t n_uncertain = 0;
+  for (size_t i = 0; i < plan.units.size(); ++i) {
+    if (plan.units[i].certain) {
+      chosen[i] = true;
+      continue;
+    }
+    strata[plan.units[i].stratum].push_back(i);
+    x_total += plan.units[i].x;
+    ++n_uncertain;
+  }
+  const double n = std::ceil(fraction * double(n_uncertain) - 1e-9);
+  std::mt19937_64 rng(seed * 0x9e3779b97f4a7c15ull + 0x5851f42d4c957f2dull);
+  for (auto& [h, idx] : strata) {
+    double x_h = 0;
+    for (size_t i : idx) x_h += plan.units[i].x;
+    const double share = x_total > 0 ? x_h / x_total : double(idx.size()) / double(n_uncertain);
+    size_t n_h = size_t(std::llround(n * share));
+    n_h = std::clamp<size_t>(n_h, std::min<size_t>(2, idx.size()), idx.size());
+    if (fraction >= 1) n_h = idx.size();
+    for (size_t k = 0; k < n_h; ++k) {  // partial Fisher-Yates
+      const size_t j = k + size_t(rng() % (idx.size() - k));
+      std::swap(idx[k], idx[j]);
+      chosen[idx[k]] = true;
+    }
+  }
+  return chosen;
+}
+
+SubScene sub_scene(const Scene& scene, const UnitPlan& plan, const std::vector<bool>& chosen) {
+  struct Slice {
+    size_t cmd, k0, k1;
+    bool whole;
+  };
+  std::vector<Slice> slices;
+  SubScene out;
+  out.first_of_unit.assign(plan.units.size(), {SIZE_MAX, 0});
+  for (size_t u = 0; u < plan.units.size(); ++u) {
+    if (!chosen[u]) continue;
+    bool first = true;
+    for (const Piece& p : plan.units[u].pieces) {
+      if (!p.whole && !slices.empty() && !slices.back().whole && slices.back().cmd == p.command &&
+          slices.back().k1 == p.k0)
+        slices.back().k1 = p.k1;
+      else
+        slices.push_back({p.command, p.k0, p.k1, p.whole});
+      if (first) out.first_of_unit[u] = {slices.size() - 1, p.k0 - slices.back().k0};
+      first = false;
+    }
+  }
+  out.scene.source = scene.source;
+  out.scene.commands.reserve(slices.size());
+  for (const Slice& s : slices) {
+    const Command& c = scene.commands[s.cmd];
+    const bool all = s.whole || (s.k0 == 0 && s.k1 == triangle_count(std::get<CmdPrimitives>(c.body)));
+    out.scene.commands.push_back(all ? c : slice(c, s.k0, s.k1));
+  }
+  return out;
+}
+
+SampledResult extrapolate(const UnitPlan& plan, const std::vector<bool>& chosen, const std::vector<double>& y,
+                          double confidence) {
+  SampledResult r;
+  r.confidence = confidence;
+  r.analytic = plan.analytic;
+  r.units_total = plan.units.size();
+  r.batch_triangles = plan.batch;
+  struct Stratum {
+    size_t N = 0, n = 0;
+    double X = 0, sx = 0, sy = 0;
+    std::vector<size_t> sample;
+  };
+  std::map<int, Stratum> strata;
+  double certain = 0, x_all = 0, x_sim = 0;
+  for (size_t u = 0; u < plan.units.size(); ++u) {
+    const Unit& unit = plan.units[u];
+    x_all += unit.x;
+    if (chosen[u]) {
+      ++r.units_simulated;
+      x_sim += unit.x;
+    }
+    if (unit.certain) {
+      ++r.units_certain;
+      certain += y[u];
+      continue;
+    }
+    Stratum& s = strata[unit.stratum];
+    ++s.N;
+    s.X += unit.x;
+    if (!chosen[u]) continue;
+    ++s.n;
+    s.sx += unit.x;
+    s.sy += y[u];
+    s.sample.push_back(u);
+  }
+  r.work_fraction_simulated = x_all > 0 ? x_sim / x_all : 1;
+  double total = certain, var = 0, df_den = 0;
+  for (auto& [h, s] : strata) {
+    if (s.n == 0) throw std::logic_error("extrapolate: a stratum without a sampled unit");
+    ++r.strata;
+    // Ratio estimator on the analytic work; with no analytic work, plain expansion.
+    const bool ratio = s.sx > 0;
+    const double R = ratio ? s.sy / s.sx : s.sy / double(s.n);
+    total += ratio ? R * s.X : R * double(s.N);
+    if (s.n == s.N || s.n < 2) continue;
+    double ss = 0;
+    for (size_t u : s.sample) {
+      const double e = y[u] - R * (ratio ? plan.units[u].x : 1.0);
+      ss += e * e;
+    }
+    const double s2 = ss / double(s.n - 1);
+    const double v = double(s.N) * double(s.N) * (1 - double(s.n) / double(s.N)) * s2 / double(s.n);
+    var += v;
+    df_den += v * v / double(s.n - 1);
+  }
+  r.cycles = total;
+  if (var > 0) {
+    r.degrees_of_freedom = var * var / df_den;
+    const double t = student_t_quantile(0.5 + 0.5 * confidence, r.degrees_of_freedom);
+    const double h = t * std::sqrt(var);
+    r.ci_low = total - h;
+    r.ci_high = total + h;
+  } else {
+    r.ci_low = r.ci_high = total;
+  }
+  return r;
+}
+
+SampledResult simulate_sampled(const Scene& scene, const Config& cfg, double fraction, uint64_t seed,
+                               double confidence) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const UnitPlan plan = plan_units(scene, cfg);
+  const std::vector<bool> chosen = draw_sample(plan, fraction, seed);
+  const SubScene sub = sub_scene(scene, plan, chosen);
+  std::map<std::pair<size_t, size_t>, size_t> unit_at;
+  for (size_t u = 0; u < plan.units.size(); ++u)
+    if (chosen[u]) unit_at[sub.first_of_unit[u]] = u;
+  std::vector<double> start(plan.units.size(), -1.0);
+  sc::SimOptions opts;
+  const Command* base = sub.scene.commands.data();
+  opts.on_fetch = [&](const Command& c, size_t k, uint64_t cycle) {
+    const auto it = unit_at.find({size_t(&c - base), k});
+    if (it != unit_at.end()) start[it->second] = double(cycle);
+  };
+  const sc::SimResult sim = sc::simulate_scene(sub.scene, cfg, opts);
+  // Each simulated unit's cycles: fetch starting it to fetch starting the next one.
+  std::vector<double> y(plan.units.size(), 0.0);
+  double prev_start = 0;  // the first simulated unit also carries anything before it
+  size_t prev = SIZE_MAX;
+  for (size_t u = 0; u < plan.units.size(); ++u) {
+    if (!chosen[u]) continue;
+    if (start[u] < 0) throw std::logic_error("simulate_sampled: a chosen unit was never fetched");
+    if (prev != SIZE_MAX) {
+      y[prev] = start[u] - prev_start;
+      prev_start = start[u];
+    }
+    prev = u;
+  }
+  if (prev != SIZE_MAX) y[prev] = double(sim.cycles) - prev_start;
+  SampledResult r = extrapolate(plan, chosen, y, confidence);
+  r.sample_fraction = fraction;
+  r.seed = seed;
+  r.cycles_simulated = sim.cycles;
+  r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return r;
+}
+
+nlohmann::json SampledResult::to_json() const {
+  return {{"fidelity_level", "sampled"},
+          {"cycles", uint64_t(std::llround(cycles))},
+          {"cycles_ci_low", ci_low},
+          {"cycles_ci_high", ci_high},
+          {"confidence", confidence},
+          {"sample_fraction", sample_fraction},
+          {"sample_seed", seed},
+          {"units_total", units_total},
+          {"units_simulated", units_simulated},
+          {"units_certain", units_certain},
+          {"strata", strata},
+          {"batch_triangles", batch_triangles},
+          {"degrees_of_freedom", degrees_of_freedom},
+          {"work_fraction_simulated", work_fraction_simulated},
+          {"cycles_simulated", cycles_simulated},
+          {"cycles_lower_bound", analytic.cycles_lower_bound},
+          {"cycles_upper_bound", analytic.cycles_upper_bound},
+          {"core_mhz", analytic.core_mhz},
+          {"wall_seconds", wall_seconds}};
+}
+
+}  // namespace rastsim::fidelity
