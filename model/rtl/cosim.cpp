@@ -102,6 +102,17 @@ void build(const Scene& scene, const Config& cfg, int tile_size, TbSetup& s) {
       });
     }
   }
+  // Multisampling: the frame ends with the resolve pass, ordered after every fragment by
+  // a marker fetched like a command header that travels through the RTL like a state
+  // command (as the SystemC model's command fetch sends it); the ROP is busy
+  // resolve_cycles(W H, S) on it.
+  if (st.samples > 1) {
+    TbItem m;
+    m.kind = TbItem::Marker;
+    m.fetch_cost = tp.fetch_header_cycles();
+    m.rop_cost = tp.resolve_cycles(uint64_t(st.fb_width) * uint64_t(st.fb_height), st.samples);
+    s.items.push_back(m);
+  }
 }
 
 }  // namespace
@@ -174,6 +185,7 @@ CosimResult run_cosim(const Scene& scene, const Config& cfg, const CosimOptions&
     r.fragments_expected = s.expected.size();
     for (const TbItem& it : s.items) (it.kind == TbItem::Marker ? r.markers : r.triangles) += it.kind != TbItem::Null;
     r.commands_2d = s.work2d.size();
+    if (s.arch.samples > 1) r.resolve_cycles = s.items.back().rop_cost;
     rtl_registry()[i].run(s, r);
     return r;
   }

@@ -51,7 +51,7 @@ struct TbItem {
   int clip[4] = {};            // x0, y0, x1, y1
   int origin[2] = {};          // x, y
   int tri = -1;                // triangle index (names in TbSetup::tri_names)
-  const Command* cmd = nullptr;  // markers: the state or 2D command
+  const Command* cmd = nullptr;  // markers: the state or 2D command (none: the end-of-frame marker)
   int work2d = -1;             // 2D markers: index in TbSetup::work2d
 };
 // A 2D command's engine operations (ref/draw2d.h) and its front-end cost.
@@ -161,9 +161,7 @@ class RtlBench {
         break;
       }
       if (cycle(t)) {
-        // The frame-end resolve pass (multisampling) follows the ROP's last work.
-        r_.resolve_cycles = s_.timing.resolve_cycles(uint64_t(fb_.width) * uint64_t(fb_.height), s_.samples);
-        r_.cycles_rtl = last_busy_ + 1 + r_.resolve_cycles;
+        r_.cycles_rtl = last_busy_ + 1;
         break;
       }
     }
@@ -277,7 +275,8 @@ class RtlBench {
         last_busy_ = t;
         return;
       }
-      if (b.marker) apply_state_command(*s_.items[b.marker_item].cmd, st_, fb_);
+      // (The end-of-frame marker has no command: its cost is the resolve pass.)
+      if (b.marker && s_.items[b.marker_item].cmd) apply_state_command(*s_.items[b.marker_item].cmd, st_, fb_);
       for (const Fragment& f : b.frags) rop_write(fb_, f, st_.depth_func, st_.depth_write);
       rop_left_ = b.marker ? s_.items[b.marker_item].rop_cost : s_.timing.rop_fragment_cycles(b.accesses);
     }
