@@ -3,8 +3,8 @@
 // and the snapped offsets are run-time inputs of the verilated model, so the shipped
 // configs' models run every sample count.
 //
-// - Random scenes at 1, 4, 8 and 16 samples on the default (s7.16) and d3d11 (s15.8)
-//   models, with backpressure: every fragment and its sample mask equal to the reference
+// - Random scenes at 1, 2, 4, 8 and 16 samples on the default (s7.16) and d3d11 (s15.8)
+//   models, 4 and 8 on embedded (s10.4) and desktop (s12.8), with backpressure: every fragment and its sample mask equal to the reference
 //   model's stream, the resolved framebuffer's CRC equal to the reference's.
 // - Directed: edges through sample positions (shared edges, both windings), slivers
 //   thinner than a pixel, triangles whose pixels have samples but no centre (the clamp).
@@ -66,7 +66,11 @@ INSTANTIATE_TEST_SUITE_P(
     Samples, MsaaRandomCosim,
     ::testing::Values(MsaaCase{"default", 1, 16}, MsaaCase{"default", 2, 8}, MsaaCase{"default", 4, 16},
                       MsaaCase{"default", 4, 4}, MsaaCase{"default", 8, 16}, MsaaCase{"default", 16, 8},
-                      MsaaCase{"d3d11", 4, 16}, MsaaCase{"d3d11", 8, 8}, MsaaCase{"d3d11", 16, 16}),
+                      MsaaCase{"d3d11", 4, 16}, MsaaCase{"d3d11", 8, 8}, MsaaCase{"d3d11", 16, 16},
+                      // s10.4: offsets exactly the 1/16 px table (F = 4); 4 sample lanes.
+                      MsaaCase{"embedded", 4, 8}, MsaaCase{"embedded", 8, 8},
+                      // 16 sample lanes, 4 tiles a cycle in the coarse raster.
+                      MsaaCase{"desktop", 4, 16}, MsaaCase{"desktop", 16, 16}),
     [](const auto& info) {
       return std::string(info.param.config) + "Samples" + std::to_string(info.param.samples) + "Tile" +
              std::to_string(info.param.tile);
