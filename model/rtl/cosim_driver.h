@@ -164,6 +164,15 @@ class RtlBench {
         r_.cycles_rtl = last_busy_ + 1;
         break;
       }
+      // Only the ROP left, counting down a long operation (a multisampled frame's resolve
+      // pass: up to millions of cycles): skip to its last cycle instead of clocking an
+      // idle RTL (the waveform stops here).
+      if (rop_left_ > 1 && done_but_rop()) {
+        last_busy_ = std::max(last_busy_, t + rop_left_);
+        r_.cycles_rtl = last_busy_ + 1;
+        rop_left_ = 0;
+        break;
+      }
     }
     end_of_run_check();
     if (fst_) fst_->close();
@@ -576,10 +585,11 @@ class RtlBench {
   }
   // Nothing left anywhere: scene fetched, FIFOs and stages empty, the RTL idle (its
   // idle_o covers the interpolator's pipeline) with no beat out, the ROP done.
-  bool done() const {
+  bool done() const { return rop_left_ == 0 && done_but_rop(); }
+  bool done_but_rop() const {
     return next_item_ >= s_.items.size() && !fetch_.active && cmd_fifo_.empty() && !assembly_.active &&
            top_->idle_o && !top_->frag_valid_o &&
-           !staging_blocked_ && staging_.fragments == 0 && !staging_.marker && frag_fifo_.empty() && rop_left_ == 0 &&
+           !staging_blocked_ && staging_.fragments == 0 && !staging_.marker && frag_fifo_.empty() &&
            d2_fifo_.empty() && !fe_.active && op2d_fifo_.empty() && held_ < 0 && !engine_busy_ && !rop_wait_2d_;
   }
   void end_of_run_check() {
