@@ -7,8 +7,11 @@
 //   footprint is the tile clipped to the box.
 // - Per edge, two corner evaluations of the footprint's pixel-centre grid, picked by
 //   the signs of a and b: max(E) - bias < 0 on some edge rejects the tile; min(E) - bias
-//   >= 0 on every edge accepts it whole; otherwise it is partial. Exact, not
-//   conservative: the same samples and bias as the per-pixel test.
+//   >= 0 on every edge accepts it whole; otherwise it is partial. With one sample
+//   exact: the same samples and bias as the per-pixel test. With several (box_i, the
+//   sample offsets' box; zero for one sample) the two corners move by the box,
+//   (x_hi + dx_max, y_hi + dy_max) and (x_lo + dx_min, y_lo + dy_min), so both decisions
+//   hold for every sample of the footprint (conservative, as ref classify_tile).
 // - Timing: classifies TilesPerCycle tiles a cycle; rejected tiles cost only their
 //   share of a cycle; an accepted or partial tile is pushed to the tile FIFO in the
 //   cycle that classified it. With TilesPerCycle > 1, at most one surviving tile leaves
@@ -24,11 +27,13 @@ module rast_coarse_raster #(
   parameter int EdgeW         = 49,  // 2N + 3
   parameter int PixelW        = 14,  // pixel index bits
   parameter int TileLog2W     = 3,   // tile_log2_i bits
+  parameter int SampleOffW    = 17,  // sample offset bits, signed raw (F + 1)
   parameter int TilesPerCycle = 1    // tiles classified per cycle
 ) (
   input  wire logic                 clk_i,         // core clock
   input  wire logic                 rst_ni,        // asynchronous reset, active low
   input  wire logic [TileLog2W-1:0] tile_log2_i,   // log2 tile size, 1..TileLog2Max (static)
+  input  wire logic [4*SampleOffW-1:0] box_i,      // sample offset box {dy_max, dy_min, dx_max, dx_min} (static)
   input  wire logic                 in_valid_i,    // set-up triangle or marker at the head
   output      logic                 in_ready_o,    // pop the head (last cycle of its walk)
   input  wire logic                 in_marker_i,   // head is a marker
@@ -46,6 +51,13 @@ module rast_coarse_raster #(
   output      logic                 busy_o         // a walk is in progress
 );
   localparam int Lanes = TilesPerCycle;  // derived: tiles looked at per cycle
+
+  // The sample offset box, sign-extended to coordinates (|d| <= 2^(F-1): a corner moved
+  // by it stays inside the format, docs/rtl.md).
+  logic [CoordW-1:0] box_c [4];
+  always_comb
+    for (int k = 0; k < 4; k++)
+      box_c[k] = {{(CoordW - SampleOffW){box_i[k*SampleOffW + SampleOffW - 1]}}, box_i[k*SampleOffW +: SampleOffW]};
 
   logic [PixelW-1:0] bx0, by0, bx1, by1, ox, oy;
   logic [PixelW-1:0] tx_first, ty_first, tx_last, ty_last;  // tile index range, inclusive
@@ -86,7 +98,7 @@ module rast_coarse_raster #(
 
   for (genvar j = 0; j < Lanes; j++) begin : g_lane
     logic [PixelW-1:0] x0, y0, x1, y1, tile_x0, tile_y0, tile_x1, tile_y1;
-    logic [CoordW-1:0] sx_lo, sx_hi, sy_lo, sy_hi;
+    logic [CoordW-1:0] cx_lo, cx_hi, cy_lo, cy_hi, sx_lo, sx_hi, sy_lo, sy_hi;
     logic [2:0]        reject, covers;
     assign tile_x0 = lane_tx[j] << tile_log2_i;
     assign tile_y0 = lane_ty[j] << tile_log2_i;
@@ -96,10 +108,14 @@ module rast_coarse_raster #(
     assign y0 = (tile_y0 > by0) ? tile_y0 : by0;
     assign x1 = (tile_x1 < bx1 && tile_x1 != '0) ? tile_x1 : bx1;  // != 0: wrapped past the top
     assign y1 = (tile_y1 < by1 && tile_y1 != '0) ? tile_y1 : by1;
-    rast_sample #(.PixelW(PixelW), .CoordW(CoordW), .CoordFrac(CoordFrac)) u_sx_lo (.p_i(x0), .origin_i(ox), .s_o(sx_lo));
-    rast_sample #(.PixelW(PixelW), .CoordW(CoordW), .CoordFrac(CoordFrac)) u_sx_hi (.p_i(x1 - 1'b1), .origin_i(ox), .s_o(sx_hi));
-    rast_sample #(.PixelW(PixelW), .CoordW(CoordW), .CoordFrac(CoordFrac)) u_sy_lo (.p_i(y0), .origin_i(oy), .s_o(sy_lo));
-    rast_sample #(.PixelW(PixelW), .CoordW(CoordW), .CoordFrac(CoordFrac)) u_sy_hi (.p_i(y1 - 1'b1), .origin_i(oy), .s_o(sy_hi));
+    rast_sample #(.PixelW(PixelW), .CoordW(CoordW), .CoordFrac(CoordFrac)) u_sx_lo (.p_i(x0), .origin_i(ox), .s_o(cx_lo));
+    rast_sample #(.PixelW(PixelW), .CoordW(CoordW), .CoordFrac(CoordFrac)) u_sx_hi (.p_i(x1 - 1'b1), .origin_i(ox), .s_o(cx_hi));
+    rast_sample #(.PixelW(PixelW), .CoordW(CoordW), .CoordFrac(CoordFrac)) u_sy_lo (.p_i(y0), .origin_i(oy), .s_o(cy_lo));
+    rast_sample #(.PixelW(PixelW), .CoordW(CoordW), .CoordFrac(CoordFrac)) u_sy_hi (.p_i(y1 - 1'b1), .origin_i(oy), .s_o(cy_hi));
+    assign sx_lo = cx_lo + box_c[0];
+    assign sx_hi = cx_hi + box_c[1];
+    assign sy_lo = cy_lo + box_c[2];
+    assign sy_hi = cy_hi + box_c[3];
     for (genvar i = 0; i < 3; i++) begin : g_edge
       logic signed [CoefW-1:0] a, b;
       logic signed [EdgeW-1:0] e_max, e_min, e_max_b, e_min_b;  // E, E + bias

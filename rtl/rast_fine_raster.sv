@@ -1,15 +1,22 @@
 // SPDX-License-Identifier: Apache-2.0
-// rast_fine_raster: per-pixel coverage of partial tiles, whole masks for accepted
+// rast_fine_raster: per-sample coverage of partial tiles, whole masks for accepted
 // tiles (ref: model/ref/fine_raster.h fine_raster_partial / fine_raster_accepted; model:
 // model/sc/fine_raster.cpp).
 //
-// - Partial tile: tests SamplesPerCycle pixel centres of the footprint a cycle, in
-//   row-major order, each against the three edges with its bias (E - bias >= 0); a
-//   footprint of A pixels takes ceil(A / SamplesPerCycle) cycles.
-// - Accepted tile: the footprint's mask without tests, in AcceptedTileCycles cycles.
-// - Out: one coverage mask per tile (bit (ly << tile_log2) | lx, pixel (lx, ly) of the
-//   tile, row-major) with the tile's corner pixel; pushed in the tile's last cycle, and
-//   only when some pixel is covered. A marker costs one cycle.
+// - Multisampling: S = 2^samples_log2_i samples a pixel (1 .. MaxSamples), sample s at
+//   the pixel centre plus (sample_dx_i[s], sample_dy_i[s]) (raw, snapped by the
+//   testbench from the config: ref/sample_pattern.h). With S = 1 the offset is 0 and
+//   every test is the pixel-centre test of before.
+// - Partial tile: a stream of A x S coverage tests (pixels row-major, each pixel's
+//   samples in order), SamplesPerCycle tests a cycle, each against the three edges with
+//   its bias (E + a dx_s + b dy_s - bias >= 0): a footprint of A pixels takes
+//   ceil(A S / SamplesPerCycle) cycles (TimingParams::fine_partial_cycles).
+// - Accepted tile: the footprint's mask without tests, every sample covered, in
+//   AcceptedTileCycles cycles.
+// - Out: per tile, a pixel mask (bit (ly << tile_log2) | lx, pixel (lx, ly) of the tile,
+//   row-major: some sample covered) and a sample mask (bits [p MaxSamples +: S] of
+//   pixel bit p: its samples), with the tile's corner pixel; pushed in the tile's last
+//   cycle, and only when some pixel is covered. A marker costs one cycle.
 // - The input is popped in the tile's last cycle: the head is the tile being rastered.
 `default_nettype none
 
@@ -23,12 +30,19 @@ module rast_fine_raster #(
   parameter int TileLog2W          = 3,   // tile_log2_i bits
   parameter int SamplesPerCycle    = 8,   // coverage tests per cycle
   parameter int AcceptedTileCycles = 1,   // cycles to emit an accepted tile
+  parameter int MaxSamples         = 16,  // largest sample count (a power of two >= 2)
+  parameter int SampleLog2W        = 3,   // samples_log2_i bits
+  parameter int SampleOffW         = 17,  // sample offset bits, signed raw (F + 1)
   localparam int TileMax = 1 << TileLog2Max,  // derived: largest tile side
-  localparam int MaskW   = TileMax * TileMax  // derived: coverage mask bits
+  localparam int MaskW   = TileMax * TileMax,  // derived: coverage mask bits
+  localparam int SMaskW  = MaskW * MaxSamples  // derived: sample mask bits
 ) (
   input  wire logic                 clk_i,          // core clock
   input  wire logic                 rst_ni,         // asynchronous reset, active low
   input  wire logic [TileLog2W-1:0] tile_log2_i,    // log2 tile size (static)
+  input  wire logic [SampleLog2W-1:0] samples_log2_i,          // log2 samples a pixel (static)
+  input  wire logic [MaxSamples*SampleOffW-1:0] sample_dx_i,   // sample s x offset at [s*SampleOffW +: SampleOffW] (static)
+  input  wire logic [MaxSamples*SampleOffW-1:0] sample_dy_i,   // sample s y offset (static)
   input  wire logic                 in_valid_i,     // tile or marker at the head
   output      logic                 in_ready_o,     // pop the head (tile's last cycle)
   input  wire logic                 in_marker_i,    // head is a marker
@@ -42,12 +56,24 @@ module rast_fine_raster #(
   output      logic                 out_valid_o,    // mask or marker out
   input  wire logic                 out_ready_i,    // pixel FIFO takes it
   output      logic                 out_marker_o,   // a marker
-  output      logic [MaskW-1:0]     out_mask_o,     // covered pixels of the tile
+  output      logic [MaskW-1:0]     out_mask_o,     // pixels of the tile with a covered sample
+  output      logic [SMaskW-1:0]    out_smask_o,    // pixel p's samples at [p*MaxSamples +: MaxSamples]
   output      logic [2*PixelW-1:0]  out_tile_o,     // the tile's corner pixel {y, x}
   output      logic                 busy_o          // a tile is in progress
 );
   localparam int Lanes = SamplesPerCycle;                 // derived
   localparam int CntW  = $clog2(AcceptedTileCycles + 1);  // derived: countdown bits
+  localparam int SIdxW = (MaxSamples > 1) ? $clog2(MaxSamples) : 1;  // derived: sample index bits
+  localparam int IdxW  = 2 * TileLog2Max;                 // derived: pixel index bits
+
+  if (MaxSamples < 2 || (MaxSamples & (MaxSamples - 1)) != 0) begin : g_check_samples
+    $error("rast_fine_raster: MaxSamples (%0d) must be a power of two >= 2", MaxSamples);
+  end
+
+  logic [SIdxW-1:0]  s_last;  // S - 1
+  logic [MaxSamples-1:0] s_full;  // S ones
+  assign s_last = SIdxW'((32'd1 << samples_log2_i) - 1);
+  assign s_full = {MaxSamples{1'b1}} >> (MaxSamples - (1 << samples_log2_i));
 
   logic [PixelW-1:0] fx0, fy0, fx1, fy1, tile_x, tile_y;
   assign fx0 = in_fp_i[0 +: PixelW];
@@ -60,20 +86,31 @@ module rast_fine_raster #(
 
   logic              active_q;
   logic [PixelW-1:0] cx_q, cy_q;  // next pixel to test
+  logic [SIdxW-1:0]  cs_q;        // its next sample
   logic [CntW-1:0]   cnt_q;       // accepted tile: cycles left
   logic [MaskW-1:0]  mask_q;      // partial tile: covered so far
+  logic [SMaskW-1:0] smask_q;     // partial tile: covered samples so far
 
-  // ---- Sample lanes: the next SamplesPerCycle pixels of the footprint ----
+  // ---- Sample lanes: the next SamplesPerCycle (pixel, sample) tests of the footprint ----
   logic [PixelW-1:0] lane_x [Lanes+1], lane_y [Lanes+1];
+  logic [SIdxW-1:0]  lane_s [Lanes+1];
   logic [Lanes-1:0]  lane_cov;
+  logic [IdxW-1:0]   lane_pix [Lanes];  // the lane's pixel in the tile, row-major
   always_comb begin
     lane_x[0] = active_q ? cx_q : fx0;
     lane_y[0] = active_q ? cy_q : fy0;
+    lane_s[0] = active_q ? cs_q : '0;
     for (int j = 0; j < Lanes; j++) begin
-      if (lane_x[j] + 1'b1 == fx1) begin
+      if (lane_s[j] != s_last) begin
+        lane_s[j+1] = lane_s[j] + 1'b1;
+        lane_x[j+1] = lane_x[j];
+        lane_y[j+1] = lane_y[j];
+      end else if (lane_x[j] + 1'b1 == fx1) begin
+        lane_s[j+1] = '0;
         lane_x[j+1] = fx0;
         lane_y[j+1] = lane_y[j] + 1'b1;
       end else begin
+        lane_s[j+1] = '0;
         lane_x[j+1] = lane_x[j] + 1'b1;
         lane_y[j+1] = lane_y[j];
       end
@@ -81,12 +118,18 @@ module rast_fine_raster #(
   end
 
   for (genvar j = 0; j < Lanes; j++) begin : g_lane
-    logic [CoordW-1:0] sx, sy;
+    logic [CoordW-1:0] cx, cy, sx, sy;
+    logic [SampleOffW-1:0] dx, dy;
     logic [2:0]        pass;
     rast_sample #(.PixelW(PixelW), .CoordW(CoordW), .CoordFrac(CoordFrac)) u_sx (
-      .p_i(lane_x[j]), .origin_i(in_origin_i[0 +: PixelW]), .s_o(sx));
+      .p_i(lane_x[j]), .origin_i(in_origin_i[0 +: PixelW]), .s_o(cx));
     rast_sample #(.PixelW(PixelW), .CoordW(CoordW), .CoordFrac(CoordFrac)) u_sy (
-      .p_i(lane_y[j]), .origin_i(in_origin_i[PixelW +: PixelW]), .s_o(sy));
+      .p_i(lane_y[j]), .origin_i(in_origin_i[PixelW +: PixelW]), .s_o(cy));
+    // The sample position: centre + offset (|offset| <= 2^(F-1), inside the format).
+    assign dx = sample_dx_i[lane_s[j]*SampleOffW +: SampleOffW];
+    assign dy = sample_dy_i[lane_s[j]*SampleOffW +: SampleOffW];
+    assign sx = cx + {{(CoordW - SampleOffW){dx[SampleOffW-1]}}, dx};
+    assign sy = cy + {{(CoordW - SampleOffW){dy[SampleOffW-1]}}, dy};
     for (genvar i = 0; i < 3; i++) begin : g_edge
       logic signed [EdgeW-1:0] e, e_b;
       rast_edge_eval #(.CoordW(CoordW), .CoefW(CoefW), .EdgeW(EdgeW)) u_eval (
@@ -96,15 +139,20 @@ module rast_fine_raster #(
       assign pass[i] = !e_b[EdgeW-1];  // E + bias >= 0
     end
     assign lane_cov[j] = (lane_y[j] < fy1) && (pass == 3'b111);
+    assign lane_pix[j] = IdxW'(((lane_y[j] - tile_y) << tile_log2_i) | (lane_x[j] - tile_x));
   end
 
   // ---- Masks: tested lanes of a partial tile, or the whole footprint ----
-  logic [MaskW-1:0] lane_mask, fp_mask;
+  logic [MaskW-1:0]  lane_mask, fp_mask;
+  logic [SMaskW-1:0] lane_smask, fp_smask;
   always_comb begin
-    lane_mask = '0;
+    lane_mask  = '0;
+    lane_smask = '0;
     for (int j = 0; j < Lanes; j++)
-      if (lane_cov[j])
-        lane_mask[(TileLog2Max*2)'(((lane_y[j] - tile_y) << tile_log2_i) | (lane_x[j] - tile_x))] = 1'b1;
+      if (lane_cov[j]) begin
+        lane_mask[lane_pix[j]] = 1'b1;
+        lane_smask[{lane_pix[j], lane_s[j]}] = 1'b1;
+      end
     fp_mask = '0;
     for (int ly = 0; ly < TileMax; ly++)
       for (int lx = 0; lx < TileMax; lx++)
@@ -112,6 +160,7 @@ module rast_fine_raster #(
             tile_y + PixelW'(ly) >= fy0 && tile_y + PixelW'(ly) < fy1 &&
             (lx >> tile_log2_i) == 0 && (ly >> tile_log2_i) == 0)
           fp_mask[(TileLog2Max*2)'((ly << tile_log2_i) | lx)] = 1'b1;
+    for (int q = 0; q < MaskW; q++) fp_smask[q*MaxSamples +: MaxSamples] = fp_mask[q] ? s_full : '0;
   end
 
   // ---- Control ----
@@ -125,6 +174,7 @@ module rast_fine_raster #(
   end
   assign out_marker_o = in_marker_i;
   assign out_mask_o   = in_accepted_i ? fp_mask : (mask_q | lane_mask);
+  assign out_smask_o  = in_accepted_i ? fp_smask : (smask_q | lane_smask);
   assign out_valid_o  = in_valid_i && last && (in_marker_i || out_mask_o != '0);
   assign done         = in_valid_i && last && (!out_valid_o || out_ready_i);
   assign in_ready_o   = done;
@@ -135,17 +185,22 @@ module rast_fine_raster #(
       active_q <= 1'b0;
       cx_q     <= '0;
       cy_q     <= '0;
+      cs_q     <= '0;
       cnt_q    <= '0;
       mask_q   <= '0;
+      smask_q  <= '0;
     end else if (done) begin
       active_q <= 1'b0;
       mask_q   <= '0;
+      smask_q  <= '0;
     end else if (in_valid_i && !last) begin
       active_q <= 1'b1;
       cx_q     <= lane_x[Lanes];
       cy_q     <= lane_y[Lanes];
+      cs_q     <= lane_s[Lanes];
       cnt_q    <= left - 1'b1;
       mask_q   <= out_mask_o;
+      smask_q  <= out_smask_o;
     end
   end
 endmodule

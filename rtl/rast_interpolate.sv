@@ -6,9 +6,17 @@
 //   the tile), FragmentsPerCycle pixels a cycle: a mask of N pixels takes
 //   ceil(N / FragmentsPerCycle) cycles, a marker one.
 // - Per pixel: the barycentric weights are the edge values at the pixel centre,
-//   w0 = E1, w1 = E2, w2 = E0 (AreaW bits, unsigned, sum area2); each attribute is
+//   w0 = E1, w1 = E2, w2 = E0 (signed EdgeW bits, sum area2); each attribute is
 //   round_half_up((w0 a0 + w1 a1 + w2 a2) / area2), one rast_divider per attribute and
 //   lane (quotient 8 bits colour, DepthW depth; numerators ColorNumW / DepthNumW).
+// - Multisampling (msaa): a pixel with a covered sample but its centre outside the
+//   triangle has a negative weight, and the rational may leave the attribute's range:
+//   the result is clamped to [0, 2^bits - 1] as ref interpolate_plane_at does. The signed
+//   numerator (NumW + 3 bits: |w| < 2^(EdgeW-1)) is tested before the divider: negative
+//   -> 0; 2 num + area2 >= 2^(bits+1) area2 (the rounded quotient >= 2^bits) -> 2^bits - 1;
+//   otherwise the divider gets it (then < 2^bits area2, as before). The flags ride the
+//   side pipe. With one sample every weight is >= 0 and no flag is ever set.
+// - Each fragment carries its pixel's sample mask (in_smask_i, MaxSamples bits a pixel).
 // - Latency register stages (interp.latency_cycles) from a pixel's pick to its
 //   fragment; the whole pipeline stalls while the output is not taken.
 // - The input is popped in the cycle that picks its last pixels.
@@ -28,7 +36,9 @@ module rast_interpolate #(
   parameter int TileLog2W         = 3,   // tile_log2_i bits
   parameter int FragmentsPerCycle = 4,   // pixels interpolated per cycle
   parameter int Latency           = 6,   // pick-to-fragment register stages
+  parameter int MaxSamples        = 16,  // sample mask bits a pixel (a power of two >= 2)
   localparam int MaskW = 1 << (2 * TileLog2Max),  // derived: coverage mask bits
+  localparam int SMaskW = MaskW * MaxSamples,     // derived: sample mask bits
   localparam int Lanes = FragmentsPerCycle        // derived
 ) (
   input  wire logic                      clk_i,         // core clock
@@ -38,6 +48,7 @@ module rast_interpolate #(
   output      logic                      in_ready_o,    // pop the head
   input  wire logic                      in_marker_i,   // head is a marker
   input  wire logic [MaskW-1:0]          in_mask_i,     // covered pixels of the tile
+  input  wire logic [SMaskW-1:0]         in_smask_i,    // pixel p's samples at [p*MaxSamples +: MaxSamples]
   input  wire logic [2*PixelW-1:0]       in_tile_i,     // tile corner pixel {y, x}
   input  wire logic [3*CoefW-1:0]        in_a_i,        // edge a
   input  wire logic [3*CoefW-1:0]        in_b_i,        // edge b
@@ -55,10 +66,15 @@ module rast_interpolate #(
   output      logic [Lanes*PixelW-1:0]   out_y_o,       // lane j pixel y
   output      logic [Lanes*DepthW-1:0]   out_z_o,       // lane j depth
   output      logic [Lanes*24-1:0]       out_rgb_o,     // lane j colour {b, g, r}
+  output      logic [Lanes*MaxSamples-1:0] out_smask_o, // lane j sample mask
   output      logic                      busy_o         // a mask half done or a beat in the pipeline
 );
   localparam int IdxW  = 2 * TileLog2Max;              // derived: mask index bits
-  localparam int SideW = 3 + Lanes * (1 + 2 * PixelW);  // derived: side data bits
+  localparam int SIdxW = $clog2(MaxSamples);           // derived: sample index bits
+  localparam int ClampW = 2 * 4;                       // derived: {lo, hi} flags of 4 dividers
+  localparam int SideW = 3 + Lanes * (1 + 2 * PixelW + MaxSamples + ClampW);  // derived: side data bits
+  localparam int CNumW = ColorNumW + 3;                // derived: signed colour numerator
+  localparam int ZNumW = DepthNumW + 3;                // derived: signed depth numerator
 
   logic             en;
   logic [MaskW-1:0] consumed_q, rem, picked;
@@ -99,13 +115,19 @@ module rast_interpolate #(
 
   // ---- Per lane: pixel, weights, numerators, dividers ----
   logic [Lanes*PixelW-1:0] lane_x, lane_y;
+  logic [Lanes*MaxSamples-1:0] lane_smask;
+  logic [Lanes*ClampW-1:0] lane_clamp, out_clamp;
+  logic [Lanes*DepthW-1:0] div_z;
+  logic [Lanes*24-1:0]     div_rgb;
   for (genvar j = 0; j < Lanes; j++) begin : g_lane
     logic [PixelW-1:0]     px, py;
     logic [CoordW-1:0]     sx, sy;
     logic signed [EdgeW-1:0] e [3];
-    logic [AreaW-1:0]      w [3];
+    logic signed [CNumW-1:0] snum_c [3];
+    logic signed [ZNumW-1:0] snum_z;
     logic [ColorNumW-1:0]  num_c [3];
     logic [DepthNumW-1:0]  num_z;
+    logic [3:0]            lo, hi;  // per divider (r, g, b, z): clamp to 0 / to the maximum
     logic [IdxW-1:0]       mask_lx, lx, ly;
     assign mask_lx = ~({IdxW{1'b1}} << tile_log2_i);
     assign lx = idx[j] & mask_lx;
@@ -114,6 +136,7 @@ module rast_interpolate #(
     assign py = in_tile_i[PixelW +: PixelW] + {{(PixelW - IdxW){1'b0}}, ly};
     assign lane_x[j*PixelW +: PixelW] = px;
     assign lane_y[j*PixelW +: PixelW] = py;
+    assign lane_smask[j*MaxSamples +: MaxSamples] = in_smask_i[{idx[j], SIdxW'(0)} +: MaxSamples];
     rast_sample #(.PixelW(PixelW), .CoordW(CoordW), .CoordFrac(CoordFrac)) u_sx (
       .p_i(px), .origin_i(in_origin_i[0 +: PixelW]), .s_o(sx));
     rast_sample #(.PixelW(PixelW), .CoordW(CoordW), .CoordFrac(CoordFrac)) u_sy (
@@ -122,25 +145,44 @@ module rast_interpolate #(
       rast_edge_eval #(.CoordW(CoordW), .CoefW(CoefW), .EdgeW(EdgeW)) u_eval (
         .a_i(in_a_i[i*CoefW +: CoefW]), .b_i(in_b_i[i*CoefW +: CoefW]),
         .c_i(in_c_i[i*EdgeW +: EdgeW]), .x_i(sx), .y_i(sy), .e_o(e[i]));
-      // Weight of vertex i is the edge opposite it, edge (i+1)%3: in [0, area2].
-      assign w[i] = AreaW'(e[(i+1)%3]);
     end
-    // Exact numerators: convex combinations, so they fit without overflow.
+    // Exact signed numerators: weight of vertex v is the edge opposite it, edge (v+1)%3
+    // (in [0, area2] at a covered centre; |w| < 2^(EdgeW-1) anywhere in the box).
     always_comb begin
       for (int ch = 0; ch < 3; ch++) begin
-        num_c[ch] = '0;
+        snum_c[ch] = '0;
         for (int v = 0; v < 3; v++)
-          num_c[ch] = num_c[ch] + ColorNumW'(w[v]) * ColorNumW'(in_rgb_i[v*24 + ch*8 +: 8]);
+          snum_c[ch] = snum_c[ch] + CNumW'(e[(v+1)%3]) * $signed({{(CNumW - 8){1'b0}}, in_rgb_i[v*24 + ch*8 +: 8]});
       end
-      num_z = '0;
-      for (int v = 0; v < 3; v++) num_z = num_z + DepthNumW'(w[v]) * DepthNumW'(in_z_i[v*DepthW +: DepthW]);
+      snum_z = '0;
+      for (int v = 0; v < 3; v++)
+        snum_z = snum_z + ZNumW'(e[(v+1)%3]) * $signed({{(ZNumW - DepthW){1'b0}}, in_z_i[v*DepthW +: DepthW]});
     end
+    // Clamp flags: negative numerator, or 2 num + area2 >= 2^(bits+1) area2.
+    always_comb begin
+      for (int ch = 0; ch < 3; ch++) begin
+        lo[ch] = snum_c[ch][CNumW-1];
+        hi[ch] = !lo[ch] && (((CNumW + 2)'(snum_c[ch]) << 1) + (CNumW + 2)'(in_area2_i) >=
+                             ((CNumW + 2)'(in_area2_i) << 9));
+        num_c[ch] = (lo[ch] || hi[ch]) ? '0 : ColorNumW'(snum_c[ch]);
+      end
+      lo[3] = snum_z[ZNumW-1];
+      hi[3] = !lo[3] && (((ZNumW + 2)'(snum_z) << 1) + (ZNumW + 2)'(in_area2_i) >=
+                         ((ZNumW + 2)'(in_area2_i) << (DepthW + 1)));
+      num_z = (lo[3] || hi[3]) ? '0 : DepthNumW'(snum_z);
+    end
+    assign lane_clamp[j*ClampW +: ClampW] = {hi, lo};
     for (genvar ch = 0; ch < 3; ch++) begin : g_color
       rast_divider #(.NumW(ColorNumW), .DenW(AreaW), .QW(8), .Latency(Latency)) u_div (
-        .clk_i, .en_i(en), .num_i(num_c[ch]), .den_i(in_area2_i), .q_o(out_rgb_o[j*24 + ch*8 +: 8]));
+        .clk_i, .en_i(en), .num_i(num_c[ch]), .den_i(in_area2_i), .q_o(div_rgb[j*24 + ch*8 +: 8]));
+      // The clamp at the divider's output (flags delayed like it).
+      assign out_rgb_o[j*24 + ch*8 +: 8] = out_clamp[j*ClampW + 4 + ch] ? 8'hff :
+                                           out_clamp[j*ClampW + ch] ? 8'h00 : div_rgb[j*24 + ch*8 +: 8];
     end
     rast_divider #(.NumW(DepthNumW), .DenW(AreaW), .QW(DepthW), .Latency(Latency)) u_div_z (
-      .clk_i, .en_i(en), .num_i(num_z), .den_i(in_area2_i), .q_o(out_z_o[j*DepthW +: DepthW]));
+      .clk_i, .en_i(en), .num_i(num_z), .den_i(in_area2_i), .q_o(div_z[j*DepthW +: DepthW]));
+    assign out_z_o[j*DepthW +: DepthW] = out_clamp[j*ClampW + 7] ? {DepthW{1'b1}} :
+                                         out_clamp[j*ClampW + 3] ? '0 : div_z[j*DepthW +: DepthW];
   end
 
   // ---- Side data: valid, marker, last, lanes and pixels, delayed like the dividers ----
@@ -149,9 +191,9 @@ module rast_interpolate #(
   assign beat = in_valid_i && (in_marker_i || (rem != '0));
   rast_pipe #(.Width(SideW), .Latency(Latency)) u_side (
     .clk_i, .rst_ni, .en_i(en),
-    .d_i({beat, in_marker_i, last_beat && !in_marker_i, in_marker_i ? '0 : pick, lane_x, lane_y}),
+    .d_i({beat, in_marker_i, last_beat && !in_marker_i, in_marker_i ? '0 : pick, lane_x, lane_y, lane_smask, lane_clamp}),
     .q_o(side_out), .occupied_o(side_occupied));
-  assign {out_valid_o, out_marker_o, out_last_o, out_lanes_o, out_x_o, out_y_o} = side_out;
+  assign {out_valid_o, out_marker_o, out_last_o, out_lanes_o, out_x_o, out_y_o, out_smask_o, out_clamp} = side_out;
   assign busy_o = (consumed_q != '0) || side_occupied;
 endmodule
 

@@ -13,7 +13,11 @@
 //   SystemC model (docs/microarchitecture.md, docs/rtl.md).
 // - The raster state is run-time input, held constant while the pipeline is busy: the
 //   tile size 2^tile_log2_i with 1 <= tile_log2_i <= TileLog2Max; fill rule, cull mode
-//   and front face (encoded as model/ref/raster_state.h's enums, see rast_tri_setup).
+//   and front face (encoded as model/ref/raster_state.h's enums, see rast_tri_setup);
+//   multisampling: 2^samples_log2_i samples a pixel (1 .. MaxSamples) at the offsets
+//   sample_dx_i / sample_dy_i from the pixel centre (raw s.I.F, signed SampleOffW bits;
+//   sample 0's offset is 0 with one sample), whose bounding box widens setup's box and
+//   moves the coarse raster's corners; fragments carry their pixel's sample mask.
 // - Triangles arrive snapped (s.I.F raw, relative to the origin), with the clip
 //   rectangle and origin of the state they were drawn in; a marker (a state command in
 //   order with the triangles) travels through every stage and leaves as a marker beat.
@@ -30,6 +34,9 @@ module rast_top #(
   input  wire logic [1:0]                            fill_rule_i,     // raster.fill_rule (static)
   input  wire logic [1:0]                            cull_mode_i,     // raster.cull (static)
   input  wire logic                                  front_ccw_i,     // raster.front_face = ccw (static)
+  input  wire logic [SampleLog2W-1:0]                samples_log2_i,  // log2 raster.samples, 0 .. log2 MaxSamples (static)
+  input  wire logic [MaxSamples*SampleOffW-1:0]      sample_dx_i,     // sample s x offset, raw, at [s*SampleOffW +: SampleOffW] (static)
+  input  wire logic [MaxSamples*SampleOffW-1:0]      sample_dy_i,     // sample s y offset, raw (static)
   input  wire logic                                  tri_valid_i,     // a triangle or marker
   output      logic                                  tri_ready_o,     // taken (triangle FIFO not full)
   input  wire logic                                  tri_marker_i,    // a marker
@@ -60,15 +67,17 @@ module rast_top #(
   output      logic [InterpFragmentsPerCycle*PixelW-1:0] frag_y_o,    // lane j y
   output      logic [InterpFragmentsPerCycle*DepthW-1:0] frag_z_o,    // lane j depth
   output      logic [InterpFragmentsPerCycle*24-1:0]     frag_rgb_o,  // lane j colour {b, g, r}
+  output      logic [InterpFragmentsPerCycle*MaxSamples-1:0] frag_mask_o,  // lane j sample mask (bit s: sample s)
   output      logic                                  idle_o           // no work anywhere, the interpolator pipeline drained
 );
   localparam int MaskW = 1 << (2 * TileLog2Max);      // derived: coverage mask bits
+  localparam int SMaskW = MaskW * MaxSamples;         // derived: sample mask bits of a tile
   localparam int AttrW = 3 * DepthW + 3 * 24;         // derived: vertex attributes
   localparam int EdgesW = 6 * CoefW + 3 * EdgeW + 3;  // derived: a, b, c, bias
   localparam int TriW  = 1 + 6 * CoordW + 6 * PixelW + AttrW;                      // derived
   localparam int SetW  = 1 + EdgesW + 4 * PixelW + 2 * PixelW + AreaW + AttrW;     // derived
   localparam int TileW = 1 + 1 + 4 * PixelW + EdgesW + 2 * PixelW + AreaW + AttrW;  // derived
-  localparam int PixW  = 1 + MaskW + 2 * PixelW + EdgesW - 3 + 2 * PixelW + AreaW + AttrW;  // derived
+  localparam int PixW  = 1 + MaskW + SMaskW + 2 * PixelW + EdgesW - 3 + 2 * PixelW + AreaW + AttrW;  // derived
 
   // Elaboration-time checks of the exported parameters.
   if (SetupLatency < SetupInterval) begin : g_check_setup
@@ -76,6 +85,32 @@ module rast_top #(
   end
   if (TileLog2Max < 1 || TileLog2Max > (1 << TileLog2W) - 1) begin : g_check_tile
     $error("rast_top: TileLog2Max (%0d) must be in 1..%0d (the tile_log2_i port)", TileLog2Max, (1 << TileLog2W) - 1);
+  end
+
+  if (MaxSamples < 2 || (MaxSamples & (MaxSamples - 1)) != 0 || $clog2(MaxSamples) > (1 << SampleLog2W) - 1) begin : g_check_samples
+    $error("rast_top: MaxSamples (%0d) must be a power of two >= 2 whose log2 fits samples_log2_i (%0d bits)",
+           MaxSamples, SampleLog2W);
+  end
+
+  // ---- The sample offsets' bounding box {dy_max, dy_min, dx_max, dx_min} (static) ----
+  logic [4*SampleOffW-1:0] box;
+  always_comb begin
+    logic signed [SampleOffW-1:0] dx, dy, dx_min, dx_max, dy_min, dy_max;
+    dx_min = '0;
+    dx_max = '0;
+    dy_min = '0;
+    dy_max = '0;
+    for (int k = 0; k < MaxSamples; k++) begin
+      dx = sample_dx_i[k*SampleOffW +: SampleOffW];
+      dy = sample_dy_i[k*SampleOffW +: SampleOffW];
+      if (k == 0 || (k >> samples_log2_i) == 0) begin
+        if (k == 0 || dx < dx_min) dx_min = dx;
+        if (k == 0 || dx > dx_max) dx_max = dx;
+        if (k == 0 || dy < dy_min) dy_min = dy;
+        if (k == 0 || dy > dy_max) dy_max = dy;
+      end
+    end
+    box = {dy_max, dy_min, dx_max, dx_min};
   end
 
   // ---- Triangle FIFO (fifo.triangle_depth) ----
@@ -105,9 +140,9 @@ module rast_top #(
   logic [AttrW-1:0]    s_attr;
   rast_tri_setup #(
     .CoordW(CoordW), .CoordFrac(CoordFrac), .CoefW(CoefW), .EdgeW(EdgeW), .AreaW(AreaW),
-    .PixelW(PixelW), .AttrW(AttrW), .SetupInterval(SetupInterval)
+    .PixelW(PixelW), .AttrW(AttrW), .SampleOffW(SampleOffW), .SetupInterval(SetupInterval)
   ) u_tri_setup (
-    .clk_i, .rst_ni, .fill_rule_i, .cull_mode_i, .front_ccw_i,
+    .clk_i, .rst_ni, .fill_rule_i, .cull_mode_i, .front_ccw_i, .box_i(box),
     .in_valid_i(t_valid), .in_ready_o(t_ready), .in_marker_i(t_marker),
     .in_x_i(t_x), .in_y_i(t_y), .in_clip_i(t_clip), .in_origin_i(t_origin), .in_attr_i(t_attr),
     .out_valid_o(s_valid), .out_ready_i(s_ready), .out_marker_o(s_marker), .out_a_o(s_a),
@@ -144,9 +179,9 @@ module rast_top #(
   logic [4*PixelW-1:0] k_fp;
   rast_coarse_raster #(
     .CoordW(CoordW), .CoordFrac(CoordFrac), .CoefW(CoefW), .EdgeW(EdgeW), .PixelW(PixelW),
-    .TileLog2W(TileLog2W), .TilesPerCycle(CoarseTilesPerCycle)
+    .TileLog2W(TileLog2W), .SampleOffW(SampleOffW), .TilesPerCycle(CoarseTilesPerCycle)
   ) u_coarse_raster (
-    .clk_i, .rst_ni, .tile_log2_i, .in_valid_i(c_valid), .in_ready_o(c_ready), .in_marker_i(c_marker),
+    .clk_i, .rst_ni, .tile_log2_i, .box_i(box), .in_valid_i(c_valid), .in_ready_o(c_ready), .in_marker_i(c_marker),
     .in_a_i(c_a), .in_b_i(c_b), .in_c_i(c_c), .in_bias_i(c_bias), .in_bbox_i(c_bbox), .in_origin_i(c_origin),
     .out_valid_o(k_valid), .out_ready_i(k_ready), .out_marker_o(k_marker), .out_accepted_o(k_accepted),
     .out_fp_o(k_fp), .busy_o(c_busy));
@@ -176,22 +211,25 @@ module rast_top #(
   // ---- Fine raster ----
   logic                m_valid, m_ready, m_marker;
   logic [MaskW-1:0]    m_mask;
+  logic [SMaskW-1:0]   m_smask;
   logic [2*PixelW-1:0] m_tile;
   rast_fine_raster #(
     .CoordW(CoordW), .CoordFrac(CoordFrac), .CoefW(CoefW), .EdgeW(EdgeW), .PixelW(PixelW),
     .TileLog2Max(TileLog2Max), .TileLog2W(TileLog2W), .SamplesPerCycle(FineSamplesPerCycle),
-    .AcceptedTileCycles(FineAcceptedTileCycles)
+    .AcceptedTileCycles(FineAcceptedTileCycles), .MaxSamples(MaxSamples), .SampleLog2W(SampleLog2W),
+    .SampleOffW(SampleOffW)
   ) u_fine_raster (
-    .clk_i, .rst_ni, .tile_log2_i, .in_valid_i(f_valid), .in_ready_o(f_ready), .in_marker_i(f_marker),
+    .clk_i, .rst_ni, .tile_log2_i, .samples_log2_i, .sample_dx_i, .sample_dy_i, .in_valid_i(f_valid), .in_ready_o(f_ready), .in_marker_i(f_marker),
     .in_accepted_i(f_accepted), .in_fp_i(f_fp), .in_a_i(f_a), .in_b_i(f_b), .in_c_i(f_c),
     .in_bias_i(f_bias), .in_origin_i(f_origin), .out_valid_o(m_valid), .out_ready_i(m_ready),
-    .out_marker_o(m_marker), .out_mask_o(m_mask), .out_tile_o(m_tile), .busy_o(f_busy));
+    .out_marker_o(m_marker), .out_mask_o(m_mask), .out_smask_o(m_smask), .out_tile_o(m_tile), .busy_o(f_busy));
 
   // ---- Pixel FIFO (fifo.pixel_depth; one entry = one tile's coverage mask) ----
   logic                p_valid, p_ready, p_marker, p_empty, p_busy;
   logic                p_fifo_valid, p_fifo_ready;
   logic [PixW-1:0]     p_data, p_fifo_data;
   logic [MaskW-1:0]    p_mask;
+  logic [SMaskW-1:0]   p_smask;
   logic [2*PixelW-1:0] p_tile, p_origin;
   logic [3*CoefW-1:0]  p_a, p_b;
   logic [3*EdgeW-1:0]  p_c;
@@ -201,26 +239,27 @@ module rast_top #(
   logic [3*24-1:0]     p_rgb;
   rast_fifo #(.Width(PixW), .Depth(PixelFifoDepth)) u_pixel_fifo (
     .clk_i, .rst_ni, .in_valid_i(m_valid), .in_ready_o(m_ready),
-    .in_data_i({m_marker, m_mask, m_tile, f_a, f_b, f_c, f_origin, f_area2, f_attr}),
+    .in_data_i({m_marker, m_mask, m_smask, m_tile, f_a, f_b, f_c, f_origin, f_area2, f_attr}),
     .out_valid_o(p_fifo_valid), .out_ready_i(p_fifo_ready), .out_data_o(p_fifo_data), .empty_o(p_empty));
   rast_hold #(.Width(PixW)) u_interp_hold (
     .clk_i, .rst_ni, .in_valid_i(p_fifo_valid), .in_ready_o(p_fifo_ready), .in_data_i(p_fifo_data),
     .out_valid_o(p_valid), .out_ready_i(p_ready), .out_data_o(p_data));
-  assign {p_marker, p_mask, p_tile, p_a, p_b, p_c, p_origin, p_area2, p_attr} = p_data;
+  assign {p_marker, p_mask, p_smask, p_tile, p_a, p_b, p_c, p_origin, p_area2, p_attr} = p_data;
   assign {p_z, p_rgb} = p_attr;
 
   // ---- Interpolation ----
   rast_interpolate #(
     .CoordW(CoordW), .CoordFrac(CoordFrac), .CoefW(CoefW), .EdgeW(EdgeW), .AreaW(AreaW),
     .ColorNumW(ColorNumW), .DepthNumW(DepthNumW), .DepthW(DepthW), .PixelW(PixelW),
-    .TileLog2Max(TileLog2Max), .TileLog2W(TileLog2W), .FragmentsPerCycle(InterpFragmentsPerCycle), .Latency(InterpLatency)
+    .TileLog2Max(TileLog2Max), .TileLog2W(TileLog2W), .FragmentsPerCycle(InterpFragmentsPerCycle), .Latency(InterpLatency),
+    .MaxSamples(MaxSamples)
   ) u_interpolate (
     .clk_i, .rst_ni, .tile_log2_i, .in_valid_i(p_valid), .in_ready_o(p_ready), .in_marker_i(p_marker),
-    .in_mask_i(p_mask), .in_tile_i(p_tile), .in_a_i(p_a), .in_b_i(p_b), .in_c_i(p_c),
+    .in_mask_i(p_mask), .in_smask_i(p_smask), .in_tile_i(p_tile), .in_a_i(p_a), .in_b_i(p_b), .in_c_i(p_c),
     .in_origin_i(p_origin), .in_area2_i(p_area2), .in_z_i(p_z), .in_rgb_i(p_rgb),
     .out_valid_o(frag_valid_o), .out_ready_i(frag_ready_i), .out_marker_o(frag_marker_o),
     .out_last_o(frag_last_o), .out_lanes_o(frag_lanes_o), .out_x_o(frag_x_o), .out_y_o(frag_y_o),
-    .out_z_o(frag_z_o), .out_rgb_o(frag_rgb_o), .busy_o(p_busy));
+    .out_z_o(frag_z_o), .out_rgb_o(frag_rgb_o), .out_smask_o(frag_mask_o), .busy_o(p_busy));
 
   // A held transaction shows as valid at the stage's input.
   assign idle_o = t_empty && !s_busy && c_empty && !c_valid && !c_busy && f_empty && !f_valid && !f_busy &&

@@ -9,7 +9,9 @@
 // - Fill rule, cull mode and front face are run-time inputs (raster state, static while
 //   the pipeline is busy), encoded as model/ref/raster_state.h's enums: fill rule
 //   0 top_left, 1 bottom_right, 2 inclusive, 3 exclusive; cull 0 none, 1 back, 2 front.
-// - Bounding box of the pixel centres inside the vertices' extent, clipped to the clip
+// - Bounding box of the pixel centres inside the vertices' extent, widened by the
+//   sample offsets' box (box_i, multisampling: a pixel is in the box when some sample
+//   position centre + d_s may be inside; all zero with one sample), clipped to the clip
 //   rectangle (viewport, framebuffer and scissor, given with every triangle); an empty
 //   box is culled (nothing to traverse).
 // - Timing: one triangle every SetupInterval cycles (setup.interval_cycles); a culled
@@ -27,6 +29,7 @@ module rast_tri_setup #(
   parameter int AreaW         = 48,  // 2N + 2
   parameter int PixelW        = 14,  // pixel index bits
   parameter int AttrW         = 8,   // pass-through attribute bits
+  parameter int SampleOffW    = 17,  // sample offset bits, signed raw (F + 1)
   parameter int SetupInterval = 1    // cycles per triangle
 ) (
   input  wire logic                  clk_i,         // core clock
@@ -34,6 +37,7 @@ module rast_tri_setup #(
   input  wire logic [1:0]            fill_rule_i,   // 0 top_left, 1 bottom_right, 2 inclusive, 3 exclusive (static)
   input  wire logic [1:0]            cull_mode_i,   // 0 none, 1 back, 2 front (3: as none) (static)
   input  wire logic                  front_ccw_i,   // 1: counter-clockwise on screen is front (static)
+  input  wire logic [4*SampleOffW-1:0] box_i,       // sample offset box {dy_max, dy_min, dx_max, dx_min}, raw (static)
   input  wire logic                  in_valid_i,    // triangle or marker in
   output      logic                  in_ready_o,    // taken this cycle
   input  wire logic                  in_marker_i,   // a marker, not a triangle
@@ -173,18 +177,25 @@ module rast_tri_setup #(
     box_empty = 1'b0;
     for (int d = 0; d < 2; d++) begin  // d = 0: x, 1: y
       logic signed [CoordW-1:0] v0, v1, v2, mn, mx;
-      logic signed [BoxW-1:0]   org, half;
+      logic signed [BoxW-1:0]   org, half, mnw, mxw;
+      logic signed [SampleOffW-1:0] dmin, dmax;
       v0 = d == 0 ? vx[0] : vy[0];
       v1 = d == 0 ? vx[1] : vy[1];
       v2 = d == 0 ? vx[2] : vy[2];
       mn = (v0 < v1) ? ((v0 < v2) ? v0 : v2) : ((v1 < v2) ? v1 : v2);
       mx = (v0 > v1) ? ((v0 > v2) ? v0 : v2) : ((v1 > v2) ? v1 : v2);
+      dmin = box_i[(2*d)*SampleOffW +: SampleOffW];
+      dmax = box_i[(2*d+1)*SampleOffW +: SampleOffW];
+      // Sample s of pixel p sits at centre(p) + d_s: p may hold a covered sample when
+      // centre(p) is in [mn - d_max, mx - d_min].
+      mnw  = BoxW'(mn) - BoxW'(dmax);
+      mxw  = BoxW'(mx) - BoxW'(dmin);
       org  = BoxW'(cur_origin[d*PixelW +: PixelW]);
       half = BoxW'(1) <<< (CoordFrac - 1);
-      // First pixel whose centre is >= mn: origin + ceil((mn - 1/2) / 2^F);
-      // last pixel whose centre is <= mx: origin + floor((mx - 1/2) / 2^F).
-      lo[d] = org - ((half - BoxW'(mn)) >>> CoordFrac);
-      hi[d] = org + ((BoxW'(mx) - half) >>> CoordFrac) + BoxW'(1);
+      // First pixel whose centre is >= mnw: origin + ceil((mnw - 1/2) / 2^F);
+      // last pixel whose centre is <= mxw: origin + floor((mxw - 1/2) / 2^F).
+      lo[d] = org - ((half - mnw) >>> CoordFrac);
+      hi[d] = org + ((mxw - half) >>> CoordFrac) + BoxW'(1);
       clip0[d] = BoxW'(cur_clip[d*PixelW +: PixelW]);
       clip1[d] = BoxW'(cur_clip[(d+2)*PixelW +: PixelW]);
       bmin[d] = (lo[d] > clip0[d]) ? lo[d] : clip0[d];

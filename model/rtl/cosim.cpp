@@ -11,6 +11,8 @@
 #include "ref/raster_state.h"
 #include "ref/tri_setup.h"
 #include "ref/coarse_raster.h"
+#include "ref/interpolate.h"
+#include "ref/sample_pattern.h"
 #include "config/raster_state_config.h"
 
 namespace rastsim::cosim {
@@ -93,10 +95,23 @@ void build(const Scene& scene, const Config& cfg, int tile_size, TbSetup& s) {
       it.origin[1] = static_cast<int>(st.origin_y());
       s.items.push_back(it);
       if (o != SetupOutcome::Accepted) continue;
-      traverse_triangle(t, tile_size, F, counters, [&](int px, int py) {
-        s.expected.push_back(Expected{interpolate(t, px, py, F), it.tri});
+      // Per pixel with a covered sample: its fragment (msaa: one, at the centre, with the
+      // mask; one sample: interpolate() with mask 1), as render_scene shades it.
+      traverse_triangle(t, tile_size, F, counters, [&](int px, int py, uint32_t m) {
+        shade_pixel(t, px, py, m, F, [&](const Fragment& f) { s.expected.push_back(Expected{f, it.tri}); });
       });
     }
+  }
+  // Multisampling: the frame ends with the resolve pass, ordered after every fragment by
+  // a marker fetched like a command header that travels through the RTL like a state
+  // command (as the SystemC model's command fetch sends it); the ROP is busy
+  // resolve_cycles(W H, S) on it.
+  if (st.samples > 1) {
+    TbItem m;
+    m.kind = TbItem::Marker;
+    m.fetch_cost = tp.fetch_header_cycles();
+    m.rop_cost = tp.resolve_cycles(uint64_t(st.fb_width) * uint64_t(st.fb_height), st.samples);
+    s.items.push_back(m);
   }
 }
 
@@ -130,11 +145,26 @@ CosimResult run_cosim(const Scene& scene, const Config& cfg, const CosimOptions&
     throw std::runtime_error("interp.method = \"" + cfg.get_string("interp.method") +
                              "\" has no RTL (the RTL interpolates by plane equations): co-simulate with "
                              "interp.method = \"plane\"");
+  // Multisampling: the RTL shades once a pixel (msaa); ssaa (a fragment per sample at the
+  // sample's position) has no RTL.
+  if (st.samples > 1 && st.aa_mode != AaMode::Msaa)
+    throw ConfigError(cfg.origin("raster.aa_mode") + ": raster.aa_mode = " + cfg.get_string("raster.aa_mode") +
+                      " has no RTL (the RTL shades once a pixel, at its centre: msaa); co-simulate with "
+                      "raster.aa_mode = msaa (render and simulate run ssaa)");
+  s.samples = st.samples;
+  {
+    const SamplePattern& pat = sample_pattern(st.samples, st.coord_format.frac_bits);
+    for (int k = 0; k < st.samples; ++k) {
+      s.sample_dx[size_t(k)] = pat.dx[size_t(k)];
+      s.sample_dy[size_t(k)] = pat.dy[size_t(k)];
+    }
+  }
   s.fill_rule = static_cast<int>(st.fill_rule);
   s.cull_mode = static_cast<int>(st.cull);
   s.front_ccw = st.front_ccw ? 1 : 0;
   RtlParams wanted = s.params;
   wanted.tile_log2_max = s.tile_log2;
+  wanted.max_samples = st.samples;  // a run-time input up to the built maximum
   s.timing = TimingParams::from_config(cfg);
   const auto models = rtl_models();
   std::string why_all;
@@ -155,6 +185,7 @@ CosimResult run_cosim(const Scene& scene, const Config& cfg, const CosimOptions&
     r.fragments_expected = s.expected.size();
     for (const TbItem& it : s.items) (it.kind == TbItem::Marker ? r.markers : r.triangles) += it.kind != TbItem::Null;
     r.commands_2d = s.work2d.size();
+    if (s.arch.samples > 1) r.resolve_cycles = s.items.back().rop_cost;
     rtl_registry()[i].run(s, r);
     return r;
   }

@@ -8,7 +8,14 @@
 //   assembly in front of the RTL's triangle FIFO, and the fragment FIFO and ROP (a
 //   memory model) behind its fragment stream. Vertices are snapped by the reference model's setup (the RTL
 //   takes snapped fixed-point vertices); state commands travel as markers.
-// - Every fragment is compared bit for bit (x, y, depth, r, g, b) IN ORDER with the
+// - Multisampling (raster.samples, msaa): the RTL takes the sample count and the snapped
+//   offsets as run-time inputs; every fragment's sample mask is compared too, the
+//   testbench ROP writes per sample (ref rop_write on a multisampled framebuffer) at
+//   TimingParams::rop_accesses a fragment, and an end-of-frame marker (fetched like a
+//   command header, through the RTL like a state command, as in the SystemC model)
+//   costs the ROP the resolve pass (TimingParams::resolve_cycles); the CRC is of the
+//   resolved image. raster.aa_mode = ssaa has no RTL (an error naming the key).
+// - Every fragment is compared bit for bit (x, y, depth, r, g, b, mask) IN ORDER with the
 //   reference model's stream for the same tile size (tiles row-major, pixels row-major
 //   within a tile, triangles in order); the first mismatch is reported with its
 //   triangle (scene file:line and index) and pixel.
@@ -43,7 +50,10 @@ struct CosimResult {
   uint64_t triangles = 0, markers = 0;
   uint64_t commands_2d = 0;        // 2D commands run through the 2D engine
   uint64_t pixels_2d = 0;          // pixels the 2D engine wrote
-  uint32_t crc_rtl = 0, crc_ref = 0;  // colour CRC of the testbench framebuffer and the reference
+  uint32_t crc_rtl = 0, crc_ref = 0;  // colour CRC of the testbench framebuffer and the reference (resolved)
+  int samples = 1;                 // raster.samples driven on the RTL
+  uint64_t rop_accesses = 0;       // ROP accesses of the fragments (TimingParams::rop_accesses)
+  uint64_t resolve_cycles = 0;     // the frame-end resolve pass (end-of-frame marker), included in cycles_rtl
   double wall_seconds = 0;         // the RTL simulation (testbench included)
 };
 

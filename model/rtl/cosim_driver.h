@@ -13,6 +13,8 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
+#include <bit>
 #include <chrono>
 #include <cstring>
 #include <cstdint>
@@ -33,6 +35,7 @@
 #include "ref/interpolate.h"
 #include "ref/pipeline.h"
 #include "ref/rop.h"
+#include "ref/sample_pattern.h"
 
 namespace rastsim::cosim {
 
@@ -48,7 +51,7 @@ struct TbItem {
   int clip[4] = {};            // x0, y0, x1, y1
   int origin[2] = {};          // x, y
   int tri = -1;                // triangle index (names in TbSetup::tri_names)
-  const Command* cmd = nullptr;  // markers: the state or 2D command
+  const Command* cmd = nullptr;  // markers: the state or 2D command (none: the end-of-frame marker)
   int work2d = -1;             // 2D markers: index in TbSetup::work2d
 };
 // A 2D command's engine operations (ref/draw2d.h) and its front-end cost.
@@ -69,6 +72,10 @@ struct TbSetup {
   // inputs: log2 tile size, fill rule, cull mode (raster_state.h's enum values), front face.
   int tile_log2 = 0;
   int fill_rule = 0, cull_mode = 0, front_ccw = 1;
+  // Multisampling: raster.samples and its snapped offsets (ref/sample_pattern.h), raw,
+  // driven on samples_log2_i / sample_dx_i / sample_dy_i.
+  int samples = 1;
+  std::array<int64_t, kMaxSamples> sample_dx{}, sample_dy{};
   std::vector<TbItem> items;
   std::vector<Expected> expected;
   std::vector<std::string> tri_names;   // "file:line triangle k"
@@ -103,6 +110,21 @@ uint64_t port_bits(const T& v, int lsb, int w) {
   }
 }
 
+// Sets bits [lsb, lsb + w) of a verilated port (C integer or VlWide) to v, w <= 64.
+template <class T>
+void set_port_bits(T& port, int lsb, int w, uint64_t v) {
+  if constexpr (std::is_integral_v<T>) {
+    const T mask = static_cast<T>(((w >= 64) ? ~uint64_t{0} : ((uint64_t{1} << w) - 1)) << lsb);
+    port = static_cast<T>((port & ~mask) | (static_cast<T>(v << lsb) & mask));
+  } else {
+    for (int i = 0; i < w; ++i) {
+      const int b = lsb + i;
+      if ((v >> i) & 1) port[size_t(b / 32)] |= (1u << (b % 32));
+      else port[size_t(b / 32)] &= ~(1u << (b % 32));
+    }
+  }
+}
+
 // A testbench stage: takes an item, is busy `cost` cycles, offers its output in the
 // last of them and holds it until taken.
 struct TbStage {
@@ -125,7 +147,7 @@ class RtlBench {
       : s_(s), p_(s.params), r_(r), rng_(s.opts.backpressure_seed), stall_(s.opts.backpressure),
         cmd_depth_(size_t(s.timing.fifo_command)), frag_depth_(size_t(s.timing.fragment_fifo_entries())),
         d2_depth_(size_t(s.timing.fifo_draw2d)), op2d_depth_(size_t(s.timing.fifo_op2d)), st_(s.arch),
-        fb_(s.arch.fb_width, s.arch.fb_height) {
+        fb_(s.arch.fb_width, s.arch.fb_height, s.samples) {
     fb_.clear_depth(static_cast<uint32_t>((uint64_t{1} << st_.depth_bits) - 1));  // as render_scene
   }
 
@@ -140,6 +162,15 @@ class RtlBench {
       }
       if (cycle(t)) {
         r_.cycles_rtl = last_busy_ + 1;
+        break;
+      }
+      // Only the ROP left, counting down a long operation (a multisampled frame's resolve
+      // pass: up to millions of cycles): skip to its last cycle instead of clocking an
+      // idle RTL (the waveform stops here).
+      if (rop_left_ > 1 && done_but_rop()) {
+        last_busy_ = std::max(last_busy_, t + rop_left_);
+        r_.cycles_rtl = last_busy_ + 1;
+        rop_left_ = 0;
         break;
       }
     }
@@ -160,6 +191,7 @@ class RtlBench {
   // cycle after its push.
   struct Batch {
     uint64_t fragments = 0;
+    uint64_t accesses = 0;  // ROP accesses (TimingParams::rop_accesses of each fragment's mask)
     bool marker = false;
     size_t marker_item = 0;
     uint64_t pushed = 0;
@@ -192,6 +224,11 @@ class RtlBench {
     top_->fill_rule_i = static_cast<uint8_t>(s_.fill_rule);
     top_->cull_mode_i = static_cast<uint8_t>(s_.cull_mode);
     top_->front_ccw_i = static_cast<uint8_t>(s_.front_ccw);
+    top_->samples_log2_i = static_cast<uint8_t>(std::countr_zero(static_cast<unsigned>(s_.samples)));
+    for (int k = 0; k < p_.max_samples; ++k) {
+      set_port_bits(top_->sample_dx_i, k * p_.sample_off_w, p_.sample_off_w, uint64_t(s_.sample_dx[size_t(k)]));
+      set_port_bits(top_->sample_dy_i, k * p_.sample_off_w, p_.sample_off_w, uint64_t(s_.sample_dy[size_t(k)]));
+    }
     top_->tri_valid_i = 0;
     top_->frag_ready_i = 0;
     top_->rst_ni = 0;
@@ -247,9 +284,10 @@ class RtlBench {
         last_busy_ = t;
         return;
       }
-      if (b.marker) apply_state_command(*s_.items[b.marker_item].cmd, st_, fb_);
+      // (The end-of-frame marker has no command: its cost is the resolve pass.)
+      if (b.marker && s_.items[b.marker_item].cmd) apply_state_command(*s_.items[b.marker_item].cmd, st_, fb_);
       for (const Fragment& f : b.frags) rop_write(fb_, f, st_.depth_func, st_.depth_write);
-      rop_left_ = b.marker ? s_.items[b.marker_item].rop_cost : s_.timing.rop_fragment_cycles(b.fragments);
+      rop_left_ = b.marker ? s_.items[b.marker_item].rop_cost : s_.timing.rop_fragment_cycles(b.accesses);
     }
     if (rop_left_ > 0) {
       --rop_left_;
@@ -498,6 +536,8 @@ class RtlBench {
     f.r = static_cast<uint8_t>(port_bits(top_->frag_rgb_o, j * 24, 8));
     f.g = static_cast<uint8_t>(port_bits(top_->frag_rgb_o, j * 24 + 8, 8));
     f.b = static_cast<uint8_t>(port_bits(top_->frag_rgb_o, j * 24 + 16, 8));
+    f.mask = static_cast<uint16_t>(port_bits(top_->frag_mask_o, j * p_.max_samples, p_.max_samples));
+    f.samples = static_cast<uint8_t>(s_.samples);
     return f;
   }
   // A taken beat: a marker, or up to interp.fragments_per_cycle fragments, each compared
@@ -516,6 +556,9 @@ class RtlBench {
         if (!(port_bits(top_->frag_lanes_o, j, 1) & 1)) continue;
         ++staging_.fragments;
         staging_.frags.push_back(lane_fragment(j));
+        const uint64_t acc = TimingParams::rop_accesses(staging_.frags.back().mask, s_.samples);
+        staging_.accesses += acc;
+        r_.rop_accesses += acc;
         compare(staging_.frags.back());
       }
     }
@@ -537,14 +580,16 @@ class RtlBench {
     if (!(e.f == f))
       mismatch("fragment #" + std::to_string(next_expected_ - 1) + " of " + s_.tri_names[e.tri] + ": pixel (" +
                std::to_string(e.f.x) + ", " + std::to_string(e.f.y) + ") expected '" + fragment_trace_line(e.f) +
-               "', RTL gave '" + fragment_trace_line(f) + "'");
+               "' mask " + std::to_string(e.f.mask) + ", RTL gave '" + fragment_trace_line(f) + "' mask " +
+               std::to_string(f.mask));
   }
   // Nothing left anywhere: scene fetched, FIFOs and stages empty, the RTL idle (its
   // idle_o covers the interpolator's pipeline) with no beat out, the ROP done.
-  bool done() const {
+  bool done() const { return rop_left_ == 0 && done_but_rop(); }
+  bool done_but_rop() const {
     return next_item_ >= s_.items.size() && !fetch_.active && cmd_fifo_.empty() && !assembly_.active &&
            top_->idle_o && !top_->frag_valid_o &&
-           !staging_blocked_ && staging_.fragments == 0 && !staging_.marker && frag_fifo_.empty() && rop_left_ == 0 &&
+           !staging_blocked_ && staging_.fragments == 0 && !staging_.marker && frag_fifo_.empty() &&
            d2_fifo_.empty() && !fe_.active && op2d_fifo_.empty() && held_ < 0 && !engine_busy_ && !rop_wait_2d_;
   }
   void end_of_run_check() {
@@ -555,11 +600,14 @@ class RtlBench {
     if (!markers_in_flight_.empty()) mismatch(std::to_string(markers_in_flight_.size()) + " markers lost in the RTL");
     // The whole picture: the testbench framebuffer (fragments, clears and the 2D engine's
     // writes) against the reference model's.
-    r_.crc_rtl = fb_.color_crc32();
+    // Multisampled: the resolved image (the reference's is resolved by render_scene).
+    const Framebuffer resolved = fb_.resolve();
+    r_.samples = s_.samples;
+    r_.crc_rtl = resolved.color_crc32();
     r_.crc_ref = s_.reference.color_crc32();
-    for (int y = 0; y < fb_.height && r_.crc_rtl != r_.crc_ref; ++y)
-      for (int x = 0; x < fb_.width; ++x)
-        if (std::memcmp(fb_.pixel(x, y), s_.reference.pixel(x, y), 3) != 0) {
+    for (int y = 0; y < resolved.height && r_.crc_rtl != r_.crc_ref; ++y)
+      for (int x = 0; x < resolved.width; ++x)
+        if (std::memcmp(resolved.pixel(x, y), s_.reference.pixel(x, y), 3) != 0) {
           mismatch("framebuffer pixel (" + std::to_string(x) + ", " + std::to_string(y) + ") differs from the reference");
           return;
         }

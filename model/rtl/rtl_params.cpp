@@ -46,6 +46,9 @@ constexpr ParamField<RtlParams> kFields[] = {
     {"PixelW", &RtlParams::pixel_w, "pixel x, y: unsigned, up to the largest display.width/height"},
     {"TileLog2Max", &RtlParams::tile_log2_max, "log2 of the largest tile (raster.tile_size)"},
     {"TileLog2W", &RtlParams::tile_log2_w, "tile_log2_i bits: up to log2 of the largest raster.tile_size"},
+    {"MaxSamples", &RtlParams::max_samples, "largest raster.samples: sample mask bits a pixel"},
+    {"SampleLog2W", &RtlParams::sample_log2_w, "samples_log2_i bits: up to log2 of MaxSamples"},
+    {"SampleOffW", &RtlParams::sample_off_w, "sample offset from the pixel centre: F + 1 bits, signed"},
     {"SetupInterval", &RtlParams::setup_interval, "setup.interval_cycles"},
     {"SetupLatency", &RtlParams::setup_latency, "setup.latency_cycles"},
     {"CoarseTilesPerCycle", &RtlParams::coarse_tiles_per_cycle, "coarse.tiles_per_cycle"},
@@ -123,6 +126,11 @@ RtlParams rtl_params_from_config(const Config& cfg) {
   const auto schema_max = [](const char* key) { return static_cast<unsigned>(find_param(key)->max); };
   p.pixel_w = std::bit_width(std::max(schema_max("display.width"), schema_max("display.height")) - 1);
   p.tile_log2_w = std::bit_width(static_cast<unsigned>(std::countr_zero(schema_max("raster.tile_size"))));
+  // Multisampling: the sample count and the snapped offsets are run-time inputs (the
+  // testbench drives ref/sample_pattern.h's table); |offset| <= 2^(F-1) raw.
+  p.max_samples = static_cast<int>(schema_max("raster.samples"));
+  p.sample_log2_w = std::bit_width(static_cast<unsigned>(std::countr_zero(schema_max("raster.samples"))));
+  p.sample_off_w = st.coord_format.frac_bits + 1;
   // The timing keys, read and checked once (timing_params.cpp), as the SystemC model reads them.
   const TimingParams t = TimingParams::from_config(cfg);
   p.setup_interval = static_cast<int>(t.setup_interval);
@@ -173,7 +181,8 @@ RtlParams rtl_params_from_values(const std::vector<int>& values) {
 bool rtl_params_compatible(const RtlParams& built, const RtlParams& wanted, std::string* why) {
   for (const auto& f : kFields) {
     const int b = built.*f.member, w = wanted.*f.member;
-    const bool ok = (f.member == &RtlParams::tile_log2_max) ? (w <= b && w >= 1) : (w == b);
+    const bool run_time_max = f.member == &RtlParams::tile_log2_max || f.member == &RtlParams::max_samples;
+    const bool ok = run_time_max ? (w <= b && w >= 1) : (w == b);
     if (!ok) {
       if (why) *why = std::string(f.name) + " is " + std::to_string(w) + ", the RTL was built with " + std::to_string(b);
       return false;

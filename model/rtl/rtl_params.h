@@ -16,8 +16,8 @@
 //   verilated models (model/rtl/CMakeLists.txt), so a binary knows what each model was
 //   built with without reading any config at run time.
 // - rtl_params_compatible: whether an RTL library built for one config can simulate
-//   another (same widths and timing, tile size at most the built maximum: the tile size
-//   is a run-time input of the RTL, see docs/rtl.md).
+//   another (same widths and timing, tile size and sample count at most the built
+//   maxima: both are run-time inputs of the RTL, see docs/rtl.md).
 #pragma once
 
 #include <string>
@@ -41,6 +41,10 @@ struct RtlParams {
   int pixel_w = 0;       // pixel x, y, unsigned: holds the schema's largest display.width/height - 1
   int tile_log2_max = 0; // log2 of raster.tile_size: the largest tile the RTL supports
   int tile_log2_w = 0;   // the tile_log2_i port: holds log2 of the schema's largest raster.tile_size
+  // Multisampling: raster.samples is a run-time input up to max_samples (docs/rtl.md).
+  int max_samples = 0;    // the schema's largest raster.samples (sample mask bits a pixel)
+  int sample_log2_w = 0;  // the samples_log2_i port: holds log2 of max_samples
+  int sample_off_w = 0;   // a sample offset from the pixel centre, raw, signed: F + 1
   // Timing keys the RTL implements (config_schema_timing.cpp).
   int setup_interval = 0, setup_latency = 0;
   int coarse_tiles_per_cycle = 0;

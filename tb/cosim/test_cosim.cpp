@@ -22,51 +22,6 @@
 namespace rastsim::cosim {
 namespace {
 
-// Random triangles over the viewport and its guard band: mostly small, some large,
-// some slivers and some degenerate; now and then a scissor or viewport change.
-Scene random_scene(const Config& cfg, uint64_t seed, int n) {
-  std::mt19937_64 rng(seed);
-  const int w = static_cast<int>(cfg.get_int("display.width")), h = static_cast<int>(cfg.get_int("display.height"));
-  const FixedFormat fmt = FixedFormat::parse(cfg.get_string("raster.coord_format"));
-  const double guard = std::min(fmt.to_double(fmt.raw_max()) - w / 2.0, 48.0);  // stay inside the format
-  std::uniform_real_distribution<double> ux(-guard * 0.5, w + guard * 0.5), uy(-guard * 0.5, h + guard * 0.5);
-  std::uniform_real_distribution<double> u01(0, 1);
-  const int frac_steps = 1 << std::min(fmt.frac_bits, 8);
-  auto q = [&](double v) { return std::round(v * frac_steps) / frac_steps; };  // often exactly on samples
-  Scene s;
-  s.source = "random";
-  int line = 0;
-  for (int k = 0; k < n; ++k) {
-    ++line;
-    const double kind = u01(rng);
-    if (kind < 0.01) {
-      CmdScissor sc;
-      sc.enabled = u01(rng) < 0.5;
-      sc.x = int(u01(rng) * w / 2);
-      sc.y = int(u01(rng) * h / 2);
-      sc.width = int(u01(rng) * w / 2) + 1;
-      sc.height = int(u01(rng) * h / 2) + 1;
-      s.commands.push_back(Command{sc, SourceLoc{"random", line}});
-      continue;
-    }
-    const double cx = q(ux(rng)), cy = q(uy(rng));
-    const double size = kind < 0.7 ? 6.0 : (kind < 0.9 ? 24.0 : 64.0);
-    std::uniform_real_distribution<double> d(-size, size);
-    SceneVertex a = random_vertex(cx, cy, rng), b = random_vertex(q(cx + d(rng)), q(cy + d(rng)), rng),
-                c = random_vertex(q(cx + d(rng)), q(cy + d(rng)), rng);
-    if (kind > 0.97)
-      c = random_vertex(q(2 * b.x.to_double() - a.x.to_double()), q(2 * b.y.to_double() - a.y.to_double()), rng);
-    s.commands.push_back(tri_cmd(a, b, c, "random", line));
-  }
-  return s;
-}
-
-void expect_clean(const CosimResult& r) {
-  EXPECT_EQ(r.mismatches, 0u) << "first mismatch: " << r.first_mismatch;
-  EXPECT_EQ(r.fragments_compared, r.fragments_expected);
-  EXPECT_GT(r.cycles_rtl, 0u);
-}
-
 struct RandomCase {
   const char* config;
   int tile;
@@ -77,13 +32,7 @@ TEST_P(RandomCosim, TwoThousandTrianglesWithBackpressure) {
   Config cfg = load_shipped_config(GetParam().config);
   cfg.apply_override("raster.out_of_range=cull");  // some vertices leave the guard band
   const uint64_t seed = 0x5eed0000u + uint64_t(GetParam().tile);
-  std::cout << "seed " << seed << " (scene and backpressure)\n";
-  const Scene scene = random_scene(cfg, seed, 2000);
-  CosimOptions o;
-  o.tile_size = GetParam().tile;
-  o.backpressure = 0.3;
-  o.backpressure_seed = seed;
-  const CosimResult r = run_cosim(scene, cfg, o);
+  const CosimResult r = run_random_scene(cfg, seed, 2000, GetParam().tile);
   std::cout << r.fragments_compared << " fragments, " << r.cycles_rtl << " cycles, " << r.wall_seconds << " s\n";
   expect_clean(r);
   EXPECT_GT(r.fragments_compared, 10000u);
@@ -99,19 +48,13 @@ INSTANTIATE_TEST_SUITE_P(Formats, RandomCosim,
 
 // Directed triangles, each pushed as its own command so a mismatch names it.
 Scene directed_scene(const Config& cfg) {
-  std::mt19937_64 rng(7);
   const int w = static_cast<int>(cfg.get_int("display.width")), h = static_cast<int>(cfg.get_int("display.height"));
   const FixedFormat fmt = FixedFormat::parse(cfg.get_string("raster.coord_format"));
   const double ox = w / 2, oy = h / 2;
   const double min_px = ox + fmt.to_double(fmt.raw_min()), max_px = ox + fmt.to_double(fmt.raw_max());
   const double min_py = oy + fmt.to_double(fmt.raw_min()), max_py = oy + fmt.to_double(fmt.raw_max());
-  Scene s;
-  s.source = "directed";
-  int line = 0;
-  auto add = [&](double x0, double y0, double x1, double y1, double x2, double y2) {
-    s.commands.push_back(tri_cmd(random_vertex(x0, y0, rng), random_vertex(x1, y1, rng), random_vertex(x2, y2, rng),
-                                 "directed", ++line));
-  };
+  DirectedScene d("directed", 7);
+  auto add = [&](double x0, double y0, double x1, double y1, double x2, double y2) { d.add(x0, y0, x1, y1, x2, y2); };
   // Fill rule: shared edges through pixel centres, all eight orientations of a square.
   add(8.5, 8.5, 40.5, 8.5, 8.5, 40.5);
   add(40.5, 8.5, 40.5, 40.5, 8.5, 40.5);
@@ -142,14 +85,14 @@ Scene directed_scene(const Config& cfg) {
   add(min_px, min_py, max_px, max_py, max_px, min_py);
   add(min_px, oy, ox, min_py, max_px, max_py);
   // State: a smaller viewport (new origin), scissor on and off.
-  s.commands.push_back(Command{CmdViewport{w / 2, h / 2}, SourceLoc{"directed", ++line}});
+  d.state(CmdViewport{w / 2, h / 2});
   add(1, 1, w / 2.0 - 1, 3, 5, h / 2.0 - 1);
-  s.commands.push_back(Command{CmdScissor{true, 4, 4, 20, 12}, SourceLoc{"directed", ++line}});
+  d.state(CmdScissor{true, 4, 4, 20, 12});
   add(0, 0, w / 2.0, 0, 0, h / 2.0);
-  s.commands.push_back(Command{CmdScissor{false, 0, 0, 0, 0}, SourceLoc{"directed", ++line}});
-  s.commands.push_back(Command{CmdViewport{w, h}, SourceLoc{"directed", ++line}});
+  d.state(CmdScissor{false, 0, 0, 0, 0});
+  d.state(CmdViewport{w, h});
   add(3, 3, 50, 7, 9, 60);
-  return s;
+  return d.scene;
 }
 
 struct DirectedCase {

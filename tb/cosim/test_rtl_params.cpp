@@ -31,6 +31,10 @@ TEST(RtlRegistry, PortWidthsHoldTheSchemaMaxima) {
   const RtlParams p = rtl_params_from_config(load_shipped_config("default"));
   EXPECT_EQ(p.pixel_w, 14);
   EXPECT_EQ(p.tile_log2_w, 3);
+  // raster.samples up to 16: the mask of 16 bits, log2 4 in 3 bits; offsets F + 1 = 17 bits (s7.16).
+  EXPECT_EQ(p.max_samples, 16);
+  EXPECT_EQ(p.sample_log2_w, 3);
+  EXPECT_EQ(p.sample_off_w, 17);
 }
 
 TEST(RtlParamsValues, RoundTripAndWrongCount) {
