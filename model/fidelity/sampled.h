@@ -7,8 +7,9 @@
 //   twice the FIFOs' total entries, plan_units; cut only
 //   where a strip's next triangle is even, so a sliced strip keeps its winding), plus
 //   every other command (state, clears, 2D) as a unit of its own.
-// - Certain units, always simulated: every non-triangle command, the first batch after
-//   each of them (it absorbs a clear's or 2D draw's ROP time), the head (batches until
+// - Certain units, always simulated: every non-triangle command, the batches after each
+//   of them until every stage has had twice the command's busiest stage's cycles of
+//   work (they absorb a clear's or 2D draw's ROP time), the head (batches until
 //   as many triangles as all FIFOs hold entries: the pipeline's fill, while command
 //   fetch runs ahead), the last batch (drain, resolve pass) and every batch of a stratum
 //   too small to sample.
@@ -19,8 +20,10 @@
 //   (warm-up, unmeasured). A unit's measured cycles y: from command fetch starting it to
 //   command fetch starting the next simulated unit or warm-up (the last: to the end).
 // - Estimator: certain units' y plus, per stratum, the ratio estimator X_h sum(y)/sum(x);
-//   variance N_h^2 (1 - n_h/N_h) s_e^2 / n_h from the ratio residuals; Student t with
-//   Satterthwaite's degrees of freedom. All units chosen: the run is the full scene and
+//   variance N_h^2 (1 - n_h/N_h) s_e^2 / n_h from the ratio residuals, s_e^2 at least
+//   the certain batches' y/x variance times the stratum's mean x squared (a floor for
+//   small samples whose ratios agree by chance); Student t with Satterthwaite's degrees
+//   of freedom. All units chosen: the run is the full scene and
 //   the interval has zero width.
 #pragma once
 
