@@ -14,6 +14,7 @@
 #include "estimate/estimate.h"
 #include "fidelity/run_child.h"
 #include "fidelity/sampled.h"
+#include "fidelity/tolerance.h"
 #include "report/stats_json.h"
 #include "sc/scanout.h"
 #include "sc/raster_pipeline.h"
@@ -86,61 +87,6 @@ void print_level(const nlohmann::json& j) {
   if (j.contains("fidelity_reason")) std::cout << "  " << j["fidelity_reason"].get<std::string>() << "\n";
 }
 
-// The sampled level's relative error bound: the interval's farther end from the estimate.
-double sampled_error(const nlohmann::json& s) {
-  const double c = s["cycles"].get<double>();
-  return c > 0 ? std::max(s["cycles_ci_high"].get<double>() - c, c - s["cycles_ci_low"].get<double>()) / c : 0.0;
-}
-
-// --tolerance: analytic if its bounds are within P of their midpoint; else sampled (a
-// pilot at F = 0.1, then the F its variance predicts, each in a child process) if its
-// interval is; else the full SystemC run. docs/fidelity.md, "Tolerance".
-nlohmann::json choose_level(const Scene& scene, const Config& cfg, double tol, uint64_t seed, bool& run_full,
-                            std::string& reason) {
-  const auto t0 = std::chrono::steady_clock::now();
-  const auto wall = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
-  char buf[400];
-  const EstimateResult est = estimate_scene(scene, cfg);
-  const double lo = double(est.cycles_lower_bound), hi = double(est.cycles_upper_bound);
-  const double mid = 0.5 * (lo + hi), half = mid > 0 ? 0.5 * (hi - lo) / mid : 0.0;
-  if (half <= tol) {
-    std::snprintf(buf, sizeof buf, "the analytic bounds [%.0f, %.0f] are within %.2f %% of their midpoint (<= %.2f %%)",
-                  lo, hi, 100 * half, 100 * tol);
-    return {{"fidelity_level", "analytic"}, {"cycles", uint64_t(std::llround(mid))}, {"cycles_error_bound", half},
-            {"cycles_lower_bound", est.cycles_lower_bound}, {"cycles_upper_bound", est.cycles_upper_bound},
-            {"fidelity_reason", buf}, {"wall_seconds", wall()}};
-  }
-  double f = 0.1, err = 0;
-  nlohmann::json s;
-  for (int attempt = 0; attempt < 2; ++attempt) {
-    s = fidelity::run_in_child([&] { return fidelity::simulate_sampled(scene, cfg, f, seed).to_json(); });
-    err = sampled_error(s);
-    if (s["units_simulated"] == s["units_total"]) break;  // nothing left out: no cheaper than the full run
-    if (err <= tol) {
-      std::snprintf(buf, sizeof buf,
-                    "the analytic bounds are %.2f %% wide, the sampled level's %.0f %% interval at F = %.3f is "
-                    "within %.2f %% (<= %.2f %%)",
-                    100 * half, 100 * s["confidence"].get<double>(), f, 100 * err, 100 * tol);
-      s["cycles_error_bound"] = err;
-      s["fidelity_reason"] = buf;
-      s["wall_seconds"] = wall();
-      return s;
-    }
-    // Half-width ~ sqrt((1 - f) / f): the f that would reach the tolerance, with a 1.2 margin.
-    const double want = (1 - f) / f * (tol / (1.2 * err)) * (tol / (1.2 * err));
-    const double next = 1 / (1 + want);
-    if (next > 0.5 || next <= f) break;  // sampling half the frame or more is not cheaper
-    f = next;
-  }
-  std::snprintf(buf, sizeof buf,
-                "the analytic bounds are %.2f %% wide and the sampled interval %.2f %% at F = %.3f, above %.2f %%: "
-                "the full SystemC run answers",
-                100 * half, 100 * err, f, 100 * tol);
-  reason = buf;
-  run_full = true;
-  return {};
-}
-
 }  // namespace
 
 void run_simulate_command(const SimulateOptions& o) {
@@ -164,7 +110,7 @@ void run_simulate_command(const SimulateOptions& o) {
     } else {
       bool full = false;
       std::string reason;
-      j = choose_level(scene, cfg, tol, o.sample_seed, full, reason);
+      j = fidelity::choose_level(scene, cfg, tol, o.sample_seed, full, reason);
       if (full) {
         const sc::SimResult r = sc::simulate_scene(scene, cfg);
         j = {{"fidelity_level", "systemc"}, {"cycles", r.cycles},  {"cycles_error_bound", 0.0},

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "fidelity/run_child.h"
 
+#include <cstdio>
+#include <iostream>
 #include <stdexcept>
 #include <string>
 
@@ -9,11 +11,17 @@
 
 namespace rastsim::fidelity {
 
-nlohmann::json run_in_child(const std::function<nlohmann::json()>& fn) {
+nlohmann::json run_in_child_or_error(const std::function<nlohmann::json()>& fn) {
   int fd[2];
-  if (pipe(fd) != 0) throw std::runtime_error("run_in_child: pipe failed");
+  if (pipe(fd) != 0) return {{"error", "pipe failed"}};
+  std::cout.flush();
+  std::fflush(nullptr);
   const pid_t pid = fork();
-  if (pid < 0) throw std::runtime_error("run_in_child: fork failed");
+  if (pid < 0) {
+    close(fd[0]);
+    close(fd[1]);
+    return {{"error", "fork failed"}};
+  }
   if (pid == 0) {
     close(fd[0]);
     std::string out;
@@ -28,7 +36,7 @@ nlohmann::json run_in_child(const std::function<nlohmann::json()>& fn) {
       done += size_t(w);
     }
     close(fd[1]);
-    _exit(0);
+    _exit(0);  // no atexit handlers: the parent owns the process's output
   }
   close(fd[1]);
   std::string in;
@@ -37,9 +45,14 @@ nlohmann::json run_in_child(const std::function<nlohmann::json()>& fn) {
   close(fd[0]);
   int status = 0;
   waitpid(pid, &status, 0);
-  if (!WIFEXITED(status) || in.empty()) throw std::runtime_error("run_in_child: the simulation child died");
-  nlohmann::json j = nlohmann::json::parse(in);
-  if (j.contains("error")) throw std::runtime_error(j["error"].get<std::string>());
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || in.empty())
+    return {{"error", "simulation child died (status " + std::to_string(status) + ")"}};
+  return nlohmann::json::parse(in);
+}
+
+nlohmann::json run_in_child(const std::function<nlohmann::json()>& fn) {
+  nlohmann::json j = run_in_child_or_error(fn);
+  if (j.is_object() && j.contains("error")) throw std::runtime_error(j["error"].get<std::string>());
   return j;
 }
 

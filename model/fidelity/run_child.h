@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 // SystemC elaborates once per process: a level that needs more than one simulation
 // (the tolerance rule's sampled attempts) runs each in a forked child, which sends its
-// JSON back through a pipe.
+// JSON back through a pipe. The SystemC tests (tb/sc/harness.h, run_isolated) use the
+// same code.
 #pragma once
 
 #include <functional>
@@ -10,8 +11,11 @@
 
 namespace rastsim::fidelity {
 
-// Runs fn in a forked child; returns its JSON. Throws std::runtime_error with the child's
-// message when fn threw ({"error": what}) or the child died.
+// Runs fn in a forked child (stdout and stdio flushed first, so the child repeats no
+// buffered output); returns its JSON, or {"error": what} if fn threw or the child died.
+nlohmann::json run_in_child_or_error(const std::function<nlohmann::json()>& fn);
+
+// As run_in_child_or_error, but throws std::runtime_error with the child's message.
 nlohmann::json run_in_child(const std::function<nlohmann::json()>& fn);
 
 }  // namespace rastsim::fidelity

@@ -25,6 +25,13 @@ using Busy = std::array<uint64_t, kStages>;
 // residual variance need a few units.
 constexpr size_t kMinStratumUnits = 4;
 
+// Certain batches needed for a stratum's variance floor (extrapolate).
+constexpr size_t kFloorUnits = 3;
+
+// How long a command's cycles can hold the pipeline, in its own busiest stage's cycles
+// (plan_units).
+constexpr double kSpill = 2.0;
+
 bool is_triangle_command(const Command& c) {
   const auto* p = std::get_if<CmdPrimitives>(&c.body);
   return p && triangle_count(*p) > 0;
@@ -105,6 +112,12 @@ UnitPlan plan_units(const Scene& scene, const Config& cfg, size_t batch) {
   }
 
   const Busy end_busy = busy_of(plan.analytic);
+  // A command's time (a clear's or 2D draw's ROP cycles) can outlast the batch after it:
+  // command fetch runs ahead while the FIFOs fill. Batches after it are certain until
+  // every stage has had kSpill times the command's busiest stage's cycles of work since
+  // it (analytic walk), so the spill is measured, not scaled up by a sampled batch.
+  Busy spill_from{};
+  double spill = 0;
   for (size_t u = 0; u < ranges.size(); ++u) {
     const auto [b, e] = ranges[u];
     Unit unit;
@@ -130,11 +143,23 @@ UnitPlan plan_units(const Scene& scene, const Config& cfg, size_t batch) {
     // Certain: other commands, the first batch after one (or the first of all: pipeline
     // fill, a clear's ROP time), the last unit (drain, resolve pass).
     unit.certain = whole[u] || u == 0 || whole[u - 1] || u + 1 == ranges.size();
+    double since = 0;  // the busiest stage's cycles since the spilling command
+    for (size_t s = 0; s < kStages; ++s) since = std::max(since, double(b0[s] - spill_from[s]));
+    if (whole[u]) {
+      if (kSpill * unit.x >= kSpill * spill - since) {  // outlasts the previous command's spill
+        spill_from = b1;
+        spill = unit.x;
+      }
+    } else if (spill > 0) {
+      if (since < kSpill * spill) unit.certain = true;
+      else spill = 0;
+    }
     plan.units.push_back(std::move(unit));
   }
   // Certain head: until every FIFO could have filled (one triangle an entry at least),
   // command fetch runs ahead of the bottleneck and a batch's measured cycles are short.
   plan.head_triangles = fill;
+  plan.warm_triangles = size_t(fill);
   uint64_t seen = 0;
   for (Unit& u : plan.units) {
     if (seen >= fill) break;
@@ -190,19 +215,44 @@ SubScene sub_scene(const Scene& scene, const UnitPlan& plan, const std::vector<b
   };
   std::vector<Slice> slices;
   SubScene out;
-  out.first_of_unit.assign(plan.units.size(), {SIZE_MAX, 0});
-  for (size_t u = 0; u < plan.units.size(); ++u) {
-    if (!chosen[u]) continue;
+  // Appends pieces; the first one starts a segment of `unit` (SIZE_MAX: a warm-up).
+  auto append = [&](const std::vector<Piece>& pieces, size_t unit) {
     bool first = true;
-    for (const Piece& p : plan.units[u].pieces) {
+    for (const Piece& p : pieces) {
       if (!p.whole && !slices.empty() && !slices.back().whole && slices.back().cmd == p.command &&
           slices.back().k1 == p.k0)
         slices.back().k1 = p.k1;
       else
         slices.push_back({p.command, p.k0, p.k1, p.whole});
-      if (first) out.first_of_unit[u] = {slices.size() - 1, p.k0 - slices.back().k0};
+      if (first) out.segments.push_back({slices.size() - 1, p.k0 - slices.back().k0, unit});
       first = false;
     }
+  };
+  for (size_t u = 0; u < plan.units.size(); ++u) {
+    if (!chosen[u]) continue;
+    if (u > 0 && !chosen[u - 1] && plan.warm_triangles > 0 && !plan.units[u - 1].pieces.empty() &&
+        !plan.units[u - 1].pieces.front().whole) {
+      // The predecessor's last warm_triangles triangles (a strip's slice starts on an even
+      // triangle, or where the piece starts).
+      std::vector<Piece> warm;
+      size_t left = plan.warm_triangles;
+      const auto& pieces = plan.units[u - 1].pieces;
+      for (size_t i = pieces.size(); i-- > 0 && left > 0;) {
+        Piece p = pieces[i];
+        const size_t n = p.k1 - p.k0;
+        if (n > left) {
+          size_t k0 = p.k1 - left;
+          const auto& prim = std::get<CmdPrimitives>(scene.commands[p.command].body);
+          if (prim.topology == Topology::Strip && k0 % 2 != 0) k0 = k0 - 1 < p.k0 ? p.k0 : k0 - 1;
+          p.k0 = std::max(k0, p.k0);
+        }
+        left -= std::min(left, p.k1 - p.k0);
+        out.warm_triangles += p.k1 - p.k0;
+        warm.insert(warm.begin(), p);
+      }
+      append(warm, SIZE_MAX);
+    }
+    append(plan.units[u].pieces, u);
   }
   out.scene.source = scene.source;
   out.scene.commands.reserve(slices.size());
@@ -227,6 +277,11 @@ SampledResult extrapolate(const UnitPlan& plan, const std::vector<bool>& chosen,
     std::vector<size_t> sample;
   };
   std::map<int, Stratum> strata;
+  // The certain batches' y/x (not the first or last unit nor one right after a command,
+  // whose cycles carry the fill, drain or a command's time): the spread of the ratio
+  // that a small sample can miss (two sampled batches with equal ratios by chance).
+  std::map<int, std::vector<double>> certain_ratios;
+  std::vector<double> all_ratios;
   double certain = 0, x_all = 0, x_sim = 0;
   for (size_t u = 0; u < plan.units.size(); ++u) {
     const Unit& unit = plan.units[u];
@@ -238,6 +293,11 @@ SampledResult extrapolate(const UnitPlan& plan, const std::vector<bool>& chosen,
     if (unit.certain) {
       ++r.units_certain;
       certain += y[u];
+      const bool batch = !unit.pieces.empty() && !unit.pieces.front().whole;
+      if (batch && unit.x > 0 && u > 0 && u + 1 < plan.units.size() && !plan.units[u - 1].pieces.front().whole) {
+        certain_ratios[unit.stratum].push_back(y[u] / unit.x);
+        all_ratios.push_back(y[u] / unit.x);
+      }
       continue;
     }
     Stratum& s = strata[unit.stratum];
@@ -264,10 +324,30 @@ SampledResult extrapolate(const UnitPlan& plan, const std::vector<bool>& chosen,
       const double e = y[u] - R * (ratio ? plan.units[u].x : 1.0);
       ss += e * e;
     }
-    const double s2 = ss / double(s.n - 1);
+    double s2 = ss / double(s.n - 1), df = double(s.n - 1);
+    // Variance floor: the certain batches' ratio spread (this stratum's if it has
+    // kFloorUnits of them, else all strata's), at this stratum's mean unit size.
+    if (ratio) {
+      const std::vector<double>& rs = certain_ratios[h].size() >= kFloorUnits ? certain_ratios[h] : all_ratios;
+      if (rs.size() >= kFloorUnits) {
+        double m = 0, q = 0;
+        for (double v : rs) m += v;
+        m /= double(rs.size());
+        for (double v : rs) q += (v - m) * (v - m);
+        // The ratio's variance times the stratum's mean x squared: a residual y - R x
+        // of a batch of mean size, were its ratio as spread as the certain batches'.
+        const double xbar = s.X / double(s.N);
+        const double floor = q / double(rs.size() - 1) * xbar * xbar;
+        if (floor > s2) {
+          r.variance_floor += double(s.N) * double(s.N) * (1 - double(s.n) / double(s.N)) * (floor - s2) / double(s.n);
+          s2 = floor;
+          df = double(rs.size() - 1);
+        }
+      }
+    }
     const double v = double(s.N) * double(s.N) * (1 - double(s.n) / double(s.N)) * s2 / double(s.n);
     var += v;
-    df_den += v * v / double(s.n - 1);
+    df_den += v * v / df;
   }
   r.cycles = total;
   if (var > 0) {
@@ -288,35 +368,32 @@ SampledResult simulate_sampled(const Scene& scene, const Config& cfg, double fra
   const UnitPlan plan = plan_units(scene, cfg);
   const std::vector<bool> chosen = draw_sample(plan, fraction, seed);
   const SubScene sub = sub_scene(scene, plan, chosen);
-  std::map<std::pair<size_t, size_t>, size_t> unit_at;
-  for (size_t u = 0; u < plan.units.size(); ++u)
-    if (chosen[u]) unit_at[sub.first_of_unit[u]] = u;
-  std::vector<double> start(plan.units.size(), -1.0);
+  // Each segment's start: command fetch starting its first triangle (or command).
+  std::map<std::pair<size_t, size_t>, size_t> segment_at;
+  for (size_t i = 0; i < sub.segments.size(); ++i) segment_at[{sub.segments[i].command, sub.segments[i].triangle}] = i;
+  std::vector<double> start(sub.segments.size(), -1.0);
   sc::SimOptions opts;
   const Command* base = sub.scene.commands.data();
   opts.on_fetch = [&](const Command& c, size_t k, uint64_t cycle) {
-    const auto it = unit_at.find({size_t(&c - base), k});
-    if (it != unit_at.end()) start[it->second] = double(cycle);
+    const auto it = segment_at.find({size_t(&c - base), k});
+    if (it != segment_at.end() && start[it->second] < 0) start[it->second] = double(cycle);
   };
   const sc::SimResult sim = sc::simulate_scene(sub.scene, cfg, opts);
-  // Each simulated unit's cycles: fetch starting it to fetch starting the next one.
+  // A unit's cycles: fetch starting it to fetch starting the next segment (or the end).
+  // The first segment also carries anything before it.
   std::vector<double> y(plan.units.size(), 0.0);
-  double prev_start = 0;  // the first simulated unit also carries anything before it
-  size_t prev = SIZE_MAX;
-  for (size_t u = 0; u < plan.units.size(); ++u) {
-    if (!chosen[u]) continue;
-    if (start[u] < 0) throw std::logic_error("simulate_sampled: a chosen unit was never fetched");
-    if (prev != SIZE_MAX) {
-      y[prev] = start[u] - prev_start;
-      prev_start = start[u];
-    }
-    prev = u;
+  for (size_t i = 0; i < sub.segments.size(); ++i) {
+    if (start[i] < 0) throw std::logic_error("simulate_sampled: a chosen unit was never fetched");
+    const size_t u = sub.segments[i].unit;
+    if (u == SIZE_MAX) continue;
+    const double end = i + 1 < sub.segments.size() ? start[i + 1] : double(sim.cycles);
+    y[u] = end - (i == 0 ? 0.0 : start[i]);
   }
-  if (prev != SIZE_MAX) y[prev] = double(sim.cycles) - prev_start;
   SampledResult r = extrapolate(plan, chosen, y, confidence);
   r.sample_fraction = fraction;
   r.seed = seed;
   r.cycles_simulated = sim.cycles;
+  r.warm_triangles = sub.warm_triangles;
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;
 }
@@ -335,6 +412,8 @@ nlohmann::json SampledResult::to_json() const {
           {"strata", strata},
           {"batch_triangles", batch_triangles},
           {"degrees_of_freedom", degrees_of_freedom},
+          {"variance_floor", variance_floor},
+          {"warm_triangles", warm_triangles},
           {"work_fraction_simulated", work_fraction_simulated},
           {"cycles_simulated", cycles_simulated},
           {"cycles_lower_bound", analytic.cycles_lower_bound},

@@ -7,19 +7,23 @@
 //   twice the FIFOs' total entries, plan_units; cut only
 //   where a strip's next triangle is even, so a sliced strip keeps its winding), plus
 //   every other command (state, clears, 2D) as a unit of its own.
-// - Certain units, always simulated: every non-triangle command, the first batch after
-//   each of them (it absorbs a clear's or 2D draw's ROP time), the head (batches until
+// - Certain units, always simulated: every non-triangle command, the batches after each
+//   of them until every stage has had twice the command's busiest stage's cycles of
+//   work (they absorb a clear's or 2D draw's ROP time), the head (batches until
 //   as many triangles as all FIFOs hold entries: the pipeline's fill, while command
 //   fetch runs ahead), the last batch (drain, resolve pass) and every batch of a stratum
 //   too small to sample.
 // - Strata: the batch's analytic bottleneck stage (the stage with the most busy cycles
 //   in the batch, by the estimate's walk, model/estimate). Auxiliary x: those busy cycles.
-// - One SystemC run of the chosen units in program order (one elaboration). A unit's
-//   measured cycles y: from command fetch starting it to command fetch starting the next
-//   simulated unit (the last: to the end of the run). The y add up to the run's cycles.
+// - One SystemC run of the chosen units in program order (one elaboration); a chosen unit
+//   whose predecessor is left out is preceded by that predecessor's last triangles
+//   (warm-up, unmeasured). A unit's measured cycles y: from command fetch starting it to
+//   command fetch starting the next simulated unit or warm-up (the last: to the end).
 // - Estimator: certain units' y plus, per stratum, the ratio estimator X_h sum(y)/sum(x);
-//   variance N_h^2 (1 - n_h/N_h) s_e^2 / n_h from the ratio residuals; Student t with
-//   Satterthwaite's degrees of freedom. All units chosen: the run is the full scene and
+//   variance N_h^2 (1 - n_h/N_h) s_e^2 / n_h from the ratio residuals, s_e^2 at least
+//   the certain batches' y/x variance times the stratum's mean x squared (a floor for
+//   small samples whose ratios agree by chance); Student t with Satterthwaite's degrees
+//   of freedom. All units chosen: the run is the full scene and
 //   the interval has zero width.
 #pragma once
 
@@ -56,6 +60,7 @@ struct UnitPlan {
   std::vector<Unit> units;
   size_t batch = 0;         // triangles a batch
   uint64_t head_triangles = 0;  // the certain head: the FIFOs' total entries
+  size_t warm_triangles = 0;    // warm-up before a unit whose predecessor is left out
   EstimateResult analytic;  // the whole scene's estimate (bounds)
 };
 
@@ -71,11 +76,19 @@ std::vector<bool> draw_sample(const UnitPlan& plan, double fraction, uint64_t se
 
 // The chosen units' commands in program order (a primitive command sliced to the chosen
 // triangles; adjacent chosen pieces of one command merged, so choosing every unit gives
-// back the scene's commands). first_of_unit[u] = (sub-scene command, its triangle) where
-// unit u starts, for chosen units.
+// back the scene's commands). A chosen unit whose predecessor (a triangle batch) is left
+// out is preceded by a warm-up: the last plan.warm_triangles triangles of that
+// predecessor, simulated but not measured, so the unit starts with its true context in
+// the FIFOs. segments: (sub-scene command, its triangle) where each measured unit or
+// warm-up starts, in program order, with the unit (SIZE_MAX for a warm-up).
 struct SubScene {
   Scene scene;
-  std::vector<std::pair<size_t, size_t>> first_of_unit;
+  struct Segment {
+    size_t command = 0, triangle = 0;
+    size_t unit = SIZE_MAX;
+  };
+  std::vector<Segment> segments;
+  size_t warm_triangles = 0;  // triangles simulated as warm-up
 };
 SubScene sub_scene(const Scene& scene, const UnitPlan& plan, const std::vector<bool>& chosen);
 
@@ -88,6 +101,8 @@ struct SampledResult {
   size_t units_total = 0, units_simulated = 0, units_certain = 0, strata = 0;
   size_t batch_triangles = 0;
   double degrees_of_freedom = 0;
+  double variance_floor = 0;      // the context term added to the sampling variance
+  size_t warm_triangles = 0;      // triangles simulated as warm-up, unmeasured
   uint64_t cycles_simulated = 0;  // the sampled run's own cycles
   uint64_t seed = 0;
   double wall_seconds = 0;        // planning + the SystemC run + the estimator

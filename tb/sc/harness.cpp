@@ -2,8 +2,6 @@
 #include "harness.h"
 
 #include <gtest/gtest.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -12,6 +10,7 @@
 #include <iostream>
 #include <random>
 
+#include "fidelity/run_child.h"
 #include "ref/prim_assembly.h"
 #include "report/stats_json.h"
 #include "config/raster_state_config.h"
@@ -19,38 +18,7 @@
 namespace rastsim::sctest {
 
 nlohmann::json run_isolated(const std::function<nlohmann::json()>& fn) {
-  int fd[2];
-  if (pipe(fd) != 0) return {{"error", "pipe failed"}};
-  std::cout.flush();
-  std::fflush(nullptr);
-  const pid_t pid = fork();
-  if (pid < 0) return {{"error", "fork failed"}};
-  if (pid == 0) {
-    close(fd[0]);
-    std::string out;
-    try {
-      out = fn().dump();
-    } catch (const std::exception& e) {
-      out = nlohmann::json{{"error", e.what()}}.dump();
-    }
-    for (size_t done = 0; done < out.size();) {
-      const ssize_t n = write(fd[1], out.data() + done, out.size() - done);
-      if (n <= 0) break;
-      done += size_t(n);
-    }
-    close(fd[1]);
-    _exit(0);  // no atexit handlers: the parent owns gtest's output
-  }
-  close(fd[1]);
-  std::string in;
-  char buf[65536];
-  for (ssize_t n; (n = read(fd[0], buf, sizeof buf)) > 0;) in.append(buf, size_t(n));
-  close(fd[0]);
-  int status = 0;
-  waitpid(pid, &status, 0);
-  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || in.empty())
-    return {{"error", "simulation child died (status " + std::to_string(status) + ")"}};
-  return nlohmann::json::parse(in);
+  return fidelity::run_in_child_or_error(fn);
 }
 
 nlohmann::json compare_with_reference(const Scene& scene, const Config& cfg, const sc::SimOptions& opts) {

@@ -21,7 +21,8 @@
 
 namespace rastsim::sctest {
 
-// Runs fn in a forked child; returns its JSON, or {"error": ...} if it threw or died.
+// Runs fn in a forked child; returns its JSON, or {"error": ...} if it threw or died
+// (fidelity::run_in_child_or_error, model/fidelity/run_child.h).
 nlohmann::json run_isolated(const std::function<nlohmann::json()>& fn);
 
 // In a child: simulates `scene` and renders it with the reference model; returns

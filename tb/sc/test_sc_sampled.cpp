@@ -10,10 +10,11 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
-#include <filesystem>
 
 #include "fidelity/sampled.h"
+#include "fidelity/tolerance.h"
 #include "harness.h"
 #include "scene/scene_io.h"
 
@@ -53,11 +54,13 @@ struct Coverage {
   int trials = 0, covered = 0, sampled = 0;  // sampled: trials that left a unit out
 };
 
-// NOT YET MET (docs/fidelity.md, "Status"): 133 of the 150 trials that left a unit out
-// were covered (88.7 %; 503/520 counting the trials that simulated every unit), and the
-// run takes about 95 s on 2 cores. Disabled until the estimator is fixed; run with
-// --gtest_also_run_disabled_tests --gtest_filter='*IntervalCovers*'.
-TEST(ScSampled, DISABLED_IntervalCoversTheFullRun) {
+// The scenes where sampling leaves units out: torus (x1, x4) and three random
+// 2500-triangle scenes (state changes, clears) on every config, including the cases the
+// first version missed (torus default and d3d11 at F = 0.1, torus x4 desktop, random
+// scenes on embedded with its slow clears). The shipped small traces are left out: every
+// unit of theirs is certain, so the answer is exact (EveryUnitChosenIsTheFullRun covers
+// that). Measured: docs/fidelity.md, "Coverage".
+TEST(ScSampled, IntervalCoversTheFullRun) {
   struct Case {
     std::string name;
     Scene scene;
@@ -66,8 +69,6 @@ TEST(ScSampled, DISABLED_IntervalCoversTheFullRun) {
                               {"torus x4", repeat_scene(load_trace(source("traces/torus.trace")), 4)}};
   for (uint64_t seed : {11, 12, 13})
     scenes.push_back({"random " + std::to_string(seed), random_scene(seed, 128, 128, 2500)});
-  for (const std::string& t : shipped_traces())
-    if (t.find("torus") == std::string::npos) scenes.push_back({std::filesystem::path(t).filename(), load_trace(t)});
   const std::vector<std::string> configs = {"default", "d3d11", "desktop", "embedded"};
   const std::vector<double> fractions = {0.1, 0.25};
   const int seeds = 5;
@@ -88,6 +89,12 @@ TEST(ScSampled, DISABLED_IntervalCoversTheFullRun) {
           ++here.trials;
           here.covered += in;
           all.sampled += r["units_simulated"] != r["units_total"];
+          if (r["units_simulated"] != r["units_total"])
+            std::printf("  trial %s %s F=%.2f seed=%d err %+.3f%% half %.3f%% floor %s covered %d units %s/%s\n",
+                        c.name.c_str(), cname.c_str(), f, s, 100 * (r["cycles"].get<double>() / truth - 1),
+                        100 * (r["cycles_ci_high"].get<double>() - r["cycles_ci_low"].get<double>()) / 2 / truth,
+                        r["variance_floor"].dump().c_str(), int(in), r["units_simulated"].dump().c_str(),
+                        r["units_total"].dump().c_str());
           if (!in)
             std::printf("  miss: %s %s F=%.2f seed=%d: full %.0f, estimate %s [%.1f, %.1f], %s/%s units\n",
                         c.name.c_str(), cname.c_str(), f, s, truth, r["cycles"].dump().c_str(),
@@ -104,6 +111,50 @@ TEST(ScSampled, DISABLED_IntervalCoversTheFullRun) {
   EXPECT_GE(all.covered, 0.95 * all.trials) << all.covered << "/" << all.trials;
   const int sampled_covered = all.covered - (all.trials - all.sampled);  // the others are exact
   EXPECT_GE(sampled_covered, 0.95 * all.sampled) << sampled_covered << "/" << all.sampled << " sampled trials";
+}
+
+
+// --tolerance (fidelity::choose_level): the analytic level answers when its bounds are
+// within the tolerance; whichever level answers, the full run's cycles lie within
+// cycles x (1 +- cycles_error_bound) (analytic: always, by the proven bounds; sampled:
+// with its interval's confidence, so checked on fixed seeds; systemc: exact).
+TEST(ScSampled, ToleranceBoundHoldsForTheLevelThatAnswers) {
+  struct Case {
+    std::string name, config;
+    Scene scene;
+    double tol;
+    const char* want;  // the level that must answer, or nullptr: any
+  };
+  const Scene torus = load_trace(source("traces/torus.trace"));
+  const std::vector<Case> cases = {
+      {"primitives.trace", "desktop", load_trace(source("traces/primitives.trace")), 0.20, "analytic"},
+      {"fill_rule.trace", "desktop", load_trace(source("traces/fill_rule.trace")), 0.35, "analytic"},
+      {"primitives.trace", "desktop", load_trace(source("traces/primitives.trace")), 0.05, nullptr},
+      {"torus.trace", "default", torus, 0.05, nullptr},
+      {"torus.trace", "default", torus, 0.50, nullptr},
+      {"torus x4", "default", repeat_scene(torus, 4), 0.10, nullptr},
+      {"random 12", "embedded", random_scene(12, 128, 128, 2500), 0.10, nullptr},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.name + " " + c.config + " tolerance " + std::to_string(c.tol));
+    const Config cfg = config_file(c.config);
+    const nlohmann::json full = run_isolated([&] { return simulate_stats(c.scene, cfg); });
+    ASSERT_FALSE(full.contains("error")) << full;
+    const double truth = full["cycles"].get<double>();
+    bool run_full = false;
+    std::string reason;
+    nlohmann::json j = fidelity::choose_level(c.scene, cfg, c.tol, 1, run_full, reason);
+    const std::string level = run_full ? "systemc" : j["fidelity_level"].get<std::string>();
+    std::printf("  %-18s %-9s tol %4.1f %%: %s %s\n", c.name.c_str(), c.config.c_str(), 100 * c.tol, level.c_str(),
+                run_full ? reason.c_str() : j["fidelity_reason"].get<std::string>().c_str());
+    if (c.want) {
+      EXPECT_EQ(level, c.want);
+    }
+    if (run_full) continue;  // the caller runs the full model: exact
+    const double cycles = j["cycles"].get<double>(), bound = j["cycles_error_bound"].get<double>();
+    EXPECT_LE(bound, c.tol);
+    EXPECT_LE(std::abs(truth - cycles), cycles * bound + 0.5) << "truth " << truth << ", " << j.dump();
+  }
 }
 
 }  // namespace
