@@ -103,10 +103,10 @@ void count_interp_error(const Fragment& got, const Fragment& exact, RenderStats&
 }
 
 Framebuffer render_scene(const Scene& scene, const RasterState& arch, RenderStats& stats,
-                         const FragmentSink& on_fragment) {
+                         const FragmentSink& on_fragment, int fb_tile_log2) {
   const auto t0 = std::chrono::steady_clock::now();
   RasterState st = arch;
-  Framebuffer fb(st.fb_width, st.fb_height, st.samples);
+  Framebuffer fb(st.fb_width, st.fb_height, st.samples, fb_tile_log2);
   count_multisample_footprint(st, stats);
   fb.clear_depth(static_cast<uint32_t>((uint64_t{1} << st.depth_bits) - 1));
   const int F = st.coord_format.frac_bits;

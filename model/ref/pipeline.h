@@ -76,8 +76,9 @@ using FragmentSink = std::function<void(const Fragment&)>;
 
 // Renders a whole scene into a new framebuffer of the display size.
 // `on_fragment`, if set, sees every fragment leaving interpolation, in pipeline order.
+// `fb_tile_log2`: the framebuffer's storage tiles (Framebuffer; no effect on the result).
 Framebuffer render_scene(const Scene& scene, const RasterState& arch, RenderStats& stats,
-                         const FragmentSink& on_fragment = {});
+                         const FragmentSink& on_fragment = {}, int fb_tile_log2 = Framebuffer::kDefaultTileLog2);
 
 // One fragment as a line of the shared fragment-trace format: "x y z r g b" (decimal),
 // followed by " mask" (decimal) when raster.samples > 1.
