@@ -12,10 +12,13 @@
 
 namespace rastsim::app {
 
+namespace {
+constexpr size_t kSceneBatchCommands = 4096;  // commands parsed ahead of the pipeline
+}  // namespace
+
 void run_render_command(const RenderOptions& o) {
   const Config cfg = load_config(o.config);
   const RasterState arch = raster_state_from_config(cfg);
-  const Scene scene = load_scene(o.scene_path, obj_placement(cfg));
   RenderStats stats;
   std::ofstream frag_os;
   FragmentSink sink;
@@ -24,7 +27,23 @@ void run_render_command(const RenderOptions& o) {
     if (!frag_os) throw std::runtime_error(o.frag_path + ": cannot open for writing");
     sink = [&](const Fragment& f) { frag_os << fragment_trace_line(f) << '\n'; };
   }
-  const Framebuffer fb = render_scene(scene, arch, stats, sink);
+  // The scene streamed in bounded batches (scene_io.h): memory does not grow with the file.
+  SceneRenderer renderer(arch, stats, sink);
+  uint64_t done = 0;
+  bool drawing = false;  // an error of the pipeline itself, not of the reader, passes unchanged
+  try {
+    stream_scene(o.scene_path, obj_placement(cfg), kSceneBatchCommands, [&](std::vector<Command>& batch) {
+      drawing = true;
+      renderer.run(batch);
+      drawing = false;
+      done += batch.size();
+    });
+  } catch (const SceneError& e) {
+    if (drawing || done == 0) throw;
+    throw SceneError(std::string(e.what()) + " (after " + std::to_string(done) +
+                     " commands of the scene were drawn; no image or stats written)");
+  }
+  const Framebuffer fb = renderer.finish();
   if (!o.out_path.empty()) write_image(fb, o.out_path);
   nlohmann::json j = to_json(stats);
   j["config"] = cfg.source_name();

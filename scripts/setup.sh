@@ -18,6 +18,7 @@ RASTSIM_PACKAGES=(
   libzstd-dev   # zstd-compressed scenes (model/scene/scene_stream.cpp)
   zstd          # the zstd tool: scripts/gen_scenes --compress zst, the CLI test
   python3-matplotlib
+  time      # GNU time (/usr/bin/time -f %M, peak memory): scripts/bench_scale
   gtkwave   # vcd2fst / fst2vcd for FST video signals (rastsim scanout --signal, monitor), and to view waveforms
   libgmp-dev   # GMP's mpq_class: exact area coverage (model/aa, docs/exact-coverage.md)
   libosmesa6-dev   # OSMesa: Mesa's llvmpipe, headless, the independent renderer of ctest -L mesa (docs/mesa.md)

@@ -488,11 +488,11 @@ TEST(DepthTest, EveryFuncThroughRopWrite) {
         fb.clear_depth(100);
         const Fragment f{1, 0, z, 40, 50, 60};
         EXPECT_EQ(rop_write(fb, f, r.func, depth_write), pass);
-        EXPECT_EQ(fb.depth[1], pass && depth_write ? z : 100u);
+        EXPECT_EQ(fb.depth_at(1, 0), pass && depth_write ? z : 100u);
         const uint8_t* p = fb.pixel(1, 0);
         const std::array<uint8_t, 4> rgba{p[0], p[1], p[2], p[3]};
         EXPECT_EQ(rgba, pass ? (std::array<uint8_t, 4>{40, 50, 60, 255}) : (std::array<uint8_t, 4>{1, 2, 3, 255}));
-        EXPECT_EQ(fb.depth[0], 100u);  // the neighbour is untouched
+        EXPECT_EQ(fb.depth_at(0, 0), 100u);  // the neighbour is untouched
         EXPECT_EQ(fb.pixel(0, 0)[0], 1);
       }
     }

@@ -3,10 +3,12 @@
 
 #include <png.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <memory>
 #include <stdexcept>
+#include <vector>
 
 namespace rastsim {
 
@@ -25,7 +27,13 @@ void write_image(const Framebuffer& fb, const std::string& path) {
     std::ofstream os(path, std::ios::binary);
     if (!os) throw std::runtime_error(path + ": cannot open for writing");
     os << "P6\n" << fb.width << " " << fb.height << "\n255\n";
-    for (size_t i = 0; i < fb.rgba.size(); i += 4) os.write(reinterpret_cast<const char*>(&fb.rgba[i]), 3);
+    // Row by row from the tiles (Framebuffer::read_row): no second full copy.
+    std::vector<uint8_t> rgba(size_t(fb.width) * 4), rgb(size_t(fb.width) * 3);
+    for (int y = 0; y < fb.height; ++y) {
+      fb.read_row(y, rgba.data());
+      for (size_t x = 0; x < size_t(fb.width); ++x) std::copy_n(&rgba[x * 4], 3, &rgb[x * 3]);
+      os.write(reinterpret_cast<const char*>(rgb.data()), std::streamsize(rgb.size()));
+    }
     if (!os) throw std::runtime_error(path + ": write failed");
     return;
   }
@@ -43,8 +51,11 @@ void write_image(const Framebuffer& fb, const std::string& path) {
   png_set_IHDR(png, info, fb.width, fb.height, 8, PNG_COLOR_TYPE_RGBA, PNG_INTERLACE_NONE,
                PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
   png_write_info(png, info);
-  for (int y = 0; y < fb.height; ++y)
-    png_write_row(png, const_cast<png_bytep>(fb.pixel(0, y)));
+  std::vector<uint8_t> row(size_t(fb.width) * 4);  // one row at a time from the tiles
+  for (int y = 0; y < fb.height; ++y) {
+    fb.read_row(y, row.data());
+    png_write_row(png, row.data());
+  }
   png_write_end(png, nullptr);
   png_destroy_write_struct(&png, &info);
 }
@@ -59,9 +70,14 @@ Framebuffer read_image(const std::string& path) {
       throw std::runtime_error(path + ": not a binary PPM (P6, 8-bit)");
     is.get();
     Framebuffer fb(w, h);
-    for (size_t i = 0; i < fb.rgba.size(); i += 4) {
-      is.read(reinterpret_cast<char*>(&fb.rgba[i]), 3);
-      fb.rgba[i + 3] = 255;
+    std::vector<uint8_t> rgb(size_t(w) * 3), rgba(size_t(w) * 4);
+    for (int y = 0; y < h && is; ++y) {
+      is.read(reinterpret_cast<char*>(rgb.data()), std::streamsize(rgb.size()));
+      for (size_t x = 0; x < size_t(w); ++x) {
+        std::copy_n(&rgb[x * 3], 3, &rgba[x * 4]);
+        rgba[x * 4 + 3] = 255;
+      }
+      fb.write_row(y, rgba.data());
     }
     if (!is) throw std::runtime_error(path + ": truncated PPM");
     return fb;
@@ -72,8 +88,10 @@ Framebuffer read_image(const std::string& path) {
     throw std::runtime_error(path + ": " + img.message);
   img.format = PNG_FORMAT_RGBA;
   Framebuffer fb(static_cast<int>(img.width), static_cast<int>(img.height));
-  if (!png_image_finish_read(&img, nullptr, fb.rgba.data(), 0, nullptr))
+  std::vector<uint8_t> rgba(PNG_IMAGE_SIZE(img));
+  if (!png_image_finish_read(&img, nullptr, rgba.data(), 0, nullptr))
     throw std::runtime_error(path + ": " + img.message);
+  for (int y = 0; y < fb.height; ++y) fb.write_row(y, rgba.data() + size_t(y) * size_t(fb.width) * 4);
   return fb;
 }
 

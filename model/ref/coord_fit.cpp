@@ -208,8 +208,13 @@ std::vector<PrecisionRow> measure_precision(const Scene& scene, const RasterStat
     r.error = render(F, fb);
     r.ok = r.error.empty();
     if (r.ok) {
-      for (size_t p = 0; p < fb.rgba.size(); p += 4)
-        r.pixels_different += !std::equal(&fb.rgba[p], &fb.rgba[p] + 4, &golden.rgba[p]);
+      std::vector<uint8_t> row(size_t(fb.width) * 4), golden_row(row.size());
+      for (int y = 0; y < fb.height; ++y) {
+        fb.read_row(y, row.data());
+        golden.read_row(y, golden_row.data());
+        for (size_t p = 0; p < row.size(); p += 4)
+          r.pixels_different += !std::equal(&row[p], &row[p] + 4, &golden_row[p]);
+      }
       if (closed) {
         RasterState st = arch;
         st.coord_format = r.format;

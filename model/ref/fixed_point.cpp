@@ -59,9 +59,9 @@ std::string FixedFormat::name() const {
 }
 
 Q64 Q64::parse_decimal(std::string_view text) {
-  const std::string orig(text);
+  const std::string_view orig = text;  // copied into the message only on failure
   auto fail = [&](const std::string& why) -> Q64 {
-    throw std::invalid_argument("bad number '" + orig + "': " + why);
+    throw std::invalid_argument("bad number '" + std::string(orig) + "': " + why);
   };
   bool neg = false;
   if (!text.empty() && (text[0] == '-' || text[0] == '+')) {
@@ -86,10 +86,16 @@ Q64 Q64::parse_decimal(std::string_view text) {
   for (char c : fp) { frac = frac * 10 + u128(c - '0'); pow10 *= 10; }
   u128 bits = 0;
   u128 rem = frac;
-  for (int i = 0; i < 64; ++i) {
-    rem <<= 1;
-    bits <<= 1;
-    if (rem >= pow10) { rem -= pow10; bits |= 1; }
+  if (fp.size() <= 19) {  // frac < 10^k <= 10^19 < 2^64: frac 2^64 fits, one division
+    const u128 num = frac << 64;
+    bits = num / pow10;
+    rem = num % pow10;
+  } else {
+    for (int i = 0; i < 64; ++i) {
+      rem <<= 1;
+      bits <<= 1;
+      if (rem >= pow10) { rem -= pow10; bits |= 1; }
+    }
   }
   if (rem != 0) bits |= 1;  // sticky: round to odd
   const i128 mag = i128((int_part << 64) | bits);

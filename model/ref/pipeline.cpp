@@ -102,51 +102,94 @@ void count_interp_error(const Fragment& got, const Fragment& exact, RenderStats&
   stats.depth_error_sum += ez;
 }
 
-Framebuffer render_scene(const Scene& scene, const RasterState& arch, RenderStats& stats,
-                         const FragmentSink& on_fragment) {
-  const auto t0 = std::chrono::steady_clock::now();
-  RasterState st = arch;
-  Framebuffer fb(st.fb_width, st.fb_height, st.samples);
-  count_multisample_footprint(st, stats);
-  fb.clear_depth(static_cast<uint32_t>((uint64_t{1} << st.depth_bits) - 1));
-  const int F = st.coord_format.frac_bits;
-  const TraversalParams tp = traversal_params(st);
-  stats.traversal_method = tp.method;
-  // Only an inexact method is measured against the exact coverage.
-  std::optional<CoverageCheck> check;
-  if (!traversal_is_exact(tp.method)) check.emplace(st.fb_width, st.fb_height);
+namespace {
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+}  // namespace
+
+struct SceneRenderer::Impl {
+  double seconds = 0;  // spent in the pipeline (constructor, run, finish): parsing excluded
+  RasterState st;
+  RenderStats& stats;
+  FragmentSink on_fragment;
+  Framebuffer fb;
+  int F;
+  TraversalParams tp;
+  std::optional<CoverageCheck> check;       // only an inexact method is measured against the exact coverage
   std::vector<std::pair<int, int>> pixels;  // one triangle's, for the check
-  for (const Command& cmd : scene.commands) {
-    if (apply_state_command(cmd, st, fb)) continue;
-    if (const auto* d2 = std::get_if<CmdDraw2d>(&cmd.body)) {
-      check_2d_sample_count(cmd, st);
-      draw_2d(*d2, cmd.loc, st, fb, stats.draw2d);
-      continue;
-    }
-    const auto& prims = std::get<CmdPrimitives>(cmd.body);
-    const size_t n = triangle_count(prims);
-    for (size_t k = 0; k < n; ++k) {
-      ++stats.triangles_in;
-      SetupTriangle tri;
-      if (!count_setup_outcome(setup_triangle(assemble_triangle(prims, k), st, cmd.loc, tri), stats)) continue;
-      pixels.clear();
-      traverse(tri, tp, stats.traversal, [&](int px, int py, uint32_t mask) {
-        if (check) pixels.emplace_back(px, py);
-        shade_pixel(tri, px, py, mask, F, [&](const Fragment& f) {
-          if (tri.interp_method != InterpMethod::Plane) count_interp_error(f, interpolate_plane(tri, px, py, F), stats);
-          ++stats.fragments_shaded;
-          if (on_fragment) on_fragment(f);
-          if (rop_write(fb, f, st.depth_func, st.depth_write, &stats.samples_passed)) ++stats.fragments_passed;
-        });
-      });
-      if (check) check->add_triangle(tri, F, pixels, stats.coverage);
-    }
+
+  Impl(const RasterState& arch, RenderStats& s, const FragmentSink& sink, int fb_tile_log2)
+      : st(arch), stats(s), on_fragment(sink), fb(st.fb_width, st.fb_height, st.samples, fb_tile_log2),
+        F(st.coord_format.frac_bits), tp(traversal_params(st)) {
+    count_multisample_footprint(st, stats);
+    fb.clear_depth(static_cast<uint32_t>((uint64_t{1} << st.depth_bits) - 1));
+    stats.traversal_method = tp.method;
+    if (!traversal_is_exact(tp.method)) check.emplace(st.fb_width, st.fb_height);
   }
-  if (check) check->finish(stats.coverage);
-  if (fb.samples > 1) fb = fb.resolve();  // the frame-end resolve pass
-  stats.framebuffer_crc32 = fb.color_crc32();
-  stats.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  return fb;
+  void run(const Command& cmd);
+};
+
+SceneRenderer::SceneRenderer(const RasterState& arch, RenderStats& stats, const FragmentSink& on_fragment,
+                             int fb_tile_log2)
+    : impl_(nullptr) {
+  const auto t0 = std::chrono::steady_clock::now();
+  impl_ = std::make_unique<Impl>(arch, stats, on_fragment, fb_tile_log2);
+  impl_->seconds += seconds_since(t0);
+}
+
+SceneRenderer::~SceneRenderer() = default;
+
+void SceneRenderer::run(std::span<const Command> commands) {
+  const auto t0 = std::chrono::steady_clock::now();
+  for (const Command& cmd : commands) impl_->run(cmd);
+  impl_->seconds += seconds_since(t0);
+}
+
+void SceneRenderer::Impl::run(const Command& cmd) {
+  Impl& m = *this;
+  RenderStats& stats = m.stats;
+  if (apply_state_command(cmd, m.st, m.fb)) return;
+  if (const auto* d2 = std::get_if<CmdDraw2d>(&cmd.body)) {
+    check_2d_sample_count(cmd, m.st);
+    draw_2d(*d2, cmd.loc, m.st, m.fb, stats.draw2d);
+    return;
+  }
+  const auto& prims = std::get<CmdPrimitives>(cmd.body);
+  const size_t n = triangle_count(prims);
+  for (size_t k = 0; k < n; ++k) {
+    ++stats.triangles_in;
+    SetupTriangle tri;
+    if (!count_setup_outcome(setup_triangle(assemble_triangle(prims, k), m.st, cmd.loc, tri), stats)) continue;
+    m.pixels.clear();
+    traverse(tri, m.tp, stats.traversal, [&](int px, int py, uint32_t mask) {
+      if (m.check) m.pixels.emplace_back(px, py);
+      shade_pixel(tri, px, py, mask, m.F, [&](const Fragment& f) {
+        if (tri.interp_method != InterpMethod::Plane) count_interp_error(f, interpolate_plane(tri, px, py, m.F), stats);
+        ++stats.fragments_shaded;
+        if (m.on_fragment) m.on_fragment(f);
+        if (rop_write(m.fb, f, m.st.depth_func, m.st.depth_write, &stats.samples_passed)) ++stats.fragments_passed;
+      });
+    });
+    if (m.check) m.check->add_triangle(tri, m.F, m.pixels, stats.coverage);
+  }
+}
+
+Framebuffer SceneRenderer::finish() {
+  const auto t0 = std::chrono::steady_clock::now();
+  Impl& m = *impl_;
+  if (m.check) m.check->finish(m.stats.coverage);
+  if (m.fb.samples > 1) m.fb = m.fb.resolve();  // the frame-end resolve pass
+  m.stats.framebuffer_crc32 = m.fb.color_crc32();
+  m.stats.wall_seconds = m.seconds + seconds_since(t0);
+  return std::move(m.fb);
+}
+
+Framebuffer render_scene(const Scene& scene, const RasterState& arch, RenderStats& stats,
+                         const FragmentSink& on_fragment, int fb_tile_log2) {
+  SceneRenderer r(arch, stats, on_fragment, fb_tile_log2);
+  r.run(scene.commands);
+  return r.finish();
 }
 
 std::string fragment_trace_line(const Fragment& f) {

@@ -6,6 +6,8 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
+#include <span>
 #include <string>
 
 #include "ref/draw2d.h"
@@ -76,8 +78,29 @@ using FragmentSink = std::function<void(const Fragment&)>;
 
 // Renders a whole scene into a new framebuffer of the display size.
 // `on_fragment`, if set, sees every fragment leaving interpolation, in pipeline order.
+// `fb_tile_log2`: the framebuffer's storage tiles (Framebuffer; no effect on the result).
 Framebuffer render_scene(const Scene& scene, const RasterState& arch, RenderStats& stats,
-                         const FragmentSink& on_fragment = {});
+                         const FragmentSink& on_fragment = {}, int fb_tile_log2 = Framebuffer::kDefaultTileLog2);
+
+// The same pipeline fed a batch of commands at a time (a scene streamed in batches,
+// scene_io.h stream_scene): run() each batch in order, then finish() (coverage check,
+// resolve, CRC) once. stats.wall_seconds is the time spent in the constructor, run and
+// finish: the pipeline's, parsing excluded, as render_scene's. render_scene is this over
+// a whole scene.
+class SceneRenderer {
+ public:
+  SceneRenderer(const RasterState& arch, RenderStats& stats, const FragmentSink& on_fragment = {},
+                int fb_tile_log2 = Framebuffer::kDefaultTileLog2);
+  ~SceneRenderer();
+  SceneRenderer(const SceneRenderer&) = delete;
+  SceneRenderer& operator=(const SceneRenderer&) = delete;
+  void run(std::span<const Command> commands);
+  Framebuffer finish();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
 
 // One fragment as a line of the shared fragment-trace format: "x y z r g b" (decimal),
 // followed by " mask" (decimal) when raster.samples > 1.

@@ -2,6 +2,7 @@
 #include "ref/raster2d.h"
 
 #include <algorithm>
+#include <utility>
 
 #include "ref/rop3.h"
 
@@ -49,7 +50,7 @@ uint64_t blit_clipped(Framebuffer& fb, const Raster2dState& st, const BlitRect& 
     for (int i = 0; i < b.w; ++i) {
       const int x = o.right_to_left ? b.w - 1 - i : i;
       uint8_t s[4];
-      std::copy_n(fb.pixel(b.sx + x, b.sy + y), 4, s);
+      std::copy_n(std::as_const(fb).pixel(b.sx + x, b.sy + y), 4, s);  // a read: no tile allocated
       write_pixel(fb.pixel(b.dx + x, b.dy + y), pattern_color(st, b.dx + x, b.dy + y), s, st.rop3);
     }
   }

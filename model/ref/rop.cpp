@@ -23,11 +23,9 @@ bool rop_write(Framebuffer& fb, const Fragment& f, DepthFunc func, bool depth_wr
   const uint32_t mask = samples == 1 ? 1u : f.mask;
   for (int s = 0; s < samples; ++s) {
     if (!((mask >> s) & 1)) continue;
-    const size_t i = fb.sample_index(f.x, f.y, s);
-    uint32_t& stored = fb.depth[i];
-    if (!depth_test(func, f.z, stored)) continue;
-    if (depth_write) stored = f.z;
-    uint8_t* p = &fb.rgba[i * 4];
+    if (!depth_test(func, f.z, fb.depth_at(f.x, f.y, s))) continue;
+    if (depth_write) fb.set_depth(f.x, f.y, s, f.z);
+    uint8_t* p = fb.sample(f.x, f.y, s);
     p[0] = f.r;
     p[1] = f.g;
     p[2] = f.b;

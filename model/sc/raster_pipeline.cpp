@@ -166,7 +166,7 @@ SimResult simulate_scene(const Scene& scene, const Config& cfg, const SimOptions
   r.rop_accesses = ctx.rop_accesses;
   r.framebuffer_bytes = ctx.framebuffer_bytes;
   r.resolve_cycles = ctx.resolve_cycles;
-  r.fb = top->rop.framebuffer();
+  r.fb = std::move(top->rop.framebuffer());  // moved, not copied: one framebuffer
   r.render.framebuffer_crc32 = r.fb.color_crc32();
   r.sim_wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   r.render.wall_seconds = r.sim_wall_seconds;

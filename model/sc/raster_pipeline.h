@@ -53,7 +53,7 @@ struct FifoReport {
 };
 
 struct SimResult {
-  Framebuffer fb;
+  Framebuffer fb;                    // the ROP's own (sparse), moved here: one framebuffer a run
   RenderStats render;                // the reference model's counters (same names)
   // The ROP's framebuffer traffic (sc/rop.h, docs/microarchitecture.md "Multisampling"):
   // accesses (rop_accesses summed over every fragment), bytes moved (accesses x (4 +

@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: Apache-2.0
 // ROP: depth test and colour/depth write of each fragment (ref/rop.h: rop_write), and
 // the clears, in program order (ref/pipeline.h: apply_state_command). Owns the
-// framebuffer.
+// framebuffer (sparse tiles, ref/framebuffer.h, docs/framebuffer.md), which the 2D engine
+// borrows and simulate_scene moves into its result. Timing does not follow the storage:
+// a clear is charged for the whole W x H buffer, as below.
 //
 // - A batch of fragments takes ceil(A / rop.pixels_per_cycle) cycles, A the sum of
 //   TimingParams::rop_accesses over its fragments: 1 a fragment with one sample or a full

@@ -3,7 +3,9 @@
 // MTL files (scene_obj.cpp), into the command stream of ref/scene.h.
 #pragma once
 
+#include <functional>
 #include <string>
+#include <vector>
 
 #include "config/config.h"
 #include "ref/scene.h"
@@ -30,6 +32,17 @@ Scene parse_trace(const std::string& text, const std::string& name);
 Scene load_obj(const std::string& path, const ObjPlacement& placement);
 Scene parse_obj(const std::string& text, const std::string& name, const ObjPlacement& placement,
                 const std::string& base_dir);
+
+// The command stream of a scene in batches: `consume` gets each batch of at least
+// `batch` commands (the last may be shorter) in order, and may take them (the vector is
+// cleared after). A trace is read chunk by chunk and parsed as it is consumed, so memory
+// stays bounded whatever the file's size; a malformed line throws its SceneError
+// (file:line) when the parser reaches it, after the batches before it were consumed. An
+// OBJ mesh is read whole (its placement needs every vertex), then handed out in batches.
+using CommandBatchFn = std::function<void(std::vector<Command>&)>;
+void stream_trace(const std::string& path, size_t batch, const CommandBatchFn& consume);
+void stream_scene(const std::string& path, const ObjPlacement& placement, size_t batch,
+                  const CommandBatchFn& consume);
 
 // By extension, after any .gz / .zst: .obj -> load_obj, anything else -> load_trace.
 // Every loader reads plain, gzip and zstd files alike (scene_stream.h).

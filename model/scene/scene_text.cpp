@@ -50,33 +50,69 @@ std::string quote(std::string_view tok) {
 // it is a regular file and bounds its size).
 std::string read_file(const std::string& path) { return scene_stream::read_all(path); }
 
+namespace {
+
+// One line (without its '\n'): the guards, comment stripping, tokens, fn.
+void one_line(std::string_view s, int line, const std::string& name, Tokens& tokens, const LineFn& fn) {
+  if (s.size() > kMaxLineChars)
+    fail(name, line, "line is longer than " + std::to_string(kMaxLineChars) + " characters");
+  if (s.find('\0') != std::string_view::npos) fail(name, line, "NUL byte (not a text file?)");
+  s = s.substr(0, s.find('#'));
+  tokens.clear();
+  constexpr std::string_view kSpace = " \t\r\v\f";
+  for (size_t b = s.find_first_not_of(kSpace); b != std::string_view::npos; b = s.find_first_not_of(kSpace, b)) {
+    const size_t e = std::min(s.find_first_of(kSpace, b), s.size());
+    tokens.push_back(s.substr(b, e - b));
+    b = e;
+  }
+  if (!tokens.empty()) fn(line, tokens);
+}
+
+// The complete lines of `text` from `pos`; returns where the unfinished last line starts.
+size_t complete_lines(std::string_view text, size_t pos, int& line, const std::string& name, Tokens& tokens,
+                      const LineFn& fn) {
+  for (size_t eol; (eol = text.find('\n', pos)) != std::string_view::npos; pos = eol + 1) {
+    if (line == std::numeric_limits<int>::max()) fail(name, line, "too many lines");
+    one_line(text.substr(pos, eol - pos), ++line, name, tokens, fn);
+  }
+  return pos;
+}
+
+}  // namespace
+
 // Calls fn(line, tokens) for every line that has a token after comment stripping;
 // returns the number of lines. Lines split on '\n'; '\r' counts as whitespace, so
 // CRLF files read the same as LF files.
 int for_each_line(std::string_view text, const std::string& name, const LineFn& fn) {
   int line = 0;
-  size_t pos = 0;
   Tokens tokens;
-  while (pos < text.size()) {
+  const size_t rest = complete_lines(text, 0, line, name, tokens, fn);
+  if (rest < text.size()) {
     if (line == std::numeric_limits<int>::max()) fail(name, line, "too many lines");
-    ++line;
-    size_t eol = text.find('\n', pos);
-    if (eol == std::string_view::npos) eol = text.size();
-    std::string_view s = text.substr(pos, eol - pos);
-    pos = eol + 1;
-    if (s.size() > kMaxLineChars)
-      fail(name, line, "line is longer than " + std::to_string(kMaxLineChars) + " characters");
-    if (s.find('\0') != std::string_view::npos) fail(name, line, "NUL byte (not a text file?)");
-    s = s.substr(0, s.find('#'));
-    tokens.clear();
-    constexpr std::string_view kSpace = " \t\r\v\f";
-    for (size_t b = s.find_first_not_of(kSpace); b != std::string_view::npos;
-         b = s.find_first_not_of(kSpace, b)) {
-      const size_t e = std::min(s.find_first_of(kSpace, b), s.size());
-      tokens.push_back(s.substr(b, e - b));
-      b = e;
-    }
-    if (!tokens.empty()) fn(line, tokens);
+    one_line(text.substr(rest), ++line, name, tokens, fn);
+  }
+  return line;
+}
+
+int for_each_line(scene_stream::Reader& in, const std::string& name, const LineFn& fn) {
+  constexpr size_t kChunk = size_t{1} << 20;
+  std::string buf;  // an unfinished line carried over, then the next chunk
+  int line = 0;
+  Tokens tokens;
+  for (;;) {
+    const size_t kept = buf.size();
+    buf.resize(kept + kChunk);
+    const size_t got = in.read(buf.data() + kept, kChunk);
+    buf.resize(kept + got);
+    if (got == 0) break;
+    const size_t rest = complete_lines(buf, 0, line, name, tokens, fn);
+    buf.erase(0, rest);
+    // An unfinished line already too long fails now, not after reading the rest of it.
+    if (buf.size() > kMaxLineChars) one_line(buf, line + 1, name, tokens, fn);
+  }
+  if (!buf.empty()) {
+    if (line == std::numeric_limits<int>::max()) fail(name, line, "too many lines");
+    one_line(buf, ++line, name, tokens, fn);
   }
   return line;
 }

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "ref/scene.h"
+#include "scene/scene_stream.h"
 
 namespace rastsim::scene_text {
 
@@ -25,6 +26,8 @@ std::string read_file(const std::string& path);
 // Calls fn(line, tokens) for every non-blank line with '#' comments removed; rejects NUL
 // bytes and overlong lines. Returns the number of lines.
 int for_each_line(std::string_view text, const std::string& name, const LineFn& fn);
+// The same reading the file chunk by chunk (memory: one chunk and one line).
+int for_each_line(scene_stream::Reader& in, const std::string& name, const LineFn& fn);
 // Strict numbers: the whole token, nothing else; nullopt when malformed or not finite.
 std::optional<int64_t> parse_int(std::string_view tok);
 std::optional<double> parse_double(std::string_view tok);

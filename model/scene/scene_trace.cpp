@@ -103,6 +103,14 @@ class TraceParser {
     return std::move(scene_);
   }
 
+  // Hands the commands parsed so far to `consume` once there are at least `n` (n = 0:
+  // whatever there is).
+  void drain(size_t n, const CommandBatchFn& consume) {
+    if (scene_.commands.empty() || scene_.commands.size() < n) return;
+    consume(scene_.commands);
+    scene_.commands.clear();
+  }
+
  private:
   [[noreturn]] void fail(const std::string& what) const { scene_text::fail(name_, line_, what); }
 
@@ -471,6 +479,13 @@ class TraceParser {
   TextStyle font_;  // `font 1`: scale 1, regular, fixed spacing, transparent
 };
 
+// The parser follows the name without its compression suffix: a.obj.gz is an OBJ.
+bool is_obj_name(const std::string& path) {
+  std::string ext = std::filesystem::path(scene_stream::strip_compression_suffix(path)).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext == ".obj";
+}
+
 }  // namespace
 
 Scene parse_trace(const std::string& text, const std::string& name) {
@@ -481,11 +496,33 @@ Scene parse_trace(const std::string& text, const std::string& name) {
 
 Scene load_trace(const std::string& path) { return parse_trace(scene_text::read_file(path), path); }
 
+void stream_trace(const std::string& path, size_t batch, const CommandBatchFn& consume) {
+  scene_stream::Reader in(path);
+  TraceParser p(path);
+  scene_text::for_each_line(in, path, [&](int line, const Tokens& t) {
+    p.line(line, t);
+    p.drain(batch, consume);
+  });
+  Scene rest = p.finish();  // an unclosed strip/fan is an error here
+  if (!rest.commands.empty()) consume(rest.commands);
+}
+
+void stream_scene(const std::string& path, const ObjPlacement& placement, size_t batch,
+                  const CommandBatchFn& consume) {
+  if (!is_obj_name(path)) return stream_trace(path, batch, consume);
+  // An OBJ is placed by the bounding sphere of all its vertices: read whole, then batched.
+  Scene scene = load_obj(path, placement);
+  std::vector<Command> part;
+  for (size_t i = 0; i < scene.commands.size(); i += std::max<size_t>(batch, 1)) {
+    part.assign(std::make_move_iterator(scene.commands.begin() + std::ptrdiff_t(i)),
+                std::make_move_iterator(scene.commands.begin() +
+                                        std::ptrdiff_t(std::min(scene.commands.size(), i + std::max<size_t>(batch, 1)))));
+    consume(part);
+  }
+}
+
 Scene load_scene(const std::string& path, const ObjPlacement& placement) {
-  // The parser follows the name without its compression suffix: a.obj.gz is an OBJ.
-  std::string ext = std::filesystem::path(scene_stream::strip_compression_suffix(path)).extension().string();
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  if (ext == ".obj") return load_obj(path, placement);
+  if (is_obj_name(path)) return load_obj(path, placement);
   return load_trace(path);
 }
 

@@ -44,7 +44,7 @@ nlohmann::json compare_with_reference(const Scene& scene, const Config& cfg, con
   sim_json.erase("wall_seconds");
   return {{"crc_ref", ref_fb.color_crc32()},
           {"crc_sim", r.fb.color_crc32()},
-          {"depth_equal", ref_fb.depth == r.fb.depth},
+          {"depth_equal", ref_fb.same_depth(r.fb)},
           {"render_stats_equal", ref_json == sim_json},
           {"fragments_ref", ref_frags.size()},
           {"fragments_sim", sim_frags.size()},

@@ -86,7 +86,7 @@ RtlRun run_rtl(const char* cfg_name, int frames, const std::function<bool(int)>&
     top->clk_i = 1, top->eval();
     // Synchronous RAM: the data asked for appears after the edge.
     if (rd) {
-      const uint8_t* px = &fb.rgba[size_t(addr) * 4];
+      const uint8_t* px = fb.pixel(int(addr % uint32_t(fb.width)), int(addr / uint32_t(fb.width)));
       top->fb_rdata_i = uint32_t(px[0]) << 16 | uint32_t(px[1]) << 8 | px[2];
     }
     top->fb_rvalid_i = rd && (!has_data || has_data(line));
