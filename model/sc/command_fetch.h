@@ -13,12 +13,19 @@
 //   fetch.vertices_per_cycle) per triangle (3 new vertices in a list, 1 in a strip or
 //   fan after its first triangle); a 2D command its header plus ceil(vertices /
 //   fetch.vertices_per_cycle).
+// - The commands come from a CommandSource, in program order: a whole Scene's
+//   (scene_source), or a trace streamed batch by batch while the simulation runs
+//   (stream_source; the parser runs on fetch's own thread, so a malformed line late in
+//   the file stops the simulation there with its SceneError). Stages hold CommandPtrs
+//   (sim_context.h), which keep a streamed batch alive while any transaction names it.
 // - With raster.samples > 1, after the last command: the end-of-frame marker
 //   (SimContext::end_of_frame), one command header, down the triangle path; a 2D
 //   command is an error there (check_2d_sample_count).
 #pragma once
 
 #include <cstddef>
+#include <functional>
+#include <string>
 
 #include "ref/framebuffer.h"
 #include "ref/scene.h"
@@ -29,20 +36,33 @@
 namespace rastsim::sc {
 
 struct TriangleRef {
-  const Command* cmd = nullptr;  // a primitives command
+  CommandPtr cmd;  // a primitives command
   size_t index = 0;              // triangle index within it
 };
 using CommandItem = Item<TriangleRef>;
 
+// Calls `take` once per command, in program order (and may throw SceneError midway).
+using CommandTake = std::function<void(CommandPtr)>;
+using CommandSource = std::function<void(const CommandTake& take)>;
+// A whole scene's commands, borrowed: `scene` must outlive the simulation.
+CommandSource scene_source(const Scene& scene);
+
 class CommandFetch : public Stage {
  public:
-  CommandFetch(sc_core::sc_module_name name, SimContext& ctx, const Scene& scene, const RasterState& arch,
+  CommandFetch(sc_core::sc_module_name name, SimContext& ctx, CommandSource source, const RasterState& arch,
                const TimingParams& p, Link<CommandItem>& out, Link<Draw2dItem>& out_2d)
-      : Stage(name, ctx, 0), scene_(scene), st_(arch), p_(p), out_(out), out_2d_(out_2d) {}
+      : Stage(name, ctx, 0), source_(std::move(source)), st_(arch), p_(p), out_(out), out_2d_(out_2d) {
+    set_stack_size(kStackBytes);  // a streamed source's parser runs on this thread
+  }
+  // Commands fetched so far (all of their transactions written).
+  uint64_t commands_fetched() const { return fetched_; }
 
  private:
+  static constexpr size_t kStackBytes = size_t(1) << 20;
   void body() override;
-  const Scene& scene_;
+  void fetch(const CommandPtr& cmd);
+  CommandSource source_;
+  uint64_t fetched_ = 0;
   RasterState st_;     // the state 2D commands are drawn with
   Framebuffer no_fb_;  // fetch owns no pixels: clears pass through to the ROP
   const TimingParams& p_;

@@ -20,13 +20,13 @@
 namespace rastsim::sc {
 
 struct Draw2dJob {
-  const Command* cmd = nullptr;                // a CmdDraw2d
+  CommandPtr cmd;                              // a CmdDraw2d
   std::shared_ptr<const RasterState> state;    // the state it is drawn with
 };
 using Draw2dItem = Item<Draw2dJob>;
 
 struct Op2dBatch {
-  const Command* cmd = nullptr;
+  CommandPtr cmd;
   std::shared_ptr<const Draw2dWork> work;
 };
 using Op2dItem = Item<Op2dBatch>;

@@ -20,7 +20,7 @@ namespace rastsim::sc {
 
 // ROP -> engine: the port is yours for this command; engine -> ROP: it is done.
 struct PortGrant {
-  const Command* cmd = nullptr;
+  CommandPtr cmd;
 };
 
 class Engine2d : public Stage {

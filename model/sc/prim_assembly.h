@@ -13,7 +13,7 @@ namespace rastsim::sc {
 
 struct AssembledTriangle {
   std::array<SceneVertex, 3> v{};
-  const Command* cmd = nullptr;  // the primitives command it came from (for error locations)
+  CommandPtr cmd;  // the primitives command it came from (for error locations)
 };
 using TriangleItem = Item<AssembledTriangle>;
 

@@ -10,6 +10,7 @@
 
 #include "sc/model_error.h"
 #include "sc/rop.h"
+#include "scene/scene_io.h"
 #include "config/raster_state_config.h"
 
 namespace rastsim::sc {
@@ -18,7 +19,7 @@ namespace {
 
 // The top module: FIFOs first (stages hold references to them), then the stages.
 struct RasterPipeline : sc_core::sc_module {
-  RasterPipeline(sc_core::sc_module_name name, SimContext& ctx, const Scene& scene, const RasterState& arch,
+  RasterPipeline(sc_core::sc_module_name name, SimContext& ctx, CommandSource source, const RasterState& arch,
                  const TimingParams& p)
       : sc_module(name),
         command_fifo("command_fifo", p.fifo_command, ctx.tracing),
@@ -31,7 +32,7 @@ struct RasterPipeline : sc_core::sc_module {
         op2d_fifo("op2d_fifo", p.fifo_op2d, ctx.tracing),
         grant_2d("grant_2d", 1, ctx.tracing),
         done_2d("done_2d", 1, ctx.tracing),
-        command_fetch("command_fetch", ctx, scene, arch, p, command_fifo, draw2d_fifo),
+        command_fetch("command_fetch", ctx, std::move(source), arch, p, command_fifo, draw2d_fifo),
         prim_assembly("prim_assembly", ctx, p, command_fifo, triangle_fifo),
         tri_setup("tri_setup", ctx, arch, p, triangle_fifo, setup_fifo),
         coarse_raster("coarse_raster", ctx, arch, p, setup_fifo, tile_fifo),
@@ -95,6 +96,38 @@ uint64_t fixed_latency_cycles(const TimingParams& p) {
 }
 
 SimResult simulate_scene(const Scene& scene, const Config& cfg, const SimOptions& opts) {
+  return simulate_commands(scene_source(scene), cfg, opts);
+}
+
+SimResult simulate_stream(const std::string& path, const ObjPlacement& placement, const Config& cfg,
+                          const SimOptions& opts, size_t batch) {
+  auto source = [&](const CommandTake& take) {
+    uint64_t fetched = 0;
+    bool fetching = false;  // an error of the pipeline itself, not of the reader, passes unchanged
+    try {
+      stream_scene(path, placement, batch, [&](std::vector<Command>& b) {
+        // The batch moves into one shared block; each command's pointer shares it.
+        const auto owner = std::make_shared<const std::vector<Command>>(std::move(b));
+        b = {};
+        for (const Command& c : *owner) {
+          fetching = true;
+          take(CommandPtr(owner, &c));
+          fetching = false;
+          ++fetched;
+        }
+      });
+    } catch (const SceneError& e) {
+      if (fetching || fetched == 0) throw;
+      throw SceneError(std::string(e.what()) + " (after " + std::to_string(fetched) +
+                       " commands of the scene were fetched, at cycle " +
+                       std::to_string(sc_core::sc_time_stamp().value() / sc_core::sc_time(1, sc_core::SC_NS).value()) +
+                       " of the simulation; no image or stats written)");
+    }
+  };
+  return simulate_commands(source, cfg, opts);
+}
+
+SimResult simulate_commands(CommandSource source, const Config& cfg, const SimOptions& opts) {
   const auto t0 = std::chrono::steady_clock::now();
   const RasterState arch = raster_state_from_config(cfg);
   const TimingParams p = TimingParams::from_config(cfg);
@@ -112,7 +145,7 @@ SimResult simulate_scene(const Scene& scene, const Config& cfg, const SimOptions
   // Built once and kept: SystemC does not support tearing a design down.
   static RasterPipeline* top = nullptr;
   if (top) throw std::logic_error("simulate_scene: SystemC elaborates only once per process");
-  top = new RasterPipeline("pipeline", ctx, scene, arch, p);
+  top = new RasterPipeline("pipeline", ctx, std::move(source), arch, p);
 
   // Optional recorders, attached before the simulation starts.
   Timeline timeline;

@@ -19,6 +19,8 @@
 
 #include "config/config.h"
 #include "ref/pipeline.h"
+#include "sc/command_fetch.h"
+#include "scene/scene_io.h"
 #include "config/timing_params.h"
 #include "sc/tile_heat.h"
 #include "sc/timeline.h"
@@ -87,5 +89,17 @@ uint64_t fixed_latency_cycles(const TimingParams& p);
 // (the reference model's message) and ModelError (sc/model_error.h) on a fault of the
 // model itself, such as a lost or reordered transaction.
 SimResult simulate_scene(const Scene& scene, const Config& cfg, const SimOptions& opts = {});
+
+// The same for any command source (sc/command_fetch.h): simulate_scene is this on the
+// scene's commands.
+SimResult simulate_commands(CommandSource source, const Config& cfg, const SimOptions& opts = {});
+
+// The same on a scene file streamed in batches of `batch` commands (scene_io.h
+// stream_scene): the reader runs as command fetch pulls, so memory stays bounded by the
+// commands in flight, not the file. Cycles, image and stats are simulate_scene's on the
+// loaded scene. A malformed line stops the run with its SceneError (file:line), saying
+// how many commands were fetched and at which cycle, when any were.
+SimResult simulate_stream(const std::string& path, const ObjPlacement& placement, const Config& cfg,
+                          const SimOptions& opts = {}, size_t batch = 4096);
 
 }  // namespace rastsim::sc

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <exception>
 #include <functional>
+#include <memory>
 #include <string>
 
 #include <systemc>
@@ -14,6 +15,13 @@
 #include "ref/pipeline.h"
 
 namespace rastsim::sc {
+
+// A command as the stages hold it. A streamed scene's commands live in their batch,
+// which these pointers share: a batch is freed when the last transaction that names one
+// of its commands is gone (state markers, 2D commands, triangles in flight). A whole
+// Scene's commands are borrowed (no owner, the caller keeps the Scene).
+using CommandPtr = std::shared_ptr<const Command>;
+inline CommandPtr borrow_command(const Command& c) { return CommandPtr(CommandPtr{}, &c); }
 
 struct SimContext {
   // One core clock cycle is one simulated nanosecond; clock.core_mhz only converts cycle
@@ -38,6 +46,7 @@ struct SimContext {
   // Identified by address; its body is never applied.
   const Command end_of_frame{CmdScissor{}, SourceLoc{"end of frame", 0}};
   bool is_end_of_frame(const Command* c) const { return c == &end_of_frame; }
+  bool is_end_of_frame(const CommandPtr& c) const { return c.get() == &end_of_frame; }
   FragmentSink on_fragment;  // sees each fragment leaving interpolation, in order
   // Sees command fetch start each transaction (a command, or triangle k of a primitive
   // command) at `cycle`, in program order (the sampled level's unit boundaries).

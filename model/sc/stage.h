@@ -38,7 +38,7 @@ struct StageStats {
 // ROP after every fragment of the triangles before it and before those after it.
 template <class W>
 struct Item {
-  const Command* state = nullptr;
+  CommandPtr state;
   W work{};
 };
 
