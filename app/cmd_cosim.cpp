@@ -21,9 +21,7 @@ void register_cosim(CLI::App& app) {
   static bool no_model = false;
   static double max_error = -1;
   add_config_options(cmd, opts);
-  cmd->add_option("--scene,-s", scene_path, "Scene: a trace (.trace) or a Wavefront OBJ (.obj)")
-      ->required()
-      ->check(CLI::ExistingFile);
+  add_scene_option(cmd, scene_path);
   cmd->add_option("--fst", co.fst_path, "Write an FST waveform of the RTL");
   cmd->add_option("--stats", stats_path,
                   "Write cycles_rtl, cycles_model, cycle_error, fragments_compared, mismatches, ... as JSON "

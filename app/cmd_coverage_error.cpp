@@ -64,9 +64,7 @@ void register_coverage_error(CLI::App& app) {
       "(docs/exact-coverage.md)");
   static CoverageErrorOptions o;
   add_config_options(cmd, o.config);
-  cmd->add_option("--scene,-s", o.scene_path, "Scene: a trace (.trace, docs/trace-format.md) or a Wavefront OBJ (.obj)")
-      ->required()
-      ->check(CLI::ExistingFile);
+  add_scene_option(cmd, o.scene_path);
   cmd->add_option("--samples", o.samples,
                   "Sample counts to measure, comma-separated, each 1, 2, 4, 8 or 16 (overrides raster.samples)")
       ->delimiter(',')

@@ -35,9 +35,7 @@ void register_estimate(CLI::App& app) {
       "estimate", "Bound and estimate the SystemC model's cycles analytically, without simulating (docs/estimate.md)");
   static EstimateOptions o;
   add_config_options(cmd, o.config);
-  cmd->add_option("--scene,-s", o.scene_path, "Scene: a trace (.trace) or a Wavefront OBJ (.obj)")
-      ->required()
-      ->check(CLI::ExistingFile);
+  add_scene_option(cmd, o.scene_path);
   cmd->add_option("--stats", o.stats_path,
                   "Write the stats as JSON ('-' for stdout): cycles_lower_bound, cycles_upper_bound, "
                   "cycles_estimate, wall_seconds, stages.<stage>.busy, and the geometry counters");

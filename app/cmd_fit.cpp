@@ -105,9 +105,7 @@ void register_fit(CLI::App& app) {
       "stream) to the widest format with the same integer bits (I + F = 31), and the widths it implies");
   static FitOptions o;
   add_config_options(cmd, o.config);
-  cmd->add_option("--scene,-s", o.scene_path, "Scene: a trace (.trace) or a Wavefront OBJ (.obj)")
-      ->required()
-      ->check(CLI::ExistingFile);
+  add_scene_option(cmd, o.scene_path);
   cmd->add_flag("--format-only", o.format_only,
                 "Print only the format, e.g. --set raster.coord_format=$(rastsim fit ... --format-only)");
   cmd->add_option("--stats", o.stats_path, "Write the fit (and the precision table) as JSON to this file ('-' for stdout)");

@@ -66,9 +66,7 @@ void register_render(CLI::App& app) {
   auto* cmd = app.add_subcommand("render", "Render a scene with the bit-exact reference model");
   static RenderOptions o;
   add_config_options(cmd, o.config);
-  cmd->add_option("--scene,-s", o.scene_path, "Scene: a trace (.trace, docs/trace-format.md) or a Wavefront OBJ (.obj)")
-      ->required()
-      ->check(CLI::ExistingFile);
+  add_scene_option(cmd, o.scene_path);
   cmd->add_option("-o,--output", o.out_path, "Image to write: .png or .ppm (colour buffer, RGB)");
   cmd->add_option("--stats", o.stats_path, "Write the stats as JSON to this file ('-' for stdout)");
   cmd->add_option("--fragments", o.frag_path,

@@ -162,9 +162,7 @@ void print_summary(const VideoTiming& t, const MonitorResult& r, const DecodeChe
 
 void add_scanout_options(CLI::App* cmd, ScanoutOptions& o) {
   add_config_options(cmd, o.config);
-  cmd->add_option("--scene,-s", o.scene_path, "Scene: a trace (.trace) or a Wavefront OBJ (.obj)")
-      ->required()
-      ->check(CLI::ExistingFile);
+  add_scene_option(cmd, o.scene_path);
   cmd->add_option("-o,--output", o.out_path, "Decoded frame to write: .png or .ppm")->required();
   cmd->add_option("--signal", o.signal_path,
                   "Write the video signal (hsync, vsync, blank, codes, levels in V) of the first frame (see --signal-frames): .vcd or .fst");

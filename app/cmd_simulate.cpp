@@ -183,9 +183,7 @@ void register_simulate(CLI::App& app) {
   auto* cmd = app.add_subcommand("simulate", "Run a scene through the SystemC cycle-approximate pipeline model");
   static SimulateOptions o;
   add_config_options(cmd, o.config);
-  cmd->add_option("--scene,-s", o.scene_path, "Scene: a trace (.trace) or a Wavefront OBJ (.obj)")
-      ->required()
-      ->check(CLI::ExistingFile);
+  add_scene_option(cmd, o.scene_path);
   cmd->add_option("-o,--output", o.out_path, "Image to write: .png or .ppm (bit-identical to `render`)");
   cmd->add_option("--stats", o.stats_path,
                   "Write the stats as JSON ('-' for stdout): render's, plus cycles, cycles_lower_bound, "

@@ -14,6 +14,14 @@
 
 namespace rastsim::app {
 
+void add_scene_option(CLI::App* cmd, std::string& scene_path) {
+  cmd->add_option("--scene,-s", scene_path,
+                  "Scene: a trace (.trace, docs/trace-format.md) or a Wavefront OBJ (.obj), either gzip- or "
+                  "zstd-compressed too (.gz, .zst)")
+      ->required()
+      ->check(CLI::ExistingFile);
+}
+
 void add_config_options(CLI::App* cmd, ConfigOptions& o) {
   cmd->add_option("--config,-c", o.config_path,
                   "Architecture config (TOML); keys not in the file keep their defaults "

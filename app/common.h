@@ -21,6 +21,8 @@ struct ConfigOptions {
   std::vector<std::string> sets;
 };
 void add_config_options(CLI::App* cmd, ConfigOptions& o);
+// The required --scene FILE of the commands that run one scene.
+void add_scene_option(CLI::App* cmd, std::string& scene_path);
 // Defaults, then the file, then the overrides in order; validated.
 Config load_config(const ConfigOptions& o);
 

@@ -10,6 +10,7 @@
 
 #include "config/config.h"
 #include "ref/draw2d.h"
+#include "ref/sample_pattern.h"
 
 namespace rastsim {
 
@@ -72,8 +73,7 @@ struct TimingParams {
   // samples one value: the compression rule), any other fragment one access per covered
   // sample. rop.pixels_per_cycle accesses a cycle. A one-sample fragment is 1 access.
   static uint64_t rop_accesses(uint32_t mask, int samples) {
-    const uint32_t full = samples >= 32 ? ~0u : (1u << samples) - 1;
-    return (samples == 1 || mask == full) ? 1 : uint64_t(std::popcount(mask));
+    return (samples == 1 || mask == full_sample_mask(samples)) ? 1 : uint64_t(std::popcount(mask));
   }
   uint64_t rop_fragment_cycles(uint64_t accesses) const { return ceil_div(accesses, rop_pixels_per_cycle); }
   // The frame-end resolve pass of a W x H framebuffer of S samples: W H S 4 bytes read and

@@ -67,22 +67,32 @@ void dda_span_values(i128 num0, i128 dnum, i128 den, int64_t n, InterpArith arit
   walk_span(num0, dnum, den, n, arith, frac_bits, bits, [&](int64_t k, uint32_t v) { out[size_t(k)] = v; });
 }
 
-Fragment interpolate_plane_at(const SetupTriangle& t, int px, int py, int64_t sx, int64_t sy) {
-  // Weight of vertex k is the edge opposite it: edge (k+1)%3 runs between the other two.
-  const i128 w[3] = {t.edge[1].eval(sx, sy), t.edge[2].eval(sx, sy), t.edge[0].eval(sx, sy)};
-  auto lerp = [&](uint32_t a0, uint32_t a1, uint32_t a2, int bits) {
-    const i128 num = w[0] * a0 + w[1] * a1 + w[2] * a2;
-    return clamp_attr(div_round(num, t.area2, Rounding::HalfUp), bits);
-  };
+namespace {
+
+// The fragment at pixel (px, py) whose every attribute is attr(a0, a1, a2, bits) of the
+// three vertex values (bits: raster.depth_bits for depth, 8 for colour).
+template <class Attr>
+Fragment make_fragment(const SetupTriangle& t, int px, int py, Attr&& attr) {
   Fragment f;
   f.x = px;
   f.y = py;
-  f.z = lerp(t.z[0], t.z[1], t.z[2], t.depth_bits);
-  f.r = static_cast<uint8_t>(lerp(t.rgb[0][0], t.rgb[1][0], t.rgb[2][0], 8));
-  f.g = static_cast<uint8_t>(lerp(t.rgb[0][1], t.rgb[1][1], t.rgb[2][1], 8));
-  f.b = static_cast<uint8_t>(lerp(t.rgb[0][2], t.rgb[1][2], t.rgb[2][2], 8));
+  f.z = attr(t.z[0], t.z[1], t.z[2], t.depth_bits);
+  f.r = static_cast<uint8_t>(attr(t.rgb[0][0], t.rgb[1][0], t.rgb[2][0], 8));
+  f.g = static_cast<uint8_t>(attr(t.rgb[0][1], t.rgb[1][1], t.rgb[2][1], 8));
+  f.b = static_cast<uint8_t>(attr(t.rgb[0][2], t.rgb[1][2], t.rgb[2][2], 8));
   f.samples = static_cast<uint8_t>(t.samples);
   return f;
+}
+
+}  // namespace
+
+Fragment interpolate_plane_at(const SetupTriangle& t, int px, int py, int64_t sx, int64_t sy) {
+  // Weight of vertex k is the edge opposite it: edge (k+1)%3 runs between the other two.
+  const i128 w[3] = {t.edge[1].eval(sx, sy), t.edge[2].eval(sx, sy), t.edge[0].eval(sx, sy)};
+  return make_fragment(t, px, py, [&](uint32_t a0, uint32_t a1, uint32_t a2, int bits) {
+    const i128 num = w[0] * a0 + w[1] * a1 + w[2] * a2;
+    return clamp_attr(div_round(num, t.area2, Rounding::HalfUp), bits);
+  });
 }
 
 Fragment interpolate_plane(const SetupTriangle& t, int px, int py, int frac_bits) {
@@ -105,18 +115,10 @@ Fragment interpolate(const SetupTriangle& t, int px, int py, int frac_bits) {
   // d w_k / d x per pixel: the edge's a coefficient times one pixel (2^F raw units).
   const i128 dw[3] = {i128(t.edge[1].a) << frac_bits, i128(t.edge[2].a) << frac_bits, i128(t.edge[0].a) << frac_bits};
   const int64_t k = px - x0;
-  auto span = [&](uint32_t a0, uint32_t a1, uint32_t a2, int bits) {
+  return make_fragment(t, px, py, [&](uint32_t a0, uint32_t a1, uint32_t a2, int bits) {
     const i128 num0 = w[0] * a0 + w[1] * a1 + w[2] * a2, dnum = dw[0] * a0 + dw[1] * a1 + dw[2] * a2;
     return dda_span_value(num0, dnum, t.area2, k, t.interp_arith, t.interp_frac_bits, bits);
-  };
-  Fragment f;
-  f.x = px;
-  f.y = py;
-  f.z = span(t.z[0], t.z[1], t.z[2], t.depth_bits);
-  f.r = static_cast<uint8_t>(span(t.rgb[0][0], t.rgb[1][0], t.rgb[2][0], 8));
-  f.g = static_cast<uint8_t>(span(t.rgb[0][1], t.rgb[1][1], t.rgb[2][1], 8));
-  f.b = static_cast<uint8_t>(span(t.rgb[0][2], t.rgb[1][2], t.rgb[2][2], 8));
-  return f;
+  });
 }
 
 }  // namespace rastsim

@@ -22,6 +22,9 @@ inline constexpr int kMaxSamples = 16;
 // True for the sample counts raster.samples accepts: 1, 2, 4, 8, 16.
 constexpr bool valid_sample_count(int n) { return n == 1 || n == 2 || n == 4 || n == 8 || n == 16; }
 
+// The coverage mask of a pixel whose `samples` samples are all covered.
+constexpr uint32_t full_sample_mask(int samples) { return samples >= 32 ? ~0u : (1u << samples) - 1; }
+
 // The standard offsets of an n-sample pattern, in 1/16 pixel: {dx, dy} per sample.
 // n must be a valid sample count.
 const std::array<std::array<int, 2>, kMaxSamples>& standard_sample_offsets_16th(int n);
@@ -32,7 +35,7 @@ struct SamplePattern {
   // The offsets' bounding box (raw): coarse raster tests a tile's extreme corners moved
   // by these, so early-out and early-in stay conservative over every sample.
   int64_t dx_min = 0, dx_max = 0, dy_min = 0, dy_max = 0;
-  uint32_t full_mask() const { return count >= 32 ? ~0u : (1u << count) - 1; }
+  uint32_t full_mask() const { return full_sample_mask(count); }
 };
 
 // The snapped pattern of `samples` samples for `frac_bits` fraction bits (1..62);

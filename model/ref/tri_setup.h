@@ -20,6 +20,7 @@
 
 #include "ref/fixed_point.h"
 #include "ref/raster_state.h"
+#include "ref/sample_pattern.h"
 #include "ref/scene.h"
 
 namespace rastsim {
@@ -70,7 +71,7 @@ struct SetupTriangle {
   int64_t sample_y(int py, int frac_bits) const {
     return ((int64_t(py) - origin_y) << frac_bits) + (int64_t{1} << (frac_bits - 1));
   }
-  uint32_t full_mask() const { return samples >= 32 ? ~0u : (1u << samples) - 1; }
+  uint32_t full_mask() const { return full_sample_mask(samples); }
 };
 
 // Sets up one triangle. On CulledOutOfRange with raster.out_of_range = error it throws
