@@ -168,18 +168,19 @@ class Walker {
     const bool ssaa = S > 1 && t.aa_mode == AaMode::Ssaa;
     uint64_t n = 0, cost = 0;     // covered pixels; fine raster cycles
     uint64_t shaded = 0, acc = 0;  // fragments out of interpolation; ROP accesses
-    auto pixel = [&](uint32_t m) {
-      ++n;
+    // `count` pixels of mask m (an accepted footprint's are all one mask: O(1), not O(area)).
+    auto pixel = [&](uint32_t m, uint64_t count = 1) {
+      n += count;
       const uint64_t k = ssaa ? uint64_t(std::popcount(m)) : 1;
-      shaded += k;
-      acc += ssaa ? k : TimingParams::rop_accesses(m, S);
+      shaded += k * count;
+      acc += (ssaa ? k : TimingParams::rop_accesses(m, S)) * count;
     };
     if (span) {
-      for (int64_t i = 0; i < fp.area(); ++i) pixel(1u);
+      pixel(1u, uint64_t(fp.area()));
       c.count_accepted(fp.area(), 1);
       cost = p_.fine_span_cycles(n);
     } else if (cls == TileClass::Accepted) {
-      for (int64_t i = 0; i < fp.area(); ++i) pixel(t.full_mask());
+      pixel(t.full_mask(), uint64_t(fp.area()));
       c.count_accepted(fp.area(), S);
       cost = p_.fine_accepted_cycles();
     } else {
