@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 // `rastsim cosim`: the verilated RTL (rtl/rast_top.sv) on one scene, every fragment
 // compared with the reference model, and its cycle count next to the SystemC model's.
+// Any valid config: a shipped model when one fits, else one built on demand into the
+// cache (model/rtl/rtl_cache.h; --rtl-build-only builds it and stops).
 #include <cmath>
 #include <iostream>
 
@@ -18,10 +20,11 @@ void register_cosim(CLI::App& app) {
   static ConfigOptions opts;
   static std::string scene_path, stats_path;
   static cosim::CosimOptions co;
-  static bool no_model = false;
+  static bool no_model = false, build_only = false, simulate_stats = false;
   static double max_error = -1;
   add_config_options(cmd, opts);
   add_scene_option(cmd, scene_path);
+  cmd->get_option("--scene")->required(false);  // not with --rtl-build-only (checked below)
   cmd->add_option("--fst", co.fst_path, "Write an FST waveform of the RTL");
   cmd->add_option("--stats", stats_path,
                   "Write cycles_rtl, cycles_model, cycle_error, fragments_compared, mismatches, ... as JSON "
@@ -33,13 +36,32 @@ void register_cosim(CLI::App& app) {
   cmd->add_option("--max-error", max_error,
                   "Fail when |cycles_model - cycles_rtl| / cycles_rtl exceeds this (e.g. 0.05; default: report only)");
   cmd->add_flag("--no-model", no_model, "Do not run the SystemC model (fragment check only)");
+  cmd->add_flag("--rtl-build-only", build_only,
+                "Only make sure the config's RTL model exists: a shipped one, else build it into the cache "
+                "($RASTSIM_CACHE/rtl, else ~/.cache/rastsim/rtl; docs/rtl.md) and print where; no scene needed");
+  cmd->add_flag("--simulate-stats", simulate_stats,
+                "With --stats: the SystemC model's whole stats (as `simulate --stats`: cycles, stages.*, ...) with "
+                "cycles_rtl, mismatches, cycle_error and the RTL model's keys beside them (a `sweep --level cosim` "
+                "row)");
   cmd->callback([] {
     const Config cfg = load_config(opts);
+    if (build_only) {
+      const cosim::RtlModelChoice m = cosim::prepare_rtl_model(cfg, co);
+      std::cout << "cosim: RTL model " << m.name
+                << (m.dir.empty() ? " (shipped)" : (m.cache_hit ? " (in the cache: " : " (built: ") + m.dir + ")")
+                << "\n";
+      return;
+    }
+    if (scene_path.empty()) throw std::runtime_error("cosim: --scene is required (unless --rtl-build-only)");
+    if (simulate_stats && no_model) throw std::runtime_error("cosim: --simulate-stats needs the SystemC model (drop --no-model)");
     const Scene scene = load_scene(scene_path, obj_placement(cfg));
     const cosim::CosimResult r = cosim::run_cosim(scene, cfg, co);
     nlohmann::json j = {{"config", cfg.source_name()},
                         {"scene", scene_path},
                         {"rtl_model", r.rtl_config},
+                        {"rtl_model_dir", r.rtl_model_dir},
+                        {"rtl_cache_hit", r.rtl_cache_hit},
+                        {"rtl_build_seconds", r.rtl_build_seconds},
                         {"cycles_rtl", r.cycles_rtl},
                         {"fragments_expected", r.fragments_expected},
                         {"fragments_compared", r.fragments_compared},
@@ -56,6 +78,10 @@ void register_cosim(CLI::App& app) {
                         {"seed", co.backpressure_seed},
                         {"rtl_wall_seconds", r.wall_seconds},
                         {"rtl_cycles_per_second", r.wall_seconds > 0 ? double(r.cycles_rtl) / r.wall_seconds : 0.0}};
+    if (!r.rtl_model_dir.empty())
+      std::cout << "cosim: on-demand RTL model " << r.rtl_model_dir
+                << (r.rtl_cache_hit ? " (cache hit)" : " (built in " + std::to_string(r.rtl_build_seconds) + " s)")
+                << "\n";
     std::cout << "cosim: RTL model " << r.rtl_config << ", " << r.triangles << " triangles, " << r.cycles_rtl
               << " cycles (" << r.wall_seconds << " s wall), " << r.fragments_compared << " fragments compared, "
               << r.mismatches << " mismatches";
@@ -70,6 +96,14 @@ void register_cosim(CLI::App& app) {
       j["cycles_model"] = m.cycles;
       j["cycle_error"] = err;
       j["model_wall_seconds"] = m.sim_wall_seconds;
+      if (simulate_stats) {
+        // The SystemC figures under simulate's names, the RTL's beside them (cosim's
+        // own names win where both have one: config, scene).
+        nlohmann::json s = m.to_json();
+        s["fidelity_level"] = "systemc";
+        s.update(j);
+        j = s;
+      }
       std::cout << "cosim: cycles_rtl " << r.cycles_rtl << ", cycles_model " << m.cycles << ", error "
                 << std::round(err * 10000) / 100 << " %\n";
     }

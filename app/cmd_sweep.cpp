@@ -19,6 +19,7 @@
 
 #include "common.h"
 #include "rtl/area.h"
+#include "rtl/cosim.h"
 #include "sweep.h"
 
 namespace rastsim::app {
@@ -85,7 +86,7 @@ void validate_axes(const Config& cfg, const std::vector<Axis>& axes) {
 // The cross product, scene-major, each point with its config's hash and its simulate
 // arguments.
 std::vector<Point> make_points(const std::vector<std::string>& scenes, const std::vector<Axis>& axes,
-                               const ConfigOptions& base) {
+                               const ConfigOptions& base, const std::string& level) {
   std::vector<Point> points;
   for (const auto& scene : scenes) {
     std::vector<size_t> idx(axes.size(), 0);
@@ -98,7 +99,9 @@ std::vector<Point> make_points(const std::vector<std::string>& scenes, const std
         c.sets.push_back(axes[i].key + "=" + p.values.back());
       }
       p.config_hash = config_hash(load_config(c));
-      p.args = {"simulate", "--quiet", "--scene", scene};
+      // --level cosim: the RTL's figures beside the SystemC model's (cmd_cosim.cpp).
+      p.args = level == "cosim" ? std::vector<std::string>{"cosim", "--simulate-stats", "--scene", scene}
+                                : std::vector<std::string>{"simulate", "--quiet", "--scene", scene};
       if (!c.config_path.empty()) p.args.insert(p.args.end(), {"--config", c.config_path});
       for (const auto& s : c.sets) p.args.insert(p.args.end(), {"--set", s});
       points.push_back(std::move(p));
@@ -181,6 +184,26 @@ class AreaColumns {
   std::map<std::vector<std::pair<std::string, int>>, AreaReport> done_;
 };
 
+// --level cosim: every RTL model the points need, made here before they run (a config no
+// shipped model fits is built into the cache once, its progress on this terminal; the
+// points' `rastsim cosim` children then find it). A config the RTL cannot run is left to
+// its point, which fails with the message.
+void prepare_rtl_models(const std::vector<Point>& points, const std::vector<size_t>& todo,
+                        const std::vector<Axis>& axes, const ConfigOptions& base) {
+  std::set<std::string> seen;  // config hashes
+  for (size_t i : todo) {
+    const Point& p = points[i];
+    if (!seen.insert(p.config_hash).second) continue;
+    ConfigOptions c = base;
+    for (size_t k = 0; k < axes.size(); ++k) c.sets.push_back(axes[k].key + "=" + p.values[k]);
+    try {
+      cosim::prepare_rtl_model(load_config(c));
+    } catch (const std::exception& e) {
+      std::cerr << "sweep: no RTL model for " << describe(p, axes) << ": " << e.what() << "\n";
+    }
+  }
+}
+
 }  // namespace
 
 namespace sweep {
@@ -209,7 +232,7 @@ void run_sweep_command(SweepOptions o) {
     throw std::runtime_error("--backend " + o.backend + ": expected local or slurm");
   std::vector<Axis> axes = split_axes(o.set_args, o.base);
   validate_axes(load_config(o.base), axes);
-  std::vector<Point> points = make_points(o.scenes, axes, o.base);
+  std::vector<Point> points = make_points(o.scenes, axes, o.base, o.level);
   Csv csv(o.out_path, axes);
   if (o.resume) {
     const size_t found = csv.resume(points);
@@ -219,6 +242,7 @@ void run_sweep_command(SweepOptions o) {
   std::vector<size_t> todo;
   for (size_t i = 0; i < points.size(); ++i)
     if (points[i].status != 0) todo.push_back(i);
+  if (o.level == "cosim") prepare_rtl_models(points, todo, axes, o.base);
   AreaColumns area;
   const OnDone on_done = [&](size_t i) {
     if (o.area && points[i].status == 0) area.add(points[i], axes, o.base);
@@ -264,6 +288,12 @@ void register_sweep(CLI::App& app) {
   cmd->add_flag("--area", o.area,
                 "Add area.cells, area.flip_flops, area.transistors (rastsim area, Yosys; cached per RTL "
                 "parameter set) to every row");
+  cmd->add_option("--level", o.level,
+                  "systemc: each point a `rastsim simulate`; cosim: a `rastsim cosim`, its row the SystemC stats "
+                  "plus cycles_rtl, mismatches and cycle_error ((cycles - cycles_rtl) / cycles_rtl); a config no "
+                  "shipped RTL model fits is built into the RTL cache first, once (docs/rtl.md)")
+      ->check(CLI::IsMember({"systemc", "cosim"}))
+      ->capture_default_str();
   cmd->add_option("--jobs,-j", o.jobs, "Local backend: simulations run at once (default: the number of cores)")
       ->check(CLI::Range(1u, 1024u));
   cmd->add_option("--backend", o.backend,

@@ -111,6 +111,7 @@ struct SweepOptions {
   std::string out_path;
   unsigned jobs = 1;
   bool area = false;  // add area.cells, area.flip_flops, area.transistors (rastsim area) to each row
+  std::string level = "systemc";   // "systemc" (rastsim simulate) or "cosim" (rastsim cosim: + cycles_rtl, mismatches)
   bool resume = false;             // keep the rows already in out_path; run only the others
   std::string backend = "local";   // "local" (child processes) or "slurm" (a job array)
   SweepSlurmOptions slurm;

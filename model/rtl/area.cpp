@@ -16,6 +16,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "rtl/rtl_cache.h"
 #include "rtl/rtl_sources.h"
 
 namespace fs = std::filesystem;
@@ -62,20 +63,6 @@ std::string replace_all(std::string s, const std::string& from, const std::strin
   for (size_t at = 0; (at = s.find(from, at)) != std::string::npos; at += to.size()) s.replace(at, from.size(), to);
   return s;
 }
-
-// FNV-1a, 64 bits: a cache key, not a security boundary.
-struct Fnv64 {
-  uint64_t h = 1469598103934665603ull;
-  void add(std::string_view s) {
-    for (unsigned char c : s) h = (h ^ c) * 1099511628211ull;
-    h = (h ^ 0xff) * 1099511628211ull;  // separator: "ab","c" differs from "a","bc"
-  }
-  std::string hex() const {
-    char buf[17];
-    std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
-    return buf;
-  }
-};
 
 // "$paramod$<sha1>\rast_fifo", "$paramod\rast_hold\Width=..." and "\rast_top" -> the module's name.
 std::string base_name(const std::string& id) {
@@ -239,12 +226,7 @@ AreaCounts& AreaCounts::operator+=(const AreaCounts& o) {
   return *this;
 }
 
-std::string area_cache_dir() {
-  if (const char* c = std::getenv("RASTSIM_CACHE"); c && *c) return (fs::path(c) / "area").string();
-  if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x) return (fs::path(x) / "rastsim" / "area").string();
-  if (const char* h = std::getenv("HOME"); h && *h) return (fs::path(h) / ".cache" / "rastsim" / "area").string();
-  return (fs::temp_directory_path() / "rastsim-cache" / "area").string();
-}
+std::string area_cache_dir() { return rastsim_cache_dir("area"); }
 
 std::string find_yosys() {
   if (const char* y = std::getenv("RASTSIM_YOSYS"); y && *y) {

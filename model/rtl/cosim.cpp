@@ -1,117 +1,48 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "rtl/cosim.h"
 
-#include <bit>
+#include <algorithm>
+#include <filesystem>
 #include <stdexcept>
 
-#include "config/timing_params.h"
 #include "rtl/cosim_driver.h"
-#include "ref/pipeline.h"
-#include "ref/prim_assembly.h"
-#include "ref/raster_state.h"
-#include "ref/tri_setup.h"
-#include "ref/coarse_raster.h"
-#include "ref/interpolate.h"
-#include "ref/sample_pattern.h"
-#include "config/raster_state_config.h"
+#include "rtl/cosim_setup.h"
+#include "rtl/rtl_cache.h"
 
 namespace rastsim::cosim {
 
 namespace {
 
-// rast_top's fill_rule_i / cull_mode_i carry these enums' values (rtl/rast_tri_setup.sv).
-static_assert(int(FillRule::TopLeft) == 0 && int(FillRule::BottomRight) == 1 && int(FillRule::Inclusive) == 2 &&
-              int(FillRule::Exclusive) == 3);
-static_assert(int(CullMode::None) == 0 && int(CullMode::Back) == 1 && int(CullMode::Front) == 2);
+// The config as a user names it: its file and every --set that changed it.
+std::string config_label(const Config& cfg) {
+  std::string s = cfg.source_name();
+  for (const auto& [key, v] : cfg.values())
+    if (cfg.origin(key).rfind("--set", 0) == 0) s += " --set " + key + "=" + to_string(v);
+  return s;
+}
 
-// The scene as the testbench's command stream, and the reference model's fragments for
-// the same tile size: the same loop as ref/pipeline.cpp render_scene.
-void build(const Scene& scene, const Config& cfg, int tile_size, TbSetup& s) {
-  RasterState st = raster_state_from_config(cfg);
-  st.tile_size = tile_size;
-  const int F = st.coord_format.frac_bits;
-  const TimingParams& tp = s.timing;
-  const uint64_t cpc = tp.fetch_cycles_per_command;
-  Framebuffer fb(1, 1);  // state commands need one; the testbench ROP keeps no pixels
-  TraversalCounters counters;
-  for (const Command& cmd : scene.commands) {
-    if (const auto* d2 = std::get_if<CmdDraw2d>(&cmd.body)) {
-      TbItem m;
-      m.kind = TbItem::Marker;
-      m.cmd = &cmd;
-      m.fetch_cost = tp.fetch_draw2d_cycles(draw2d_vertex_count(*d2));
-      m.work2d = static_cast<int>(s.work2d.size());
-      TbWork2d w{draw2d_ops(*d2, cmd.loc, st), 0, cmd.loc.str()};
-      w.setup_cost = tp.setup2d_cycles(w.work.ops.size());
-      s.work2d.push_back(std::move(w));
-      s.items.push_back(m);
-      continue;
-    }
-    const auto* prims = std::get_if<CmdPrimitives>(&cmd.body);
-    if (!prims) {
-      apply_state_command(cmd, st, fb);
-      TbItem m;
-      m.kind = TbItem::Marker;
-      m.cmd = &cmd;
-      m.fetch_cost = cpc;
-      const bool clear = std::holds_alternative<CmdClear>(cmd.body) || std::holds_alternative<CmdClearDepth>(cmd.body);
-      m.rop_cost = clear ? tp.rop_clear_cycles(uint64_t(st.fb_width) * uint64_t(st.fb_height)) : 1;
-      s.items.push_back(m);
-      continue;
-    }
-    const size_t n = triangle_count(*prims);
-    if (n == 0) {
-      TbItem e;
-      e.kind = TbItem::Null;
-      e.fetch_cost = cpc;
-      s.items.push_back(e);
-    }
-    for (size_t k = 0; k < n; ++k) {
-      TbItem it;
-      const uint64_t new_vertices = (k == 0 || prims->topology == Topology::List) ? 3 : 1;
-      it.fetch_cost = tp.fetch_triangle_cycles(k == 0, new_vertices);
-      it.assembly_cost = tp.assembly_cycles_per_triangle;
-      it.tri = static_cast<int>(s.tri_names.size());
-      s.tri_names.push_back(cmd.loc.str() + " triangle " + std::to_string(k));
-      SetupTriangle t;
-      const SetupOutcome o = setup_triangle(assemble_triangle(*prims, k), st, cmd.loc, t);
-      if (o == SetupOutcome::CulledOutOfRange) {
-        // Nothing the RTL can represent: a zero-area triangle costs setup the same.
-        it.x[0] = it.x[1] = it.x[2] = it.y[0] = it.y[1] = it.y[2] = 0;
-      } else {
-        for (int v = 0; v < 3; ++v) {
-          it.x[v] = t.x[v];
-          it.y[v] = t.y[v];
-          it.z[v] = t.z[v];
-          it.rgb[v] = uint32_t(t.rgb[v][0]) | uint32_t(t.rgb[v][1]) << 8 | uint32_t(t.rgb[v][2]) << 16;
-        }
-      }
-      const PixelRect clip = st.clip_rect();
-      it.clip[0] = clip.x0;
-      it.clip[1] = clip.y0;
-      it.clip[2] = clip.x1;
-      it.clip[3] = clip.y1;
-      it.origin[0] = static_cast<int>(st.origin_x());
-      it.origin[1] = static_cast<int>(st.origin_y());
-      s.items.push_back(it);
-      if (o != SetupOutcome::Accepted) continue;
-      // Per pixel with a covered sample: its fragment (msaa: one, at the centre, with the
-      // mask; one sample: interpolate() with mask 1), as render_scene shades it.
-      traverse_triangle(t, tile_size, F, counters, [&](int px, int py, uint32_t m) {
-        shade_pixel(t, px, py, m, F, [&](const Fragment& f) { s.expected.push_back(Expected{f, it.tri}); });
-      });
-    }
-  }
-  // Multisampling: the frame ends with the resolve pass, ordered after every fragment by
-  // a marker fetched like a command header that travels through the RTL like a state
-  // command (as the SystemC model's command fetch sends it); the ROP is busy
-  // resolve_cycles(W H, S) on it.
-  if (st.samples > 1) {
-    TbItem m;
-    m.kind = TbItem::Marker;
-    m.fetch_cost = tp.fetch_header_cycles();
-    m.rop_cost = tp.resolve_cycles(uint64_t(st.fb_width) * uint64_t(st.fb_height), st.samples);
-    s.items.push_back(m);
+// The first shipped model that runs `wanted`, or -1.
+int shipped_model(const RtlParams& wanted) {
+  const auto& reg = rtl_registry();
+  for (size_t i = 0; i < reg.size(); ++i)
+    if (rtl_params_compatible(reg[i].params, wanted)) return static_cast<int>(i);
+  return -1;
+}
+
+RtlCacheEntry on_demand_model(const Config& cfg, const CosimOptions& opts, const RtlParams& wanted) {
+  // Built with the config's parameters; the tile size as the larger of the config's and
+  // the one asked for (a run-time input up to the built maximum), the sample count the
+  // schema's maximum (rtl_params_from_config), so the config's other tile sizes and
+  // sample counts find this entry too.
+  RtlParams build = rtl_params_from_config(cfg);
+  build.tile_log2_max = std::max(build.tile_log2_max, wanted.tile_log2_max);
+  RtlBuildOptions bo;
+  bo.label = config_label(cfg);
+  bo.progress = opts.progress;
+  try {
+    return find_or_build_rtl_model(wanted, build, bo);
+  } catch (const std::exception& e) {
+    throw std::runtime_error(bo.label + ": no RTL model for this config: " + e.what());
   }
 }
 
@@ -123,74 +54,38 @@ std::vector<RtlModelInfo> rtl_models() {
   return v;
 }
 
+RtlModelChoice prepare_rtl_model(const Config& cfg, const CosimOptions& opts) {
+  const RtlParams wanted = cosim_wanted_params(cfg, opts);
+  if (const int i = shipped_model(wanted); i >= 0) return {rtl_registry()[size_t(i)].name, "", false, 0};
+  const RtlCacheEntry e = on_demand_model(cfg, opts, wanted);
+  return {"cache:" + e.key, e.dir, e.hit, e.hit ? 0 : e.build_seconds};
+}
+
 CosimResult run_cosim(const Scene& scene, const Config& cfg, const CosimOptions& opts) {
-  // The RTL has the tiled walker only; another method would be compared against the
-  // wrong expectation, so stop before building anything.
-  if (cfg.get_string("raster.traversal") != "tiled")
-    throw ConfigError(cfg.origin("raster.traversal") + ": raster.traversal = " + cfg.get_string("raster.traversal") +
-                      " has no RTL; the RTL (rtl/) walks tiles only: co-simulate with raster.traversal = tiled "
-                      "(render and simulate run every method)");
-  TbSetup s;
-  s.opts = opts;
-  s.params = rtl_params_from_config(cfg);
-  const int tile = opts.tile_size ? opts.tile_size : static_cast<int>(cfg.get_int("raster.tile_size"));
-  if (tile < 2 || !std::has_single_bit(static_cast<unsigned>(tile)))
-    throw std::runtime_error("tile size " + std::to_string(tile) + " is not a power of two >= 2");
-  s.tile_log2 = std::countr_zero(static_cast<unsigned>(tile));
-  // Fill rule, cull mode and front face: run-time inputs, from this config (not the model's).
-  const RasterState st = raster_state_from_config(cfg);
-  // The RTL interpolator divides the plane-equation numerators (rtl/rast_interpolate.sv):
-  // the dda method has no RTL, and comparing against it would only count its error.
-  if (st.interp_method != InterpMethod::Plane)
-    throw std::runtime_error("interp.method = \"" + cfg.get_string("interp.method") +
-                             "\" has no RTL (the RTL interpolates by plane equations): co-simulate with "
-                             "interp.method = \"plane\"");
-  // Multisampling: the RTL shades once a pixel (msaa); ssaa (a fragment per sample at the
-  // sample's position) has no RTL.
-  if (st.samples > 1 && st.aa_mode != AaMode::Msaa)
-    throw ConfigError(cfg.origin("raster.aa_mode") + ": raster.aa_mode = " + cfg.get_string("raster.aa_mode") +
-                      " has no RTL (the RTL shades once a pixel, at its centre: msaa); co-simulate with "
-                      "raster.aa_mode = msaa (render and simulate run ssaa)");
-  s.samples = st.samples;
-  {
-    const SamplePattern& pat = sample_pattern(st.samples, st.coord_format.frac_bits);
-    for (int k = 0; k < st.samples; ++k) {
-      s.sample_dx[size_t(k)] = pat.dx[size_t(k)];
-      s.sample_dy[size_t(k)] = pat.dy[size_t(k)];
-    }
-  }
-  s.fill_rule = static_cast<int>(st.fill_rule);
-  s.cull_mode = static_cast<int>(st.cull);
-  s.front_ccw = st.front_ccw ? 1 : 0;
-  RtlParams wanted = s.params;
-  wanted.tile_log2_max = s.tile_log2;
-  wanted.max_samples = st.samples;  // a run-time input up to the built maximum
-  s.timing = TimingParams::from_config(cfg);
-  const auto models = rtl_models();
-  std::string why_all;
-  for (size_t i = 0; i < models.size(); ++i) {
-    std::string why;
-    if (!rtl_params_compatible(models[i].params, wanted, &why)) {
-      why_all += "\n  " + models[i].name + ": " + why;
-      continue;
-    }
-    s.params = models[i].params;  // the built widths and maximum tile size
-    s.arch = st;
-    s.arch.tile_size = tile;
-    RenderStats ref_stats;
-    s.reference = render_scene(scene, s.arch, ref_stats);
-    build(scene, cfg, tile, s);
+  const RtlParams wanted = cosim_wanted_params(cfg, opts);
+  if (const int i = shipped_model(wanted); i >= 0) {
+    const RegistryEntry& m = rtl_registry()[size_t(i)];
+    TbSetup s;
     CosimResult r;
-    r.rtl_config = models[i].name;
-    r.fragments_expected = s.expected.size();
-    for (const TbItem& it : s.items) (it.kind == TbItem::Marker ? r.markers : r.triangles) += it.kind != TbItem::Null;
-    r.commands_2d = s.work2d.size();
-    if (s.arch.samples > 1) r.resolve_cycles = s.items.back().rop_cost;
-    rtl_registry()[i].run(s, r);
+    r.rtl_config = m.name;
+    cosim_setup(scene, cfg, opts, m.params, s, r);
+    m.run(s, r);
     return r;
   }
-  throw std::runtime_error("no verilated RTL model matches this config (build one by adding it to RAST_RTL_CONFIGS "
-                           "in rtl/CMakeLists.txt):" + why_all);
+  // No shipped model: an on-demand one, run as a child process that reads the scene
+  // again from its file (checked first, before a build).
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(scene.source, ec))
+    throw std::runtime_error(config_label(cfg) + ": no shipped RTL model fits this config, and an on-demand model "
+                             "reads the scene from its file, but scene '" + scene.source +
+                             "' is not a file (co-simulate a scene from a file)");
+  const RtlCacheEntry e = on_demand_model(cfg, opts, wanted);
+  CosimResult r = run_rtl_runner(e, runner_request(scene, cfg, opts)).get<CosimResult>();
+  r.rtl_config = "cache:" + e.key;
+  r.rtl_model_dir = e.dir;
+  r.rtl_cache_hit = e.hit;
+  r.rtl_build_seconds = e.hit ? 0 : e.build_seconds;
+  return r;
 }
 
 }  // namespace rastsim::cosim

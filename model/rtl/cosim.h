@@ -23,8 +23,11 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "config/config.h"
 #include "rtl/rtl_params.h"
@@ -38,10 +41,19 @@ struct CosimOptions {
   double backpressure = 0;         // probability that frag_ready is low in a cycle (0 = off)
   std::string fst_path;            // write an FST waveform ("" = none)
   uint64_t max_cycles = 2'000'000'000;
+  // Lines of progress while an on-demand model builds (rtl_cache.h); empty: printed on
+  // stderr (one updating line on a terminal). Not sent to the runner.
+  std::function<void(const std::string&)> progress;
 };
+// The options as the on-demand runner gets them (progress stays behind).
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(CosimOptions, tile_size, backpressure_seed, backpressure, fst_path,
+                                                max_cycles)
 
 struct CosimResult {
-  std::string rtl_config;          // which verilated model ran
+  std::string rtl_config;          // which verilated model ran: a shipped config's name, or "cache:<key>"
+  std::string rtl_model_dir;       // on-demand: the model's cache entry ("" for a shipped model)
+  bool rtl_cache_hit = false;      // on-demand: the entry was there (or another process built it)
+  double rtl_build_seconds = 0;    // on-demand: the build this call waited for (0 on a hit)
   uint64_t cycles_rtl = 0;         // first command to the ROP's last busy cycle
   uint64_t fragments_expected = 0; // from the reference model
   uint64_t fragments_compared = 0; // fragments the RTL produced and were compared
@@ -56,6 +68,11 @@ struct CosimResult {
   uint64_t resolve_cycles = 0;     // the frame-end resolve pass (end-of-frame marker), included in cycles_rtl
   double wall_seconds = 0;         // the RTL simulation (testbench included)
 };
+// Every field, for the on-demand runner's answer (a new field: add it here too).
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(CosimResult, rtl_config, rtl_model_dir, rtl_cache_hit,
+                                                rtl_build_seconds, cycles_rtl, fragments_expected, fragments_compared,
+                                                mismatches, first_mismatch, triangles, markers, commands_2d, pixels_2d,
+                                                crc_rtl, crc_ref, samples, rop_accesses, resolve_cycles, wall_seconds)
 
 // The verilated configs linked into this binary, and the parameters each was built with
 // (compiled in at configure time: no config file is read).
@@ -65,8 +82,21 @@ struct RtlModelInfo {
 };
 std::vector<RtlModelInfo> rtl_models();
 
-// Runs `scene` through the RTL model built for a config compatible with `cfg`
-// (rtl_params_compatible). Throws std::runtime_error when none is, naming the difference.
+// The model a config runs on: a shipped one compatible with it (rtl_params_compatible),
+// else an on-demand one from the cache (rtl_cache.h), built now when missing (cmake and
+// Verilator, about a minute; concurrent callers build it once). Throws naming the config
+// and the key when the RTL cannot run it, or with the build's error and log.
+struct RtlModelChoice {
+  std::string name;        // CosimResult::rtl_config
+  std::string dir;         // on-demand: the cache entry; "" for a shipped model
+  bool cache_hit = false;  // on-demand: found in the cache
+  double build_seconds = 0;
+};
+RtlModelChoice prepare_rtl_model(const Config& cfg, const CosimOptions& opts = {});
+
+// Runs `scene` through the RTL model prepare_rtl_model chooses: a shipped model in this
+// process, an on-demand one as a child process (the cache entry's runner, which reads
+// the scene again from its file, Scene::source: an in-memory scene needs a shipped model).
 CosimResult run_cosim(const Scene& scene, const Config& cfg, const CosimOptions& opts = {});
 
 }  // namespace rastsim::cosim

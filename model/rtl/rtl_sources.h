@@ -1,7 +1,12 @@
 // SPDX-License-Identifier: Apache-2.0
-// The Verilog of rtl/rast_*.sv compiled into the binary (model/rtl/embed_rtl.cmake writes
-// rtl_sources.cpp at build time and rewrites it when a source changes), so a tool that
-// needs the RTL text itself (Yosys, for `rastsim area`) never reads the source tree.
+// Text compiled into the binary (model/rtl/embed_rtl.cmake writes it at build time and
+// rewrites it when a file changes), so a tool that needs it never reads the source tree:
+// - rtl_sources(): the Verilog of rtl/rast_*.sv, for Yosys (`rastsim area`) and for the
+//   on-demand models (rtl_cache.h);
+// - rtl_build_files(): the rest of an on-demand model's project (rtl_cache.cpp): the lint
+//   waivers ("rtl/lint/<name>.vlt"), the shared Verilator arguments
+//   ("rtl/rast_verilate.cmake"), the runner's main ("runner/rtl_runner_main.cpp"), and,
+//   for the cache key only, the testbench headers the runner compiles ("key/<name>.h").
 #pragma once
 
 #include <string_view>
@@ -10,11 +15,13 @@
 namespace rastsim {
 
 struct RtlSource {
-  std::string_view name;  // file name, e.g. "rast_top.sv"
+  std::string_view name;  // file name, e.g. "rast_top.sv" (rtl_build_files: a relative path)
   std::string_view text;  // its contents
 };
 
 // Every rtl/rast_*.sv, sorted by name.
 const std::vector<RtlSource>& rtl_sources();
+// The other files of an on-demand model's project, sorted by name (above).
+const std::vector<RtlSource>& rtl_build_files();
 
 }  // namespace rastsim

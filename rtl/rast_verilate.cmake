@@ -1,0 +1,36 @@
+# SPDX-License-Identifier: Apache-2.0
+# How the raster pipeline is verilated: its source lists and its Verilator arguments,
+# written once. Two users include this file:
+# - rtl/CMakeLists.txt, for the shipped configs (RAST_RTL_CONFIGS) at configure time;
+# - the small project `rastsim cosim` writes into its cache when no shipped model fits a
+#   config (model/rtl/rtl_cache.cpp): the text of this file is compiled into rastsim
+#   (model/rtl/CMakeLists.txt, embed_rtl.cmake) and written out beside the RTL sources, so
+#   an on-demand model is verilated exactly as a shipped one.
+
+# rast_rtl_files(DIR <top> <engine> <waivers>): the sources under DIR (rtl/ or the cache
+# project's copy): rast_top with its stages (the 2D units stand alone), the 2D engine
+# with its units, and the lint waivers (lint/rast_*.vlt).
+function(rast_rtl_files dir top_var engine_var waiver_var)
+  file(GLOB top CONFIGURE_DEPENDS ${dir}/rast_*.sv)
+  list(FILTER top EXCLUDE REGEX "/(rast_line|rast_rop3|rast_pattern|rast_engine2d)\\.sv$")
+  file(GLOB waivers CONFIGURE_DEPENDS ${dir}/lint/rast_*.vlt)
+  set(${top_var} ${top} PARENT_SCOPE)
+  set(${engine_var} ${dir}/rast_engine2d.sv ${dir}/rast_line.sv ${dir}/rast_pattern.sv ${dir}/rast_rop3.sv
+      PARENT_SCOPE)
+  set(${waiver_var} ${waivers} PARENT_SCOPE)
+endfunction()
+
+# Lint-clean (-Wall) and fast: X values resolved at verilation, not simulated.
+set(RAST_VERILATOR_ARGS -Wall -O3 --x-assign fast --x-initial fast)
+
+# rast_top built with the parameter header INC_DIR/rast_params.vh into TARGET as class PREFIX.
+function(rast_verilate_top target prefix inc_dir sources waivers)
+  verilate(${target} SOURCES ${waivers} ${sources} PREFIX ${prefix} TOP_MODULE rast_top TRACE_FST
+    VERILATOR_ARGS -I${inc_dir} ${RAST_VERILATOR_ARGS})
+endfunction()
+
+# The 2D engine (no config parameter: its timing keys are run-time inputs) as Vrast_engine2d.
+function(rast_verilate_engine2d target sources)
+  verilate(${target} SOURCES ${sources} PREFIX Vrast_engine2d TOP_MODULE rast_engine2d TRACE_FST
+    VERILATOR_ARGS ${RAST_VERILATOR_ARGS})
+endfunction()

@@ -1,0 +1,106 @@
+// SPDX-License-Identifier: Apache-2.0
+// The on-demand RTL path without a build (the build itself: test_rtl_cache.sh, label
+// rtlbuild): the runner's request carries a config exactly (every value and origin, floats
+// to the bit), the CosimResult survives its JSON, and a config the RTL cannot run, or an
+// in-memory scene on a config no shipped model fits, fails before any build with a
+// message naming the config and the key.
+#include <gtest/gtest.h>
+
+#include <stdexcept>
+#include <string>
+
+#include "rtl/cosim.h"
+#include "rtl/cosim_setup.h"
+#include "scene/scene_io.h"
+#include "cosim_test_util.h"
+
+namespace rastsim::cosim {
+namespace {
+
+TEST(RtlRunnerRequest, CarriesEveryConfigValueAndOrigin) {
+  Config cfg = load_shipped_config("embedded");
+  // A float with every digit significant, and a value with a space.
+  cfg.apply_override("clock.core_mhz=123.45678901234567");
+  cfg.validate();
+  Scene scene;
+  scene.source = "scene.trace";
+  scene.commands.resize(3);
+  CosimOptions o;
+  o.tile_size = 4;
+  o.backpressure = 0.25;
+  o.backpressure_seed = 7;
+  o.fst_path = "w.fst";
+  const RunnerRequest q = read_runner_request(nlohmann::json::parse(runner_request(scene, cfg, o).dump()));
+  ASSERT_EQ(q.config.values().size(), cfg.values().size());
+  for (const auto& [key, v] : cfg.values()) {
+    SCOPED_TRACE(key);
+    EXPECT_TRUE(q.config.get(key) == v) << to_string(q.config.get(key)) << " != " << to_string(v);
+    EXPECT_EQ(q.config.origin(key), cfg.origin(key));
+  }
+  EXPECT_EQ(q.config.get_float("clock.core_mhz"), 123.45678901234567);
+  EXPECT_EQ(q.scene, "scene.trace");
+  EXPECT_EQ(q.scene_commands, 3u);
+  EXPECT_EQ(q.options.tile_size, 4);
+  EXPECT_EQ(q.options.backpressure, 0.25);
+  EXPECT_EQ(q.options.backpressure_seed, 7u);
+  EXPECT_EQ(q.options.fst_path, "w.fst");
+  EXPECT_EQ(q.options.max_cycles, o.max_cycles);
+}
+
+TEST(RtlRunnerResult, EveryFieldSurvivesJson) {
+  CosimResult r;
+  r.rtl_config = "cache:0123456789abcdef";
+  r.rtl_model_dir = "/c/0123456789abcdef";
+  r.rtl_cache_hit = true;
+  r.rtl_build_seconds = 1.5;
+  r.cycles_rtl = 1001;
+  r.fragments_expected = 1002;
+  r.fragments_compared = 1003;
+  r.mismatches = 4;
+  r.first_mismatch = "fragment #5";
+  r.triangles = 6;
+  r.markers = 7;
+  r.commands_2d = 8;
+  r.pixels_2d = 9;
+  r.crc_rtl = 0xdeadbeef;
+  r.crc_ref = 0xcafef00d;
+  r.samples = 4;
+  r.rop_accesses = 10;
+  r.resolve_cycles = 11;
+  r.wall_seconds = 0.125;
+  const nlohmann::json j = r;
+  const CosimResult b = nlohmann::json::parse(j.dump()).get<CosimResult>();
+  EXPECT_EQ(nlohmann::json(b), j);
+  EXPECT_EQ(b.crc_rtl, 0xdeadbeefu);
+  EXPECT_EQ(b.first_mismatch, "fragment #5");
+  EXPECT_TRUE(b.rtl_cache_hit);
+  // A field the runner does not send keeps its default.
+  EXPECT_EQ(nlohmann::json::object().get<CosimResult>().samples, 1);
+}
+
+// run_cosim's error on an in-memory scene with the embedded config and one --set.
+std::string cosim_error(const std::string& set) {
+  Config cfg = load_shipped_config("embedded");
+  cfg.apply_override(set);
+  cfg.validate();
+  try {
+    run_cosim(parse_trace("viewport 64 64\n", "mem.trace"), cfg);
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+TEST(RtlOnDemand, ConfigTheRtlCannotRunNamesTheKey) {
+  const std::string m = cosim_error("raster.traversal=bbox");
+  EXPECT_NE(m.find("--set raster.traversal=bbox: raster.traversal = bbox has no RTL"), std::string::npos) << m;
+}
+
+TEST(RtlOnDemand, InMemorySceneOnANewConfigNamesConfigAndScene) {
+  const std::string m = cosim_error("fifo.tile_depth=3");
+  EXPECT_NE(m.find("embedded.toml --set fifo.tile_depth=3"), std::string::npos) << m;
+  EXPECT_NE(m.find("'mem.trace' is not a file"), std::string::npos) << m;
+}
+
+}  // namespace
+}  // namespace rastsim::cosim
