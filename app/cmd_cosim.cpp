@@ -9,10 +9,35 @@
 #include "common.h"
 #include "report/stats_json.h"
 #include "rtl/cosim.h"
+#include "rtl/rtl_cache.h"
 #include "sc/raster_pipeline.h"
 #include "scene/scene_io.h"
 
 namespace rastsim::app {
+
+namespace {
+
+// `rastsim rtl-cache`: the on-demand RTL models (model/rtl/rtl_cache.h), listed or removed.
+void register_rtl_cache(CLI::App& app) {
+  auto* cmd = app.add_subcommand("rtl-cache", "List (or --clean) the RTL models `cosim` built on demand");
+  static bool clean = false;
+  cmd->add_flag("--clean", clean,
+                "Remove every entry (a model another process is building is left alone); the next cosim of such a "
+                "config builds it again");
+  cmd->callback([] {
+    const std::string dir = rastsim_cache_dir("rtl");
+    if (clean) {
+      std::cout << "rtl-cache: removed " << clean_rtl_cache() << " entries from " << dir << "\n";
+      return;
+    }
+    const auto entries = rtl_cache_entries();
+    std::cout << "rtl-cache: " << entries.size() << " entries in " << dir << "\n";
+    for (const RtlCacheEntry& e : entries)
+      std::cout << e.key << "  built in " << int(e.build_seconds + 0.5) << " s  for " << e.built_for << "\n";
+  });
+}
+
+}  // namespace
 
 void register_cosim(CLI::App& app) {
   auto* cmd = app.add_subcommand(
@@ -112,6 +137,7 @@ void register_cosim(CLI::App& app) {
       throw std::runtime_error("cycle error of the SystemC model exceeds " + std::to_string(max_error));
     if (r.mismatches) throw std::runtime_error(std::to_string(r.mismatches) + " mismatches (fragments or framebuffer)");
   });
+  register_rtl_cache(app);  // its cache's listing, next to it in --help
 }
 
 }  // namespace rastsim::app

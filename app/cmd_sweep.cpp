@@ -154,6 +154,13 @@ size_t run_local(std::vector<Point>& points, const std::vector<size_t>& todo, co
   return failed;
 }
 
+// A point's resolved config: the base, then its swept values.
+Config point_config(const Point& p, const std::vector<Axis>& axes, const ConfigOptions& base) {
+  ConfigOptions c = base;
+  for (size_t i = 0; i < axes.size(); ++i) c.sets.push_back(axes[i].key + "=" + p.values[i]);
+  return load_config(c);
+}
+
 // `--area`: a point's RTL area (rastsim area, model/rtl/area.h) under "area" in its stats,
 // so the CSV gains area.cells, area.flip_flops and area.transistors. Synthesised once a
 // distinct RTL parameter set (a tile-size sweep over three scenes: one run a tile size),
@@ -161,9 +168,7 @@ size_t run_local(std::vector<Point>& points, const std::vector<size_t>& todo, co
 class AreaColumns {
  public:
   void add(Point& p, const std::vector<Axis>& axes, const ConfigOptions& base) {
-    ConfigOptions c = base;
-    for (size_t i = 0; i < axes.size(); ++i) c.sets.push_back(axes[i].key + "=" + p.values[i]);
-    const RtlParams rp = rtl_params_from_config(load_config(c));
+    const RtlParams rp = rtl_params_from_config(point_config(p, axes, base));
     const auto key = rtl_params_named(rp);
     auto it = done_.find(key);
     if (it == done_.end()) {
@@ -194,10 +199,8 @@ void prepare_rtl_models(const std::vector<Point>& points, const std::vector<size
   for (size_t i : todo) {
     const Point& p = points[i];
     if (!seen.insert(p.config_hash).second) continue;
-    ConfigOptions c = base;
-    for (size_t k = 0; k < axes.size(); ++k) c.sets.push_back(axes[k].key + "=" + p.values[k]);
     try {
-      cosim::prepare_rtl_model(load_config(c));
+      cosim::prepare_rtl_model(point_config(p, axes, base));
     } catch (const std::exception& e) {
       std::cerr << "sweep: no RTL model for " << describe(p, axes) << ": " << e.what() << "\n";
     }

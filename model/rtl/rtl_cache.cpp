@@ -374,6 +374,28 @@ std::vector<RtlCacheEntry> rtl_cache_entries(const std::string& dir) {
   return v;
 }
 
+size_t clean_rtl_cache(const std::string& dir) {
+  const fs::path root = dir.empty() ? rastsim_cache_dir("rtl") : dir;
+  std::error_code ec;
+  std::vector<fs::path> locks;
+  for (const auto& d : fs::directory_iterator(root, ec))
+    if (d.path().extension() == ".lock") locks.push_back(d.path());
+  size_t removed = 0;
+  for (const fs::path& lock : locks) {
+    const int fd = open(lock.c_str(), O_RDWR | O_CLOEXEC);
+    if (fd < 0) continue;
+    if (flock(fd, LOCK_EX | LOCK_NB) == 0) {
+      const std::string key = lock.stem().string();
+      for (const auto& d : fs::directory_iterator(root, ec))
+        if (d.path().filename().string().rfind(key + ".tmp-", 0) == 0) fs::remove_all(d.path(), ec);
+      if (fs::exists(root / key)) removed += fs::remove_all(root / key, ec) > 0;
+      fs::remove(lock, ec);
+    }
+    close(fd);
+  }
+  return removed;
+}
+
 nlohmann::json run_rtl_runner(const RtlCacheEntry& e, const nlohmann::json& request) {
   static int serial = 0;
   const fs::path dir =

@@ -89,6 +89,11 @@ RtlCacheEntry find_or_build_rtl_model(const RtlParams& wanted, const RtlParams& 
 // Every complete entry under `dir` ("" = the default), sorted by key.
 std::vector<RtlCacheEntry> rtl_cache_entries(const std::string& dir = "");
 
+// Removes every entry under `dir` ("" = the default), with its lock file and any failed
+// build's directory; a key whose lock another process holds (building) is left alone.
+// Returns how many entries were removed.
+size_t clean_rtl_cache(const std::string& dir = "");
+
 // Runs the entry's runner with `request` (a JSON file in a temporary directory) and
 // returns its answer; throws with its error, or when it died.
 nlohmann::json run_rtl_runner(const RtlCacheEntry& e, const nlohmann::json& request);

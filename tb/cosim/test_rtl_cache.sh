@@ -9,7 +9,8 @@
 #   2. a third run is a cache hit: nothing rebuilt (the runner file untouched);
 #   3. `rastsim sweep --level cosim` over two cull modes (run-time inputs, same model):
 #      cycles_rtl, mismatches, cycle_error beside the SystemC columns, no build;
-#   4. the shipped config itself still runs on its shipped model.
+#   4. the shipped config itself still runs on its shipped model;
+#   5. `rastsim rtl-cache` lists the entry, `--clean` removes it.
 # usage: test_rtl_cache.sh RASTSIM_BINARY SOURCE_DIR CACHE_DIR
 BIN="$1"
 SRC="$2"
@@ -90,6 +91,13 @@ fi
 # 4. The shipped config runs on its shipped model, without the cache.
 "$BIN" cosim --config "$SRC/configs/embedded.toml" --scene "$SCENE" --no-model --stats "$TMP/e.json" >/dev/null 2>&1 &&
   [ "$(json_field "$TMP/e.json" rtl_model)" = embedded ] && pass || fail "the shipped embedded model did not run"
+
+# 5. rtl-cache lists the entry, --clean removes it (and its lock).
+key="$(basename "$entry")"
+"$BIN" rtl-cache >"$TMP/l.out" 2>&1 && grep -q "^$key .*fifo.tile_depth=3" "$TMP/l.out" && pass ||
+  fail "rtl-cache does not list $key: $(cat "$TMP/l.out")"
+"$BIN" rtl-cache --clean >"$TMP/l.out" 2>&1 && grep -q "removed 1 entries" "$TMP/l.out" && [ ! -e "$entry" ] &&
+  [ ! -e "$CACHE/rtl/$key.lock" ] && pass || fail "rtl-cache --clean: $(cat "$TMP/l.out")"
 
 echo "rtl cache checks: $passes passed, $fails failed"
 [ "$fails" -eq 0 ]
