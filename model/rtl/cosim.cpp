@@ -29,13 +29,32 @@ int shipped_model(const RtlParams& wanted) {
   return -1;
 }
 
+// Verilator 5.006 under -Wall (rtl/rast_verilate.cmake) stops on a replication wider than
+// this (WIDTHCONCAT, e.g. a tile's sample mask cleared with '0 in rtl/rast_fine_raster.sv):
+// the RTL's tile pixels x MaxSamples must stay within it.
+constexpr int64_t kMaxMaskBits = 8192;
+
 RtlCacheEntry on_demand_model(const Config& cfg, const CosimOptions& opts, const RtlParams& wanted) {
   // Built with the config's parameters; the tile size as the larger of the config's and
-  // the one asked for (a run-time input up to the built maximum), the sample count the
-  // schema's maximum (rtl_params_from_config), so the config's other tile sizes and
-  // sample counts find this entry too.
+  // the one asked for (a run-time input up to the built maximum); the sample count (also
+  // a run-time input) as large as the sample mask allows, up to the schema's maximum
+  // (rtl_params_from_config), at least 2 (the RTL's minimum): the config's other tile sizes
+  // and sample counts below these find the entry too.
   RtlParams build = rtl_params_from_config(cfg);
   build.tile_log2_max = std::max(build.tile_log2_max, wanted.tile_log2_max);
+  const int64_t tile_pixels = int64_t{1} << (2 * build.tile_log2_max);
+  const int64_t needed = std::max(2, wanted.max_samples);
+  if (tile_pixels * needed > kMaxMaskBits) {
+    const std::string tile = opts.tile_size ? "a tile size of " + std::to_string(opts.tile_size) + " px"
+                                            : "raster.tile_size = " + std::to_string(cfg.get_int("raster.tile_size")) +
+                                                  " (" + cfg.origin("raster.tile_size") + ")";
+    throw ConfigError(config_label(cfg) + ": no RTL model for this config: " + tile + " with raster.samples = " +
+                      std::to_string(wanted.max_samples) + " needs a " + std::to_string(tile_pixels * needed) +
+                      "-bit sample mask a tile (pixels x max(2, samples)), above the " +
+                      std::to_string(kMaxMaskBits) + " bits Verilator builds the RTL with (rtl/rast_fine_raster.sv); "
+                      "co-simulate with a smaller tile or fewer samples");
+  }
+  while (build.max_samples > needed && tile_pixels * build.max_samples > kMaxMaskBits) build.max_samples /= 2;
   RtlBuildOptions bo;
   bo.label = config_label(cfg);
   bo.progress = opts.progress;

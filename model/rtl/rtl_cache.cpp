@@ -33,6 +33,8 @@ namespace {
 // Bump when the project layout or the runner protocol changes: old entries no longer match.
 constexpr const char* kMethodVersion = "rastsim-rtl-1";
 
+std::string compute_build_inputs();  // rtl_build_inputs(), read afresh
+
 std::string read_file(const fs::path& p) {
   std::ifstream is(p, std::ios::binary);
   return std::string((std::istreambuf_iterator<char>(is)), std::istreambuf_iterator<char>());
@@ -231,13 +233,16 @@ RtlCacheEntry build_entry(const fs::path& root, const std::string& key, const st
     stage_seconds[name] = seconds() - stage_start;
     stage_start = seconds();
     if (status == 0) return;
+    // The first line that says what is wrong: Verilator's %Warning-X / %Error (not its
+    // closing "Exiting due to"), a compiler's or CMake's error; else the last line.
     std::string msg;
     for (const auto& l : tail)
-      if (msg.empty() && (l.find("%Error") != std::string::npos || l.find("error") != std::string::npos ||
-                          l.find("Error") != std::string::npos))
+      if (msg.empty() && l.find("Exiting due to") == std::string::npos &&
+          (l.find("%Warning-") != std::string::npos || l.find("%Error") != std::string::npos ||
+           l.find("error") != std::string::npos || l.find("Error") != std::string::npos))
         msg = l;
     if (msg.empty() && !tail.empty()) msg = tail.back();
-    throw std::runtime_error("building the " + what + " failed in " + name + " (" + status_text(status) + "): " + msg +
+    throw std::runtime_error("building RTL model " + key + " failed in " + name + " (" + status_text(status) + "): " + msg +
                              " (log: " + (tmp / "build.log").string() + ")");
   };
   std::vector<std::string> configure = {b.cmake, "-S", src.string(), "-B", bld.string(), "-G", b.generator,
@@ -249,6 +254,11 @@ RtlCacheEntry build_entry(const fs::path& root, const std::string& key, const st
   stage("configure (Verilator)", configure, std::regex("^-- |Verilat"));
   stage("compile", {b.cmake, "--build", bld.string()}, std::regex(R"(^\[\s*\d+(/\d+|%)\])"));
   const double secs = seconds();
+  // The runner linked the libraries as they are now: if a rebuild of rastsim changed them
+  // during this build, the entry would not be what its key says.
+  if (compute_build_inputs() != inputs)
+    throw std::runtime_error("rastsim's libraries changed while RTL model " + key +
+                             " was built (a rebuild meanwhile?): run again with the new rastsim");
 
   fs::rename(bld / "rast_runner", tmp / "rast_runner");
   fs::copy_file(src / "rast_params.vh", tmp / "rast_params.vh");
@@ -309,8 +319,10 @@ std::function<void(const std::string&)> stderr_progress() {
   };
 }
 
-std::string rtl_build_inputs() {
-  static const std::string inputs = [] {
+namespace {
+
+std::string compute_build_inputs() {
+  {
     const RtlBuildInfo& b = rtl_build_info();
     Fnv64 h;
     h.add(kMethodVersion);
@@ -328,7 +340,13 @@ std::string rtl_build_inputs() {
       h.add(read_file(lib));
     }
     return h.hex();
-  }();
+  }
+}
+
+}  // namespace
+
+std::string rtl_build_inputs() {
+  static const std::string inputs = compute_build_inputs();
   return inputs;
 }
 

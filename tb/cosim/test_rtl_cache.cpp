@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: Apache-2.0
 // The on-demand RTL path without a build (the build itself: test_rtl_cache.sh, label
 // rtlbuild): the runner's request carries a config exactly (every value and origin, floats
-// to the bit), the CosimResult survives its JSON, and a config the RTL cannot run, or an
-// in-memory scene on a config no shipped model fits, fails before any build with a
-// message naming the config and the key.
+// to the bit), the CosimResult survives its JSON, and a config the RTL cannot run (a
+// method it lacks, a tile whose sample mask Verilator refuses), or an in-memory scene on a
+// config no shipped model fits, fails before any build with a message naming the config
+// and the key.
 #include <gtest/gtest.h>
 
 #include <stdexcept>
@@ -100,6 +101,23 @@ TEST(RtlOnDemand, InMemorySceneOnANewConfigNamesConfigAndScene) {
   const std::string m = cosim_error("fifo.tile_depth=3");
   EXPECT_NE(m.find("embedded.toml --set fifo.tile_depth=3"), std::string::npos) << m;
   EXPECT_NE(m.find("'mem.trace' is not a file"), std::string::npos) << m;
+}
+
+TEST(RtlOnDemand, TileTooLargeForVerilatorNamesTileSizeAndSamples) {
+  // 128 x 128 px x 2 samples (the RTL's minimum MaxSamples) = 32768 mask bits > 8192.
+  Config cfg = load_shipped_config("embedded");
+  cfg.apply_override("raster.tile_size=128");
+  cfg.validate();
+  try {
+    prepare_rtl_model(cfg);
+    FAIL() << "expected an error";
+  } catch (const std::exception& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("raster.tile_size = 128 (--set raster.tile_size=128) with raster.samples = 1 needs a "
+                     "32768-bit sample mask"),
+              std::string::npos)
+        << m;
+  }
 }
 
 }  // namespace

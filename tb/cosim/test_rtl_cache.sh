@@ -21,6 +21,10 @@ SCENE="$SRC/traces/primitives.trace"
 CFG=(--config "$SRC/configs/embedded.toml" --set fifo.tile_depth=3)
 rm -rf "$CACHE/rtl"  # cold: the lock test needs a build
 
+# 0. A cache that cannot be written: the error names the config (no build starts).
+expect_error "unwritable cache" "embedded.toml --set fifo.tile_depth=3: no RTL model for this config: .*cannot create" -- \
+  env RASTSIM_CACHE=/proc/rastsim-no-such-dir "$BIN" cosim "${CFG[@]}" --scene "$SCENE"
+
 # 1. Two processes, one build.
 "$BIN" cosim "${CFG[@]}" --scene "$SCENE" --max-error 0.05 --stats "$TMP/a.json" >"$TMP/a.out" 2>"$TMP/a.err" &
 pa=$!
