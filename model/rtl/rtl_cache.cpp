@@ -282,8 +282,14 @@ RtlCacheEntry build_entry(const fs::path& root, const std::string& key, const st
   log.close();
   fs::remove_all(src);
   fs::remove_all(bld);
-  fs::remove_all(root / key, ec);  // an incomplete entry (no runner or manifest)
-  fs::rename(tmp, root / key);
+  // An incomplete entry (no runner or manifest) is replaced; a complete one can only come
+  // from a builder that locked a lock file `rtl-cache --clean` removed meanwhile: keep it.
+  if (!complete(root / key)) {
+    fs::remove_all(root / key, ec);
+    fs::rename(tmp, root / key);
+  } else {
+    fs::remove_all(tmp, ec);
+  }
   progress("rastsim: built " + what + " in " + std::to_string(int(secs + 0.5)) + " s\n");
   RtlCacheEntry e = read_entry(root / key);
   e.hit = false;
