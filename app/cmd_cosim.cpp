@@ -2,21 +2,53 @@
 // `rastsim cosim`: the verilated RTL (rtl/rast_top.sv) on one scene, every fragment
 // compared with the reference model, and its cycle count next to the SystemC model's.
 #include <cmath>
+#include <cstdio>
 #include <iostream>
 
 #include "common.h"
 #include "report/stats_json.h"
 #include "rtl/cosim.h"
+#include "rtl/stage_compare.h"
 #include "sc/raster_pipeline.h"
 #include "scene/scene_io.h"
 
 namespace rastsim::app {
 
+namespace {
+
+// Per stage (docs/microarchitecture.md "Stage statistics"): both sides' busy, stalled and
+// starved cycles into the stats and a table on stdout; --trace-diff's CSVs.
+void report_stages(const std::vector<cosim::StageAgreement>& a, const std::string& trace_dir, nlohmann::json& j) {
+  j["stages"] = cosim::stages_json(a);
+  std::cout << "cosim: stage           busy model / RTL   error   stalled model / RTL   starved model / RTL\n";
+  for (const cosim::StageAgreement& s : a) {
+    char line[200];
+    std::snprintf(line, sizeof line, "cosim: %-14s %10llu / %-10llu %6.2f %% %9llu / %-9llu %9llu / %llu\n",
+                  s.name.c_str(), (unsigned long long)s.model.busy, (unsigned long long)s.rtl.busy,
+                  s.busy_error * 100, (unsigned long long)s.model.stalled, (unsigned long long)s.rtl.stalled,
+                  (unsigned long long)s.model.starved, (unsigned long long)s.rtl.starved);
+    std::cout << line;
+  }
+  if (const cosim::StageAgreement* w = cosim::worst_stage(a)) {
+    j["stage_worst_busy_error"] = w->busy_error;
+    j["stage_worst"] = w->name;
+  }
+  if (trace_dir.empty()) return;
+  const cosim::TraceDiff d = cosim::write_trace_diff(trace_dir, a);
+  j["trace_diff"] = {{"rows_model", d.rows_model}, {"rows_rtl", d.rows_rtl}, {"first", d.first}, {"earliest", d.earliest}};
+  std::cout << "cosim: trace-diff " << trace_dir << "/model.csv (" << d.rows_model << " rows), " << trace_dir
+            << "/rtl.csv (" << d.rows_rtl << " rows): "
+            << (d.differs ? "first difference: " + d.first + "; earliest: " + d.earliest : std::string("identical"))
+            << "\n";
+}
+
+}  // namespace
+
 void register_cosim(CLI::App& app) {
   auto* cmd = app.add_subcommand(
       "cosim", "Co-simulate the Verilog RTL against the reference model (fragments) and the SystemC model (cycles)");
   static ConfigOptions opts;
-  static std::string scene_path, stats_path;
+  static std::string scene_path, stats_path, trace_diff_dir;
   static cosim::CosimOptions co;
   static bool no_model = false;
   static double max_error = -1;
@@ -33,9 +65,14 @@ void register_cosim(CLI::App& app) {
   cmd->add_option("--max-error", max_error,
                   "Fail when |cycles_model - cycles_rtl| / cycles_rtl exceeds this (e.g. 0.05; default: report only)");
   cmd->add_flag("--no-model", no_model, "Do not run the SystemC model (fragment check only)");
+  cmd->add_option("--trace-diff", trace_diff_dir,
+                  "Write DIR/model.csv and DIR/rtl.csv: every stage's transactions (stage,transaction,start_cycle,"
+                  "end_cycle) on both sides in the same row order, and print the first whose timing differs");
   cmd->callback([] {
     const Config cfg = load_config(opts);
     const Scene scene = load_scene(scene_path, obj_placement(cfg));
+    if (!trace_diff_dir.empty() && no_model) throw std::runtime_error("--trace-diff needs the SystemC model (drop --no-model)");
+    co.record_transactions = !trace_diff_dir.empty();
     const cosim::CosimResult r = cosim::run_cosim(scene, cfg, co);
     nlohmann::json j = {{"config", cfg.source_name()},
                         {"scene", scene_path},
@@ -65,13 +102,16 @@ void register_cosim(CLI::App& app) {
     std::cout << "\n";
     if (!r.first_mismatch.empty()) std::cout << "cosim: first mismatch: " << r.first_mismatch << "\n";
     if (!no_model) {
-      const sc::SimResult m = sc::simulate_scene(scene, cfg);
+      sc::SimOptions so;
+      so.spans = !trace_diff_dir.empty();
+      const sc::SimResult m = sc::simulate_scene(scene, cfg, so);
       const double err = r.cycles_rtl ? (double(m.cycles) - double(r.cycles_rtl)) / double(r.cycles_rtl) : 0.0;
       j["cycles_model"] = m.cycles;
       j["cycle_error"] = err;
       j["model_wall_seconds"] = m.sim_wall_seconds;
       std::cout << "cosim: cycles_rtl " << r.cycles_rtl << ", cycles_model " << m.cycles << ", error "
                 << std::round(err * 10000) / 100 << " %\n";
+      report_stages(cosim::compare_stages(cosim::stage_records(m.stages), r.stages), trace_diff_dir, j);
     }
     if (!stats_path.empty()) write_json(stats_path, j);
     if (!no_model && max_error >= 0 && std::abs(j["cycle_error"].get<double>()) > max_error)

@@ -38,6 +38,24 @@ struct CosimOptions {
   double backpressure = 0;         // probability that frag_ready is low in a cycle (0 = off)
   std::string fst_path;            // write an FST waveform ("" = none)
   uint64_t max_cycles = 2'000'000'000;
+  bool record_transactions = false;  // fill StageRecord::spans (--trace-diff)
+  // Test-only perturbation: the testbench ROP spends this many extra cycles on its
+  // transaction number `perturb_rop_transaction` (0 = off), so a test can check that
+  // --trace-diff names it as the first difference.
+  uint64_t perturb_rop_cycles = 0;
+  uint64_t perturb_rop_transaction = 0;
+};
+
+// One stage's cycles on one side of the comparison (docs/microarchitecture.md "Stage
+// statistics"): every cycle of the run is exactly one of busy, stalled, starved.
+struct StageSpan {
+  uint64_t start = 0, end = 0;  // cycles [start, end): from its first cycle of work to its last
+};
+struct StageRecord {
+  std::string name;  // the SystemC stage's name (command_fetch, ..., rop)
+  uint64_t busy = 0, stalled = 0, starved = 0;  // cycles
+  uint64_t transactions = 0;                     // input transactions taken
+  std::vector<StageSpan> spans;                  // per transaction, in order (record_transactions)
 };
 
 struct CosimResult {
@@ -55,6 +73,10 @@ struct CosimResult {
   uint64_t rop_accesses = 0;       // ROP accesses of the fragments (TimingParams::rop_accesses)
   uint64_t resolve_cycles = 0;     // the frame-end resolve pass (end-of-frame marker), included in cycles_rtl
   double wall_seconds = 0;         // the RTL simulation (testbench included)
+  // Per stage, in pipeline order: command_fetch, prim_assembly (testbench accounting),
+  // tri_setup, coarse_raster, fine_raster, interpolate (the RTL's handshakes, rast_top's
+  // dbg_*_o ports), rop (testbench). The 2D stages are not counted yet.
+  std::vector<StageRecord> stages;
 };
 
 // The verilated configs linked into this binary, and the parameters each was built with
