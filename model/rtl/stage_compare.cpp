@@ -78,7 +78,8 @@ TraceDiff write_trace_diff(const std::string& dir, const std::vector<StageAgreem
         what = s.name + " transaction " + std::to_string(k) + ": model [" + std::to_string(m[k].start) + ", " +
                std::to_string(m[k].end) + "), RTL [" + std::to_string(r[k].start) + ", " + std::to_string(r[k].end) +
                ")";
-        start = std::min(m[k].start, r[k].start);
+        // Where the two sides part: the earlier start, or with equal starts the earlier end.
+        start = m[k].start != r[k].start ? std::min(m[k].start, r[k].start) : std::min(m[k].end, r[k].end);
       } else {
         continue;
       }

@@ -25,12 +25,13 @@
 namespace rastsim::cosim {
 
 // A model-side report (sc::StageReport: name, busy, stalled, starved, transactions_in,
-// spans {t0, t1}) as a StageRecord; a template so this layer needs no SystemC.
+// transactions_out, spans {t0, t1}) as a StageRecord; a template so this layer needs no SystemC.
 template <class Report>
 std::vector<StageRecord> stage_records(const std::vector<Report>& reports) {
   std::vector<StageRecord> v;
   for (const Report& s : reports) {
-    StageRecord r{s.name, s.busy, s.stalled, s.starved, s.transactions_in, {}};
+    // A source stage (command fetch) reads nothing: its transactions are its writes.
+    StageRecord r{s.name, s.busy, s.stalled, s.starved, s.transactions_in ? s.transactions_in : s.transactions_out, {}};
     for (const auto& sp : s.spans) r.spans.push_back(StageSpan{sp.t0, sp.t1});
     v.push_back(std::move(r));
   }
@@ -55,7 +56,10 @@ struct TraceDiff {
   uint64_t rows_model = 0, rows_rtl = 0;
   bool differs = false;
   std::string first;     // the first differing row (as `diff` shows it), "" when none
-  std::string earliest;  // the differing transaction that starts first, "" when none
+  // The differing transaction where the sides part first in time (the earlier of the
+  // two starts when they differ, else the earlier end; ties: the first in row order),
+  // "" when none: with a change of timing in one transaction, that transaction.
+  std::string earliest;
 };
 
 // Writes DIR/model.csv and DIR/rtl.csv (DIR is created) and finds the first difference.
