@@ -56,8 +56,9 @@ void register_cosim(CLI::App& app) {
   add_scene_option(cmd, scene_path);
   cmd->add_option("--fst", co.fst_path, "Write an FST waveform of the RTL");
   cmd->add_option("--stats", stats_path,
-                  "Write cycles_rtl, cycles_model, cycle_error, fragments_compared, mismatches, ... as JSON "
-                  "('-' for stdout)");
+                  "Write cycles_rtl, cycles_model, cycle_error, fragments_compared, mismatches, per stage "
+                  "stages.<name>.{busy,stalled,starved}_{rtl,model} and busy_error, stage_worst_busy_error, ... "
+                  "as JSON ('-' for stdout)");
   cmd->add_option("--backpressure", co.backpressure,
                   "Probability that the ROP refuses fragments in a cycle (random, seeded; changes cycles_rtl)")
       ->check(CLI::Range(0.0, 1.0));
