@@ -65,34 +65,25 @@ void CoarseRaster::walk_tiled(const SetupItem& in) {
   {
     const SetupTriangle& t = *in.work;
     const PixelRect tiles = tile_range(t.bbox, tile_size_);
-    uint64_t visited = 0, cycles_done = 0;  // tiles classified; cycles of this walk spent
-    // The walker classifies a window of T = coarse.tiles_per_cycle tiles a cycle and
-    // sends at most one tile a cycle, the window's first survivor; the next window starts
-    // at the tile after it (rtl/rast_coarse_raster.sv). `window` is the walk's current
-    // cycle (from 1), its window starting at tile `window_start` (walk order).
-    const uint64_t T = p_.coarse_tiles_per_cycle;
-    uint64_t window = 1, window_start = 0;
+    uint64_t cycles_done = 0;  // cycles of this walk spent
+    // One tile a cycle at most, from windows of coarse.tiles_per_cycle (as the RTL).
+    TimingParams::TiledWalk walk = p_.tiled_walk();
     attribute_to(t.bbox.x0, t.bbox.y0);
     for (int ty = tiles.y0; ty < tiles.y1; ++ty) {
-      for (int tx = tiles.x0; tx < tiles.x1; ++tx, ++visited) {
+      for (int tx = tiles.x0; tx < tiles.x1; ++tx) {
         const PixelRect fp = tile_footprint(t.bbox, tile_size_, tx, ty);
         ++c.tiles_visited;
-        while (visited >= window_start + T) {  // the window before this tile found nothing
-          ++window;
-          window_start += T;
-        }
         const TileClass cls = classify_tile(t, fp, frac_bits_);
+        const uint64_t leave_at = walk.visit(cls != TileClass::Rejected);
         if (cls == TileClass::Rejected) {
           ++c.tiles_rejected;
           continue;
         }
         ++(cls == TileClass::Accepted ? c.tiles_accepted : c.tiles_partial);
         attribute_to(fp.x0, fp.y0);  // the walk up to this tile, rejected tiles included
-        busy(window - cycles_done);
-        cycles_done = window;
+        busy(leave_at - cycles_done);
+        cycles_done = leave_at;
         write(out_, TileItem{nullptr, TileWork{in.work, fp, cls}});
-        ++window;  // the next window starts after this tile, in the next cycle
-        window_start = visited + 1;
       }
     }
     // The rest of the walk (rejected tiles after the last written one): the last tile's.
@@ -100,10 +91,7 @@ void CoarseRaster::walk_tiled(const SetupItem& in) {
       const PixelRect last = tile_footprint(t.bbox, tile_size_, tiles.x1 - 1, tiles.y1 - 1);
       attribute_to(last.x0, last.y0);
     }
-    // Tiles after the last one sent need the window they are in; after a walk's last
-    // tile is sent it is done in that cycle. At least one cycle.
-    const uint64_t walk = std::max<uint64_t>(1, window_start < visited ? window : cycles_done);
-    busy(walk - cycles_done);
+    busy(walk.cycles() - cycles_done);
   }
 }
 
