@@ -4,12 +4,14 @@
 // Any valid config: a shipped model when one fits, else one built on demand into the
 // cache (model/rtl/rtl_cache.h; --rtl-build-only builds it and stops).
 #include <cmath>
+#include <cstdio>
 #include <iostream>
 
 #include "common.h"
 #include "report/stats_json.h"
 #include "rtl/cosim.h"
 #include "rtl/rtl_cache.h"
+#include "rtl/stage_compare.h"
 #include "sc/raster_pipeline.h"
 #include "scene/scene_io.h"
 
@@ -37,13 +39,40 @@ void register_rtl_cache(CLI::App& app) {
   });
 }
 
+// Per stage (docs/microarchitecture.md "Stage statistics"): both sides' busy, stalled and
+// starved cycles into the stats and a table on stdout; --trace-diff's CSVs.
+void report_stages(const std::vector<cosim::StageAgreement>& a, const std::string& trace_dir, nlohmann::json& j) {
+  // Merged into stages.<name> (with --simulate-stats the SystemC model's own keys are there).
+  j["stages"].update(cosim::stages_json(a), /*merge_objects=*/true);
+  std::cout << "cosim: stage           busy model / RTL   error   stalled model / RTL   starved model / RTL\n";
+  for (const cosim::StageAgreement& s : a) {
+    char line[200];
+    std::snprintf(line, sizeof line, "cosim: %-14s %10llu / %-10llu %6.2f %% %9llu / %-9llu %9llu / %llu\n",
+                  s.name.c_str(), (unsigned long long)s.model.busy, (unsigned long long)s.rtl.busy,
+                  s.busy_error * 100, (unsigned long long)s.model.stalled, (unsigned long long)s.rtl.stalled,
+                  (unsigned long long)s.model.starved, (unsigned long long)s.rtl.starved);
+    std::cout << line;
+  }
+  if (const cosim::StageAgreement* w = cosim::worst_stage(a)) {
+    j["stage_worst_busy_error"] = w->busy_error;
+    j["stage_worst"] = w->name;
+  }
+  if (trace_dir.empty()) return;
+  const cosim::TraceDiff d = cosim::write_trace_diff(trace_dir, a);
+  j["trace_diff"] = {{"rows_model", d.rows_model}, {"rows_rtl", d.rows_rtl}, {"first", d.first}, {"earliest", d.earliest}};
+  std::cout << "cosim: trace-diff " << trace_dir << "/model.csv (" << d.rows_model << " rows), " << trace_dir
+            << "/rtl.csv (" << d.rows_rtl << " rows): "
+            << (d.differs ? "first difference: " + d.first + "; earliest: " + d.earliest : std::string("identical"))
+            << "\n";
+}
+
 }  // namespace
 
 void register_cosim(CLI::App& app) {
   auto* cmd = app.add_subcommand(
       "cosim", "Co-simulate the Verilog RTL against the reference model (fragments) and the SystemC model (cycles)");
   static ConfigOptions opts;
-  static std::string scene_path, stats_path;
+  static std::string scene_path, stats_path, trace_diff_dir;
   static cosim::CosimOptions co;
   static bool no_model = false, build_only = false, simulate_stats = false;
   static double max_error = -1;
@@ -52,8 +81,9 @@ void register_cosim(CLI::App& app) {
   cmd->get_option("--scene")->required(false);  // not with --rtl-build-only (checked below)
   cmd->add_option("--fst", co.fst_path, "Write an FST waveform of the RTL");
   cmd->add_option("--stats", stats_path,
-                  "Write cycles_rtl, cycles_model, cycle_error, fragments_compared, mismatches, ... as JSON "
-                  "('-' for stdout)");
+                  "Write cycles_rtl, cycles_model, cycle_error, fragments_compared, mismatches, per stage "
+                  "stages.<name>.{busy,stalled,starved}_{rtl,model} and busy_error, stage_worst_busy_error, ... "
+                  "as JSON ('-' for stdout)");
   cmd->add_option("--backpressure", co.backpressure,
                   "Probability that the ROP refuses fragments in a cycle (random, seeded; changes cycles_rtl)")
       ->check(CLI::Range(0.0, 1.0));
@@ -68,6 +98,9 @@ void register_cosim(CLI::App& app) {
                 "With --stats: the SystemC model's whole stats (as `simulate --stats`: cycles, stages.*, ...) with "
                 "cycles_rtl, mismatches, cycle_error and the RTL model's keys beside them (a `sweep --level cosim` "
                 "row)");
+  cmd->add_option("--trace-diff", trace_diff_dir,
+                  "Write DIR/model.csv and DIR/rtl.csv: every stage's transactions (stage,transaction,start_cycle,"
+                  "end_cycle) on both sides in the same row order, and print the first whose timing differs");
   cmd->callback([] {
     const Config cfg = load_config(opts);
     if (build_only) {
@@ -80,6 +113,8 @@ void register_cosim(CLI::App& app) {
     if (scene_path.empty()) throw std::runtime_error("cosim: --scene is required (unless --rtl-build-only)");
     if (simulate_stats && no_model) throw std::runtime_error("cosim: --simulate-stats needs the SystemC model (drop --no-model)");
     const Scene scene = load_scene(scene_path, obj_placement(cfg));
+    if (!trace_diff_dir.empty() && no_model) throw std::runtime_error("--trace-diff needs the SystemC model (drop --no-model)");
+    co.record_transactions = !trace_diff_dir.empty();
     const cosim::CosimResult r = cosim::run_cosim(scene, cfg, co);
     nlohmann::json j = {{"config", cfg.source_name()},
                         {"scene", scene_path},
@@ -116,7 +151,9 @@ void register_cosim(CLI::App& app) {
     std::cout << "\n";
     if (!r.first_mismatch.empty()) std::cout << "cosim: first mismatch: " << r.first_mismatch << "\n";
     if (!no_model) {
-      const sc::SimResult m = sc::simulate_scene(scene, cfg);
+      sc::SimOptions so;
+      so.spans = !trace_diff_dir.empty();
+      const sc::SimResult m = sc::simulate_scene(scene, cfg, so);
       const double err = r.cycles_rtl ? (double(m.cycles) - double(r.cycles_rtl)) / double(r.cycles_rtl) : 0.0;
       j["cycles_model"] = m.cycles;
       j["cycle_error"] = err;
@@ -131,6 +168,7 @@ void register_cosim(CLI::App& app) {
       }
       std::cout << "cosim: cycles_rtl " << r.cycles_rtl << ", cycles_model " << m.cycles << ", error "
                 << std::round(err * 10000) / 100 << " %\n";
+      report_stages(cosim::compare_stages(cosim::stage_records(m.stages), r.stages), trace_diff_dir, j);
     }
     if (!stats_path.empty()) write_json(stats_path, j);
     if (!no_model && max_error >= 0 && std::abs(j["cycle_error"].get<double>()) > max_error)

@@ -68,7 +68,13 @@ module rast_top #(
   output      logic [InterpFragmentsPerCycle*DepthW-1:0] frag_z_o,    // lane j depth
   output      logic [InterpFragmentsPerCycle*24-1:0]     frag_rgb_o,  // lane j colour {b, g, r}
   output      logic [InterpFragmentsPerCycle*MaxSamples-1:0] frag_mask_o,  // lane j sample mask (bit s: sample s)
-  output      logic                                  idle_o           // no work anywhere, the interpolator pipeline drained
+  output      logic                                  idle_o,          // no work anywhere, the interpolator pipeline drained
+  // Stage handshake observation for the co-simulation's per-stage statistics (bit s:
+  // 0 setup, 1 coarse raster, 2 fine raster, 3 interpolation; docs/microarchitecture.md
+  // "Stage statistics"). Wires of existing handshakes only: no state, a few gates.
+  output      logic [3:0]                            dbg_has_o,       // stage s holds a transaction
+  output      logic [3:0]                            dbg_done_o,      // stage s finishes its transaction this cycle
+  output      logic [3:0]                            dbg_blocked_o    // stage s offers an output that is not taken
 );
   localparam int MaskW = 1 << (2 * TileLog2Max);      // derived: coverage mask bits
   localparam int SMaskW = MaskW * MaxSamples;         // derived: sample mask bits of a tile
@@ -129,7 +135,7 @@ module rast_top #(
   assign {t_marker, t_x, t_y, t_clip, t_origin, t_attr} = t_data;
 
   // ---- Triangle setup ----
-  logic                s_valid, s_ready, s_marker, s_busy;
+  logic                s_valid, s_ready, s_marker, s_busy, s_done;
   logic [EdgesW-1:0]   s_edges;
   logic [3*CoefW-1:0]  s_a, s_b;
   logic [3*EdgeW-1:0]  s_c;
@@ -147,7 +153,7 @@ module rast_top #(
     .in_x_i(t_x), .in_y_i(t_y), .in_clip_i(t_clip), .in_origin_i(t_origin), .in_attr_i(t_attr),
     .out_valid_o(s_valid), .out_ready_i(s_ready), .out_marker_o(s_marker), .out_a_o(s_a),
     .out_b_o(s_b), .out_c_o(s_c), .out_bias_o(s_bias), .out_area2_o(s_area2), .out_bbox_o(s_bbox),
-    .out_origin_o(s_origin), .out_attr_o(s_attr), .busy_o(s_busy));
+    .out_origin_o(s_origin), .out_attr_o(s_attr), .busy_o(s_busy), .done_o(s_done));
   assign s_edges = {s_a, s_b, s_c, s_bias};
 
   // ---- Setup FIFO (SetupFifoEntries: fifo.setup_depth plus the triangles inside setup's
@@ -260,6 +266,13 @@ module rast_top #(
     .out_valid_o(frag_valid_o), .out_ready_i(frag_ready_i), .out_marker_o(frag_marker_o),
     .out_last_o(frag_last_o), .out_lanes_o(frag_lanes_o), .out_x_o(frag_x_o), .out_y_o(frag_y_o),
     .out_z_o(frag_z_o), .out_rgb_o(frag_rgb_o), .out_smask_o(frag_mask_o), .busy_o(p_busy));
+
+  // ---- Stage observation (debug ports): setup holds a triangle from the FIFO head or
+  // its hold registers; the others hold their rast_hold's transaction. The
+  // interpolator is blocked when its pipeline is frozen (the fragment port not ready).
+  assign dbg_has_o     = {p_valid, f_valid, c_valid, t_valid || s_busy};
+  assign dbg_done_o    = {p_valid && p_ready, f_valid && f_ready, c_valid && c_ready, s_done};
+  assign dbg_blocked_o = {frag_valid_o && !frag_ready_i, m_valid && !m_ready, k_valid && !k_ready, s_valid && !s_ready};
 
   // A held transaction shows as valid at the stage's input.
   assign idle_o = t_empty && !s_busy && c_empty && !c_valid && !c_busy && f_empty && !f_valid && !f_busy &&

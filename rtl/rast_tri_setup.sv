@@ -57,7 +57,8 @@ module rast_tri_setup #(
   output      logic [4*PixelW-1:0]   out_bbox_o,    // clipped box {y1, x1, y0, x0}
   output      logic [2*PixelW-1:0]   out_origin_o,  // as in_origin_i
   output      logic [AttrW-1:0]      out_attr_o,    // as in_attr_i
-  output      logic                  busy_o         // working on a triangle
+  output      logic                  busy_o,        // working on a triangle
+  output      logic                  done_o         // finishes its current triangle or marker this cycle (stage statistics)
 );
   localparam int CntW = $clog2(SetupInterval + 1);  // derived: interval counter bits
   localparam int BoxW = PixelW + CoordW + 2;         // derived: signed box arithmetic
@@ -97,6 +98,7 @@ module rast_tri_setup #(
   // hold registers), or in its only cycle when that cycle completes.
   assign in_ready_o  = !busy_q && (!last || done);
   assign busy_o      = busy_q;
+  assign done_o      = done;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin

@@ -96,6 +96,31 @@ struct TimingParams {
   // cycle at every level: tile i of a walk (counted from 0 over all levels, in walk order)
   // leaves at cycle i / tiles_per_cycle + 1; a walk of V tiles takes max(1, ceil(V / this)).
   uint64_t coarse_walk_cycles(uint64_t tiles) const { return std::max<uint64_t>(1, ceil_div(tiles, coarse_tiles_per_cycle)); }
+  // The tiled walk (raster.traversal = tiled) as the RTL walker does it
+  // (rtl/rast_coarse_raster.sv): each cycle classifies a window of T =
+  // coarse_tiles_per_cycle tiles in walk order and sends at most one, the window's first
+  // surviving tile; the next window starts at the tile after it. Feed it every tile in
+  // walk order; visit() returns the walk cycle (from 1) in which a surviving tile leaves.
+  struct TiledWalk {
+    uint64_t tiles_per_cycle = 1;
+    uint64_t window = 1, window_start = 0;  // the current cycle and its window's first tile
+    uint64_t visited = 0, last_sent = 0;    // tiles seen; the cycle of the last tile sent
+    uint64_t visit(bool survives) {
+      while (visited >= window_start + tiles_per_cycle) {  // that window found nothing
+        ++window;
+        window_start += tiles_per_cycle;
+      }
+      ++visited;
+      if (!survives) return 0;
+      last_sent = window;
+      window_start = visited;  // the next window starts after this tile, next cycle
+      return window++;
+    }
+    // The walk's cycles: the window holding its last tile, or the cycle its last tile
+    // was sent in when that was the last one; at least one.
+    uint64_t cycles() const { return std::max<uint64_t>(1, window_start < visited ? window : last_sent); }
+  };
+  TiledWalk tiled_walk() const { return TiledWalk{coarse_tiles_per_cycle}; }
   // Fine raster: a partial footprint (a tile, or the whole bbox for raster.traversal =
   // bbox) of A pixels, i.e. A x raster.samples coverage tests, at fine.samples_per_cycle.
   uint64_t fine_partial_cycles(uint64_t pixels, int samples = 1) const {

@@ -113,12 +113,13 @@ class Walker {
     switch (tp_.method) {
       case Traversal::Tiled: {
         const PixelRect tiles = tile_range(t.bbox, tp_.tile_size);
-        uint64_t visited = 0;
+        TimingParams::TiledWalk walk = p_.tiled_walk();
         for (int ty = tiles.y0; ty < tiles.y1; ++ty) {
-          for (int tx = tiles.x0; tx < tiles.x1; ++tx, ++visited) {
+          for (int tx = tiles.x0; tx < tiles.x1; ++tx) {
             const PixelRect fp = tile_footprint(t.bbox, tp_.tile_size, tx, ty);
             ++c.tiles_visited;
             const TileClass cls = classify_tile(t, fp, F);
+            walk.visit(cls != TileClass::Rejected);
             if (cls == TileClass::Rejected) {
               ++c.tiles_rejected;
               continue;
@@ -127,7 +128,7 @@ class Walker {
             tile(t, fp, cls, false);
           }
         }
-        r_.stages[Coarse].busy += p_.coarse_walk_cycles(visited);
+        r_.stages[Coarse].busy += walk.cycles();
         break;
       }
       case Traversal::Bbox:

@@ -44,10 +44,31 @@ struct CosimOptions {
   // Lines of progress while an on-demand model builds (rtl_cache.h); empty: printed on
   // stderr (one updating line on a terminal). Not sent to the runner.
   std::function<void(const std::string&)> progress;
+  bool record_transactions = false;  // fill StageRecord::spans (--trace-diff)
+  // Test-only perturbation: the testbench ROP spends this many extra cycles on its
+  // transaction number `perturb_rop_transaction` (0 = off), so a test can check that
+  // --trace-diff names it as the first difference.
+  uint64_t perturb_rop_cycles = 0;
+  uint64_t perturb_rop_transaction = 0;
 };
 // The options as the on-demand runner gets them (progress stays behind).
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(CosimOptions, tile_size, backpressure_seed, backpressure, fst_path,
-                                                max_cycles)
+                                                max_cycles, record_transactions, perturb_rop_cycles,
+                                                perturb_rop_transaction)
+
+// One stage's cycles on one side of the comparison (docs/microarchitecture.md "Stage
+// statistics"): every cycle of the run is exactly one of busy, stalled, starved.
+struct StageSpan {
+  uint64_t start = 0, end = 0;  // cycles [start, end): from its first cycle of work to its last
+};
+struct StageRecord {
+  std::string name;  // the SystemC stage's name (command_fetch, ..., rop)
+  uint64_t busy = 0, stalled = 0, starved = 0;  // cycles
+  uint64_t transactions = 0;                     // input transactions taken
+  std::vector<StageSpan> spans;                  // per transaction, in order (record_transactions)
+};
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(StageSpan, start, end)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(StageRecord, name, busy, stalled, starved, transactions, spans)
 
 struct CosimResult {
   std::string rtl_config;          // which verilated model ran: a shipped config's name, or "cache:<key>"
@@ -67,12 +88,17 @@ struct CosimResult {
   uint64_t rop_accesses = 0;       // ROP accesses of the fragments (TimingParams::rop_accesses)
   uint64_t resolve_cycles = 0;     // the frame-end resolve pass (end-of-frame marker), included in cycles_rtl
   double wall_seconds = 0;         // the RTL simulation (testbench included)
+  // Per stage, in pipeline order: command_fetch, prim_assembly (testbench accounting),
+  // tri_setup, coarse_raster, fine_raster, interpolate (the RTL's handshakes, rast_top's
+  // dbg_*_o ports), rop (testbench). The 2D stages are not counted yet.
+  std::vector<StageRecord> stages;
 };
 // Every field, for the on-demand runner's answer (a new field: add it here too).
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(CosimResult, rtl_config, rtl_model_dir, rtl_cache_hit,
                                                 rtl_build_seconds, cycles_rtl, fragments_expected, fragments_compared,
                                                 mismatches, first_mismatch, triangles, markers, commands_2d, pixels_2d,
-                                                crc_rtl, crc_ref, samples, rop_accesses, resolve_cycles, wall_seconds)
+                                                crc_rtl, crc_ref, samples, rop_accesses, resolve_cycles, wall_seconds,
+                                                stages)
 
 // The verilated configs linked into this binary, and the parameters each was built with
 // (compiled in at configure time: no config file is read).

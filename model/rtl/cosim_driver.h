@@ -10,6 +10,11 @@
 // The testbench stages below follow model/sc/command_fetch.cpp, prim_assembly.cpp and
 // rop.cpp exactly, with the cost equations of TimingParams; the cycle count is the
 // ROP's last busy cycle + 1, as the model's.
+//
+// Stage statistics (docs/microarchitecture.md "Stage statistics"): every cycle each
+// stage is busy, stalled or starved, as the SystemC Stage accounts it. The testbench
+// stages count their own cycles; setup, coarse raster, fine raster and interpolation are
+// classified from rast_top's dbg_has_o / dbg_done_o / dbg_blocked_o handshake ports.
 #pragma once
 
 #include <algorithm>
@@ -134,6 +139,12 @@ struct TbStage {
   bool offering() const { return active && left == 1; }
 };
 
+// The stages of CosimResult::stages, in pipeline order, with the SystemC model's names.
+enum TbStageId { kFetch, kAssembly, kSetup, kCoarse, kFine, kInterp, kRop, kStageCount };
+inline constexpr const char* kStageNames[kStageCount] = {"command_fetch", "prim_assembly", "tri_setup",
+                                                         "coarse_raster", "fine_raster",   "interpolate", "rop"};
+enum class Cyc : uint8_t { Starved, Busy, Stalled };  // a stage's state in one cycle
+
 // One co-simulation run: the verilated rast_top between the testbench's front end
 // (command fetch, command FIFO, primitive assembly) and its back end (fragment
 // staging, fragment FIFO, the ROP as a memory model). Each cycle: the back end and
@@ -153,9 +164,13 @@ class RtlBench {
 
   void run() {
     const auto t0 = std::chrono::steady_clock::now();
+    r_.stages.assign(kStageCount, StageRecord{});
+    for (int k = 0; k < kStageCount; ++k) r_.stages[size_t(k)].name = kStageNames[k];
     open();
     reset();
+    uint64_t counted = 0;  // cycles classified (0 .. the last one run)
     for (uint64_t t = 0;; ++t) {
+      counted = t + 1;
       if (t >= s_.opts.max_cycles) {
         mismatch("simulation did not finish within " + std::to_string(s_.opts.max_cycles) + " cycles");
         break;
@@ -170,10 +185,15 @@ class RtlBench {
       if (rop_left_ > 1 && done_but_rop()) {
         last_busy_ = std::max(last_busy_, t + rop_left_);
         r_.cycles_rtl = last_busy_ + 1;
+        // The skipped cycles t + 1 .. t + rop_left_: the ROP busy, every other stage starved.
+        for (int k = 0; k < kStageCount; ++k) (k == kRop ? r_.stages[size_t(k)].busy : r_.stages[size_t(k)].starved) += rop_left_;
+        counted = t + 1 + rop_left_;
+        tx_end(kRop, counted);
         rop_left_ = 0;
         break;
       }
     }
+    close_stage_counts(counted);
     end_of_run_check();
     if (fst_) fst_->close();
     top_->final();
@@ -259,10 +279,11 @@ class RtlBench {
     top_->frag_ready_i = frag_ready;
     half(0);
     const bool tri_taken = tri_valid && top_->tri_ready_o;
+    observe_rtl_stages(t);
     if (!top_->idle_o || top_->frag_valid_o || fetch_.active || assembly_.active) last_busy_ = std::max(last_busy_, t);
     if (top_->frag_valid_o && frag_ready) take_beat(t);
     engine_memory_and_handshake(t, op_valid);
-    assembly_step(tri_taken);
+    assembly_step(t, tri_taken);
     fetch_step(t);
     half(1);
     return done();
@@ -271,8 +292,9 @@ class RtlBench {
   // ---- Back end: the ROP as a memory model (model/sc/rop.cpp) ----
   // Starts the next visible batch when idle and counts its busy cycles.
   void rop_step(uint64_t t) {
-    if (rop_wait_2d_) {  // the port is lent to the 2D engine
+    if (rop_wait_2d_) {  // the port is lent to the 2D engine (the SystemC ROP waits in read: starved)
       last_busy_ = t;
+      count(kRop, Cyc::Starved);
       return;
     }
     if (rop_left_ == 0 && !frag_fifo_.empty() && frag_fifo_.front().pushed < t) {
@@ -282,16 +304,24 @@ class RtlBench {
         rop_wait_2d_ = true;
         grant_work_ = s_.items[b.marker_item].work2d;
         last_busy_ = t;
+        count(kRop, Cyc::Starved);
         return;
       }
       // (The end-of-frame marker has no command: its cost is the resolve pass.)
       if (b.marker && s_.items[b.marker_item].cmd) apply_state_command(*s_.items[b.marker_item].cmd, st_, fb_);
       for (const Fragment& f : b.frags) rop_write(fb_, f, st_.depth_func, st_.depth_write);
       rop_left_ = b.marker ? s_.items[b.marker_item].rop_cost : s_.timing.rop_fragment_cycles(b.accesses);
+      if (s_.opts.perturb_rop_cycles && r_.stages[kRop].transactions == s_.opts.perturb_rop_transaction)
+        rop_left_ += s_.opts.perturb_rop_cycles;  // test-only (CosimOptions)
+      tx_begin(kRop, t);
     }
     if (rop_left_ > 0) {
       --rop_left_;
       last_busy_ = t;
+      count(kRop, Cyc::Busy);
+      if (rop_left_ == 0) tx_end(kRop, t + 1);
+    } else {
+      count(kRop, Cyc::Starved);
     }
   }
   // A completed batch pushes into the fragment FIFO, or waits for room there while
@@ -449,54 +479,132 @@ class RtlBench {
     if (!assembly_.active && !cmd_fifo_.empty() && cmd_fifo_.front().pushed < t) {
       assembly_ = TbStage{true, s_.items[cmd_fifo_.front().item].assembly_cost, cmd_fifo_.front().item};
       cmd_fifo_.pop_front();
+      assembly_offered_ = false;
+      tx_begin(kAssembly, t);
     }
   }
-  // Assembly counts its busy cycle and hands over on a taken offer.
-  void assembly_step(bool tri_taken) {
-    if (!assembly_.active) return;
+  // Assembly counts its busy cycle and hands over on a taken offer. Its last busy cycle
+  // offers the triangle; later cycles of the offer are stalled, including the one in
+  // which a waited-for offer is taken (the SystemC write returns as that cycle starts).
+  void assembly_step(uint64_t t, bool tri_taken) {
+    if (!assembly_.active) {
+      count(kAssembly, Cyc::Starved);
+      return;
+    }
     if (assembly_.left > 1) {
       --assembly_.left;
-    } else if (tri_taken) {
+      count(kAssembly, Cyc::Busy);
+      return;
+    }
+    const bool retry = assembly_offered_;
+    assembly_offered_ = true;
+    count(kAssembly, retry ? Cyc::Stalled : Cyc::Busy);
+    if (tri_taken) {
       if (s_.items[assembly_.item].kind == TbItem::Marker) markers_in_flight_.push_back(assembly_.item);
       assembly_.active = false;
+      tx_end(kAssembly, retry ? t : t + 1);
     }
   }
   // Fetch starts the scene's next item and pushes it into the command FIFO when done
   // (a 2D command into the 2D front end's FIFO first). Like the front end: after a push
   // that waited for FIFO room, the next item starts in the same cycle.
+  // The cycle is busy when fetch works in it (a countdown or the last cycle's first push
+  // attempt), stalled when it only retries a blocked push, starved otherwise (a push
+  // after a stall ends that transaction as the cycle starts, as the SystemC write returns).
   void fetch_step(uint64_t t) {
+    Cyc state = Cyc::Starved;
     for (;;) {
-      if (!fetch_.active && next_item_ < s_.items.size())
+      if (!fetch_.active && next_item_ < s_.items.size()) {
         fetch_ = TbStage{true, s_.items[next_item_].fetch_cost, next_item_++};
-      if (!fetch_.active) return;
+        tx_begin(kFetch, t);
+      }
+      if (!fetch_.active) break;
       last_busy_ = std::max(last_busy_, t);
       if (fetch_.left > 1) {
         --fetch_.left;
-        return;
+        state = Cyc::Busy;
+        break;
       }
+      if (!fetch_blocked_) state = Cyc::Busy;
       if (s_.items[fetch_.item].kind == TbItem::Null) {
         fetch_.active = false;  // an empty primitive command: header only, nothing out
-        return;
+        tx_end(kFetch, t + 1);
+        break;
       }
       const int w2 = s_.items[fetch_.item].work2d;
       if (w2 >= 0 && !fetch_2d_pushed_) {
         if (d2_fifo_.size() >= d2_depth_) {
+          if (fetch_blocked_) state = Cyc::Stalled;
           fetch_blocked_ = true;
-          return;
+          break;
         }
         d2_fifo_.push_back(Entry{size_t(w2), t});
         fetch_2d_pushed_ = true;
       }
       if (cmd_fifo_.size() >= cmd_depth_) {
+        if (fetch_blocked_) state = Cyc::Stalled;
         fetch_blocked_ = true;
-        return;
+        break;
       }
       cmd_fifo_.push_back(Entry{fetch_.item, t});
       fetch_.active = false;
       fetch_2d_pushed_ = false;
       const bool was_blocked = fetch_blocked_;
       fetch_blocked_ = false;
-      if (!was_blocked) return;
+      tx_end(kFetch, was_blocked ? t : t + 1);
+      if (!was_blocked) break;
+    }
+    count(kFetch, state);
+  }
+
+  // ---- Stage statistics ----
+  void count(int k, Cyc c) {
+    StageRecord& r = r_.stages[size_t(k)];
+    ++(c == Cyc::Busy ? r.busy : c == Cyc::Stalled ? r.stalled : r.starved);
+  }
+  void tx_begin(int k, uint64_t t) {
+    meter_[size_t(k)] = Meter{true, t};
+    ++r_.stages[size_t(k)].transactions;
+  }
+  void tx_end(int k, uint64_t t) {
+    Meter& m = meter_[size_t(k)];
+    if (!m.open) return;
+    m.open = false;
+    if (s_.opts.record_transactions) r_.stages[size_t(k)].spans.push_back(StageSpan{m.start, t});
+  }
+  // The RTL stages from rast_top's debug ports (bit 0 setup .. 3 interpolation). No
+  // transaction: starved. Setup, coarse and fine raster offer an output in the last
+  // cycle of its work (busy, as the SystemC busy(n) before its write), the later cycles
+  // of a refused offer are stalled, and so is the cycle in which a waited-for output is
+  // finally taken (its work was done before; the SystemC write returns as that cycle
+  // starts). The interpolator's refused output freezes its whole pipeline, so each such
+  // cycle is stalled, and the cycle it moves again picks pixels (busy).
+  void observe_rtl_stages(uint64_t t) {
+    for (int s = 0; s < 4; ++s) {
+      const int k = kSetup + s;
+      const bool has = (top_->dbg_has_o >> s) & 1, done = (top_->dbg_done_o >> s) & 1;
+      const bool blocked = has && ((top_->dbg_blocked_o >> s) & 1);
+      const bool waited = rtl_blocked_[size_t(s)];  // refused last cycle
+      rtl_blocked_[size_t(s)] = blocked;
+      const bool stalled = k == kInterp ? blocked : (blocked ? waited : (has && waited));
+      const bool handshake_only = has && !blocked && waited && k != kInterp;
+      if (has && !meter_[size_t(k)].open) tx_begin(k, t);
+      count(k, !has ? Cyc::Starved : stalled ? Cyc::Stalled : Cyc::Busy);
+      if (done) tx_end(k, handshake_only ? t : t + 1);
+    }
+  }
+  // The run is cycles_rtl cycles (to the ROP's last busy cycle); the loop may have
+  // classified a few more, in which every stage is starved: drop them.
+  void close_stage_counts(uint64_t counted) {
+    for (int k = 0; k < kStageCount; ++k) {
+      StageRecord& r = r_.stages[size_t(k)];
+      tx_end(k, r_.cycles_rtl);
+      const uint64_t extra = counted > r_.cycles_rtl ? counted - r_.cycles_rtl : 0;
+      if (r.starved < extra) {
+        mismatch(std::string("stage statistics: ") + kStageNames[k] + " was not starved after the last busy cycle");
+        continue;
+      }
+      r.starved -= extra;
     }
   }
 
@@ -649,6 +757,14 @@ class RtlBench {
   size_t next_op_ = 0;                    // next operation of `held_` to offer
   bool rop_wait_2d_ = false;              // the ROP holds for the engine
   int grant_work_ = -1;                   // the 2D command the ROP granted
+  // Stage statistics.
+  struct Meter {
+    bool open = false;  // a transaction is in progress
+    uint64_t start = 0;  // its first cycle
+  };
+  std::array<Meter, kStageCount> meter_{};
+  std::array<bool, 4> rtl_blocked_{};     // RTL stage s was stalled on its output last cycle
+  bool assembly_offered_ = false;         // assembly offered its triangle in an earlier cycle
 };
 
 template <class V>

@@ -65,19 +65,21 @@ void CoarseRaster::walk_tiled(const SetupItem& in) {
   {
     const SetupTriangle& t = *in.work;
     const PixelRect tiles = tile_range(t.bbox, tile_size_);
-    uint64_t visited = 0, cycles_done = 0;  // tiles classified; cycles of this walk spent
+    uint64_t cycles_done = 0;  // cycles of this walk spent
+    // One tile a cycle at most, from windows of coarse.tiles_per_cycle (as the RTL).
+    TimingParams::TiledWalk walk = p_.tiled_walk();
     attribute_to(t.bbox.x0, t.bbox.y0);
     for (int ty = tiles.y0; ty < tiles.y1; ++ty) {
-      for (int tx = tiles.x0; tx < tiles.x1; ++tx, ++visited) {
+      for (int tx = tiles.x0; tx < tiles.x1; ++tx) {
         const PixelRect fp = tile_footprint(t.bbox, tile_size_, tx, ty);
         ++c.tiles_visited;
         const TileClass cls = classify_tile(t, fp, frac_bits_);
+        const uint64_t leave_at = walk.visit(cls != TileClass::Rejected);
         if (cls == TileClass::Rejected) {
           ++c.tiles_rejected;
           continue;
         }
         ++(cls == TileClass::Accepted ? c.tiles_accepted : c.tiles_partial);
-        const uint64_t leave_at = visited / p_.coarse_tiles_per_cycle + 1;
         attribute_to(fp.x0, fp.y0);  // the walk up to this tile, rejected tiles included
         busy(leave_at - cycles_done);
         cycles_done = leave_at;
@@ -89,7 +91,7 @@ void CoarseRaster::walk_tiled(const SetupItem& in) {
       const PixelRect last = tile_footprint(t.bbox, tile_size_, tiles.x1 - 1, tiles.y1 - 1);
       attribute_to(last.x0, last.y0);
     }
-    busy(p_.coarse_walk_cycles(visited) - cycles_done);
+    busy(walk.cycles() - cycles_done);
   }
 }
 

@@ -2,12 +2,13 @@
 // Coarse raster: the tile walk of one set-up triangle with early-out and early-in
 // (ref/coarse_raster.h: tile_range, tile_footprint, classify_tile).
 //
-// - Visits every tile overlapping the triangle's clipped bounding box, row by row, at
-//   coarse.tiles_per_cycle tiles a cycle: the walk of V tiles takes
-//   max(1, ceil(V / tiles_per_cycle)) cycles.
+// - Visits every tile overlapping the triangle's clipped bounding box, row by row: each
+//   cycle classifies a window of coarse.tiles_per_cycle tiles and sends at most one,
+//   the window's first surviving tile, the next window starting after it
+//   (TimingParams::TiledWalk, as rtl/rast_coarse_raster.sv): at least
+//   max(1, ceil(V / tiles_per_cycle)) cycles for V tiles, and one a surviving tile.
 // - Rejected tiles go no further; an accepted or partial tile is written to the tile
-//   FIFO at the end of the cycle that classified it (tile i, counted from 0 in walk
-//   order, leaves at cycle floor(i / tiles_per_cycle) + 1 of the walk).
+//   FIFO at the end of the cycle that sent it.
 // - Counts tiles_visited / rejected / accepted / partial.
 // The other raster.traversal methods (docs/traversal.md), same functions as the
 // reference (ref/traverse.h):

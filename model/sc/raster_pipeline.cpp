@@ -153,6 +153,9 @@ SimResult simulate_commands(CommandSource source, const Config& cfg, const SimOp
     for (Stage* s : top->stages()) s->set_timeline(&timeline.add_stage(s->basename()));
     top->for_each_fifo([&](auto& f) { f.set_timeline(&timeline.add_fifo(f.basename(), f.depth())); });
   }
+  std::vector<std::vector<Span>> spans(top->stages().size());
+  if (opts.spans)
+    for (size_t k = 0; k < spans.size(); ++k) top->stages()[k]->set_spans(&spans[k]);
   std::vector<TileHeat> heat;
   if (opts.heatmap) {
     const std::vector<Stage*> attributed = {&top->coarse_raster, &top->fine_raster, &top->interpolate, &top->rop};
@@ -180,7 +183,8 @@ SimResult simulate_commands(CommandSource source, const Config& cfg, const SimOp
   for (Stage* s : top->stages()) {
     s->finish(end);
     const StageStats& st = s->stats();
-    r.stages.push_back({s->basename(), st.busy, st.stalled, st.starved, st.transactions_in, st.transactions_out});
+    r.stages.push_back({s->basename(), st.busy, st.stalled, st.starved, st.transactions_in, st.transactions_out,
+                        std::move(spans[size_t(index)])});
     // A stage with work starts no earlier than its fill (TimingParams::stage_fill_cycles).
     if (st.busy > 0) r.cycles_lower_bound = std::max(r.cycles_lower_bound, p.stage_fill_cycles(index) + st.busy);
     ++index;

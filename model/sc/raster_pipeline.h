@@ -40,12 +40,14 @@ struct SimOptions {
   std::string timeline_path;
   uint64_t timeline_max_events = 250'000;
   bool heatmap = false;  // fill SimResult::heat (busy cycles per screen tile)
+  bool spans = false;    // fill StageReport::spans (rastsim cosim --trace-diff)
 };
 
 struct StageReport {
   std::string name;
   uint64_t busy = 0, stalled = 0, starved = 0;  // cycles; they add up to `cycles`
   uint64_t transactions_in = 0, transactions_out = 0;
+  std::vector<Span> spans;  // per transaction, when SimOptions::spans (sc/timeline.h)
 };
 
 struct FifoReport {

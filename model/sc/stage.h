@@ -55,6 +55,7 @@ class Stage : public sc_core::sc_module {
   sc_core::sc_signal<int>& state_signal() { return state_; }
   // At the end of the run: the idle time since the stage last blocked is starved time.
   void finish(const sc_core::sc_time& end) {
+    end_span(idle_since_);
     if (end > idle_since_) {
       stats_.starved += ctx_.to_cycles(end - idle_since_);
       record(StageState::Starved, idle_since_, end);
@@ -64,6 +65,7 @@ class Stage : public sc_core::sc_module {
   // Recorders (before sc_start): the stage's timeline track and tile heat, or null.
   void set_timeline(StateTrack* t) { track_ = t; }
   void set_heat(TileHeat* h) { heat_ = h; }
+  void set_spans(std::vector<Span>* s) { spans_ = s; }
 
  protected:
   virtual void body() = 0;
@@ -71,17 +73,20 @@ class Stage : public sc_core::sc_module {
   template <class P>
   P read(Link<P>& in) {
     set_state(StageState::Starved);
+    end_span(sc_core::sc_time_stamp());
     Tx<P> t = in.read();
     if (t.ready > sc_core::sc_time_stamp()) wait(t.ready - sc_core::sc_time_stamp());
     stats_.starved += ctx_.to_cycles(sc_core::sc_time_stamp() - idle_since_);
     record(StageState::Starved, idle_since_, sc_core::sc_time_stamp());
     idle_since_ = sc_core::sc_time_stamp();  // a second read in a row counts from here
     ++stats_.transactions_in;
+    begin_span();
     return std::move(t.payload);
   }
 
   void busy(uint64_t cycles) {
     if (cycles == 0) return;
+    if (stats_.transactions_in == 0) begin_span();  // a source stage (command fetch)
     set_state(StageState::Busy);
     const sc_core::sc_time t0 = sc_core::sc_time_stamp();
     wait(double(cycles) * ctx_.cycle);
@@ -103,6 +108,7 @@ class Stage : public sc_core::sc_module {
     record(StageState::Stalled, t0, sc_core::sc_time_stamp());
     ++stats_.transactions_out;
     idle_since_ = sc_core::sc_time_stamp();
+    if (stats_.transactions_in == 0) end_span(idle_since_);  // a source stage's transaction ends with its write
   }
 
   // A state command takes one cycle of a stage's issue slot and then, like any other
@@ -131,6 +137,17 @@ class Stage : public sc_core::sc_module {
   void record(StageState s, const sc_core::sc_time& t0, const sc_core::sc_time& t1) {
     if (track_) track_->add(uint8_t(s), ctx_.to_cycles(t0), ctx_.to_cycles(t1));
   }
+  // --trace-diff's transaction spans (null: off; one branch when off).
+  void begin_span() {
+    if (!spans_ || span_open_) return;
+    span_open_ = true;
+    spans_->push_back(Span{ctx_.to_cycles(sc_core::sc_time_stamp()), 0});
+  }
+  void end_span(const sc_core::sc_time& t) {
+    if (!spans_ || !span_open_) return;
+    span_open_ = false;
+    spans_->back().t1 = ctx_.to_cycles(t);
+  }
   void thread() {
     try {
       body();
@@ -149,6 +166,8 @@ class Stage : public sc_core::sc_module {
   StateTrack* track_ = nullptr;  // --timeline: this stage's intervals
   TileHeat* heat_ = nullptr;     // --heatmap: this stage's busy cycles per tile
   int heat_tile_ = -1;           // tile the next busy() is charged to (-1: none)
+  std::vector<Span>* spans_ = nullptr;  // --trace-diff: this stage's transactions
+  bool span_open_ = false;              // the last span has no end yet
 };
 
 }  // namespace rastsim::sc

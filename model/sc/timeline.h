@@ -48,6 +48,13 @@ class StateTrack {
   std::vector<Interval> iv_;  // in time order, non-overlapping
 };
 
+// One transaction of a stage (rastsim cosim --trace-diff): cycles [t0, t1) from the
+// cycle the stage starts on it (its read returns; a source stage: its first busy cycle)
+// to the end of its work for it (the stage's next read; a source stage: its write).
+struct Span {
+  uint64_t t0 = 0, t1 = 0;
+};
+
 struct CounterSample {
   uint64_t t = 0;  // cycles
   int value = 0;   // transactions in the FIFO from t on

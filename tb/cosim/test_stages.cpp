@@ -1,0 +1,130 @@
+// SPDX-License-Identifier: Apache-2.0
+// Stage-by-stage agreement of the SystemC model and the RTL (label "cosim";
+// docs/microarchitecture.md "Stage statistics"). Its own binary (stages_main.cpp):
+// SystemC owns main(), and each SystemC run is in a forked child.
+//
+// - On a random 2,000-triangle scene (seeded, printed) per shipped config, without
+//   backpressure (the model has none on the fragment port): every stage's busy cycles
+//   agree within 2 % (the bound), busy + stalled + starved = cycles on each side,
+//   both sides take the same number of transactions, every fragment matches.
+// - --trace-diff: two RTL runs, one with the testbench ROP slowed by 7 cycles on one
+//   transaction (CosimOptions::perturb_rop_*): the CSVs have equal row counts, and the
+//   first difference is that transaction, its start equal and its end 7 cycles later.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "cosim_test_util.h"
+#include "fidelity/run_child.h"
+#include "rtl/stage_compare.h"
+#include "sc/raster_pipeline.h"
+
+namespace rastsim::cosim {
+namespace {
+
+nlohmann::json records_json(const std::vector<StageRecord>& v) {
+  nlohmann::json j = nlohmann::json::array();
+  for (const StageRecord& r : v)
+    j.push_back({{"name", r.name}, {"busy", r.busy}, {"stalled", r.stalled}, {"starved", r.starved},
+                 {"transactions", r.transactions}});
+  return j;
+}
+
+// The SystemC model's stages on `scene`, in a child (one elaboration per process).
+std::vector<StageRecord> model_stages(const Scene& scene, const Config& cfg, uint64_t& cycles) {
+  const nlohmann::json j = fidelity::run_in_child([&] {
+    const sc::SimResult m = sc::simulate_scene(scene, cfg);
+    return nlohmann::json{{"cycles", m.cycles}, {"stages", records_json(stage_records(m.stages))}};
+  });
+  cycles = j.at("cycles").get<uint64_t>();
+  std::vector<StageRecord> v;
+  for (const auto& s : j.at("stages"))
+    v.push_back(StageRecord{s.at("name").get<std::string>(), s.at("busy").get<uint64_t>(),
+                            s.at("stalled").get<uint64_t>(), s.at("starved").get<uint64_t>(),
+                            s.at("transactions").get<uint64_t>(), {}});
+  return v;
+}
+
+class StageAgreementTest : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(StageAgreementTest, RandomSceneBusyWithinTwoPercent) {
+  Config cfg = load_shipped_config(GetParam());
+  cfg.apply_override("raster.out_of_range=cull");  // some vertices leave the guard band
+  const uint64_t seed = 0x57a9e000u;
+  std::cout << "seed " << seed << "\n";
+  const Scene scene = random_scene(cfg, seed, 2000);
+  const CosimResult r = run_cosim(scene, cfg);
+  expect_clean(r);
+  uint64_t cycles_model = 0;
+  const std::vector<StageRecord> model = model_stages(scene, cfg, cycles_model);
+  const std::vector<StageAgreement> a = compare_stages(model, r.stages);
+  ASSERT_EQ(a.size(), 7u) << "every stage the RTL co-simulation counts has a SystemC twin";
+  for (const StageAgreement& s : a) {
+    SCOPED_TRACE(s.name);
+    std::cout << s.name << ": busy model " << s.model.busy << ", RTL " << s.rtl.busy << "\n";
+    EXPECT_GT(s.rtl.busy, 0u);
+    EXPECT_LE(std::abs(s.busy_error), 0.02);
+    EXPECT_EQ(s.model.transactions, s.rtl.transactions);
+    EXPECT_EQ(s.rtl.busy + s.rtl.stalled + s.rtl.starved, r.cycles_rtl);
+    EXPECT_EQ(s.model.busy + s.model.stalled + s.model.starved, cycles_model);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(ShippedConfigs, StageAgreementTest,
+                         ::testing::Values("default", "d3d11", "embedded", "desktop"),
+                         [](const auto& info) { return std::string(info.param); });
+
+const StageRecord& rop(const CosimResult& r) {
+  for (const StageRecord& s : r.stages)
+    if (s.name == "rop") return s;
+  throw std::runtime_error("no rop stage");
+}
+
+uint64_t csv_rows(const std::filesystem::path& p) {
+  std::ifstream f(p);
+  std::string line;
+  uint64_t n = 0;
+  while (std::getline(f, line)) ++n;
+  return n - 1;  // the header
+}
+
+TEST(TraceDiff, PerturbedRopTransactionIsTheFirstDifference) {
+  Config cfg = load_shipped_config("default");
+  cfg.apply_override("raster.out_of_range=cull");
+  const Scene scene = random_scene(cfg, 0x7d1ffu, 200);
+  CosimOptions o;
+  o.record_transactions = true;
+  const CosimResult base = run_cosim(scene, cfg, o);
+  expect_clean(base);
+  // Identical runs: identical files.
+  const std::string dir = ::testing::TempDir() + "rastsim_trace_diff";
+  TraceDiff same = write_trace_diff(dir, compare_stages(base.stages, base.stages));
+  EXPECT_FALSE(same.differs) << same.first;
+  // Transaction 5 of the ROP 7 cycles longer.
+  o.perturb_rop_transaction = 5;
+  o.perturb_rop_cycles = 7;
+  const CosimResult slow = run_cosim(scene, cfg, o);
+  expect_clean(slow);
+  const TraceDiff d = write_trace_diff(dir, compare_stages(base.stages, slow.stages));
+  EXPECT_EQ(csv_rows(dir + "/model.csv"), d.rows_model);
+  EXPECT_EQ(csv_rows(dir + "/rtl.csv"), d.rows_rtl);
+  EXPECT_EQ(d.rows_model, d.rows_rtl);
+  EXPECT_GT(d.rows_model, 500u);
+  ASSERT_TRUE(d.differs);
+  const StageSpan& b = rop(base).spans.at(5);
+  const StageSpan& s = rop(slow).spans.at(5);
+  EXPECT_EQ(s.start, b.start);
+  EXPECT_EQ(s.end, b.end + 7);
+  EXPECT_EQ(d.earliest, "rop transaction 5: model [" + std::to_string(b.start) + ", " + std::to_string(b.end) +
+                            "), RTL [" + std::to_string(s.start) + ", " + std::to_string(s.end) + ")");
+  // The transactions before it are untouched.
+  for (size_t k = 0; k < 5; ++k) {
+    EXPECT_EQ(rop(base).spans[k].start, rop(slow).spans[k].start);
+    EXPECT_EQ(rop(base).spans[k].end, rop(slow).spans[k].end);
+  }
+}
+
+}  // namespace
+}  // namespace rastsim::cosim
