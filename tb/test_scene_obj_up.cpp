@@ -5,6 +5,7 @@
 // counter-clockwise on screen); the key's default and its errors from a config file.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -34,6 +35,8 @@ Scene parse(const std::string& text, const ObjPlacement& p) { return parse_obj(t
 
 const CmdPrimitives& face(const Scene& s, size_t i) { return std::get<CmdPrimitives>(s.commands.at(2 + i).body); }
 
+using P3 = std::array<double, 3>;
+
 // A box [0,4] x [0,2] x [0,1] (every side a different length, so any wrong turn moves
 // some corner) with one triangle per side, counter-clockwise seen from outside, written
 // Y-up. `corner(x, y, z)` maps the Y-up corner to the coordinates of the file written.
@@ -50,8 +53,6 @@ std::string box(Map corner) {
   // right triangle whose first and last corners are opposite corners of its side.
   return s + "f 5 6 8\nf 2 1 3\nf 6 2 4\nf 3 1 5\nf 4 3 7\nf 5 1 2\n";
 }
-
-using P3 = std::array<double, 3>;
 
 TEST(SceneObjUp, OtherUpAxesLandWhereYUpLands) {
   // The same box written with each up axis: the file's coordinates of a Y-up corner
