@@ -23,6 +23,12 @@ void add_scene_params(std::vector<ParamDef>& s) {
                "OBJ placement: tilt of the mesh toward the viewer, after the yaw (90: seen from the top)"});
   s.push_back({"scene.obj_fill", T::Float, 0.9, "", 0.01, 4.0, {},
                "OBJ placement: fraction of the smaller viewport side the mesh's bounding sphere spans"});
+  // The workload's form, not its geometry: command fetch pays a header per command
+  // (fetch.cycles_per_command), so one command a face costs a real mesh a cycle a
+  // triangle that a driver batching its draw calls would not (docs/exploration.md).
+  s.push_back({"scene.obj_faces_per_command", T::Int, int64_t{1}, "faces", 1, 1 << 30, {},
+               "OBJ reading: faces sent in one List command (1: each face its own command; "
+               "larger: batched as in one draw call), same triangles in the same order"});
 }
 
 }  // namespace rastsim

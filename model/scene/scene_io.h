@@ -27,6 +27,9 @@ struct ObjPlacement {
   ObjUp up = ObjUp::PosY;             // the mesh's up axis (scene.obj_up)
   double yaw_deg = 0, pitch_deg = 0;  // then rotation about up (y), then x (scene.obj_*_deg)
   double fill = 0;                    // fraction of the viewport the sphere spans (scene.obj_fill)
+  // Faces sent in one List command (scene.obj_faces_per_command): 1, each face its own
+  // command as a naive driver would send it; more, as a draw call would batch them.
+  int faces_per_command = 0;
   uint8_t clear_r = 0, clear_g = 0, clear_b = 0;
 };
 

@@ -11,7 +11,8 @@
 // - Shade: colour (vertex colour, else material Kd, else white) times a headlight
 //   Lambert term 0.25 + 0.75 * max(0, n_z) of the face's view-space normal.
 // - Emit: CmdClear, CmdClearDepth 1, then one List command per face (polygons fanned
-//   from their first vertex), each named by the face's line.
+//   from their first vertex), each named by the face's line; or, with
+//   scene.obj_faces_per_command N > 1, one List command per N faces, named by the first.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -299,6 +300,7 @@ Scene place(ObjParser& obj, const std::string& name, const ObjPlacement& pl) {
   const SourceLoc first{name, obj.faces.front().line};
   scene.commands.push_back({CmdClear{pl.clear_r, pl.clear_g, pl.clear_b}, first});
   scene.commands.push_back({CmdClearDepth{1.0}, first});
+  int faces_in_command = 0;  // faces in the List command being filled (0: start a new one)
   for (const ObjFace& f : obj.faces) {
     // Newell's normal: the polygon's area vector, exact for triangles and well defined
     // for non-planar polygons; its z is toward the viewer.
@@ -327,13 +329,16 @@ Scene place(ObjParser& obj, const std::string& name, const ObjPlacement& pl) {
       sv.b = to_rgb8(rgb[2], shade);
       corner.push_back(sv);
     }
-    CmdPrimitives p{Topology::List, {}};
+    // A new List command every faces_per_command faces, named by its first face's line;
+    // the triangles and their order are the same whatever the grouping.
+    if (faces_in_command == 0) scene.commands.push_back({CmdPrimitives{Topology::List, {}}, SourceLoc{name, f.line}});
+    auto& p = std::get<CmdPrimitives>(scene.commands.back().body);
     for (size_t k = 1; k + 1 < corner.size(); ++k) {  // fan from the first corner
       p.vertices.push_back(corner[0]);
       p.vertices.push_back(corner[k]);
       p.vertices.push_back(corner[k + 1]);
     }
-    scene.commands.push_back({std::move(p), SourceLoc{name, f.line}});
+    if (++faces_in_command == pl.faces_per_command) faces_in_command = 0;
   }
   return scene;
 }
@@ -344,9 +349,9 @@ Scene parse_obj(const std::string& text, const std::string& name, const ObjPlace
                 const std::string& base_dir) {
   const ObjPlacement& pl = placement;
   if (pl.viewport_width < 1 || pl.viewport_height < 1 || !std::isfinite(pl.fill) || pl.fill <= 0 ||
-      !std::isfinite(pl.yaw_deg) || !std::isfinite(pl.pitch_deg))
-    throw SceneError(name + ": OBJ placement needs a positive viewport, a positive finite fill and "
-                            "finite yaw and pitch");
+      !std::isfinite(pl.yaw_deg) || !std::isfinite(pl.pitch_deg) || pl.faces_per_command < 1)
+    throw SceneError(name + ": OBJ placement needs a positive viewport, a positive finite fill, "
+                            "finite yaw and pitch and at least one face a command");
   ObjParser obj(name, base_dir);
   const int lines = scene_text::for_each_line(text, name, [&](int n, const Tokens& t) { obj.line(n, t); });
   if (obj.faces.empty()) scene_text::fail(name, std::max(lines, 1), "no faces (an OBJ scene needs at least one 'f')");
@@ -380,6 +385,7 @@ ObjPlacement obj_placement_from_config(const Config& cfg) {
   p.yaw_deg = cfg.get_float("scene.obj_yaw_deg");
   p.pitch_deg = cfg.get_float("scene.obj_pitch_deg");
   p.fill = cfg.get_float("scene.obj_fill");
+  p.faces_per_command = static_cast<int>(cfg.get_int("scene.obj_faces_per_command"));
   return p;
 }
 
