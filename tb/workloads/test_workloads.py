@@ -160,8 +160,8 @@ def main():
         # does not change.
         busy = sc["stages"]["command_fetch"]["busy"]
         check(busy == 2 * BUNNY_TRIANGLES + 2, "bunny, one command a face: fetch busy %d cycles" % busy)
-        one_img, one = rastsim(binary, "simulate", cfg, bunny, sets + ["scene.obj_faces_per_command=%d" % BUNNY_TRIANGLES],
-                               tmp, "bunny_one_command")
+        _, one = rastsim(binary, "simulate", cfg, bunny, sets + ["scene.obj_faces_per_command=%d" % BUNNY_TRIANGLES],
+                         tmp, "bunny_one_command")
         busy = one["stages"]["command_fetch"]["busy"]
         check(busy == BUNNY_TRIANGLES + 3 and one["framebuffer_crc32"] == ref["framebuffer_crc32"],
               "bunny as one command: fetch busy %d cycles, CRC %s" % (busy, one["framebuffer_crc32"]))
