@@ -28,6 +28,10 @@ RASTSIM_PACKAGES=(
   # their libraries. The script starts daemons of its own (own files and ports) and never
   # uses the system services the packages install (on a systemd host, munge's starts).
   slurm-wlm munge
+  # Real meshes (scripts/workloads, ctest -L workloads, scripts/bench_levels): glmark2's
+  # models (the Stanford bunny, horse, cat; 6.6 MB download) and assimp to convert the
+  # .3ds ones to OBJ (3 MB with libassimp5).
+  glmark2-data assimp-utils
 )
 
 install_missing_packages() {

@@ -20,6 +20,8 @@ void add_traversal_params(std::vector<ParamDef>& schema);
 void add_aa_params(std::vector<ParamDef>& schema);
 // Keys of the attribute interpolation method, declared in config_schema_interp.cpp.
 void add_interp_params(std::vector<ParamDef>& schema);
+// Keys of OBJ mesh placement (up axis, yaw, pitch, fill), in config_schema_scene.cpp.
+void add_scene_params(std::vector<ParamDef>& schema);
 
 namespace {
 
@@ -71,12 +73,7 @@ std::vector<ParamDef> make_schema() {
   add_traversal_params(s);
   add_aa_params(s);
   // ---- scene: how OBJ meshes are placed on screen (not architecture) ----
-  add({"scene.obj_yaw_deg", T::Float, 30.0, "deg", -360, 360, {},
-       "OBJ placement: rotation of the mesh about its vertical axis"});
-  add({"scene.obj_pitch_deg", T::Float, 20.0, "deg", -90, 90, {},
-       "OBJ placement: tilt of the mesh toward the viewer, after the yaw"});
-  add({"scene.obj_fill", T::Float, 0.9, "", 0.01, 4.0, {},
-       "OBJ placement: fraction of the smaller viewport side the mesh's bounding sphere spans"});
+  add_scene_params(s);
   add_timing_params(s);
   add_scanout_params(s);
   add_2d_params(s);

@@ -5,13 +5,14 @@
 //   otherwise ignored), `f` in the forms i, i/t, i//n, i/t/n with negative (relative)
 //   indices, `mtllib`/`usemtl` with `newmtl`/`Kd` from the MTL; o, g, s and the other
 //   non-polygon statements are ignored.
-// - Place: centre the bounding box of the vertices faces use, rotate about y (yaw) then
-//   x (pitch), project orthographically so the bounding sphere spans `fill` of the
+// - Place: turn the mesh's up axis (scene.obj_up) to +y, centre the bounding box of the
+//   vertices faces use, rotate about y (yaw) then x (pitch), project orthographically so the bounding sphere spans `fill` of the
 //   smaller viewport side, y down on screen, depth 0 (near) .. 1 (far) over the sphere.
 // - Shade: colour (vertex colour, else material Kd, else white) times a headlight
 //   Lambert term 0.25 + 0.75 * max(0, n_z) of the face's view-space normal.
 // - Emit: CmdClear, CmdClearDepth 1, then one List command per face (polygons fanned
-//   from their first vertex), each named by the face's line.
+//   from their first vertex), each named by the face's line; or, with
+//   scene.obj_faces_per_command N > 1, one List command per N faces, named by the first.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -224,13 +225,32 @@ class ObjParser {
   std::optional<Rgb> material_;
 };
 
+// The mesh's up axis turned to +y by a proper rotation (determinant +1, so faces keep
+// their winding): only swaps and negations, exact in floating point, so a mesh authored
+// Z-up and placed with obj_up = z gives bit for bit the commands of the same mesh
+// authored Y-up. Z-up becomes Y-up by -90 deg about x, so the Z-up convention's front
+// (the -y side, 3ds Max's front view) faces the viewer as OBJ's front (+z) does.
+Vec3 to_y_up(const Vec3& p, ObjUp up) {
+  const double x = p[0], y = p[1], z = p[2];
+  switch (up) {
+    case ObjUp::PosY: return {x, y, z};
+    case ObjUp::NegY: return {x, -y, -z};  // half turn about x
+    case ObjUp::PosZ: return {x, z, -y};   // -90 deg about x: +z up, -y toward the viewer
+    case ObjUp::NegZ: return {x, -z, y};   // +90 deg about x
+    case ObjUp::PosX: return {-y, x, z};   // +90 deg about z
+    case ObjUp::NegX: return {y, -x, z};   // -90 deg about z
+  }
+  return {x, y, z};
+}
+
 // 0..1 colour times shade to RGB8, rounding half up (one rounding for both factors).
 uint8_t to_rgb8(double c, double shade) {
   return static_cast<uint8_t>(std::clamp(std::floor(c * shade * 255.0 + 0.5), 0.0, 255.0));
 }
 
 // Places the parsed mesh and emits its commands (see the file comment for the maths).
-Scene place(const ObjParser& obj, const std::string& name, const ObjPlacement& pl) {
+Scene place(ObjParser& obj, const std::string& name, const ObjPlacement& pl) {
+  for (ObjVertex& v : obj.vertices) v.p = to_y_up(v.p, pl.up);  // in place: no second copy
   const auto& verts = obj.vertices;
   std::vector<bool> used(verts.size(), false);
   for (const ObjFace& f : obj.faces)
@@ -280,6 +300,7 @@ Scene place(const ObjParser& obj, const std::string& name, const ObjPlacement& p
   const SourceLoc first{name, obj.faces.front().line};
   scene.commands.push_back({CmdClear{pl.clear_r, pl.clear_g, pl.clear_b}, first});
   scene.commands.push_back({CmdClearDepth{1.0}, first});
+  int faces_in_command = 0;  // faces in the List command being filled (0: start a new one)
   for (const ObjFace& f : obj.faces) {
     // Newell's normal: the polygon's area vector, exact for triangles and well defined
     // for non-planar polygons; its z is toward the viewer.
@@ -308,13 +329,16 @@ Scene place(const ObjParser& obj, const std::string& name, const ObjPlacement& p
       sv.b = to_rgb8(rgb[2], shade);
       corner.push_back(sv);
     }
-    CmdPrimitives p{Topology::List, {}};
+    // A new List command every faces_per_command faces, named by its first face's line;
+    // the triangles and their order are the same whatever the grouping.
+    if (faces_in_command == 0) scene.commands.push_back({CmdPrimitives{Topology::List, {}}, SourceLoc{name, f.line}});
+    auto& p = std::get<CmdPrimitives>(scene.commands.back().body);
     for (size_t k = 1; k + 1 < corner.size(); ++k) {  // fan from the first corner
       p.vertices.push_back(corner[0]);
       p.vertices.push_back(corner[k]);
       p.vertices.push_back(corner[k + 1]);
     }
-    scene.commands.push_back({std::move(p), SourceLoc{name, f.line}});
+    if (++faces_in_command == pl.faces_per_command) faces_in_command = 0;
   }
   return scene;
 }
@@ -325,9 +349,9 @@ Scene parse_obj(const std::string& text, const std::string& name, const ObjPlace
                 const std::string& base_dir) {
   const ObjPlacement& pl = placement;
   if (pl.viewport_width < 1 || pl.viewport_height < 1 || !std::isfinite(pl.fill) || pl.fill <= 0 ||
-      !std::isfinite(pl.yaw_deg) || !std::isfinite(pl.pitch_deg))
-    throw SceneError(name + ": OBJ placement needs a positive viewport, a positive finite fill and "
-                            "finite yaw and pitch");
+      !std::isfinite(pl.yaw_deg) || !std::isfinite(pl.pitch_deg) || pl.faces_per_command < 1)
+    throw SceneError(name + ": OBJ placement needs a positive viewport, a positive finite fill, "
+                            "finite yaw and pitch and at least one face a command");
   ObjParser obj(name, base_dir);
   const int lines = scene_text::for_each_line(text, name, [&](int n, const Tokens& t) { obj.line(n, t); });
   if (obj.faces.empty()) scene_text::fail(name, std::max(lines, 1), "no faces (an OBJ scene needs at least one 'f')");
@@ -339,13 +363,29 @@ Scene load_obj(const std::string& path, const ObjPlacement& placement) {
   return parse_obj(scene_text::read_file(path), path, placement, dir.empty() ? "." : dir);
 }
 
+std::optional<ObjUp> parse_obj_up(const std::string& name) {
+  static const std::pair<const char*, ObjUp> kNames[] = {{"y", ObjUp::PosY},  {"z", ObjUp::PosZ},
+                                                         {"-y", ObjUp::NegY}, {"-z", ObjUp::NegZ},
+                                                         {"x", ObjUp::PosX},  {"-x", ObjUp::NegX}};
+  for (const auto& [n, up] : kNames)
+    if (name == n) return up;
+  return std::nullopt;
+}
+
 ObjPlacement obj_placement_from_config(const Config& cfg) {
   ObjPlacement p;
   p.viewport_width = static_cast<int>(cfg.get_int("display.width"));
   p.viewport_height = static_cast<int>(cfg.get_int("display.height"));
+  // The schema's enum admits exactly parse_obj_up's names, so this cannot fail on a
+  // validated config; a mismatch between the two lists is a programming error.
+  const std::string& up = cfg.get_string("scene.obj_up");
+  const auto parsed = parse_obj_up(up);
+  if (!parsed) throw ConfigError(cfg.origin("scene.obj_up") + ": scene.obj_up = '" + up + "' is not an axis");
+  p.up = *parsed;
   p.yaw_deg = cfg.get_float("scene.obj_yaw_deg");
   p.pitch_deg = cfg.get_float("scene.obj_pitch_deg");
   p.fill = cfg.get_float("scene.obj_fill");
+  p.faces_per_command = static_cast<int>(cfg.get_int("scene.obj_faces_per_command"));
   return p;
 }
 

@@ -1,0 +1,34 @@
+// SPDX-License-Identifier: Apache-2.0
+// Keys of OBJ mesh placement (model/scene/scene_obj.cpp): where a mesh lands on screen.
+// Not architecture: they choose the workload's view, so a real mesh (the Stanford bunny,
+// Y-up; glmark2's horse and cat, Z-up) can be shown upright from any side.
+#include "config/config.h"
+
+namespace rastsim {
+
+void add_scene_params(std::vector<ParamDef>& s) {
+  using T = ParamType;
+  // The up axis is applied first (an exact quarter or half turn, never a mirror, so the
+  // winding of every face and hence culling is kept); yaw and pitch then turn the upright
+  // mesh like a turntable camera: yaw about the vertical, pitch toward the viewer. With
+  // an up axis, (yaw, pitch) is a full view direction, so there is no separate view key:
+  // front (+z after the up turn) 0/0, the -x side 90/0, the +x side -90/0, back 180/0,
+  // top 0/90, bottom 0/-90 (docs/exploration.md, "Real workloads").
+  s.push_back({"scene.obj_up", T::Enum, std::string("y"), "", 1, 0, {"y", "z", "-y", "-z", "x", "-x"},
+               "OBJ placement: the mesh's up axis, turned to screen up before yaw and pitch "
+               "(y: OBJ's convention; z: 3ds Max, Blender, CAD)"});
+  s.push_back({"scene.obj_yaw_deg", T::Float, 30.0, "deg", -360, 360, {},
+               "OBJ placement: rotation of the mesh about its vertical axis (90: its -x side faces the viewer)"});
+  s.push_back({"scene.obj_pitch_deg", T::Float, 20.0, "deg", -90, 90, {},
+               "OBJ placement: tilt of the mesh toward the viewer, after the yaw (90: seen from the top)"});
+  s.push_back({"scene.obj_fill", T::Float, 0.9, "", 0.01, 4.0, {},
+               "OBJ placement: fraction of the smaller viewport side the mesh's bounding sphere spans"});
+  // The workload's form, not its geometry: command fetch pays a header per command
+  // (fetch.cycles_per_command), so one command a face costs a real mesh a cycle a
+  // triangle that a driver batching its draw calls would not (docs/exploration.md).
+  s.push_back({"scene.obj_faces_per_command", T::Int, int64_t{1}, "faces", 1, 1 << 30, {},
+               "OBJ reading: faces sent in one List command (1: each face its own command; "
+               "larger: batched as in one draw call), same triangles in the same order"});
+}
+
+}  // namespace rastsim
