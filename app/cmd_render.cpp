@@ -1,7 +1,11 @@
 // SPDX-License-Identifier: Apache-2.0
 // `rastsim render`: the reference model on one scene; image, stats, fragment trace.
+#include <condition_variable>
+#include <deque>
 #include <fstream>
 #include <iostream>
+#include <mutex>
+#include <thread>
 
 #include "common.h"
 #include "ref/pipeline.h"
@@ -14,6 +18,63 @@ namespace rastsim::app {
 
 namespace {
 constexpr size_t kSceneBatchCommands = 4096;  // commands parsed ahead of the pipeline
+constexpr size_t kBatchesAhead = 2;            // parsed, not yet drawn (render --threads > 1)
+
+// stream_scene with the parser on a thread of its own, up to kBatchesAhead batches in
+// front of `consume` (render --threads > 1: parsing a trace is about half of a render of
+// small triangles, and overlaps the drawing). Memory stays bounded by those batches. As
+// with stream_scene, a parse error reaches the caller after every batch before it was
+// consumed; an exception from `consume` stops the parser and passes unchanged.
+void stream_scene_ahead(const std::string& path, const ObjPlacement& placement, const CommandBatchFn& consume) {
+  struct Stopped {};  // thrown through the reader when the consumer has failed
+  std::mutex mu;
+  std::condition_variable cv;
+  std::deque<std::vector<Command>> ready;
+  bool parsed = false, stop = false;
+  std::exception_ptr parse_error;
+  std::thread parser([&] {
+    try {
+      stream_scene(path, placement, kSceneBatchCommands, [&](std::vector<Command>& batch) {
+        std::unique_lock<std::mutex> lock(mu);
+        cv.wait(lock, [&] { return ready.size() < kBatchesAhead || stop; });
+        if (stop) throw Stopped{};
+        ready.push_back(std::move(batch));
+        cv.notify_all();
+      });
+    } catch (const Stopped&) {
+    } catch (...) {
+      const std::lock_guard<std::mutex> lock(mu);
+      parse_error = std::current_exception();
+    }
+    const std::lock_guard<std::mutex> lock(mu);
+    parsed = true;
+    cv.notify_all();
+  });
+  try {
+    for (;;) {
+      std::vector<Command> batch;
+      {
+        std::unique_lock<std::mutex> lock(mu);
+        cv.wait(lock, [&] { return !ready.empty() || parsed; });
+        if (ready.empty()) break;
+        batch = std::move(ready.front());
+        ready.pop_front();
+        cv.notify_all();
+      }
+      consume(batch);
+    }
+  } catch (...) {
+    {
+      const std::lock_guard<std::mutex> lock(mu);
+      stop = true;
+      cv.notify_all();
+    }
+    parser.join();
+    throw;
+  }
+  parser.join();
+  if (parse_error) std::rethrow_exception(parse_error);
+}
 }  // namespace
 
 void run_render_command(const RenderOptions& o) {
@@ -28,16 +89,19 @@ void run_render_command(const RenderOptions& o) {
     sink = [&](const Fragment& f) { frag_os << fragment_trace_line(f) << '\n'; };
   }
   // The scene streamed in bounded batches (scene_io.h): memory does not grow with the file.
-  SceneRenderer renderer(arch, stats, sink);
+  const int threads = o.threads > 0 ? o.threads : int(std::max(1u, std::thread::hardware_concurrency()));
+  SceneRenderer renderer(arch, stats, sink, Framebuffer::kDefaultTileLog2, threads);
   uint64_t done = 0;
   bool drawing = false;  // an error of the pipeline itself, not of the reader, passes unchanged
   try {
-    stream_scene(o.scene_path, obj_placement(cfg), kSceneBatchCommands, [&](std::vector<Command>& batch) {
+    const CommandBatchFn draw = [&](std::vector<Command>& batch) {
       drawing = true;
       renderer.run(batch);
       drawing = false;
       done += batch.size();
-    });
+    };
+    if (threads > 1) stream_scene_ahead(o.scene_path, obj_placement(cfg), draw);
+    else stream_scene(o.scene_path, obj_placement(cfg), kSceneBatchCommands, draw);
   } catch (const SceneError& e) {
     if (drawing || done == 0) throw;
     throw SceneError(std::string(e.what()) + " (after " + std::to_string(done) +
@@ -71,6 +135,12 @@ void register_render(CLI::App& app) {
   cmd->add_option("--stats", o.stats_path, "Write the stats as JSON to this file ('-' for stdout)");
   cmd->add_option("--fragments", o.frag_path,
                   "Write every fragment leaving interpolation, one 'x y z r g b' line each, in pipeline order");
+  cmd->add_option("--threads", o.threads,
+                  "Rasterize on N threads (default: every core): triangles are binned to screen regions drawn "
+                  "in parallel, each pixel's fragments in scene order, so the image, CRC and stats equal "
+                  "--threads 1's; the trace is parsed on a thread of its own, ahead of the drawing. "
+                  "--fragments (pipeline order) and raster.traversal = scanline draw on one thread")
+      ->check(CLI::Range(1, 1024));
   cmd->add_flag("--quiet,-q", o.quiet, "Do not print the summary line");
   cmd->callback([] { run_render_command(o); });
 }

@@ -48,6 +48,7 @@ struct RenderOptions {
   ConfigOptions config;
   std::string scene_path, out_path, stats_path, frag_path;
   bool quiet = false;
+  int threads = 0;  // render --threads: 0 = every core (std::thread::hardware_concurrency)
 };
 void run_render_command(const RenderOptions& o);
 

@@ -16,6 +16,7 @@ RASTSIM_PACKAGES=(
   libgtest-dev libbenchmark-dev
   libtomlplusplus-dev libcli11-dev nlohmann-json3-dev libpng-dev zlib1g-dev
   libzstd-dev   # zstd-compressed scenes (model/scene/scene_stream.cpp)
+  libdeflate-dev   # its CRC-32 (carry-less multiply) for the framebuffer CRC (model/ref/framebuffer.cpp)
   zstd          # the zstd tool: scripts/gen_scenes --compress zst, the CLI test
   python3-matplotlib
   time      # GNU time (/usr/bin/time -f %M, peak memory): scripts/bench_scale

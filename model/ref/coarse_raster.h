@@ -50,6 +50,15 @@ struct TraversalCounters {
     pixel_tests += pixels;
     sample_tests += pixels * uint64_t(samples);
   }
+  // Every counter summed (the parallel pipeline's workers, pipeline.cpp).
+  TraversalCounters& operator+=(const TraversalCounters& o) {
+    for (auto m : {&TraversalCounters::tiles_visited, &TraversalCounters::tiles_rejected,
+                   &TraversalCounters::tiles_accepted, &TraversalCounters::tiles_partial, &TraversalCounters::pixel_tests,
+                   &TraversalCounters::fragments, &TraversalCounters::spans, &TraversalCounters::sample_tests,
+                   &TraversalCounters::samples_covered, &TraversalCounters::pixels_partially_covered})
+      this->*m += o.*m;
+    return *this;
+  }
 };
 
 // The tile grid cells overlapping `bbox`, in tile units [tx0, tx1) x [ty0, ty1).

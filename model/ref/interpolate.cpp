@@ -14,9 +14,10 @@ float nearest_float(i128 num, i128 den) {
   return static_cast<float>(static_cast<long double>(num) / static_cast<long double>(den));
 }
 
-uint32_t clamp_attr(i128 v, int bits) {
-  const i128 hi = (i128(1) << bits) - 1;
-  return static_cast<uint32_t>(std::clamp<i128>(v, 0, hi));
+template <class T>
+uint32_t clamp_attr(T v, int bits) {
+  const T hi = (T(1) << bits) - 1;
+  return static_cast<uint32_t>(std::clamp<T>(v, 0, hi));
 }
 
 
@@ -87,11 +88,74 @@ Fragment make_fragment(const SetupTriangle& t, int px, int py, Attr&& attr) {
 }  // namespace
 
 Fragment interpolate_plane_at(const SetupTriangle& t, int px, int py, int64_t sx, int64_t sy) {
+  if (t.edges64) {
+    // The 64-bit path: the same weights and rational, when every numerator fits int64
+    // (tri_setup.h w64_limit); the i128 path below otherwise.
+    const int64_t w[3] = {t.edge[1].eval64(sx, sy), t.edge[2].eval64(sx, sy), t.edge[0].eval64(sx, sy)};
+    const int64_t lim = t.w64_limit;
+    if (w[0] <= lim && w[0] >= -lim && w[1] <= lim && w[1] >= -lim && w[2] <= lim && w[2] >= -lim) {
+      const int64_t den = static_cast<int64_t>(t.area2);  // < 2^(2N+2) <= 2^62 with edges64
+      return make_fragment(t, px, py, [&](uint32_t a0, uint32_t a1, uint32_t a2, int bits) {
+        const int64_t num = w[0] * int64_t(a0) + w[1] * int64_t(a1) + w[2] * int64_t(a2);
+        return clamp_attr(div_round_in<int64_t>(num, den, Rounding::HalfUp), bits);
+      });
+    }
+  }
   // Weight of vertex k is the edge opposite it: edge (k+1)%3 runs between the other two.
   const i128 w[3] = {t.edge[1].eval(sx, sy), t.edge[2].eval(sx, sy), t.edge[0].eval(sx, sy)};
   return make_fragment(t, px, py, [&](uint32_t a0, uint32_t a1, uint32_t a2, int bits) {
     const i128 num = w[0] * a0 + w[1] * a1 + w[2] * a2;
     return clamp_attr(div_round(num, t.area2, Rounding::HalfUp), bits);
+  });
+}
+
+PlaneStepper::PlaneStepper(const SetupTriangle& t, int frac_bits) : t_(t), frac_bits_(frac_bits) {
+  if (t.samples != 1 || !t.edges64 || t.area2 > t.w64_limit) return;
+  den_ = static_cast<int64_t>(t.area2);
+  int i = 0;
+  bool fits = true;
+  make_fragment(t, 0, 0, [&](uint32_t a0, uint32_t a1, uint32_t a2, int) {
+    a_[i][0] = a0, a_[i][1] = a1, a_[i][2] = a2;
+    // x-step of num (weight k is edge (k+1)%3), exact; then its floor quotient and remainder.
+    const i128 d = (i128(t.edge[1].a) * a0 + i128(t.edge[2].a) * a1 + i128(t.edge[0].a) * a2) << frac_bits;
+    fits = fits && fits_signed(d, 63);
+    const i128 q = div_round(d, t.area2, Rounding::Floor);
+    dq_[i] = static_cast<int64_t>(q);
+    dr_[i] = static_cast<int64_t>(d - q * t.area2);
+    ++i;
+    return 0u;
+  });
+  active_ = fits;
+}
+
+Fragment PlaneStepper::at(int px, int py) {
+  if (have_last_ && py == last_y_ && px == last_x_ + 1) {
+    for (int i = 0; i < kAttrs; ++i) {
+      q_[i] += dq_[i];
+      r_[i] += dr_[i];  // both remainders in [0, den): the sum is below 2 den
+      if (r_[i] >= den_) {
+        r_[i] -= den_;
+        ++q_[i];
+      }
+    }
+  } else {
+    const int64_t sx = t_.sample_x(px, frac_bits_), sy = t_.sample_y(py, frac_bits_);
+    const int64_t w[3] = {t_.edge[1].eval64(sx, sy), t_.edge[2].eval64(sx, sy), t_.edge[0].eval64(sx, sy)};
+    for (int i = 0; i < kAttrs; ++i) {
+      const int64_t num = w[0] * int64_t(a_[i][0]) + w[1] * int64_t(a_[i][1]) + w[2] * int64_t(a_[i][2]);
+      q_[i] = div_round_in<int64_t>(num, den_, Rounding::Floor);
+      r_[i] = num - q_[i] * den_;
+    }
+  }
+  have_last_ = true;
+  last_x_ = px;
+  last_y_ = py;
+  // Round half up from the floor quotient and remainder, as div_round_in does.
+  int i = 0;
+  return make_fragment(t_, px, py, [&](uint32_t, uint32_t, uint32_t, int bits) {
+    const int64_t v = r_[i] >= den_ - r_[i] ? q_[i] + 1 : q_[i];
+    ++i;
+    return clamp_attr(v, bits);
   });
 }
 

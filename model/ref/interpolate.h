@@ -52,6 +52,31 @@ Fragment interpolate_plane(const SetupTriangle& t, int px, int py, int frac_bits
 // [0, 2^bits - 1] (a no-op inside the triangle).
 Fragment interpolate_plane_at(const SetupTriangle& t, int px, int py, int64_t sx, int64_t sy);
 
+// interpolate_plane for the pixels of one single-sample triangle in turn, without a
+// division where it can: a pixel just right of the previous one steps each attribute's
+// exact quotient and remainder of num / area2 by those of the constant x-step
+// sum_k a_k (edge.a << F) (a remainder past area2 carries one), every other pixel is
+// divided out as interpolate_plane does. All in int64, so active() only when the
+// triangle's edges64 holds, area2 <= w64_limit (the weights of a covered centre lie in
+// [0, area2]) and the steps fit int64; the same fragments as interpolate_plane
+// (tb/test_int64_paths.cpp). Only for covered pixel centres.
+class PlaneStepper {
+ public:
+  PlaneStepper(const SetupTriangle& t, int frac_bits);
+  bool active() const { return active_; }  // else call interpolate_plane
+  Fragment at(int px, int py);
+
+ private:
+  static constexpr int kAttrs = 4;  // in make_fragment's order: z, r, g, b
+  const SetupTriangle& t_;
+  int frac_bits_;
+  bool active_ = false, have_last_ = false;
+  int last_x_ = 0, last_y_ = 0;
+  int64_t den_ = 1;
+  int64_t q_[kAttrs]{}, r_[kAttrs]{}, dq_[kAttrs]{}, dr_[kAttrs]{};
+  uint32_t a_[kAttrs][3]{};
+};
+
 // The fragments of one pixel whose sample coverage mask is m (docs/antialiasing.md):
 // - one sample: interpolate() at the centre, mask 1 (any interp.method);
 // - msaa: one fragment, plane equations at the pixel centre (extrapolated when the centre

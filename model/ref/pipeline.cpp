@@ -2,10 +2,12 @@
 #include "ref/pipeline.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <optional>
 
 #include "ref/prim_assembly.h"
+#include "ref/region_bins.h"
 #include "ref/rop.h"
 #include "ref/traverse.h"
 #include "ref/tri_setup.h"
@@ -106,6 +108,17 @@ namespace {
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
+
+// The stats drawing a triangle adds (traversal onwards); a worker of the parallel path
+// counts into its own RenderStats and they are added up after each chunk.
+void add_draw_stats(RenderStats& into, const RenderStats& part) {
+  into.traversal += part.traversal;
+  for (auto m : {&RenderStats::fragments_shaded, &RenderStats::fragments_passed, &RenderStats::samples_passed,
+                 &RenderStats::attr_error_sum, &RenderStats::depth_error_sum})
+    into.*m += part.*m;
+  for (auto m : {&RenderStats::max_attr_error_lsb, &RenderStats::max_depth_error_lsb})
+    into.*m = std::max(into.*m, part.*m);
+}
 }  // namespace
 
 struct SceneRenderer::Impl {
@@ -118,31 +131,72 @@ struct SceneRenderer::Impl {
   TraversalParams tp;
   std::optional<CoverageCheck> check;       // only an inexact method is measured against the exact coverage
   std::vector<std::pair<int, int>> pixels;  // one triangle's, for the check
+  // The parallel path (threads > 1): regions, and one chunk of set-up triangles binned.
+  int threads = 1;
+  RegionGrid grid;
+  std::vector<SetupTriangle> tris;
+  std::vector<SetupOutcome> outcomes;
+  std::vector<std::pair<const Command*, size_t>> refs;  // (command, triangle k) of a run of primitives
+  std::vector<std::vector<uint32_t>> bins;              // per region: indices into tris, in order
 
-  Impl(const RasterState& arch, RenderStats& s, const FragmentSink& sink, int fb_tile_log2)
+  Impl(const RasterState& arch, RenderStats& s, const FragmentSink& sink, int fb_tile_log2, int n_threads)
       : st(arch), stats(s), on_fragment(sink), fb(st.fb_width, st.fb_height, st.samples, fb_tile_log2),
-        F(st.coord_format.frac_bits), tp(traversal_params(st)) {
+        F(st.coord_format.frac_bits), tp(traversal_params(st)),
+        grid(st.fb_width, st.fb_height,
+             {tp.method == Traversal::Tiled ? tp.tile_size : 1,
+              tp.method == Traversal::Hierarchical && !tp.hier_levels.empty() ? tp.hier_levels[0] : 1,
+              fb.tile_size()}) {
     count_multisample_footprint(st, stats);
     fb.clear_depth(static_cast<uint32_t>((uint64_t{1} << st.depth_bits) - 1));
     stats.traversal_method = tp.method;
     if (!traversal_is_exact(tp.method)) check.emplace(st.fb_width, st.fb_height);
+    // One thread where the result depends on the order of the whole walk: the fragment
+    // stream (pipeline order) and the coverage check of an inexact method (per triangle).
+    threads = (on_fragment || check) ? 1 : std::max(1, n_threads);
+    if (threads > 1) bins.resize(size_t(grid.count()));
   }
   void run(const Command& cmd);
+  void run_parallel(std::span<const Command> commands);
+  void draw_primitives(std::span<const Command> commands);
+  void draw_chunk(size_t first, size_t n);
+
+  // Traverses `walk` (tri itself, or tri with its box clipped to a region) and shades,
+  // tests and writes every fragment of tri, counting into s.
+  void draw(const SetupTriangle& tri, const SetupTriangle& walk, RenderStats& s) {
+    // One sample, plane equations: interpolate_plane's fragments by PlaneStepper.
+    PlaneStepper plane(tri, F);
+    const bool stepped = plane.active() && tri.interp_method == InterpMethod::Plane;
+    traverse(walk, tp, s.traversal, [&](int px, int py, uint32_t mask) {
+      if (check) pixels.emplace_back(px, py);
+      const auto write = [&](const Fragment& f) {
+        if (tri.interp_method != InterpMethod::Plane) count_interp_error(f, interpolate_plane(tri, px, py, F), s);
+        ++s.fragments_shaded;
+        if (on_fragment) on_fragment(f);
+        if (rop_write(fb, f, st.depth_func, st.depth_write, &s.samples_passed)) ++s.fragments_passed;
+      };
+      if (stepped) write(plane.at(px, py));
+      else shade_pixel(tri, px, py, mask, F, write);
+    });
+  }
 };
 
 SceneRenderer::SceneRenderer(const RasterState& arch, RenderStats& stats, const FragmentSink& on_fragment,
-                             int fb_tile_log2)
+                             int fb_tile_log2, int threads)
     : impl_(nullptr) {
   const auto t0 = std::chrono::steady_clock::now();
-  impl_ = std::make_unique<Impl>(arch, stats, on_fragment, fb_tile_log2);
+  impl_ = std::make_unique<Impl>(arch, stats, on_fragment, fb_tile_log2, threads);
   impl_->seconds += seconds_since(t0);
 }
 
 SceneRenderer::~SceneRenderer() = default;
 
+int SceneRenderer::threads() const { return impl_->threads; }
+
 void SceneRenderer::run(std::span<const Command> commands) {
   const auto t0 = std::chrono::steady_clock::now();
-  for (const Command& cmd : commands) impl_->run(cmd);
+  if (impl_->threads > 1) impl_->run_parallel(commands);
+  else
+    for (const Command& cmd : commands) impl_->run(cmd);
   impl_->seconds += seconds_since(t0);
 }
 
@@ -162,17 +216,89 @@ void SceneRenderer::Impl::run(const Command& cmd) {
     SetupTriangle tri;
     if (!count_setup_outcome(setup_triangle(assemble_triangle(prims, k), m.st, cmd.loc, tri), stats)) continue;
     m.pixels.clear();
-    traverse(tri, m.tp, stats.traversal, [&](int px, int py, uint32_t mask) {
-      if (m.check) m.pixels.emplace_back(px, py);
-      shade_pixel(tri, px, py, mask, m.F, [&](const Fragment& f) {
-        if (tri.interp_method != InterpMethod::Plane) count_interp_error(f, interpolate_plane(tri, px, py, m.F), stats);
-        ++stats.fragments_shaded;
-        if (m.on_fragment) m.on_fragment(f);
-        if (rop_write(m.fb, f, m.st.depth_func, m.st.depth_write, &stats.samples_passed)) ++stats.fragments_passed;
-      });
-    });
+    draw(tri, tri, stats);
     if (m.check) m.check->add_triangle(tri, m.F, m.pixels, stats.coverage);
   }
+}
+
+// State and 2D commands one by one, in order; each run of primitive commands between
+// them set up and rasterized in parallel (draw_primitives).
+void SceneRenderer::Impl::run_parallel(std::span<const Command> commands) {
+  size_t i = 0;
+  while (i < commands.size()) {
+    size_t j = i;
+    while (j < commands.size() && std::holds_alternative<CmdPrimitives>(commands[j].body)) ++j;
+    if (j == i) {
+      run(commands[i++]);
+      continue;
+    }
+    draw_primitives(commands.subspan(i, j - i));
+    i = j;
+  }
+}
+
+namespace {
+// Triangles set up and binned at a time (memory: ~300 bytes each), and the fewest worth
+// the threads (fewer go through the one-thread path, the same result).
+constexpr size_t kChunkTriangles = 16384, kMinParallelTriangles = 256;
+}  // namespace
+
+void SceneRenderer::Impl::draw_primitives(std::span<const Command> commands) {
+  refs.clear();
+  for (const Command& cmd : commands) {
+    const size_t n = triangle_count(std::get<CmdPrimitives>(cmd.body));
+    for (size_t k = 0; k < n; ++k) refs.emplace_back(&cmd, k);
+  }
+  if (refs.size() < kMinParallelTriangles) {
+    for (const Command& cmd : commands) run(cmd);
+    return;
+  }
+  for (size_t first = 0; first < refs.size(); first += kChunkTriangles)
+    draw_chunk(first, std::min(kChunkTriangles, refs.size() - first));
+}
+
+// Triangles refs[first, first + n): set up on `threads` contiguous slices (setup is per
+// triangle), counted and binned in order, then the regions rasterized by `threads`
+// workers taking the next region with a triangle. Counters are per tile, pixel or
+// fragment and add up over regions, except the bbox method's one "tile" a triangle,
+// counted in the region of its box's first pixel only.
+void SceneRenderer::Impl::draw_chunk(size_t first, size_t n) {
+  tris.resize(n);
+  outcomes.resize(n);
+  run_on_threads(threads, [&](int t) {
+    const size_t k0 = n * size_t(t) / size_t(threads), k1 = n * size_t(t + 1) / size_t(threads);
+    for (size_t k = k0; k < k1; ++k) {
+      const auto& [cmd, tk] = refs[first + k];
+      outcomes[k] = setup_triangle(assemble_triangle(std::get<CmdPrimitives>(cmd->body), tk), st, cmd->loc, tris[k]);
+    }
+  });
+  for (auto& b : bins) b.clear();
+  for (size_t k = 0; k < n; ++k) {
+    ++stats.triangles_in;
+    if (!count_setup_outcome(outcomes[k], stats)) continue;
+    const PixelRect r = grid.range(tris[k].bbox);
+    for (int ry = r.y0; ry < r.y1; ++ry)
+      for (int rx = r.x0; rx < r.x1; ++rx) bins[size_t(ry * grid.nx + rx)].push_back(uint32_t(k));
+  }
+  std::vector<RenderStats> part(static_cast<size_t>(threads));
+  std::atomic<int> next{0};
+  run_on_threads(threads, [&](int t) {
+    RenderStats& s = part[size_t(t)];
+    for (int r; (r = next.fetch_add(1, std::memory_order_relaxed)) < grid.count();) {
+      const PixelRect rect = grid.rect(r);
+      for (uint32_t k : bins[size_t(r)]) {
+        const SetupTriangle& tri = tris[k];
+        SetupTriangle walk = tri;
+        walk.bbox = tri.bbox.intersect(rect);
+        draw(tri, walk, s);
+        if (tp.method == Traversal::Bbox && grid.region_of(tri.bbox.x0, tri.bbox.y0) != r) {
+          --s.traversal.tiles_visited;  // the box is one tile: counted once, in its first region
+          --s.traversal.tiles_partial;
+        }
+      }
+    }
+  });
+  for (const RenderStats& s : part) add_draw_stats(stats, s);
 }
 
 Framebuffer SceneRenderer::finish() {
@@ -186,8 +312,8 @@ Framebuffer SceneRenderer::finish() {
 }
 
 Framebuffer render_scene(const Scene& scene, const RasterState& arch, RenderStats& stats,
-                         const FragmentSink& on_fragment, int fb_tile_log2) {
-  SceneRenderer r(arch, stats, on_fragment, fb_tile_log2);
+                         const FragmentSink& on_fragment, int fb_tile_log2, int threads) {
+  SceneRenderer r(arch, stats, on_fragment, fb_tile_log2, threads);
   r.run(scene.commands);
   return r.finish();
 }

@@ -79,23 +79,33 @@ using FragmentSink = std::function<void(const Fragment&)>;
 // Renders a whole scene into a new framebuffer of the display size.
 // `on_fragment`, if set, sees every fragment leaving interpolation, in pipeline order.
 // `fb_tile_log2`: the framebuffer's storage tiles (Framebuffer; no effect on the result).
+// `threads`: see SceneRenderer (no effect on the result).
 Framebuffer render_scene(const Scene& scene, const RasterState& arch, RenderStats& stats,
-                         const FragmentSink& on_fragment = {}, int fb_tile_log2 = Framebuffer::kDefaultTileLog2);
+                         const FragmentSink& on_fragment = {}, int fb_tile_log2 = Framebuffer::kDefaultTileLog2,
+                         int threads = 1);
 
 // The same pipeline fed a batch of commands at a time (a scene streamed in batches,
 // scene_io.h stream_scene): run() each batch in order, then finish() (coverage check,
 // resolve, CRC) once. stats.wall_seconds is the time spent in the constructor, run and
 // finish: the pipeline's, parsing excluded, as render_scene's. render_scene is this over
 // a whole scene.
+//
+// `threads` > 1 (render --threads): each run of primitive commands between state or 2D
+// commands is set up on that many threads, binned to screen regions (ref/region_bins.h)
+// and the regions rasterized in parallel, each pixel's fragments in scene order: the
+// framebuffer, its CRC and every stat equal the one-thread run's (docs/framebuffer.md,
+// "Threads"). A fragment sink (pipeline order) or an inexact traversal (its coverage
+// check is per triangle) keeps one thread; threads() says how many run.
 class SceneRenderer {
  public:
   SceneRenderer(const RasterState& arch, RenderStats& stats, const FragmentSink& on_fragment = {},
-                int fb_tile_log2 = Framebuffer::kDefaultTileLog2);
+                int fb_tile_log2 = Framebuffer::kDefaultTileLog2, int threads = 1);
   ~SceneRenderer();
   SceneRenderer(const SceneRenderer&) = delete;
   SceneRenderer& operator=(const SceneRenderer&) = delete;
   void run(std::span<const Command> commands);
   Framebuffer finish();
+  int threads() const;  // the threads the pipeline runs on (1 with a fragment sink or scanline)
 
  private:
   struct Impl;

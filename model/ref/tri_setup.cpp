@@ -4,6 +4,7 @@
 #include "ref/sample_pattern.h"
 
 #include <algorithm>
+#include <cstdint>
 
 namespace rastsim {
 
@@ -60,6 +61,9 @@ SetupOutcome setup_triangle(const std::array<SceneVertex, 3>& v, const RasterSta
   t.depth_bits = st.depth_bits;
   t.samples = st.samples;
   t.aa_mode = st.aa_mode;
+  t.edges64 = edges_fit_int64(fmt);
+  const int64_t attr_max = int64_t((uint64_t{1} << std::max(8, st.depth_bits)) - 1);
+  t.w64_limit = INT64_MAX / (3 * attr_max);
   for (int i = 0; i < 3; ++i) {
     const auto sx = snap_coord(v[i].x, t.origin_x, fmt);
     const auto sy = snap_coord(v[i].y, t.origin_y, fmt);

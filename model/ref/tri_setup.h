@@ -34,6 +34,8 @@ struct EdgeEq {
 
   // Edge value at raw sample point (x, y), before bias.
   i128 eval(int64_t x, int64_t y) const { return i128(a) * x + i128(b) * y + c; }
+  // The same in int64, for a triangle whose edges64 holds and a point in the format's range.
+  int64_t eval64(int64_t x, int64_t y) const { return a * x + b * y + static_cast<int64_t>(c); }
 };
 
 enum class SetupOutcome {
@@ -63,6 +65,13 @@ struct SetupTriangle {
   int depth_bits = 24;  // raster.depth_bits: the range the dda method clamps depth to
   int samples = 1;      // raster.samples: coverage is a mask of this many bits a pixel
   AaMode aa_mode = AaMode::Msaa;
+  // The 64-bit paths (same results as i128, tb/test_int64_paths.cpp): edges64 when every
+  // edge value at a point of the format's range fits int64 (fixed_point.h
+  // edges_fit_int64); an interpolation numerator w0 a0 + w1 a1 + w2 a2 (a_k < 2^A, A =
+  // max(8, raster.depth_bits)) fits int64 when every |w_k| <= w64_limit =
+  // floor((2^63 - 1) / (3 (2^A - 1))), checked per sample point (interpolate.cpp).
+  bool edges64 = false;
+  int64_t w64_limit = 0;
 
   // Raw coordinate of the centre of pixel column px / row py.
   int64_t sample_x(int px, int frac_bits) const {
