@@ -28,6 +28,11 @@ RASTSIM_PACKAGES=(
   # their libraries. The script starts daemons of its own (own files and ports) and never
   # uses the system services the packages install (on a systemd host, munge's starts).
   slurm-wlm munge
+  # libFuzzer targets of the parsers (scripts/fuzz, ctest -L fuzz in build-fuzz/,
+  # docs/fuzzing.md): Debian's clang 14 and its compiler-rt (libclang_rt.fuzzer*.a).
+  # About 260 MB installed: libllvm14 107 MB, libclang-cpp14 57 MB, libclang1-14 30 MB,
+  # libclang-common-14-dev 20 MB, libclang-rt-14-dev 43 MB.
+  clang libclang-rt-14-dev
 )
 
 install_missing_packages() {

@@ -43,6 +43,13 @@ int role_of(std::string n) {
   return it == names.end() ? -1 : it->second;
 }
 
+// A sample count for a message: "1.2e+13" style, enough digits to tell values apart.
+std::string fmt_g(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
 std::string lower(std::string_view s) {
   std::string o(s);
   for (char& c : o) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
@@ -335,6 +342,15 @@ class Reader {
     if (!have_time_) t0_ = T, have_time_ = true;
     // Without a clock: every sample strictly before T sees the values up to now.
     if (period_ > 0) {
+      // A video signal changes every line (hsync), so a gap of more than a frame without
+      // a change is no recording of one; replaying it would take time and memory out of
+      // all proportion to the file (#9223372036854775807 is ~10^13 frames at 1 ps).
+      const double gap = (double(T) - double(t0_)) / period_ - 0.5 - double(k_);
+      const long long frame = std::max(t_.pixels_per_frame(), 1LL);
+      if (gap > double(frame))
+        fail("timestamp #" + s + " is " + fmt_g(gap) + " pixel clocks after the previous one (#" +
+             std::to_string(now_) + "): more than a frame (" + std::to_string(frame) +
+             " pixel clocks) without a value change, where hsync changes every line");
       const RoleState st = roles();
       while (t0_ + (k_ + 0.5) * period_ < double(T)) emit(st);
     }
