@@ -7,7 +7,8 @@
 // loaded with Config::load_file, the assignments applied with apply_override, then
 // validate() and every *_from_config builder the commands call run on the result.
 // Bad input may end only in ConfigError. An accepted config must hold, for every schema
-// key, a value of the key's type inside its range and choices.
+// key, a value of the key's type inside its range and choices, which to_string writes
+// so that it reads back as the same value.
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -28,6 +29,7 @@ namespace rastsim::fuzz {
 namespace {
 
 void check_against_schema(const Config& cfg) {
+  Config back;  // each key read back from its to_string (one Config: building one is ~80 keys)
   for (const ParamDef& d : config_schema()) {
     const ParamValue& v = cfg.get(d.key);
     const std::string at = d.key + " = " + to_string(v) + ": ";
@@ -56,6 +58,14 @@ void check_against_schema(const Config& cfg) {
       }
     }
     if (d.valid) check(d.valid(v), at + "breaks the key's rule (" + d.rule + ")");
+    // to_string is how a value leaves the config (`rastsim config [--toml]`, the sweep's
+    // config hash, error messages): read back as a --set value it must give the value.
+    try {
+      back.set_from_string(d.key, to_string(v), "round trip");
+    } catch (const ConfigError& e) {
+      finding(at + "to_string does not read back: " + e.what());
+    }
+    check(back.get(d.key) == v, at + "to_string reads back as " + to_string(back.get(d.key)));
   }
 }
 

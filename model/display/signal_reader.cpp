@@ -8,6 +8,7 @@
 #include <array>
 #include <cctype>
 #include <cerrno>
+#include <climits>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -195,8 +196,11 @@ class Reader {
     Var v;
     v.real = f[0] == "real" || f[0] == "realtime";
     char* end = nullptr;
+    errno = 0;
     const long w = std::strtol(f[1].c_str(), &end, 10);
-    if (*end || w < 1) fail("$var: width '" + f[1] + "' is not a positive number", at);
+    // Widths are ints here; a larger one would wrap to another width, never read as itself.
+    if (*end || w < 1 || w > INT_MAX || errno == ERANGE)
+      fail("$var: width '" + f[1] + "' is not a number of bits in 1.." + std::to_string(INT_MAX), at);
     v.width = static_cast<int>(w);
     v.id = f[2];
     std::string n = f[3];
@@ -292,7 +296,10 @@ class Reader {
         for (char b : val) {
           if (b != '0' && b != '1' && b != 'x' && b != 'X' && b != 'z' && b != 'Z')
             fail("vector value 'b" + val + "': '" + std::string(1, b) + "' is not 0, 1, x or z");
-          v.bits = v.bits << 1 | (b == '1');
+          // 64 bits hold every code the DAC takes (dac.bits <= 10); a set bit shifted out of
+          // a wider value saturates it, so it reads as over range (clamped and reported),
+          // never as the small number its low 64 bits spell.
+          v.bits = v.bits >> 63 ? ~uint64_t{0} : (v.bits << 1 | (b == '1'));
           v.unknown |= b != '0' && b != '1';
         }
       } else if (c == 'r' || c == 'R') {
