@@ -11,10 +11,12 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <filesystem>
 #include <fstream>
 #include <string>
 #include <string_view>
@@ -59,15 +61,33 @@ void expect_only(const char* documented_name, Fn&& fn) {
   }
 }
 
+// Calls fn(token) for every run of bytes between `separators` in `text`.
+template <class Fn>
+void for_each_token(std::string_view text, std::string_view separators, Fn&& fn) {
+  for (size_t b = text.find_first_not_of(separators); b != std::string_view::npos;
+       b = text.find_first_not_of(separators, b)) {
+    const size_t e = std::min(text.find_first_of(separators, b), text.size());
+    fn(std::string(text.substr(b, e - b)));
+    b = e;
+  }
+}
+
 // A private directory for this process's scratch files (RAM-backed when /dev/shm
-// exists), created once and reused: a file a run is rewritten every execution.
+// exists), created once and reused: each file is rewritten every execution. Removed at
+// a normal exit (a fuzzer that stops on a finding leaves it, with the reproducer's copy).
 inline const std::string& scratch_dir() {
-  static const std::string dir = [] {
-    std::string t = std::string(access("/dev/shm", W_OK) == 0 ? "/dev/shm" : "/tmp") + "/rastsim_fuzz_XXXXXX";
-    if (!mkdtemp(t.data())) finding("cannot create a scratch directory");
+  // Never freed: the exit handler below still needs it after static destructors ran.
+  static const std::string* dir = [] {
+    auto* t = new std::string(std::string(access("/dev/shm", W_OK) == 0 ? "/dev/shm" : "/tmp") +
+                              "/rastsim_fuzz_XXXXXX");
+    if (!mkdtemp(t->data())) finding("cannot create a scratch directory");
+    std::atexit([] {
+      std::error_code ec;
+      std::filesystem::remove_all(*dir, ec);
+    });
     return t;
   }();
-  return dir;
+  return *dir;
 }
 
 // Writes `bytes` to scratch_dir()/name and returns the path.

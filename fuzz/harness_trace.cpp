@@ -7,9 +7,12 @@
 // with gzip or zstd magic bytes is a compressed scene: it is written as fuzz.trace.gz /
 // .zst and read by load_trace (whole) and stream_trace (chunked), which again must agree.
 // Bad input may end only in SceneError; an accepted scene must respect the ranges
-// docs/trace-format.md gives (checked below).
+// docs/trace-format.md gives (checked below), and every decimal in the coordinate
+// grammar must read as exactly the value strtod gives.
 #include <cmath>
 #include <cstddef>
+#include <cstdlib>
+#include <stdexcept>
 #include <functional>
 #include <cstdint>
 #include <string>
@@ -75,6 +78,31 @@ void check_scene(const Scene& s, const std::string& name, size_t text_lines) {
   }
 }
 
+// Coordinates are read exactly (Q64::parse_decimal: 64 fraction bits, rounded to odd),
+// so converting one to double must give what the C library's strtod gives for the same
+// text (one correct rounding), for every token of the input in the coordinate grammar;
+// below 2^-9 the 64 fraction bits hold fewer than the 55 significant bits this needs.
+void check_decimals(std::string_view text) {
+  for_each_token(text, " \t\r\v\f\n", [](const std::string& tok) {
+    std::string_view digits = tok;
+    if (!digits.empty() && (digits[0] == '-' || digits[0] == '+')) digits.remove_prefix(1);
+    const size_t dot = digits.find('.');
+    const std::string_view ip = digits.substr(0, dot), fp = dot == std::string_view::npos ? "" : digits.substr(dot + 1);
+    auto all_digits = [](std::string_view s) { return s.find_first_not_of("0123456789") == std::string_view::npos; };
+    if ((ip.empty() && fp.empty()) || !all_digits(ip) || !all_digits(fp) || ip.size() > 18 || fp.size() > 36) return;
+    Q64 q;
+    try {
+      q = Q64::parse_decimal(tok);
+    } catch (const std::invalid_argument& e) {
+      finding("parse_decimal rejects '" + tok + "', which is within its documented limits: " + e.what());
+    }
+    const double want = std::strtod(tok.c_str(), nullptr);
+    if (want == 0.0 || std::abs(want) >= 1.0 / 512)
+      check(q.to_double() == want, "'" + tok + "' reads as " + std::to_string(q.to_double()) + ", strtod gives " +
+                                       std::to_string(want));
+  });
+}
+
 void record(Outcome& o, const std::vector<Command>& cmds) {
   for (const Command& c : cmds) o.commands.emplace_back(c.loc.line, c.body.index());
 }
@@ -134,6 +162,7 @@ void trace_one(std::string_view input) {
   size_t lines = 1;
   for (char c : bytes) lines += c == '\n';
   if (f == scene_stream::Format::Plain) {
+    check_decimals(bytes);
     const std::string path = scratch_file("fuzz.trace", bytes);
     const Outcome whole = run_whole([&] { return parse_trace(bytes, path); }, path, lines);
     same(whole, run_stream(path), "parse_trace vs stream_trace", true);
