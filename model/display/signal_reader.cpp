@@ -198,9 +198,10 @@ class Reader {
     char* end = nullptr;
     errno = 0;
     const long w = std::strtol(f[1].c_str(), &end, 10);
+    if (*end || w < 1) fail("$var: width '" + f[1] + "' is not a positive number", at);
     // Widths are ints here; a larger one would wrap to another width, never read as itself.
-    if (*end || w < 1 || w > INT_MAX || errno == ERANGE)
-      fail("$var: width '" + f[1] + "' is not a number of bits in 1.." + std::to_string(INT_MAX), at);
+    if (w > INT_MAX || errno == ERANGE)
+      fail("$var: width '" + f[1] + "' is more than " + std::to_string(INT_MAX) + " bits", at);
     v.width = static_cast<int>(w);
     v.id = f[2];
     std::string n = f[3];
