@@ -33,6 +33,11 @@ RASTSIM_PACKAGES=(
   # models (the Stanford bunny, horse, cat; 6.6 MB download) and assimp to convert the
   # .3ds ones to OBJ (3 MB with libassimp5).
   glmark2-data assimp-utils
+  # libFuzzer targets of the parsers (scripts/fuzz, ctest -L fuzz in build-fuzz/,
+  # docs/fuzzing.md): Debian's clang 14 and its compiler-rt (libclang_rt.fuzzer*.a).
+  # About 260 MB installed: libllvm14 107 MB, libclang-cpp14 57 MB, libclang1-14 30 MB,
+  # libclang-common-14-dev 20 MB, libclang-rt-14-dev 43 MB.
+  clang libclang-rt-14-dev
 )
 
 install_missing_packages() {

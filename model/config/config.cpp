@@ -3,7 +3,6 @@
 
 #include <charconv>
 #include <cmath>
-#include <sstream>
 #include <toml++/toml.h>
 
 #include "ref/fixed_point.h"
@@ -17,9 +16,11 @@ std::string to_string(const ParamValue& v) {
         if constexpr (std::is_same_v<X, std::string>) return "\"" + x + "\"";
         else if constexpr (std::is_same_v<X, bool>) return x ? "true" : "false";
         else if constexpr (std::is_same_v<X, double>) {
-          std::ostringstream os;
-          os << x;
-          return os.str();
+          // The shortest text that reads back as the same double ("0.9", "30", "1e-05"):
+          // `rastsim config --toml` output and the sweep's config hash must tell apart
+          // values that differ past the 6 digits an ostream writes.
+          char buf[32];
+          return std::string(buf, std::to_chars(buf, buf + sizeof buf, x).ptr);
         } else return std::to_string(x);
       },
       v);

@@ -8,6 +8,7 @@
 #include <array>
 #include <cctype>
 #include <cerrno>
+#include <climits>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -41,6 +42,13 @@ int role_of(std::string n) {
       {"clk_pixel", kClock}};
   auto it = names.find(n);
   return it == names.end() ? -1 : it->second;
+}
+
+// A sample count for a message: "1.2e+13" style, enough digits to tell values apart.
+std::string fmt_g(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
 }
 
 std::string lower(std::string_view s) {
@@ -188,8 +196,12 @@ class Reader {
     Var v;
     v.real = f[0] == "real" || f[0] == "realtime";
     char* end = nullptr;
+    errno = 0;
     const long w = std::strtol(f[1].c_str(), &end, 10);
     if (*end || w < 1) fail("$var: width '" + f[1] + "' is not a positive number", at);
+    // Widths are ints here; a larger one would wrap to another width, never read as itself.
+    if (w > INT_MAX || errno == ERANGE)
+      fail("$var: width '" + f[1] + "' is more than " + std::to_string(INT_MAX) + " bits", at);
     v.width = static_cast<int>(w);
     v.id = f[2];
     std::string n = f[3];
@@ -285,7 +297,10 @@ class Reader {
         for (char b : val) {
           if (b != '0' && b != '1' && b != 'x' && b != 'X' && b != 'z' && b != 'Z')
             fail("vector value 'b" + val + "': '" + std::string(1, b) + "' is not 0, 1, x or z");
-          v.bits = v.bits << 1 | (b == '1');
+          // 64 bits hold every code the DAC takes (dac.bits <= 10); a set bit shifted out of
+          // a wider value saturates it, so it reads as over range (clamped and reported),
+          // never as the small number its low 64 bits spell.
+          v.bits = v.bits >> 63 ? ~uint64_t{0} : (v.bits << 1 | (b == '1'));
           v.unknown |= b != '0' && b != '1';
         }
       } else if (c == 'r' || c == 'R') {
@@ -335,6 +350,15 @@ class Reader {
     if (!have_time_) t0_ = T, have_time_ = true;
     // Without a clock: every sample strictly before T sees the values up to now.
     if (period_ > 0) {
+      // A video signal changes every line (hsync), so a gap of more than a frame without
+      // a change is no recording of one; replaying it would take time and memory out of
+      // all proportion to the file (#9223372036854775807 is ~10^13 frames at 1 ps).
+      const double gap = (double(T) - double(t0_)) / period_ - 0.5 - double(k_);
+      const long long frame = std::max(t_.pixels_per_frame(), 1LL);
+      if (gap > double(frame))
+        fail("timestamp #" + s + " is " + fmt_g(gap) + " pixel clocks after the previous one (#" +
+             std::to_string(now_) + "): more than a frame (" + std::to_string(frame) +
+             " pixel clocks) without a value change, where hsync changes every line");
       const RoleState st = roles();
       while (t0_ + (k_ + 0.5) * period_ < double(T)) emit(st);
     }
