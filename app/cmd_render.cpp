@@ -18,63 +18,8 @@ namespace rastsim::app {
 
 namespace {
 constexpr size_t kSceneBatchCommands = 4096;  // commands parsed ahead of the pipeline
-constexpr size_t kBatchesAhead = 2;            // parsed, not yet drawn (render --threads > 1)
+constexpr size_t kBatchesAhead = 2;            // parsed, not yet drawn
 
-// stream_scene with the parser on a thread of its own, up to kBatchesAhead batches in
-// front of `consume` (render --threads > 1: parsing a trace is about half of a render of
-// small triangles, and overlaps the drawing). Memory stays bounded by those batches. As
-// with stream_scene, a parse error reaches the caller after every batch before it was
-// consumed; an exception from `consume` stops the parser and passes unchanged.
-void stream_scene_ahead(const std::string& path, const ObjPlacement& placement, const CommandBatchFn& consume) {
-  struct Stopped {};  // thrown through the reader when the consumer has failed
-  std::mutex mu;
-  std::condition_variable cv;
-  std::deque<std::vector<Command>> ready;
-  bool parsed = false, stop = false;
-  std::exception_ptr parse_error;
-  std::thread parser([&] {
-    try {
-      stream_scene(path, placement, kSceneBatchCommands, [&](std::vector<Command>& batch) {
-        std::unique_lock<std::mutex> lock(mu);
-        cv.wait(lock, [&] { return ready.size() < kBatchesAhead || stop; });
-        if (stop) throw Stopped{};
-        ready.push_back(std::move(batch));
-        cv.notify_all();
-      });
-    } catch (const Stopped&) {
-    } catch (...) {
-      const std::lock_guard<std::mutex> lock(mu);
-      parse_error = std::current_exception();
-    }
-    const std::lock_guard<std::mutex> lock(mu);
-    parsed = true;
-    cv.notify_all();
-  });
-  try {
-    for (;;) {
-      std::vector<Command> batch;
-      {
-        std::unique_lock<std::mutex> lock(mu);
-        cv.wait(lock, [&] { return !ready.empty() || parsed; });
-        if (ready.empty()) break;
-        batch = std::move(ready.front());
-        ready.pop_front();
-        cv.notify_all();
-      }
-      consume(batch);
-    }
-  } catch (...) {
-    {
-      const std::lock_guard<std::mutex> lock(mu);
-      stop = true;
-      cv.notify_all();
-    }
-    parser.join();
-    throw;
-  }
-  parser.join();
-  if (parse_error) std::rethrow_exception(parse_error);
-}
 }  // namespace
 
 void run_render_command(const RenderOptions& o) {
@@ -100,7 +45,7 @@ void run_render_command(const RenderOptions& o) {
       drawing = false;
       done += batch.size();
     };
-    if (threads > 1) stream_scene_ahead(o.scene_path, obj_placement(cfg), draw);
+    if (threads > 1) stream_scene_ahead(o.scene_path, obj_placement(cfg), kSceneBatchCommands, kBatchesAhead, draw);
     else stream_scene(o.scene_path, obj_placement(cfg), kSceneBatchCommands, draw);
   } catch (const SceneError& e) {
     if (drawing || done == 0) throw;

@@ -86,6 +86,27 @@ class PlaneStepper {
 template <class Emit>
 void shade_pixel(const SetupTriangle& t, int px, int py, uint32_t m, int frac_bits, Emit&& emit);
 
+// shade_pixel for a run of pixels of one triangle, with PlaneStepper where it applies
+// (one sample, plane equations): the reference pipeline and the SystemC interpolator
+// shade through it, so both take the same fast path to the same fragments.
+class PixelShader {
+ public:
+  PixelShader(const SetupTriangle& t, int frac_bits)
+      : t_(t), frac_bits_(frac_bits), plane_(t, frac_bits),
+        stepped_(plane_.active() && t.interp_method == InterpMethod::Plane) {}
+  template <class Emit>
+  void shade(int px, int py, uint32_t mask, Emit&& emit) {
+    if (stepped_) emit(plane_.at(px, py));
+    else shade_pixel(t_, px, py, mask, frac_bits_, emit);
+  }
+
+ private:
+  const SetupTriangle& t_;
+  int frac_bits_;
+  PlaneStepper plane_;
+  bool stepped_;
+};
+
 // One DDA span value: the attribute (bits wide) at step k of a span whose exact start
 // value is num0 / den and exact step dnum / den (den > 0), in the given arithmetic.
 uint32_t dda_span_value(i128 num0, i128 dnum, i128 den, int64_t k, InterpArith arith, int frac_bits, int bits);

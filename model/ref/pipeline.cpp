@@ -163,9 +163,7 @@ struct SceneRenderer::Impl {
   // Traverses `walk` (tri itself, or tri with its box clipped to a region) and shades,
   // tests and writes every fragment of tri, counting into s.
   void draw(const SetupTriangle& tri, const SetupTriangle& walk, RenderStats& s) {
-    // One sample, plane equations: interpolate_plane's fragments by PlaneStepper.
-    PlaneStepper plane(tri, F);
-    const bool stepped = plane.active() && tri.interp_method == InterpMethod::Plane;
+    PixelShader shader(tri, F);  // PlaneStepper where it applies
     traverse(walk, tp, s.traversal, [&](int px, int py, uint32_t mask) {
       if (check) pixels.emplace_back(px, py);
       const auto write = [&](const Fragment& f) {
@@ -174,8 +172,7 @@ struct SceneRenderer::Impl {
         if (on_fragment) on_fragment(f);
         if (rop_write(fb, f, st.depth_func, st.depth_write, &s.samples_passed)) ++s.fragments_passed;
       };
-      if (stepped) write(plane.at(px, py));
-      else shade_pixel(tri, px, py, mask, F, write);
+      shader.shade(px, py, mask, write);
     });
   }
 };

@@ -12,8 +12,9 @@ void Interpolate::body() {
     const PixelBatch& batch = *in.work;
     auto frags = std::make_shared<std::vector<Fragment>>();
     frags->reserve(batch.pixels.size());
+    PixelShader shader(*batch.tri, frac_bits_);  // the reference's shading, fast path included
     for (const Pixel& px : batch.pixels) {
-      shade_pixel(*batch.tri, px.x, px.y, px.mask, frac_bits_, [&](const Fragment& f) {
+      shader.shade(px.x, px.y, px.mask, [&](const Fragment& f) {
         frags->push_back(f);
         // interp.method = dda: its error against the plane equations, counted as the
         // reference's render_scene counts it (same stats keys at both levels).

@@ -97,8 +97,8 @@ SimResult simulate_scene(const Scene& scene, const Config& cfg, const SimOptions
 SimResult simulate_commands(CommandSource source, const Config& cfg, const SimOptions& opts = {});
 
 // The same on a scene file streamed in batches of `batch` commands (scene_io.h
-// stream_scene): the reader runs as command fetch pulls, so memory stays bounded by the
-// commands in flight, not the file. Cycles, image and stats are simulate_scene's on the
+// stream_scene_ahead): the reader runs on a thread of its own, up to two batches ahead of
+// command fetch, so memory stays bounded by those batches, not the file. Cycles, image and stats are simulate_scene's on the
 // loaded scene. A malformed line stops the run with its SceneError (file:line), saying
 // how many commands were fetched and at which cycle, when any were.
 SimResult simulate_stream(const std::string& path, const ObjPlacement& placement, const Config& cfg,

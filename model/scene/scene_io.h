@@ -56,6 +56,15 @@ void stream_trace(const std::string& path, size_t batch, const CommandBatchFn& c
 void stream_scene(const std::string& path, const ObjPlacement& placement, size_t batch,
                   const CommandBatchFn& consume);
 
+// stream_scene with the reader on a thread of its own, up to `batches_ahead` batches in
+// front of `consume` (parsing a trace of small triangles costs about as much as drawing
+// it in the reference model, and overlaps the drawing or the simulation). Memory stays
+// bounded by those batches. As with stream_scene, a parse error reaches the caller after
+// every batch before it was consumed; an exception from `consume` stops the reader and
+// passes unchanged.
+void stream_scene_ahead(const std::string& path, const ObjPlacement& placement, size_t batch_commands,
+                        size_t batches_ahead, const CommandBatchFn& consume);
+
 // By extension, after any .gz / .zst: .obj -> load_obj, anything else -> load_trace.
 // Every loader reads plain, gzip and zstd files alike (scene_stream.h).
 Scene load_scene(const std::string& path, const ObjPlacement& placement);
