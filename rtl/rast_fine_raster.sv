@@ -144,6 +144,7 @@ module rast_fine_raster #(
 
   // ---- Masks: tested lanes of a partial tile, or the whole footprint ----
   logic [MaskW-1:0]  lane_mask, fp_mask;
+  logic [TileMax-1:0] fp_cols;
   logic [SMaskW-1:0] lane_smask, fp_smask;
   always_comb begin
     lane_mask  = '0;
@@ -153,14 +154,20 @@ module rast_fine_raster #(
         lane_mask[lane_pix[j]] = 1'b1;
         lane_smask[{lane_pix[j], lane_s[j]}] = 1'b1;
       end
+    // The footprint's mask: its columns (fp_cols, bit lx) on each of its rows ly, row ly
+    // at bit ly << tile_log2_i. Only an accepted tile reads it (zero otherwise: a
+    // verilated model skips the MaskW- and SMaskW-bit work on partial tiles).
+    fp_cols = '0;
     fp_mask = '0;
-    for (int ly = 0; ly < TileMax; ly++)
+    fp_smask = '0;
+    if (in_accepted_i) begin
       for (int lx = 0; lx < TileMax; lx++)
-        if (tile_x + PixelW'(lx) >= fx0 && tile_x + PixelW'(lx) < fx1 &&
-            tile_y + PixelW'(ly) >= fy0 && tile_y + PixelW'(ly) < fy1 &&
-            (lx >> tile_log2_i) == 0 && (ly >> tile_log2_i) == 0)
-          fp_mask[(TileLog2Max*2)'((ly << tile_log2_i) | lx)] = 1'b1;
-    for (int q = 0; q < MaskW; q++) fp_smask[q*MaxSamples +: MaxSamples] = fp_mask[q] ? s_full : '0;
+        fp_cols[lx] = tile_x + PixelW'(lx) >= fx0 && tile_x + PixelW'(lx) < fx1 && (lx >> tile_log2_i) == 0;
+      for (int ly = 0; ly < TileMax; ly++)
+        if (tile_y + PixelW'(ly) >= fy0 && tile_y + PixelW'(ly) < fy1 && (ly >> tile_log2_i) == 0)
+          fp_mask = fp_mask | (MaskW'(fp_cols) << (ly << tile_log2_i));
+      for (int q = 0; q < MaskW; q++) fp_smask[q*MaxSamples +: MaxSamples] = fp_mask[q] ? s_full : '0;
+    end
   end
 
   // ---- Control ----

@@ -76,31 +76,47 @@ module rast_interpolate #(
   localparam int CNumW = ColorNumW + 3;                // derived: signed colour numerator
   localparam int ZNumW = DepthNumW + 3;                // derived: signed depth numerator
 
+  localparam int RowW  = 1 << TileLog2Max;             // derived: mask bits a row of the largest tile
+  localparam int Rows  = MaskW / RowW;                 // derived: rows of the mask
+  localparam int RowIW = TileLog2Max;                  // derived: row / bit-in-row index bits
+
   logic             en;
-  logic [MaskW-1:0] consumed_q, rem, picked;
+  logic [IdxW-1:0]  pos_q;  // mask bits below this were picked in earlier beats (0: none)
   logic [IdxW-1:0]  idx [Lanes];
   logic [Lanes-1:0] pick;
   logic             last_beat;
 
-  // ---- The next Lanes set bits of the mask, lowest first ----
+  // ---- The next Lanes set bits of the mask at or after pos_q, lowest first ----
+  // A row (RowW bits) at a time: a row without a set bit left costs one test, and the
+  // scan stops looking once it has found Lanes + 1 bits (the +1 says whether this is the
+  // last beat). In hardware the same function as a priority select over the whole mask;
+  // in Verilator the per-cycle work follows the rows holding the beat's pixels, not the
+  // mask width. (Was: rem = in_mask_i & ~consumed_q over all MaskW bits, a MaskW-bit
+  // register of picked pixels, and a MaskW-iteration loop every cycle.)
   always_comb begin
     int k;
-    rem    = in_mask_i & ~consumed_q;
-    picked = '0;
-    pick   = '0;
-    for (int j = 0; j < Lanes; j++) idx[j] = '0;
+    logic [RowW-1:0] row;
     k = 0;
+    pick = '0;
+    for (int j = 0; j < Lanes; j++) idx[j] = '0;
     last_beat = 1'b1;
-    for (int i = 0; i < MaskW; i++) begin
-      if (rem[i]) begin
-        if (k < Lanes) begin
-          idx[k]    = IdxW'(i);
-          pick[k]   = 1'b1;
-          picked[i] = 1'b1;
-        end else begin
-          last_beat = 1'b0;
+    for (int r = 0; r < Rows; r++) begin
+      row = in_mask_i[r*RowW +: RowW];
+      // pos_q is {row, bit in row} (RowIW bits each).
+      if (r < (int'(pos_q) >> RowIW)) row = '0;
+      else if (r == (int'(pos_q) >> RowIW)) row = row & ({RowW{1'b1}} << (int'(pos_q) % RowW));
+      if (k <= Lanes && row != '0) begin
+        for (int b = 0; b < RowW; b++) begin
+          if (row[b]) begin
+            if (k < Lanes) begin
+              idx[k]  = IdxW'(r * RowW + b);
+              pick[k] = 1'b1;
+            end else begin
+              last_beat = 1'b0;
+            end
+            k = k + 1;
+          end
         end
-        k = k + 1;
       end
     end
   end
@@ -108,9 +124,10 @@ module rast_interpolate #(
   assign en         = !(out_valid_o && !out_ready_i);
   assign in_ready_o = en && in_valid_i && (in_marker_i || last_beat);
 
+  // Not the last beat: all Lanes lanes picked, and the next beat starts after the last.
   always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) consumed_q <= '0;
-    else if (en && in_valid_i && !in_marker_i) consumed_q <= last_beat ? '0 : (consumed_q | picked);
+    if (!rst_ni) pos_q <= '0;
+    else if (en && in_valid_i && !in_marker_i) pos_q <= last_beat ? '0 : idx[Lanes-1] + 1'b1;
   end
 
   // ---- Per lane: pixel, weights, numerators, dividers ----
@@ -129,6 +146,8 @@ module rast_interpolate #(
     logic [DepthNumW-1:0]  num_z;
     logic [3:0]            lo, hi;  // per divider (r, g, b, z): clamp to 0 / to the maximum
     logic [IdxW-1:0]       mask_lx, lx, ly;
+    logic                  live;   // the lane holds a picked pixel this cycle
+    assign live = in_valid_i && !in_marker_i && pick[j];
     assign mask_lx = ~({IdxW{1'b1}} << tile_log2_i);
     assign lx = idx[j] & mask_lx;
     assign ly = idx[j] >> tile_log2_i;
@@ -148,15 +167,18 @@ module rast_interpolate #(
     end
     // Exact signed numerators: weight of vertex v is the edge opposite it, edge (v+1)%3
     // (in [0, area2] at a covered centre; |w| < 2^(EdgeW-1) anywhere in the box).
+    // Zero on an idle lane (never read): Verilator then skips the wide products.
     always_comb begin
       for (int ch = 0; ch < 3; ch++) begin
         snum_c[ch] = '0;
-        for (int v = 0; v < 3; v++)
-          snum_c[ch] = snum_c[ch] + CNumW'(e[(v+1)%3]) * $signed({{(CNumW - 8){1'b0}}, in_rgb_i[v*24 + ch*8 +: 8]});
+        if (live)
+          for (int v = 0; v < 3; v++)
+            snum_c[ch] = snum_c[ch] + CNumW'(e[(v+1)%3]) * $signed({{(CNumW - 8){1'b0}}, in_rgb_i[v*24 + ch*8 +: 8]});
       end
       snum_z = '0;
-      for (int v = 0; v < 3; v++)
-        snum_z = snum_z + ZNumW'(e[(v+1)%3]) * $signed({{(ZNumW - DepthW){1'b0}}, in_z_i[v*DepthW +: DepthW]});
+      if (live)
+        for (int v = 0; v < 3; v++)
+          snum_z = snum_z + ZNumW'(e[(v+1)%3]) * $signed({{(ZNumW - DepthW){1'b0}}, in_z_i[v*DepthW +: DepthW]});
     end
     // Clamp flags: negative numerator, or 2 num + area2 >= 2^(bits+1) area2.
     always_comb begin
@@ -174,13 +196,13 @@ module rast_interpolate #(
     assign lane_clamp[j*ClampW +: ClampW] = {hi, lo};
     for (genvar ch = 0; ch < 3; ch++) begin : g_color
       rast_divider #(.NumW(ColorNumW), .DenW(AreaW), .QW(8), .Latency(Latency)) u_div (
-        .clk_i, .en_i(en), .num_i(num_c[ch]), .den_i(in_area2_i), .q_o(div_rgb[j*24 + ch*8 +: 8]));
+        .clk_i, .en_i(en), .valid_i(live), .num_i(num_c[ch]), .den_i(in_area2_i), .q_o(div_rgb[j*24 + ch*8 +: 8]));
       // The clamp at the divider's output (flags delayed like it).
       assign out_rgb_o[j*24 + ch*8 +: 8] = out_clamp[j*ClampW + 4 + ch] ? 8'hff :
                                            out_clamp[j*ClampW + ch] ? 8'h00 : div_rgb[j*24 + ch*8 +: 8];
     end
     rast_divider #(.NumW(DepthNumW), .DenW(AreaW), .QW(DepthW), .Latency(Latency)) u_div_z (
-      .clk_i, .en_i(en), .num_i(num_z), .den_i(in_area2_i), .q_o(div_z[j*DepthW +: DepthW]));
+      .clk_i, .en_i(en), .valid_i(live), .num_i(num_z), .den_i(in_area2_i), .q_o(div_z[j*DepthW +: DepthW]));
     assign out_z_o[j*DepthW +: DepthW] = out_clamp[j*ClampW + 7] ? {DepthW{1'b1}} :
                                          out_clamp[j*ClampW + 3] ? '0 : div_z[j*DepthW +: DepthW];
   end
@@ -188,13 +210,13 @@ module rast_interpolate #(
   // ---- Side data: valid, marker, last, lanes and pixels, delayed like the dividers ----
   logic             beat, side_occupied;
   logic [SideW-1:0] side_out;
-  assign beat = in_valid_i && (in_marker_i || (rem != '0));
+  assign beat = in_valid_i && (in_marker_i || pick[0]);
   rast_pipe #(.Width(SideW), .Latency(Latency)) u_side (
     .clk_i, .rst_ni, .en_i(en),
     .d_i({beat, in_marker_i, last_beat && !in_marker_i, in_marker_i ? '0 : pick, lane_x, lane_y, lane_smask, lane_clamp}),
     .q_o(side_out), .occupied_o(side_occupied));
   assign {out_valid_o, out_marker_o, out_last_o, out_lanes_o, out_x_o, out_y_o, out_smask_o, out_clamp} = side_out;
-  assign busy_o = (consumed_q != '0) || side_occupied;
+  assign busy_o = (pos_q != '0) || side_occupied;
 endmodule
 
 `default_nettype wire

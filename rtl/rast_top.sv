@@ -98,6 +98,30 @@ module rast_top #(
            MaxSamples, SampleLog2W);
   end
 
+  // ---- The static raster state, registered (loaded every cycle; no reset) ----
+  // The ports are static while the pipeline is busy, so a copy that lags them by one
+  // cycle is the same value whenever it is used (the testbench sets them before reset,
+  // whose cycle loads them). Why a register: the logic downstream then depends on state
+  // only, not on a port, so Verilator evaluates it once a clock edge instead of on every
+  // eval() call too (its input-combinational region re-runs all port-dependent logic on
+  // each call; without this the interpolator's lanes ran three times a cycle).
+  logic [TileLog2W-1:0]             tile_log2_q;     // tile_log2_i
+  logic [1:0]                       fill_rule_q;     // fill_rule_i
+  logic [1:0]                       cull_mode_q;     // cull_mode_i
+  logic                             front_ccw_q;     // front_ccw_i
+  logic [SampleLog2W-1:0]           samples_log2_q;  // samples_log2_i
+  logic [MaxSamples*SampleOffW-1:0] sample_dx_q;     // sample_dx_i
+  logic [MaxSamples*SampleOffW-1:0] sample_dy_q;     // sample_dy_i
+  always_ff @(posedge clk_i) begin
+    tile_log2_q    <= tile_log2_i;
+    fill_rule_q    <= fill_rule_i;
+    cull_mode_q    <= cull_mode_i;
+    front_ccw_q    <= front_ccw_i;
+    samples_log2_q <= samples_log2_i;
+    sample_dx_q    <= sample_dx_i;
+    sample_dy_q    <= sample_dy_i;
+  end
+
   // ---- The sample offsets' bounding box {dy_max, dy_min, dx_max, dx_min} (static) ----
   logic [4*SampleOffW-1:0] box;
   always_comb begin
@@ -107,9 +131,9 @@ module rast_top #(
     dy_min = '0;
     dy_max = '0;
     for (int k = 0; k < MaxSamples; k++) begin
-      dx = sample_dx_i[k*SampleOffW +: SampleOffW];
-      dy = sample_dy_i[k*SampleOffW +: SampleOffW];
-      if (k == 0 || (k >> samples_log2_i) == 0) begin
+      dx = sample_dx_q[k*SampleOffW +: SampleOffW];
+      dy = sample_dy_q[k*SampleOffW +: SampleOffW];
+      if (k == 0 || (k >> samples_log2_q) == 0) begin
         if (k == 0 || dx < dx_min) dx_min = dx;
         if (k == 0 || dx > dx_max) dx_max = dx;
         if (k == 0 || dy < dy_min) dy_min = dy;
@@ -148,7 +172,7 @@ module rast_top #(
     .CoordW(CoordW), .CoordFrac(CoordFrac), .CoefW(CoefW), .EdgeW(EdgeW), .AreaW(AreaW),
     .PixelW(PixelW), .AttrW(AttrW), .SampleOffW(SampleOffW), .SetupInterval(SetupInterval)
   ) u_tri_setup (
-    .clk_i, .rst_ni, .fill_rule_i, .cull_mode_i, .front_ccw_i, .box_i(box),
+    .clk_i, .rst_ni, .fill_rule_i(fill_rule_q), .cull_mode_i(cull_mode_q), .front_ccw_i(front_ccw_q), .box_i(box),
     .in_valid_i(t_valid), .in_ready_o(t_ready), .in_marker_i(t_marker),
     .in_x_i(t_x), .in_y_i(t_y), .in_clip_i(t_clip), .in_origin_i(t_origin), .in_attr_i(t_attr),
     .out_valid_o(s_valid), .out_ready_i(s_ready), .out_marker_o(s_marker), .out_a_o(s_a),
@@ -187,7 +211,7 @@ module rast_top #(
     .CoordW(CoordW), .CoordFrac(CoordFrac), .CoefW(CoefW), .EdgeW(EdgeW), .PixelW(PixelW),
     .TileLog2W(TileLog2W), .SampleOffW(SampleOffW), .TilesPerCycle(CoarseTilesPerCycle)
   ) u_coarse_raster (
-    .clk_i, .rst_ni, .tile_log2_i, .box_i(box), .in_valid_i(c_valid), .in_ready_o(c_ready), .in_marker_i(c_marker),
+    .clk_i, .rst_ni, .tile_log2_i(tile_log2_q), .box_i(box), .in_valid_i(c_valid), .in_ready_o(c_ready), .in_marker_i(c_marker),
     .in_a_i(c_a), .in_b_i(c_b), .in_c_i(c_c), .in_bias_i(c_bias), .in_bbox_i(c_bbox), .in_origin_i(c_origin),
     .out_valid_o(k_valid), .out_ready_i(k_ready), .out_marker_o(k_marker), .out_accepted_o(k_accepted),
     .out_fp_o(k_fp), .busy_o(c_busy));
@@ -225,7 +249,7 @@ module rast_top #(
     .AcceptedTileCycles(FineAcceptedTileCycles), .MaxSamples(MaxSamples), .SampleLog2W(SampleLog2W),
     .SampleOffW(SampleOffW)
   ) u_fine_raster (
-    .clk_i, .rst_ni, .tile_log2_i, .samples_log2_i, .sample_dx_i, .sample_dy_i, .in_valid_i(f_valid), .in_ready_o(f_ready), .in_marker_i(f_marker),
+    .clk_i, .rst_ni, .tile_log2_i(tile_log2_q), .samples_log2_i(samples_log2_q), .sample_dx_i(sample_dx_q), .sample_dy_i(sample_dy_q), .in_valid_i(f_valid), .in_ready_o(f_ready), .in_marker_i(f_marker),
     .in_accepted_i(f_accepted), .in_fp_i(f_fp), .in_a_i(f_a), .in_b_i(f_b), .in_c_i(f_c),
     .in_bias_i(f_bias), .in_origin_i(f_origin), .out_valid_o(m_valid), .out_ready_i(m_ready),
     .out_marker_o(m_marker), .out_mask_o(m_mask), .out_smask_o(m_smask), .out_tile_o(m_tile), .busy_o(f_busy));
@@ -260,7 +284,7 @@ module rast_top #(
     .TileLog2Max(TileLog2Max), .TileLog2W(TileLog2W), .FragmentsPerCycle(InterpFragmentsPerCycle), .Latency(InterpLatency),
     .MaxSamples(MaxSamples)
   ) u_interpolate (
-    .clk_i, .rst_ni, .tile_log2_i, .in_valid_i(p_valid), .in_ready_o(p_ready), .in_marker_i(p_marker),
+    .clk_i, .rst_ni, .tile_log2_i(tile_log2_q), .in_valid_i(p_valid), .in_ready_o(p_ready), .in_marker_i(p_marker),
     .in_mask_i(p_mask), .in_smask_i(p_smask), .in_tile_i(p_tile), .in_a_i(p_a), .in_b_i(p_b), .in_c_i(p_c),
     .in_origin_i(p_origin), .in_area2_i(p_area2), .in_z_i(p_z), .in_rgb_i(p_rgb),
     .out_valid_o(frag_valid_o), .out_ready_i(frag_ready_i), .out_marker_o(frag_marker_o),
