@@ -13,8 +13,9 @@
 //
 // Stage statistics (docs/microarchitecture.md "Stage statistics"): every cycle each
 // stage is busy, stalled or starved, as the SystemC Stage accounts it. The testbench
-// stages count their own cycles; setup, coarse raster, fine raster and interpolation are
-// classified from rast_top's dbg_has_o / dbg_done_o / dbg_blocked_o handshake ports.
+// stages (and the 2D front end and engine) count their own cycles; setup, coarse raster,
+// fine raster and interpolation are classified from rast_top's dbg_has_o / dbg_done_o /
+// dbg_blocked_o handshake ports.
 #pragma once
 
 #include <algorithm>
@@ -140,9 +141,10 @@ struct TbStage {
 };
 
 // The stages of CosimResult::stages, in pipeline order, with the SystemC model's names.
-enum TbStageId { kFetch, kAssembly, kSetup, kCoarse, kFine, kInterp, kRop, kStageCount };
-inline constexpr const char* kStageNames[kStageCount] = {"command_fetch", "prim_assembly", "tri_setup",
-                                                         "coarse_raster", "fine_raster",   "interpolate", "rop"};
+enum TbStageId { kFetch, kAssembly, kSetup, kCoarse, kFine, kInterp, kRop, kDraw2dSetup, kEngine2d, kStageCount };
+inline constexpr const char* kStageNames[kStageCount] = {
+    "command_fetch", "prim_assembly", "tri_setup", "coarse_raster", "fine_raster",
+    "interpolate",   "rop",           "draw2d_setup", "engine2d"};
 enum class Cyc : uint8_t { Starved, Busy, Stalled };  // a stage's state in one cycle
 
 // One co-simulation run: the verilated rast_top between the testbench's front end
@@ -301,6 +303,9 @@ class RtlBench {
       const Batch b = std::move(frag_fifo_.front());
       frag_fifo_.pop_front();
       if (b.marker && s_.items[b.marker_item].work2d >= 0) {
+        // One transaction (the model's marker read): the wait for the engine, then the
+        // marker's own cycle (engine_done), whose end closes it.
+        tx_begin(kRop, t);
         rop_wait_2d_ = true;
         grant_work_ = s_.items[b.marker_item].work2d;
         last_busy_ = t;
@@ -343,20 +348,26 @@ class RtlBench {
   // ---- The 2D path (model/sc/draw2d_setup.cpp, engine2d.cpp) ----
   // The engine takes the next visible operation batch when it has none.
   void engine_take(uint64_t t) {
+    engine_worked_ = false;
     if (held_ < 0 && !engine_busy_ && !op2d_fifo_.empty() && op2d_fifo_.front().pushed < t) {
       held_ = int(op2d_fifo_.front().item);
       op2d_fifo_.pop_front();
+      tx_begin(kEngine2d, t);  // the model's read of the operation batch
     }
     // The ROP's grant and the held batch: the engine starts (its first cycle takes the port).
     if (rop_wait_2d_ && held_ >= 0 && !engine_busy_) {
       if (held_ != grant_work_) mismatch("2D engine holds " + s_.work2d[size_t(held_)].name + " but the ROP granted " +
                                          s_.work2d[size_t(grant_work_)].name);
       engine_busy_ = true;
+      engine_worked_ = true;  // the cycle that takes the port (TimingParams::engine2d_grant_cycles)
       next_op_ = 0;
       if (s_.work2d[size_t(held_)].work.ops.empty()) engine_done(t);
     }
   }
-  void engine_done(uint64_t) {
+  // The engine's last busy cycle t: its transaction ends (the model's write of done
+  // returns at once: the ROP waits for it), the ROP's marker cycle is t + 1.
+  void engine_done(uint64_t t) {
+    tx_end(kEngine2d, t + 1);
     engine_busy_ = false;
     held_ = -1;
     rop_wait_2d_ = false;
@@ -404,7 +415,13 @@ class RtlBench {
     return uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16;
   }
   // The framebuffer port (asynchronous read, write at the edge), then the handshake.
+  // The engine's cycle is busy from the one that takes the port to the one whose
+  // operation completes the command (the testbench offers every operation at once, so
+  // the engine never waits: the model's busy(1) + busy(engine2d_op_cycles) per operation);
+  // starved otherwise (the model's reads of the operations and of the ROP's grant).
   void engine_memory_and_handshake(uint64_t t, bool op_valid) {
+    engine_worked_ = engine_worked_ || engine_busy_;
+    count(kEngine2d, engine_worked_ ? Cyc::Busy : Cyc::Starved);
     if (!engine_busy_) return;
     last_busy_ = t;
     const int x = sext20(engine_->mem_x_o), y = sext20(engine_->mem_y_o);
@@ -446,30 +463,40 @@ class RtlBench {
     if (!fe_.active && !d2_fifo_.empty() && d2_fifo_.front().pushed < t) {
       fe_ = TbStage{true, s_.work2d[d2_fifo_.front().item].setup_cost, d2_fifo_.front().item};
       d2_fifo_.pop_front();
+      tx_begin(kDraw2dSetup, t);
     }
   }
   // A stage that pushes in its last busy cycle starts its next item the cycle after; one
   // that was blocked on a full FIFO pushes in the cycle the reader pops and starts its
   // next item in that same cycle (the SystemC writer returns from its blocked write then).
+  // The cycle is counted as fetch's (fetch_step): busy for a countdown or the first push
+  // attempt, stalled for a retried push, and a push after a stall ends that transaction
+  // as the cycle starts.
   void front_end_step(uint64_t t) {
+    Cyc state = Cyc::Starved;
     for (;;) {
       front_end_take(t);
-      if (!fe_.active) return;
+      if (!fe_.active) break;
       last_busy_ = std::max(last_busy_, t);
       if (fe_.left > 1) {
         --fe_.left;
-        return;
+        state = Cyc::Busy;
+        break;
       }
+      if (!fe_blocked_) state = Cyc::Busy;
       if (op2d_fifo_.size() >= op2d_depth_) {
+        if (fe_blocked_) state = Cyc::Stalled;
         fe_blocked_ = true;
-        return;
+        break;
       }
       op2d_fifo_.push_back(Entry{fe_.item, t});
       fe_.active = false;
       const bool was_blocked = fe_blocked_;
       fe_blocked_ = false;
-      if (!was_blocked) return;
+      tx_end(kDraw2dSetup, was_blocked ? t : t + 1);
+      if (!was_blocked) break;
     }
+    count(kDraw2dSetup, state);
   }
 
   // ---- Front end: command fetch and primitive assembly (model/sc/command_fetch.cpp,
@@ -754,6 +781,7 @@ class RtlBench {
   bool fetch_2d_pushed_ = false;          // fetch pushed its 2D command, the marker still to go
   int held_ = -1;                         // the batch the engine holds (work2d index)
   bool engine_busy_ = false;              // executing `held_` (the port is lent)
+  bool engine_worked_ = false;            // the engine is busy in this cycle (stage statistics)
   size_t next_op_ = 0;                    // next operation of `held_` to offer
   bool rop_wait_2d_ = false;              // the ROP holds for the engine
   int grant_work_ = -1;                   // the 2D command the ROP granted

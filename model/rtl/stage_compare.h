@@ -24,14 +24,13 @@
 
 namespace rastsim::cosim {
 
-// A model-side report (sc::StageReport: name, busy, stalled, starved, transactions_in,
-// transactions_out, spans {t0, t1}) as a StageRecord; a template so this layer needs no SystemC.
+// A model-side report (sc::StageReport: name, busy, stalled, starved, transactions, spans
+// {t0, t1}) as a StageRecord; a template so this layer needs no SystemC.
 template <class Report>
 std::vector<StageRecord> stage_records(const std::vector<Report>& reports) {
   std::vector<StageRecord> v;
   for (const Report& s : reports) {
-    // A source stage (command fetch) reads nothing: its transactions are its writes.
-    StageRecord r{s.name, s.busy, s.stalled, s.starved, s.transactions_in ? s.transactions_in : s.transactions_out, {}};
+    StageRecord r{s.name, s.busy, s.stalled, s.starved, s.transactions, {}};
     for (const auto& sp : s.spans) r.spans.push_back(StageSpan{sp.t0, sp.t1});
     v.push_back(std::move(r));
   }

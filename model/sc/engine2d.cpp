@@ -8,7 +8,7 @@ namespace rastsim::sc {
 void Engine2d::body() {
   for (;;) {
     const Op2dItem in = read(in_);
-    const PortGrant g = read(grant_);
+    const PortGrant g = read(grant_, false);  // one transaction a command: its operations, then the port
     if (g.cmd != in.work.cmd)
       throw ModelError(std::string(name()) + ": the ROP granted " + g.cmd->loc.str() + " but the next 2D command is " +
                        in.work.cmd->loc.str());

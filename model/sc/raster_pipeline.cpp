@@ -186,7 +186,7 @@ SimResult simulate_commands(CommandSource source, const Config& cfg, const SimOp
     s->finish(end);
     const StageStats& st = s->stats();
     r.stages.push_back({s->basename(), st.busy, st.stalled, st.starved, st.transactions_in, st.transactions_out,
-                        std::move(spans[size_t(index)])});
+                        std::move(spans[size_t(index)]), st.transactions()});
     // A stage with work starts no earlier than its fill (TimingParams::stage_fill_cycles).
     if (st.busy > 0) r.cycles_lower_bound = std::max(r.cycles_lower_bound, p.stage_fill_cycles(index) + st.busy);
     ++index;

@@ -48,6 +48,7 @@ struct StageReport {
   uint64_t busy = 0, stalled = 0, starved = 0;  // cycles; they add up to `cycles`
   uint64_t transactions_in = 0, transactions_out = 0;
   std::vector<Span> spans;  // per transaction, when SimOptions::spans (sc/timeline.h)
+  uint64_t transactions = 0;  // StageStats::transactions(): what --trace-diff's rows count
 };
 
 struct FifoReport {

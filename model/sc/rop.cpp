@@ -20,7 +20,7 @@ void Rop::body() {
     const FragmentItem in = read(in_);
     if (in.state && std::holds_alternative<CmdDraw2d>(in.state->body)) {
       write(grant_2d_, PortGrant{in.state});
-      read(done_2d_);
+      read(done_2d_, false);  // the same transaction: the marker's, starved while the engine works
       attribute_to_no_tile();
       busy(TimingParams::rop_draw2d_marker_cycles());
       continue;

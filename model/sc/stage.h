@@ -3,6 +3,8 @@
 // the helpers below are the only places time passes, and they account it:
 //
 // - read():  blocks on the input FIFO, then until the transaction is ready -> starved
+//            (read(in, false): a further input of the transaction in progress, as the
+//            2D engine's grant or the ROP's 2D done: starved, no new transaction)
 // - busy(n): one wait of n cycles for one transaction's work                -> busy
 // - write(): blocks on a full output FIFO (plus injected stalls)           -> stalled
 //
@@ -31,6 +33,11 @@ enum class StageState { Starved = 0, Busy = 1, Stalled = 2 };
 struct StageStats {
   uint64_t busy = 0, stalled = 0, starved = 0;  // cycles
   uint64_t transactions_in = 0, transactions_out = 0;
+  // A reading stage's transactions are its reads; a source stage's (command fetch) run
+  // from its first busy cycle to its first write, however many outputs it writes (a 2D
+  // command goes to the 2D front end and, as a marker, down the triangle path).
+  uint64_t transactions() const { return transactions_in ? transactions_in : source_transactions; }
+  uint64_t source_transactions = 0;
 };
 
 // Every transaction carries either a state command (viewport, scissor, clear) or work.
@@ -71,14 +78,15 @@ class Stage : public sc_core::sc_module {
   virtual void body() = 0;
 
   template <class P>
-  P read(Link<P>& in) {
+  P read(Link<P>& in, bool new_transaction = true) {
     set_state(StageState::Starved);
-    end_span(sc_core::sc_time_stamp());
+    if (new_transaction) end_span(sc_core::sc_time_stamp());
     Tx<P> t = in.read();
     if (t.ready > sc_core::sc_time_stamp()) wait(t.ready - sc_core::sc_time_stamp());
     stats_.starved += ctx_.to_cycles(sc_core::sc_time_stamp() - idle_since_);
     record(StageState::Starved, idle_since_, sc_core::sc_time_stamp());
     idle_since_ = sc_core::sc_time_stamp();  // a second read in a row counts from here
+    if (!new_transaction) return std::move(t.payload);
     ++stats_.transactions_in;
     begin_span();
     return std::move(t.payload);
@@ -86,7 +94,11 @@ class Stage : public sc_core::sc_module {
 
   void busy(uint64_t cycles) {
     if (cycles == 0) return;
-    if (stats_.transactions_in == 0) begin_span();  // a source stage (command fetch)
+    if (stats_.transactions_in == 0) {  // a source stage (command fetch)
+      if (!source_open_) ++stats_.source_transactions;
+      source_open_ = true;
+      begin_span();
+    }
     set_state(StageState::Busy);
     const sc_core::sc_time t0 = sc_core::sc_time_stamp();
     wait(double(cycles) * ctx_.cycle);
@@ -108,7 +120,10 @@ class Stage : public sc_core::sc_module {
     record(StageState::Stalled, t0, sc_core::sc_time_stamp());
     ++stats_.transactions_out;
     idle_since_ = sc_core::sc_time_stamp();
-    if (stats_.transactions_in == 0) end_span(idle_since_);  // a source stage's transaction ends with its write
+    if (stats_.transactions_in == 0) {  // a source stage's transaction ends with its write
+      source_open_ = false;
+      end_span(idle_since_);
+    }
   }
 
   // A state command takes one cycle of a stage's issue slot and then, like any other
@@ -168,6 +183,7 @@ class Stage : public sc_core::sc_module {
   int heat_tile_ = -1;           // tile the next busy() is charged to (-1: none)
   std::vector<Span>* spans_ = nullptr;  // --trace-diff: this stage's transactions
   bool span_open_ = false;              // the last span has no end yet
+  bool source_open_ = false;            // a source stage's transaction is in progress
 };
 
 }  // namespace rastsim::sc

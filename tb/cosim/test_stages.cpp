@@ -6,7 +6,12 @@
 // - On a random 2,000-triangle scene (seeded, printed) per shipped config, without
 //   backpressure (the model has none on the fragment port): every stage's busy cycles
 //   agree within 2 % (the bound), busy + stalled + starved = cycles on each side,
-//   both sides take the same number of transactions, every fragment matches.
+//   both sides take the same number of transactions, every fragment matches; the 2D
+//   stages are idle on both sides.
+// - The same on every 2D scene (traces/2d/*.trace) per shipped config, where the 2D front
+//   end and engine work: nine stages, busy within 2 %, equal transactions (so
+//   --trace-diff's CSVs have equal rows: the ROP's 2D marker is one transaction on both
+//   sides).
 // - --trace-diff: two RTL runs, one with the testbench ROP slowed by 7 cycles on one
 //   transaction (CosimOptions::perturb_rop_*): the CSVs have equal row counts, and the
 //   first difference is that transaction, its start equal and its end 7 cycles later.
@@ -15,6 +20,9 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <set>
+
+#include "scene/scene_io.h"
 
 #include "cosim_test_util.h"
 #include "fidelity/run_child.h"
@@ -47,6 +55,43 @@ std::vector<StageRecord> model_stages(const Scene& scene, const Config& cfg, uin
   return v;
 }
 
+// The stages the SystemC model and the RTL co-simulation both count, in pipeline order.
+const std::vector<std::string> kAllStages = {"command_fetch", "prim_assembly", "tri_setup",
+                                             "coarse_raster", "fine_raster",   "interpolate",
+                                             "rop",           "draw2d_setup",  "engine2d"};
+bool is_2d_stage(const std::string& name) { return name == "draw2d_setup" || name == "engine2d"; }
+
+// Every stage's figures agree on `scene`: busy within `bound` (with `busy_nonzero` the
+// stages that must have worked), the three states add up to each side's cycles, and
+// both sides take the same number of transactions.
+void expect_stages_agree(const Scene& scene, const Config& cfg, const std::set<std::string>& busy_nonzero,
+                         const std::set<std::string>& idle) {
+  const CosimResult r = run_cosim(scene, cfg);
+  expect_clean(r);
+  uint64_t cycles_model = 0;
+  const std::vector<StageRecord> model = model_stages(scene, cfg, cycles_model);
+  const std::vector<StageAgreement> a = compare_stages(model, r.stages);
+  ASSERT_EQ(a.size(), kAllStages.size()) << "every stage the RTL co-simulation counts has a SystemC twin";
+  for (size_t k = 0; k < a.size(); ++k) {
+    const StageAgreement& s = a[k];
+    SCOPED_TRACE(s.name);
+    EXPECT_EQ(s.name, kAllStages[k]);
+    std::cout << s.name << ": busy model " << s.model.busy << ", RTL " << s.rtl.busy << "; transactions model "
+              << s.model.transactions << ", RTL " << s.rtl.transactions << "\n";
+    if (busy_nonzero.count(s.name)) {
+      EXPECT_GT(s.rtl.busy, 0u);
+    }
+    if (idle.count(s.name)) {
+      EXPECT_EQ(s.rtl.busy, 0u);
+      EXPECT_EQ(s.model.busy, 0u);
+    }
+    EXPECT_LE(std::abs(s.busy_error), 0.02);
+    EXPECT_EQ(s.model.transactions, s.rtl.transactions);
+    EXPECT_EQ(s.rtl.busy + s.rtl.stalled + s.rtl.starved, r.cycles_rtl);
+    EXPECT_EQ(s.model.busy + s.model.stalled + s.model.starved, cycles_model);
+  }
+}
+
 class StageAgreementTest : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(StageAgreementTest, RandomSceneBusyWithinTwoPercent) {
@@ -55,21 +100,22 @@ TEST_P(StageAgreementTest, RandomSceneBusyWithinTwoPercent) {
   const uint64_t seed = 0x57a9e000u;
   std::cout << "seed " << seed << "\n";
   const Scene scene = random_scene(cfg, seed, 2000);
-  const CosimResult r = run_cosim(scene, cfg);
-  expect_clean(r);
-  uint64_t cycles_model = 0;
-  const std::vector<StageRecord> model = model_stages(scene, cfg, cycles_model);
-  const std::vector<StageAgreement> a = compare_stages(model, r.stages);
-  ASSERT_EQ(a.size(), 7u) << "every stage the RTL co-simulation counts has a SystemC twin";
-  for (const StageAgreement& s : a) {
-    SCOPED_TRACE(s.name);
-    std::cout << s.name << ": busy model " << s.model.busy << ", RTL " << s.rtl.busy << "\n";
-    EXPECT_GT(s.rtl.busy, 0u);
-    EXPECT_LE(std::abs(s.busy_error), 0.02);
-    EXPECT_EQ(s.model.transactions, s.rtl.transactions);
-    EXPECT_EQ(s.rtl.busy + s.rtl.stalled + s.rtl.starved, r.cycles_rtl);
-    EXPECT_EQ(s.model.busy + s.model.stalled + s.model.starved, cycles_model);
+  std::set<std::string> triangle, two_d;
+  for (const std::string& n : kAllStages) (is_2d_stage(n) ? two_d : triangle).insert(n);
+  expect_stages_agree(scene, cfg, triangle, two_d);
+}
+
+TEST_P(StageAgreementTest, TwoDScenesBusyWithinTwoPercent) {
+  const Config cfg = load_shipped_config(GetParam());
+  const std::filesystem::path dir = std::filesystem::path(RASTSIM_SOURCE_DIR) / "traces" / "2d";
+  int scenes = 0;
+  for (const auto& e : std::filesystem::directory_iterator(dir)) {
+    if (e.path().extension() != ".trace") continue;
+    SCOPED_TRACE(e.path().string());
+    ++scenes;
+    expect_stages_agree(load_trace(e.path().string()), cfg, {"command_fetch", "rop", "draw2d_setup", "engine2d"}, {});
   }
+  EXPECT_GT(scenes, 0) << "no 2D scene in " << dir;
 }
 
 INSTANTIATE_TEST_SUITE_P(ShippedConfigs, StageAgreementTest,

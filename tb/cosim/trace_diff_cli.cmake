@@ -28,7 +28,7 @@ if(NOT out MATCHES "trace-diff .*(identical|first difference: [a-z_]+ transactio
   message(FATAL_ERROR "no trace-diff verdict in the output:\n${out}")
 endif()
 file(READ ${DIR}/stats.json stats)
-foreach(stage command_fetch prim_assembly tri_setup coarse_raster fine_raster interpolate rop)
+foreach(stage command_fetch prim_assembly tri_setup coarse_raster fine_raster interpolate rop draw2d_setup engine2d)
   foreach(key busy_rtl busy_model stalled_rtl stalled_model starved_rtl starved_model)
     string(JSON v ERROR_VARIABLE jerr GET "${stats}" stages ${stage} ${key})
     if(jerr)
