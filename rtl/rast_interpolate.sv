@@ -82,6 +82,11 @@ module rast_interpolate #(
 
   logic             en;
   logic [IdxW-1:0]  pos_q;  // mask bits below this were picked in earlier beats (0: none)
+  // pos_q is {row, bit in row} (RowIW bits each), zero-extended to 32 bits for the scan's
+  // compares with its int loop index (no int'() cast: Yosys 0.23 rejects it).
+  logic [31:0] pos_row, pos_bit;
+  assign pos_row = {{(32 - IdxW){1'b0}}, pos_q} >> RowIW;
+  assign pos_bit = {{(32 - IdxW){1'b0}}, pos_q} & (RowW - 1);
   logic [IdxW-1:0]  idx [Lanes];
   logic [Lanes-1:0] pick;
   logic             last_beat;
@@ -102,9 +107,8 @@ module rast_interpolate #(
     last_beat = 1'b1;
     for (int r = 0; r < Rows; r++) begin
       row = in_mask_i[r*RowW +: RowW];
-      // pos_q is {row, bit in row} (RowIW bits each).
-      if (r < (int'(pos_q) >> RowIW)) row = '0;
-      else if (r == (int'(pos_q) >> RowIW)) row = row & ({RowW{1'b1}} << (int'(pos_q) % RowW));
+      if (r < pos_row) row = '0;
+      else if (r == pos_row) row = row & ({RowW{1'b1}} << pos_bit);
       if (k <= Lanes && row != '0) begin
         for (int b = 0; b < RowW; b++) begin
           if (row[b]) begin
