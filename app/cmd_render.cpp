@@ -1,10 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // `rastsim render`: the reference model on one scene; image, stats, fragment trace.
-#include <condition_variable>
-#include <deque>
 #include <fstream>
 #include <iostream>
-#include <mutex>
 #include <thread>
 
 #include "common.h"
@@ -18,8 +15,6 @@ namespace rastsim::app {
 
 namespace {
 constexpr size_t kSceneBatchCommands = 4096;  // commands parsed ahead of the pipeline
-constexpr size_t kBatchesAhead = 2;            // parsed, not yet drawn
-
 }  // namespace
 
 void run_render_command(const RenderOptions& o) {
@@ -45,7 +40,7 @@ void run_render_command(const RenderOptions& o) {
       drawing = false;
       done += batch.size();
     };
-    if (threads > 1) stream_scene_ahead(o.scene_path, obj_placement(cfg), kSceneBatchCommands, kBatchesAhead, draw);
+    if (threads > 1) stream_scene_ahead(o.scene_path, obj_placement(cfg), kSceneBatchCommands, kSceneBatchesAhead, draw);
     else stream_scene(o.scene_path, obj_placement(cfg), kSceneBatchCommands, draw);
   } catch (const SceneError& e) {
     if (drawing || done == 0) throw;

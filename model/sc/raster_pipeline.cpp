@@ -105,9 +105,9 @@ SimResult simulate_stream(const std::string& path, const ObjPlacement& placement
     uint64_t fetched = 0;
     bool fetching = false;  // an error of the pipeline itself, not of the reader, passes unchanged
     try {
-      // The reader runs on a thread of its own, two batches ahead of command fetch (the
+      // The reader runs on a thread of its own, kSceneBatchesAhead batches ahead of command fetch (the
       // model itself stays one SystemC thread; memory stays bounded by those batches).
-      stream_scene_ahead(path, placement, batch, 2, [&](std::vector<Command>& b) {
+      stream_scene_ahead(path, placement, batch, kSceneBatchesAhead, [&](std::vector<Command>& b) {
         // The batch moves into one shared block; each command's pointer shares it.
         const auto owner = std::make_shared<const std::vector<Command>>(std::move(b));
         b = {};

@@ -62,6 +62,8 @@ void stream_scene(const std::string& path, const ObjPlacement& placement, size_t
 // bounded by those batches. As with stream_scene, a parse error reaches the caller after
 // every batch before it was consumed; an exception from `consume` stops the reader and
 // passes unchanged.
+// render and simulate read kSceneBatchesAhead batches ahead.
+inline constexpr size_t kSceneBatchesAhead = 2;
 void stream_scene_ahead(const std::string& path, const ObjPlacement& placement, size_t batch_commands,
                         size_t batches_ahead, const CommandBatchFn& consume);
 
