@@ -55,7 +55,13 @@ DatapathWidths datapath_widths(const FixedFormat& f, int depth_bits) {
 }
 
 std::string FixedFormat::name() const {
-  return "s" + std::to_string(int_bits) + "." + std::to_string(frac_bits);
+  // Appended, not `"s" + std::to_string(...)`: GCC 12 at -O3 reports a false
+  // -Wrestrict on operator+(const char*, string&&) (GCC bug 105329), which -Werror stops.
+  std::string s = "s";
+  s += std::to_string(int_bits);
+  s += '.';
+  s += std::to_string(frac_bits);
+  return s;
 }
 
 Q64 Q64::parse_decimal(std::string_view text) {
