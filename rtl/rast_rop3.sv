@@ -19,8 +19,15 @@ module rast_rop3 #(
   output      logic             reads_d_o,  // the result depends on D
   output      logic             reads_s_o   // the result depends on S
 );
-  for (genvar k = 0; k < Width; k++) begin : g_bit
-    assign r_o[k] = code_i[{p_i[k], s_i[k], d_i[k]}];
+  // The same function as a sum of minterms over whole words: code bit m = {p, s, d}
+  // contributes the bits where P, S and D equal m's. (Was a generate of Width one-bit
+  // lookups code_i[{p_i[k], s_i[k], d_i[k]}]: the same 8:1 mux a bit in hardware, but
+  // a verilated model evaluated it as Width bit extracts; this is 8 word operations.)
+  always_comb begin
+    r_o = '0;
+    for (int m = 0; m < 8; m++)
+      if (code_i[m])
+        r_o = r_o | (((m & 4) != 0 ? p_i : ~p_i) & ((m & 2) != 0 ? s_i : ~s_i) & ((m & 1) != 0 ? d_i : ~d_i));
   end
   // Code bits with D = 1 are the odd ones; with S = 1 bits 2, 3, 6, 7.
   assign reads_d_o = ((code_i >> 1) & 8'h55) != (code_i & 8'h55);
