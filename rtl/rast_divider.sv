@@ -20,9 +20,10 @@
 //   shifts {p, low} left by one, subtracts d = 2 den from the top DW + 1 bits if it fits
 //   and sets the new bottom bit. p < d holds throughout (at the start because
 //   q < 2^QW, i.e. R < d 2^QW), so every subtract and compare is DW + 1 bits wide, not
-//   RW + 1 (a whole-dividend restoring step): the same registers and quotient, and a
-//   verilated model keeps each operand in one 64-bit word (DW + 1 <= 64) instead of
-//   multi-word arithmetic; after QW steps low holds the quotient.
+//   RW + 1 (a whole-dividend restoring step): the same quotient with no separate
+//   quotient register, and a verilated model keeps each operand in one 64-bit word
+//   (DW + 1 <= 64) instead of multi-word arithmetic; after QW steps low holds the
+//   quotient, and a stage after the last step keeps only low.
 `default_nettype none
 
 module rast_divider #(
