@@ -13,7 +13,17 @@
 // - valid_i: the division entering this cycle is wanted. A stage holding no wanted
 //   division keeps its registers (no steps, no load): the result of an unwanted
 //   division is never read (the interpolator reads only its picked lanes); an idle
-//   lane then costs the Verilator model a test instead of QW wide subtractions.
+//   lane then costs the Verilator model a test instead of QW subtractions.
+// - Shift-register form: the dividend R = 2 num + den (RW = NumW + 1 bits) is held as
+//   {p, low}: p (DW = DenW + 1 bits) the partial remainder, low (QW bits) the dividend's
+//   bits not yet brought down, whose vacated bottom bits fill with quotient bits. A step
+//   shifts {p, low} left by one, subtracts d = 2 den from the top DW + 1 bits if it fits
+//   and sets the new bottom bit. p < d holds throughout (at the start because
+//   q < 2^QW, i.e. R < d 2^QW), so every subtract and compare is DW + 1 bits wide, not
+//   RW + 1 (a whole-dividend restoring step): the same quotient with no separate
+//   quotient register, and a verilated model keeps each operand in one 64-bit word
+//   (DW + 1 <= 64) instead of multi-word arithmetic; after QW steps low holds the
+//   quotient, and a stage after the last step keeps only low.
 `default_nettype none
 
 module rast_divider #(
@@ -32,80 +42,104 @@ module rast_divider #(
   localparam int Stages = (Latency > 0) ? Latency : 1;   // derived
   localparam int Steps  = (QW + Stages - 1) / Stages;   // derived: quotient bits a stage
   localparam int RW     = NumW + 1;                      // derived: 2 num + den fits
-  localparam int DW     = DenW + 1;                      // derived: 2 den
+  localparam int DW     = DenW + 1;                      // derived: 2 den; partial remainder p
 
   // Elaboration-time check: the QW restoring steps are exact only when NumW = DenW + QW.
   if (NumW != DenW + QW) begin : g_check_widths
     $error("rast_divider: NumW (%0d) must equal DenW + QW (%0d + %0d)", NumW, DenW, QW);
   end
 
-  // Stage s takes (remainder, divisor, quotient so far) and does steps
-  // [s*Steps, (s+1)*Steps) of QW; stage outputs are registered when Latency > 0.
-  // Returns {remainder, quotient so far} after stage s's steps.
-  function automatic logic [RW+QW-1:0] stage_steps(input logic [RW-1:0] r_in, input logic [DW-1:0] d,
-                                                   input logic [QW-1:0] q_in, input int s);
-    logic [RW-1:0] r;
-    logic [QW-1:0] q;
-    logic [RW:0]   diff;
-    r = r_in;
-    q = q_in;
-    for (int t = 0; t < QW; t++) begin
-      if (t / Steps == s) begin
-        // Quotient bit k = QW-1-t: subtract d << k if it fits.
-        diff = {1'b0, r} - ((RW+1)'(d) << (QW - 1 - t));
-        if (!diff[RW]) begin
-          r = diff[RW-1:0];
-          q[QW-1-t] = 1'b1;
+  // Stage s's steps [s*Steps, min((s+1)*Steps, QW)) on {p, low} with divisor d.
+  // Returns {p, low} after them.
+  function automatic logic [DW+QW-1:0] stage_steps(input logic [DW-1:0] p_in, input logic [QW-1:0] low_in,
+                                                   input logic [DW-1:0] d, input int s);
+    logic [DW-1:0] p;
+    logic [QW-1:0] low;
+    logic [DW:0]   t;     // {p, next dividend bit}: < 2 d
+    logic [DW+1:0] diff;  // t - d, its top bit the borrow
+    p = p_in;
+    low = low_in;
+    for (int k = 0; k < QW; k++) begin
+      if (k / Steps == s) begin
+        t = {p, low[QW-1]};
+        diff = {1'b0, t} - {2'b0, d};
+        low = low << 1;
+        if (!diff[DW+1]) begin
+          p = diff[DW-1:0];  // t - d < d
+          low[0] = 1'b1;
+        end else begin
+          p = t[DW-1:0];     // t < d
         end
       end
     end
-    stage_steps = {r, q};
+    stage_steps = {p, low};
   endfunction
 
-  logic [RW-1:0] r0;  // stage 0's remainder: 2 num + den
+  logic [RW-1:0] r0;  // the dividend: 2 num + den
   logic [DW-1:0] d0;  // the divisor: 2 den
   assign r0 = {num_i, 1'b0} + RW'(den_i);
   assign d0 = {den_i, 1'b0};
 
   if (Latency > 0) begin : g_pipe
-    // (With one stage only q_q is read: the others' last entries are unused.)
-    /* verilator lint_off UNUSEDSIGNAL */
-    logic [RW-1:0] r_q [Stages];
-    logic [DW-1:0] d_q [Stages];
-    logic [QW-1:0] q_q [Stages];
-    logic          v_q [Stages];  // stage s holds a wanted division (no reset: it only skips work)
-    /* verilator lint_on UNUSEDSIGNAL */
-    // The steps are computed inside the clocked block, under the stage's valid: the same
-    // registers and logic, but a verilated model then does an idle stage's work only as
-    // a test (in a combinational block it evaluated every stage of every lane a cycle).
+    // Each stage's registers are its own variables (not one array indexed by stage): a
+    // verilated model then updates them as plain words, without per-element
+    // delayed-assignment bookkeeping.
     for (genvar s = 0; s < Stages; s++) begin : g_stage
-      logic [RW-1:0] r_in;
-      logic [DW-1:0] d_in;
-      logic [QW-1:0] q_in;
+      // (The last stage's v_q is not read: its low_q is the quotient.)
+      /* verilator lint_off UNUSEDSIGNAL */
+      logic [QW-1:0] low_q;  // dividend bits still to bring down, then quotient bits
+      logic          v_q;    // holds a wanted division (no reset: it only skips work)
+      /* verilator lint_on UNUSEDSIGNAL */
+      logic [QW-1:0] low_in;
       logic          v_in;
       if (s == 0) begin : g_first
-        assign {r_in, d_in, q_in, v_in} = {r0, d0, QW'(0), valid_i};
+        assign {low_in, v_in} = {r0[QW-1:0], valid_i};
       end else begin : g_next
-        assign {r_in, d_in, q_in, v_in} = {r_q[s-1], d_q[s-1], q_q[s-1], v_q[s-1]};
+        assign {low_in, v_in} = {g_stage[s-1].low_q, g_stage[s-1].v_q};
       end
       always_ff @(posedge clk_i) begin
-        if (en_i) begin
-          v_q[s] <= v_in;
-          if (v_in) begin
-            logic [RW+QW-1:0] rq;
-            rq = stage_steps(r_in, d_in, q_in, s);
-            r_q[s] <= rq[RW+QW-1:QW];
-            q_q[s] <= rq[QW-1:0];
-            d_q[s] <= d_in;
+        if (en_i) v_q <= v_in;
+      end
+      if (s * Steps < QW) begin : g_steps
+        // A stage with steps also holds the partial remainder and the divisor. (The last
+        // such stage's p_q and d_q are not read: the quotient is complete.)
+        /* verilator lint_off UNUSEDSIGNAL */
+        logic [DW-1:0] p_q;  // partial remainder
+        logic [DW-1:0] d_q;  // divisor
+        /* verilator lint_on UNUSEDSIGNAL */
+        logic [DW-1:0] p_in, d_in;
+        if (s == 0) begin : g_first
+          assign {p_in, d_in} = {r0[RW-1:QW], d0};
+        end else begin : g_next
+          assign {p_in, d_in} = {g_stage[s-1].g_steps.p_q, g_stage[s-1].g_steps.d_q};
+        end
+        // The steps are computed inside the clocked block, under the stage's valid: the
+        // same registers and logic, but a verilated model then does an idle stage's
+        // work only as a test.
+        always_ff @(posedge clk_i) begin
+          if (en_i && v_in) begin
+            // One call into a variable, then the fields: the steps are computed once
+            // (assigned to {p_q, low_q} directly, Verilator inlines the call per field).
+            logic [DW+QW-1:0] pl;
+            pl = stage_steps(p_in, low_in, d_in, s);
+            p_q   <= pl[DW+QW-1:QW];
+            low_q <= pl[QW-1:0];
+            d_q   <= d_in;
           end
+        end
+      end else begin : g_delay
+        // After the last step (Latency > QW / Steps stages: colour's 8 steps over 12
+        // stages): the quotient alone is delayed; no remainder or divisor is kept.
+        always_ff @(posedge clk_i) begin
+          if (en_i && v_in) low_q <= low_in;
         end
       end
     end
-    assign q_o = q_q[Stages-1];
+    assign q_o = g_stage[Stages-1].low_q;
   end else begin : g_comb
-    logic [RW+QW-1:0] rq;
-    assign rq  = stage_steps(r0, d0, '0, 0);
-    assign q_o = rq[QW-1:0];
+    logic [DW+QW-1:0] pl;
+    assign pl  = stage_steps(r0[RW-1:QW], r0[QW-1:0], d0, 0);
+    assign q_o = pl[QW-1:0];
   end
 endmodule
 

@@ -19,9 +19,19 @@ module rast_rop3 #(
   output      logic             reads_d_o,  // the result depends on D
   output      logic             reads_s_o   // the result depends on S
 );
-  for (genvar k = 0; k < Width; k++) begin : g_bit
-    assign r_o[k] = code_i[{p_i[k], s_i[k], d_i[k]}];
+  // The same 8:1 mux a bit, as a tree of word-wide 2:1 selects: by D (code bits in
+  // pairs), then S, then P. (Was a generate of Width one-bit lookups
+  // code_i[{p_i[k], s_i[k], d_i[k]}]: the same circuit, but a verilated model evaluated
+  // it as Width bit extracts; this is 7 word selects.)
+  logic [Width-1:0] by_d [4];  // index {p, s}: code bit {p, s, D[k]} at bit k
+  logic [Width-1:0] by_s [2];  // index p: code bit {p, S[k], D[k]}
+  for (genvar ps = 0; ps < 4; ps++) begin : g_d
+    assign by_d[ps] = (d_i & {Width{code_i[2*ps+1]}}) | (~d_i & {Width{code_i[2*ps]}});
   end
+  for (genvar pp = 0; pp < 2; pp++) begin : g_s
+    assign by_s[pp] = (s_i & by_d[2*pp+1]) | (~s_i & by_d[2*pp]);
+  end
+  assign r_o = (p_i & by_s[1]) | (~p_i & by_s[0]);
   // Code bits with D = 1 are the odd ones; with S = 1 bits 2, 3, 6, 7.
   assign reads_d_o = ((code_i >> 1) & 8'h55) != (code_i & 8'h55);
   assign reads_s_o = ((code_i >> 2) & 8'h33) != (code_i & 8'h33);

@@ -107,12 +107,16 @@ uint64_t port_bits(const T& v, int lsb, int w) {
   if constexpr (std::is_integral_v<T>) {
     return (static_cast<uint64_t>(v) >> lsb) & mask;
   } else {
+    // A 32-bit word (or the part of one the field covers) at a time: at most 3 words for
+    // w <= 64 (the testbench reads every fragment lane's fields this way).
     uint64_t r = 0;
-    for (int i = 0; i < w; ++i) {
-      const int b = lsb + i;
-      if ((v[b / 32] >> (b % 32)) & 1u) r |= uint64_t{1} << i;
+    for (int b = lsb; b < lsb + w;) {
+      const int sh = b % 32;
+      const int n = std::min(32 - sh, lsb + w - b);  // bits taken from this word, 1..32
+      r |= ((static_cast<uint64_t>(v[b / 32]) >> sh) & ((uint64_t{1} << n) - 1)) << (b - lsb);
+      b += n;
     }
-    return r;
+    return r & mask;
   }
 }
 
