@@ -236,7 +236,7 @@ void run_sweep_command(SweepOptions o) {
   std::vector<Axis> axes = split_axes(o.set_args, o.base);
   validate_axes(load_config(o.base), axes);
   std::vector<Point> points = make_points(o.scenes, axes, o.base, o.level);
-  Csv csv(o.out_path, axes);
+  Csv csv(o.out_path, axes, row_level(o.level, o.area));
   if (o.resume) {
     const size_t found = csv.resume(points);
     std::cerr << "sweep: --resume: " << found << " of " << points.size() << " rows already in " << o.out_path << "\n";
@@ -281,13 +281,14 @@ void register_sweep(CLI::App& app) {
       ->type_name("KEY=VALUES")
       ->allow_extra_args(false);
   cmd->add_option("--out,-o", o.out_path,
-                  "CSV to write: scene, each swept key, config_hash, status, then every stat; each row is "
-                  "appended as its run finishes, and at the end the rows are put in sweep order")
+                  "CSV to write: scene, each swept key, level (--level, +area with --area), config_hash, "
+                  "status, then every stat; each row is appended as its run finishes, and at the end the rows "
+                  "are put in sweep order")
       ->required();
   cmd->add_flag("--resume", o.resume,
-                "Keep the rows already in --out whose scene and config_hash (a hash of the whole resolved "
-                "config) are points of this sweep and whose status is ok; run only the others (failed rows "
-                "run again)");
+                "Keep the rows already in --out whose scene, level (--level and --area) and config_hash (a "
+                "hash of the whole resolved config) are points of this sweep and whose status is ok; run only "
+                "the others (failed rows, and rows of another level, run again)");
   cmd->add_flag("--area", o.area,
                 "Add area.cells, area.flip_flops, area.transistors (rastsim area, Yosys; cached per RTL "
                 "parameter set) to every row");

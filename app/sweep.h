@@ -41,16 +41,23 @@ std::string config_hash(const Config& cfg);
 // Called with a point's index as soon as its run has finished (status, error and stats set).
 using OnDone = std::function<void(size_t)>;
 
-// The output CSV. Columns: scene, each swept key, config_hash, status, then every stat a
+// What ran for a row, its `level` column: the --level ("systemc" or "cosim"), plus "+area"
+// with --area. Both change the row's columns (cosim adds cycles_rtl, mismatches, ...;
+// --area adds area.*), so they are part of the row key: a row of another level is no
+// point of this sweep and runs again.
+std::string row_level(const std::string& level, bool area);
+
+// The output CSV. Columns: scene, each swept key, level, config_hash, status, then every stat a
 // successful row reported (its JSON flattened, "stages.rop.busy"; an empty value counts as
 // absent), in the order first seen going down the rows, each row's own in key order
 // (dotted part by part, as the JSON lists them), so the columns depend only on the rows. The row key is (scene as
-// given to --scene, config_hash). The file is always a complete CSV of every finished
+// given to --scene, level, config_hash). The file is always a complete CSV of every finished
 // row: each new row is appended and flushed; a row with a stat the header lacks rewrites
 // the file (to a temporary, then renamed); write_all() puts the rows in point order.
 class Csv {
  public:
-  Csv(std::string path, const std::vector<Axis>& axes);
+  // `level`: row_level() of this sweep, written in every row it adds.
+  Csv(std::string path, const std::vector<Axis>& axes, std::string level);
   // --resume: reads the existing file (if any) and marks the points whose key has an
   // "ok" row there as done (status 0); failed rows are run again. Rows of the file that
   // belong to no point of this sweep are kept after the sweep's own. Returns how many
@@ -72,6 +79,7 @@ class Csv {
 
   std::string path_;
   std::vector<Axis> axes_;
+  std::string level_;
   std::vector<std::string> stat_columns_;
   std::map<size_t, Cells> rows_;          // by point index
   std::vector<size_t> written_;           // point indices in file order

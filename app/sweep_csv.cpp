@@ -76,7 +76,9 @@ bool path_less(const std::string& a, const std::string& b) {
   }
 }
 
-std::string row_key(const std::string& scene, const std::string& hash) { return scene + '\n' + hash; }
+std::string row_key(const std::string& scene, const std::string& level, const std::string& hash) {
+  return scene + '\n' + level + '\n' + hash;
+}
 
 }  // namespace
 
@@ -84,12 +86,15 @@ bool is_wall_time_column(const std::string& c) {
   return c == "wall_seconds" || c == "sim_wall_seconds" || c == "simulated_cycles_per_second";
 }
 
-Csv::Csv(std::string path, const std::vector<Axis>& axes) : path_(std::move(path)), axes_(axes) {}
+std::string row_level(const std::string& level, bool area) { return area ? level + "+area" : level; }
+
+Csv::Csv(std::string path, const std::vector<Axis>& axes, std::string level)
+    : path_(std::move(path)), axes_(axes), level_(std::move(level)) {}
 
 std::vector<std::string> Csv::fixed_columns() const {
   std::vector<std::string> cols{"scene"};
   for (const auto& a : axes_) cols.push_back(a.key);
-  cols.insert(cols.end(), {"config_hash", "status"});
+  cols.insert(cols.end(), {"level", "config_hash", "status"});
   return cols;
 }
 
@@ -99,6 +104,7 @@ Csv::Cells Csv::cells_of(const Point& p) const {
   for (auto it = c.begin(); it != c.end();) it = it->second.empty() ? c.erase(it) : std::next(it);
   c["scene"] = p.scene;
   for (size_t i = 0; i < axes_.size(); ++i) c[axes_[i].key] = p.values[i];
+  c["level"] = level_;
   c["config_hash"] = p.config_hash;
   c["status"] = p.status == 0 ? "ok" : p.error;
   return c;
@@ -128,7 +134,7 @@ size_t Csv::resume(std::vector<Point>& points) {
                              "); write to another --out or drop --resume");
   }
   std::map<std::string, size_t> by_key;
-  for (size_t i = 0; i < points.size(); ++i) by_key.emplace(row_key(points[i].scene, points[i].config_hash), i);
+  for (size_t i = 0; i < points.size(); ++i) by_key.emplace(row_key(points[i].scene, level_, points[i].config_hash), i);
   size_t found = 0;
   std::set<std::string> seen;
   for (size_t r = 1; r < records.size(); ++r) {
@@ -138,7 +144,7 @@ size_t Csv::resume(std::vector<Point>& points) {
     for (size_t i = 0; i < rec.size(); ++i)
       if (!rec[i].empty() || i < fixed.size()) c[header[i]] = rec[i];
     if (c["status"] != "ok") continue;  // a failed row runs again
-    const std::string key = row_key(c["scene"], c["config_hash"]);
+    const std::string key = row_key(c["scene"], c["level"], c["config_hash"]);
     if (!seen.insert(key).second) continue;  // a row twice (cannot happen unless edited)
     const auto it = by_key.find(key);
     if (it == by_key.end()) {

@@ -104,6 +104,42 @@ if "$BIN" "${SW[@]}" --out "$TMP/full.csv" 2>/dev/null; then
 else
   fail "sweep for the --resume checks"
 fi
+# 4a'. The row key holds the level (--level, +area with --area), which changes the columns:
+#     SystemC rows are not taken as done by a cosim sweep (they run, with cycles_rtl, and the
+#     SystemC rows stay as foreign rows), and the other way round; rows marked systemc+area
+#     count for --area only. embedded.toml runs on its shipped RTL model (no build).
+LV=(sweep --config "$SRC/configs/embedded.toml" --scene "$SRC/traces/primitives.trace" --set raster.cull=none,back -j1)
+rm -f "$TMP/lvl.csv"
+"$BIN" "${LV[@]}" --out "$TMP/lvl.csv" 2>/dev/null && pass || fail "systemc sweep for the level checks"
+"$BIN" "${LV[@]}" --out "$TMP/lvl.csv" --level cosim --resume 2>"$TMP/lvl.err" &&
+  grep -q "0 of 2 rows already" "$TMP/lvl.err" && pass || fail "cosim resume took systemc rows: $(cat "$TMP/lvl.err")"
+/usr/bin/python3 - "$TMP/lvl.csv" <<'PY' && pass || fail "CSV after resuming at another level"
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+assert [r["level"] for r in rows] == ["cosim", "cosim", "systemc", "systemc"], rows
+for r in rows:
+    assert r["status"] == "ok", r
+    assert (r["cycles_rtl"] != "") == (r["level"] == "cosim"), r
+PY
+for level in cosim systemc; do
+  "$BIN" "${LV[@]}" --out "$TMP/lvl.csv" --level $level --resume 2>"$TMP/lvl.err" &&
+    grep -q "2 of 2 rows already" "$TMP/lvl.err" && pass || fail "resume --level $level: $(cat "$TMP/lvl.err")"
+done
+# Only systemc+area rows (made by hand: a real --area run synthesises, ctest -L area does that).
+/usr/bin/python3 - "$TMP/lvl.csv" "$TMP/lvl_area.csv" <<'PY'
+import csv, sys
+rows = [r for r in csv.DictReader(open(sys.argv[1])) if r["level"] == "systemc"]
+w = csv.DictWriter(open(sys.argv[2], "w", newline=""), fieldnames=list(rows[0]), lineterminator="\n")
+w.writeheader()
+for r in rows:
+    w.writerow(dict(r, level="systemc+area"))
+PY
+cp "$TMP/lvl_area.csv" "$TMP/lvl_area2.csv"
+"$BIN" "${LV[@]}" --out "$TMP/lvl_area.csv" --area --resume 2>"$TMP/lvl.err" &&
+  grep -q "2 of 2 rows already" "$TMP/lvl.err" && ! grep -q "sweep: area" "$TMP/lvl.err" && pass ||
+  fail "resume --area of systemc+area rows: $(cat "$TMP/lvl.err")"
+"$BIN" "${LV[@]}" --out "$TMP/lvl_area2.csv" --resume 2>"$TMP/lvl.err" &&
+  grep -q "0 of 2 rows already" "$TMP/lvl.err" && pass || fail "plain resume took systemc+area rows: $(cat "$TMP/lvl.err")"
 expect_error "resume with other swept keys" "needs a CSV of this sweep's columns" -- \
   "$BIN" sweep --scene "$SRC/traces/state.trace" --set raster.tile_size=8,16 --out "$TMP/full.csv" --resume
 for opt in --resume --backend --slurm-partition --slurm-time --slurm-workdir --slurm-arg --slurm-poll; do
