@@ -10,7 +10,8 @@ void Interpolate::body() {
     const PixelItem in = read(in_);
     if (pass_state(in, out_, p_.interp_latency)) continue;
     const PixelBatch& batch = *in.work;
-    auto frags = std::make_shared<std::vector<Fragment>>();
+    std::shared_ptr<std::vector<Fragment>> frags = fragments_.take();
+    frags->clear();  // keeps its capacity
     frags->reserve(batch.pixels.size());
     PixelShader shader(*batch.tri, frac_bits_);  // the reference's shading, fast path included
     for (const Pixel& px : batch.pixels) {

@@ -100,7 +100,7 @@ class Link : public sc_core::sc_module {
   int depth() const { return depth_; }
   uint64_t writes() const { return writes_; }
   uint64_t reads() const { return reads_; }
-  sc_core::sc_signal<int>& occupancy() { return occupancy_; }
+  sc_core::sc_signal<int, sc_core::SC_UNCHECKED_WRITERS>& occupancy() { return occupancy_; }
 
  private:
   void changed(uint64_t cycle) {
@@ -112,7 +112,7 @@ class Link : public sc_core::sc_module {
   std::vector<uint64_t> freed_;  // per slot: the cycle its last transaction left (0: never used)
   sc_core::sc_event write_event_, read_event_;
   bool reader_waiting_ = false, writer_waiting_ = false;
-  sc_core::sc_signal<int> occupancy_;
+  sc_core::sc_signal<int, sc_core::SC_UNCHECKED_WRITERS> occupancy_;  // both stages write it, the same count: the last write of a delta stands
   bool tracing_;
   uint64_t writes_ = 0, reads_ = 0;
   CounterTrack* counter_ = nullptr;
