@@ -15,7 +15,7 @@ CommandSource scene_source(const Scene& scene) {
 void CommandFetch::fetch(const CommandPtr& p) {
   const Command& cmd = *p;
   const auto mark = [&](size_t k) {
-    if (ctx_.on_fetch) ctx_.on_fetch(cmd, k, ctx_.to_cycles(sc_core::sc_time_stamp()));
+    if (ctx_.on_fetch) ctx_.on_fetch(cmd, k, now());
   };
   if (!std::holds_alternative<CmdPrimitives>(cmd.body)) mark(0);
   if (const auto* d2 = std::get_if<CmdDraw2d>(&cmd.body)) {

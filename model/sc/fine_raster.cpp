@@ -9,8 +9,9 @@ void FineRaster::body() {
     const TileItem in = read(in_);
     if (pass_state(in, out_)) continue;
     const TileWork& tile = in.work;
-    auto batch = std::make_shared<PixelBatch>();
+    std::shared_ptr<PixelBatch> batch = batches_.take();
     batch->tri = tile.tri;
+    batch->pixels.clear();  // keeps its capacity
     const int samples = tile.tri->samples;
     auto emit = [&](int px, int py, uint32_t m) { batch->pixels.push_back({px, py, m}); };
     uint64_t cost = 0;

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "sc/coarse_raster.h"
+#include "sc/recycler.h"
 
 namespace rastsim::sc {
 
@@ -43,6 +44,7 @@ class FineRaster : public Stage {
   const TimingParams& p_;
   Link<TileItem>& in_;
   Link<PixelItem>& out_;
+  Recycler<PixelBatch> batches_;  // no allocation a tile (sc/recycler.h)
 };
 
 }  // namespace rastsim::sc

@@ -15,6 +15,7 @@
 
 #include "ref/interpolate.h"
 #include "sc/fine_raster.h"
+#include "sc/recycler.h"
 
 namespace rastsim::sc {
 
@@ -32,6 +33,7 @@ class Interpolate : public Stage {
   const TimingParams& p_;
   Link<PixelItem>& in_;
   Link<FragmentItem>& out_;
+  Recycler<std::vector<Fragment>> fragments_;  // no allocation a batch (sc/recycler.h)
 };
 
 }  // namespace rastsim::sc

@@ -1,21 +1,32 @@
 // SPDX-License-Identifier: Apache-2.0
-// Link<P>: the bounded FIFO between two stages (an sc_fifo of transactions), with
+// Link<P>: the bounded FIFO between two stages, a timestamped channel, with
 //
-// - backpressure: depth from the config (fifo.*_depth), a full FIFO blocks its writer;
+// - backpressure: depth from the config (fifo.*_depth). Transaction k takes the slot
+//   transaction k - depth held, so it enters the FIFO at the later of the cycle its
+//   writer offers it and the cycle the reader took k - depth out (write());
 // - a ready time on every transaction, so a stage can model a pipeline latency longer
-//   than its initiation interval without a second process (the reader waits until the
-//   transaction is ready; see Stage::read);
+//   than its initiation interval without a second process (the reader starts on it at
+//   the latest of its own cycle, the cycle it entered and its ready cycle; Stage::read);
 // - an order check: the writer numbers transactions, the reader checks it receives
 //   0, 1, 2, ... (a lost or reordered transaction is an error, never silent);
-// - an occupancy signal for the VCD, updated only when a transaction enters or leaves;
-// - an optional timeline counter (sc/timeline.h) of the same occupancy, counted as
-//   writes - reads when a write or read returns (a slot is taken when write() returns
-//   and freed when read() returns, so it never exceeds the depth).
+// - an occupancy signal for the VCD and an optional timeline counter (sc/timeline.h),
+//   both writes - reads, changed when a transaction enters or leaves (so it never
+//   exceeds the depth).
+//
+// Why timestamps (docs/microarchitecture.md, "Time in the SystemC model"): every cycle a
+// transaction enters or leaves is computed from the two stages' own cycle counts, never
+// read from SystemC's clock, so a stage may run ahead of SystemC time (temporal
+// decoupling) and still get exactly the cycles of a FIFO that advanced with the clock.
+// SystemC only orders the processes: a reader of an empty FIFO or a writer of a full
+// one suspends on an event until the other side has acted (immediate notification, no
+// delta cycle), as an sc_fifo would, but no process waits for time to pass unless the
+// run is in lock-step (SimContext::lockstep).
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
-#include <ostream>
 #include <string>
+#include <vector>
 
 #include <systemc>
 
@@ -27,56 +38,82 @@ namespace rastsim::sc {
 template <class P>
 struct Tx {
   P payload;
-  sc_core::sc_time ready;  // earliest time the reader may start on it
-  uint64_t seq = 0;        // position in this FIFO's stream
+  uint64_t ready = 0;    // cycle: earliest the reader may start on it
+  uint64_t entered = 0;  // cycle: when it entered the FIFO (a slot was free)
+  uint64_t seq = 0;      // position in this FIFO's stream
 };
-// sc_fifo needs operator<< for its element type (sc_fifo::print).
-template <class P>
-std::ostream& operator<<(std::ostream& os, const Tx<P>& t) {
-  return os << "tx#" << t.seq;
-}
 
 template <class P>
 class Link : public sc_core::sc_module {
  public:
-  SC_HAS_PROCESS(Link);
   Link(sc_core::sc_module_name name, int depth, bool tracing)
-      : sc_module(name), depth_(depth), fifo_("fifo", depth), occupancy_("occupancy", 0) {
-    if (tracing) {
-      SC_METHOD(track);
-      sensitive << fifo_.data_written_event() << fifo_.data_read_event();
-      dont_initialize();
-    }
+      : sc_module(name), depth_(depth), slots_(size_t(depth)), freed_(size_t(depth), 0),
+        occupancy_("occupancy", 0), tracing_(tracing) {
+    if (depth < 1) throw ModelError(std::string(this->name()) + ": FIFO depth " + std::to_string(depth) + " < 1");
   }
 
-  void write(P payload, const sc_core::sc_time& ready) {
-    fifo_.write(Tx<P>{std::move(payload), ready, writes_++});
-    if (counter_) record();
+  // Writes one transaction offered at cycle `at`, which its reader may start on from
+  // cycle `ready`; suspends the calling process while the FIFO is full (every slot
+  // written and not yet read). Returns the cycle it entered: max(at, the cycle its slot
+  // was freed).
+  uint64_t write(P payload, uint64_t at, uint64_t ready) {
+    while (writes_ - reads_ >= uint64_t(depth_)) {
+      writer_waiting_ = true;
+      sc_core::wait(read_event_);
+    }
+    const size_t slot = size_t(writes_ % uint64_t(depth_));
+    const uint64_t entered = std::max(at, freed_[slot]);
+    slots_[slot] = Tx<P>{std::move(payload), ready, entered, writes_};
+    ++writes_;
+    if (reader_waiting_) {
+      reader_waiting_ = false;
+      write_event_.notify();  // immediate: the reader runs in this evaluation phase
+    }
+    changed(entered);
+    return entered;
   }
-  Tx<P> read() {
-    Tx<P> t = fifo_.read();
+  // Reads the next transaction at cycle `at`; suspends the calling process while the
+  // FIFO is empty. Sets `left` to the cycle it leaves the FIFO (max(at, entered)), which
+  // frees its slot for the transaction `depth` later.
+  Tx<P> read(uint64_t at, uint64_t& left) {
+    while (writes_ == reads_) {
+      reader_waiting_ = true;
+      sc_core::wait(write_event_);
+    }
+    const size_t slot = size_t(reads_ % uint64_t(depth_));
+    Tx<P> t = std::move(slots_[slot]);
     check_order(name(), reads_, t.seq);
+    left = std::max(at, t.entered);
+    freed_[slot] = left;
     ++reads_;
-    if (counter_) record();
+    if (writer_waiting_) {
+      writer_waiting_ = false;
+      read_event_.notify();
+    }
+    changed(left);
     return t;
   }
-  // --timeline: this FIFO's occupancy track, or null (before sc_start).
+  // --timeline: this FIFO's occupancy track, or null (before sc_start). It needs the
+  // changes in time order: a lock-step run (SimContext::lockstep).
   void set_timeline(CounterTrack* c) { counter_ = c; }
 
   int depth() const { return depth_; }
   uint64_t writes() const { return writes_; }
   uint64_t reads() const { return reads_; }
-  sc_core::sc_signal<int>& occupancy() { return occupancy_; }
+  sc_core::sc_signal<int, sc_core::SC_UNCHECKED_WRITERS>& occupancy() { return occupancy_; }
 
  private:
-  void track() { occupancy_.write(fifo_.num_available()); }
-  void record() {  // at the current time, in cycles (one cycle is 1 ns: SimContext::cycle)
-    const sc_core::sc_time& now = sc_core::sc_time_stamp();
-    counter_->set(uint64_t(now.value() / sc_core::sc_time(1, sc_core::SC_NS).value()), int(writes_ - reads_));
+  void changed(uint64_t cycle) {
+    if (tracing_) occupancy_.write(int(writes_ - reads_));
+    if (counter_) counter_->set(cycle, int(writes_ - reads_));
   }
   int depth_;
-  sc_core::sc_fifo<Tx<P>> fifo_;
-  sc_core::sc_signal<int> occupancy_;
+  std::vector<Tx<P>> slots_;     // ring: transaction k in slot k % depth
+  std::vector<uint64_t> freed_;  // per slot: the cycle its last transaction left (0: never used)
+  sc_core::sc_event write_event_, read_event_;
+  bool reader_waiting_ = false, writer_waiting_ = false;
+  sc_core::sc_signal<int, sc_core::SC_UNCHECKED_WRITERS> occupancy_;  // both stages write it, the same count: the last write of a delta stands
+  bool tracing_;
   uint64_t writes_ = 0, reads_ = 0;
   CounterTrack* counter_ = nullptr;
 };

@@ -122,7 +122,7 @@ SimResult simulate_stream(const std::string& path, const ObjPlacement& placement
       if (fetching || fetched == 0) throw;
       throw SceneError(std::string(e.what()) + " (after " + std::to_string(fetched) +
                        " commands of the scene were fetched, at cycle " +
-                       std::to_string(sc_core::sc_time_stamp().value() / sc_core::sc_time(1, sc_core::SC_NS).value()) +
+                       std::to_string(Stage::current_cycle()) +
                        " of the simulation; no image or stats written)");
     }
   };
@@ -139,6 +139,7 @@ SimResult simulate_commands(CommandSource source, const Config& cfg, const SimOp
 
   SimContext ctx;
   ctx.tracing = !opts.vcd_path.empty();
+  ctx.lockstep = ctx.tracing || !opts.timeline_path.empty() || opts.lockstep;
   ctx.stall_seed = opts.stall_seed;
   ctx.stall_probability = opts.stall_probability;
   ctx.on_fragment = opts.on_fragment;
@@ -174,13 +175,19 @@ SimResult simulate_commands(CommandSource source, const Config& cfg, const SimOp
   }
 
   sc_core::sc_start();
-  const sc_core::sc_time end = sc_core::sc_time_stamp();
   if (tf) sc_core::sc_close_vcd_trace_file(tf);
   ctx.rethrow_failure();  // SceneError for bad input, ModelError for a fault of the model
+  // The run ends with the last stage's last step: the latest stage time (in lock-step,
+  // where SystemC time followed the stages, also SystemC's; sc/stage.h).
+  uint64_t end = 0;
+  for (Stage* s : top->stages()) end = std::max(end, s->now());
+  if (ctx.lockstep && end != ctx.to_cycles(sc_core::sc_time_stamp()))
+    throw ModelError("simulate: the stages end at cycle " + std::to_string(end) + " but SystemC at cycle " +
+                     std::to_string(ctx.to_cycles(sc_core::sc_time_stamp())));
 
   SimResult r;
   r.core_mhz = p.core_mhz;
-  r.cycles = ctx.to_cycles(end);
+  r.cycles = end;
   int index = 0;
   for (Stage* s : top->stages()) {
     s->finish(end);

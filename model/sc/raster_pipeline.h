@@ -41,6 +41,9 @@ struct SimOptions {
   uint64_t timeline_max_events = 250'000;
   bool heatmap = false;  // fill SimResult::heat (busy cycles per screen tile)
   bool spans = false;    // fill StageReport::spans (rastsim cosim --trace-diff)
+  // Stages advance SystemC time in step with their own (SimContext::lockstep; implied by
+  // a VCD or a timeline): same cycles and stats, slower; tests compare the two.
+  bool lockstep = false;
 };
 
 struct StageReport {

@@ -43,12 +43,13 @@ void Rop::body() {
       busy(p_.rop_state_cycles(clear, fb_pixels));
       continue;
     }
-    uint64_t accesses = 0;
+    uint64_t accesses = 0, passed = 0, samples_passed = 0;  // summed locally, added once a batch
     for (const Fragment& f : *in.work) {
       accesses += TimingParams::rop_accesses(f.mask, fb_.samples);
-      if (rop_write(fb_, f, st_.depth_func, st_.depth_write, &ctx_.render.samples_passed))
-        ++ctx_.render.fragments_passed;
+      passed += rop_write(fb_, f, st_.depth_func, st_.depth_write, &samples_passed);
     }
+    ctx_.render.fragments_passed += passed;
+    ctx_.render.samples_passed += samples_passed;
     ctx_.rop_accesses += accesses;
     ctx_.framebuffer_bytes += accesses * (4 + depth_bytes_);
     if (!in.work->empty()) attribute_to(in.work->front().x, in.work->front().y);  // the batch's tile

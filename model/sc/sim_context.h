@@ -29,6 +29,11 @@ struct SimContext {
   const sc_core::sc_time cycle{1, sc_core::SC_NS};
 
   bool tracing = false;  // stages update their VCD state signals only when true
+  // Stages wait for SystemC time to reach their own before each step, instead of running
+  // ahead of it (sc/stage.h): for the VCD and the timeline, which record changes in time
+  // order, and for tests that check a decoupled run against a lock-step one. The cycles
+  // and stats are the same either way.
+  bool lockstep = false;
 
   // Random stall injection (tests): before each FIFO write, with this probability, the
   // writer waits 1..stall_max_cycles extra cycles. Seeded; never changes the image.

@@ -16,6 +16,7 @@
 #include "ref/raster_state.h"
 #include "ref/tri_setup.h"
 #include "sc/prim_assembly.h"
+#include "sc/recycler.h"
 
 namespace rastsim::sc {
 
@@ -34,6 +35,7 @@ class TriSetup : public Stage {
   const TimingParams& p_;
   Link<TriangleItem>& in_;
   Link<SetupItem>& out_;
+  Recycler<SetupTriangle> triangles_;  // no allocation a triangle (sc/recycler.h)
 };
 
 }  // namespace rastsim::sc
