@@ -4,7 +4,8 @@
 // edges of the range (the widest format with edges64, s15.15, and vertices at the
 // format's extreme raw values), the int64 fine raster, the int64 plane interpolation
 // and PlaneStepper must give exactly what the i128 code gives. The i128 side is the same
-// triangle with edges64 cleared, which takes the wide path everywhere.
+// triangle with edges64 cleared, which takes the wide path everywhere. A quarter of the
+// random triangles have flat attributes (PlaneStepper's no-division case).
 #include <gtest/gtest.h>
 
 #include <random>
@@ -75,6 +76,17 @@ void check_one(const RasterState& st, std::mt19937_64& rng, Counts& n) {
       y = std::clamp(cy + uni(-r, r), fmt.raw_min(), fmt.raw_max());
     }
     vx = vertex_at(st, x, y, rng);
+  }
+  // A quarter with some attributes flat (the same at the three vertices), which
+  // PlaneStepper sets once and never divides (interpolate.h).
+  if (rng() % 4 == 0) {
+    const unsigned flat = unsigned(rng() % 16);
+    for (auto& vx : v) {
+      if (flat & 1) vx.z = v[0].z;
+      if (flat & 2) vx.r = v[0].r;
+      if (flat & 4) vx.g = v[0].g;
+      if (flat & 8) vx.b = v[0].b;
+    }
   }
   SetupTriangle t;
   if (setup_triangle(v, st, SourceLoc{"random", 1}, t) != SetupOutcome::Accepted) return;

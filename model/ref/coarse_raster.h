@@ -42,6 +42,13 @@ struct TraversalCounters {
     samples_covered += uint64_t(n);
     pixels_partially_covered += n != samples;
   }
+  // Counts n emitted pixels of the same mask m (a run, fine_raster.h SpanEmitter).
+  void count_pixels(uint32_t m, int samples, uint64_t n) {
+    fragments += n;
+    const int k = std::popcount(m);
+    samples_covered += uint64_t(k) * n;
+    if (k != samples) pixels_partially_covered += n;
+  }
   void count_accepted(int64_t area, int samples) {
     fragments += uint64_t(area);
     samples_covered += uint64_t(area) * uint64_t(samples);
@@ -60,6 +67,27 @@ struct TraversalCounters {
     return *this;
   }
 };
+
+// `emit` with every pixel it passes on counted as an emitted fragment (count_pixel): the
+// emitter of every walk's per-pixel tests. A run passes on as a run, counted at once.
+template <class Emit>
+struct CountedEmit {
+  TraversalCounters& c;
+  int samples;
+  Emit& emit;
+  void operator()(int px, int py, uint32_t m) {
+    c.count_pixel(m, samples);
+    emit_pixel(emit, px, py, m);
+  }
+  void span(int py, int x0, int x1, uint32_t m) {
+    c.count_pixels(m, samples, uint64_t(x1 - x0));
+    emit_span(emit, py, x0, x1, m);
+  }
+};
+template <class Emit>
+CountedEmit<Emit> counted(TraversalCounters& c, int samples, Emit& emit) {
+  return {c, samples, emit};
+}
 
 // The tile grid cells overlapping `bbox`, in tile units [tx0, tx1) x [ty0, ty1).
 PixelRect tile_range(const PixelRect& bbox, int tile_size);
@@ -89,10 +117,7 @@ void traverse_triangle(const SetupTriangle& t, int tile_size, int frac_bits, Tra
           break;
         case TileClass::Partial:
           ++c.tiles_partial;
-          c.count_tests(fine_raster_partial(t, fp, frac_bits, [&](int px, int py, uint32_t m) {
-            c.count_pixel(m, t.samples);
-            emit_pixel(emit, px, py, m);
-          }), t.samples);
+          c.count_tests(fine_raster_partial(t, fp, frac_bits, counted(c, t.samples, emit)), t.samples);
           break;
       }
     }

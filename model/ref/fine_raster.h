@@ -8,7 +8,8 @@
 //   every edge, at the centre plus the edge's constant offset a dx_s + b dy_s
 //   (ref/sample_pattern.h), is >= 0 with bias. A pixel is emitted when its mask is not
 //   zero; an accepted footprint emits full masks. sample_tests = footprint area x S.
-// - emit may take (px, py) or (px, py, mask); a one-sample triangle's mask is 1.
+// - emit may take (px, py) or (px, py, mask); a one-sample triangle's mask is 1. An
+//   emitter with a span() member (SpanEmitter) gets runs of covered pixels instead.
 #pragma once
 
 #include <algorithm>
@@ -27,6 +28,22 @@ template <class Emit>
 inline void emit_pixel(Emit& emit, int px, int py, uint32_t mask) {
   if constexpr (std::is_invocable_v<Emit&, int, int, uint32_t>) emit(px, py, mask);
   else emit(px, py);
+}
+
+// An emitter that also takes runs: emit.span(py, x0, x1, mask) stands for
+// emit(px, py, mask) for px = x0 .. x1 - 1 in that order, every pixel of the same mask
+// (the reference pipeline shades and writes a run at a time, pipeline.cpp). The walks
+// below hand such an emitter whole runs; any other callable gets the pixels one by one.
+template <class Emit>
+concept SpanEmitter = requires(Emit& e, int i, uint32_t m) { e.span(i, i, i, m); };
+
+template <class Emit>
+inline void emit_span(Emit& emit, int py, int x0, int x1, uint32_t mask) {
+  if constexpr (SpanEmitter<Emit>) {
+    emit.span(py, x0, x1, mask);
+  } else {
+    for (int px = x0; px < x1; ++px) emit_pixel(emit, px, py, mask);
+  }
 }
 
 // Per-edge offsets of every sample: off[i][s] = a_i dx_s + b_i dy_s (raw^2 units; |a|,
@@ -106,7 +123,13 @@ void fine_raster_walk(const SetupTriangle& t, const PixelRect& fp, int frac_bits
         e1 += step_x[1];
         e2 += step_x[2];
       }
-      for (; bits != 0; bits &= bits - 1) emit_pixel(emit, x0 + std::countr_zero(bits), py, 1u);
+      // The covered pixels in order, as runs of consecutive ones.
+      while (bits != 0) {
+        const int first = std::countr_zero(bits);
+        const int end = first + std::countr_one(bits >> first);  // <= 64
+        emit_span(emit, py, x0 + first, x0 + end, 1u);
+        bits = end >= 64 ? 0 : bits & (~uint64_t{0} << end);
+      }
     }
     for (int i = 0; i < 3; ++i) row[i] += step_y[i];
   }
@@ -125,8 +148,7 @@ uint64_t fine_raster_partial(const SetupTriangle& t, const PixelRect& fp, int fr
 // Whole-footprint emission of an accepted tile (no tests): every mask full.
 template <class Emit>
 void fine_raster_accepted(const PixelRect& fp, Emit&& emit, uint32_t full_mask = 1u) {
-  for (int py = fp.y0; py < fp.y1; ++py)
-    for (int px = fp.x0; px < fp.x1; ++px) emit_pixel(emit, px, py, full_mask);
+  for (int py = fp.y0; py < fp.y1; ++py) emit_span(emit, py, fp.x0, fp.x1, full_mask);
 }
 
 }  // namespace rastsim

@@ -84,19 +84,23 @@ Q64 Q64::parse_decimal(std::string_view text) {
   while (!fp.empty() && fp.back() == '0') fp.remove_suffix(1);
   if (fp.size() > 36) return fail("more than 36 fraction digits");
   if (ip.size() > 18) return Q64{saturate_q(neg)};  // out of range for every format
-  u128 int_part = 0;
-  for (char c : ip) int_part = int_part * 10 + u128(c - '0');
+  // Up to 18 integer digits: below 10^18 < 2^64, accumulated in 64 bits (a u128 product
+  // is three multiplies; this parse runs six times a triangle of a trace).
+  uint64_t int_part = 0;
+  for (char c : ip) int_part = int_part * 10 + uint64_t(c - '0');
   // Fraction: frac / 10^k, converted to 64 binary fraction bits by long division,
   // with the remainder folded into the LSB (round to odd).
-  u128 frac = 0, pow10 = 1;
-  for (char c : fp) { frac = frac * 10 + u128(c - '0'); pow10 *= 10; }
-  u128 bits = 0;
-  u128 rem = frac;
+  u128 bits = 0, rem = 0;
   if (fp.size() <= 19) {  // frac < 10^k <= 10^19 < 2^64: frac 2^64 fits, one division
-    const u128 num = frac << 64;
+    uint64_t frac = 0, pow10 = 1;
+    for (char c : fp) { frac = frac * 10 + uint64_t(c - '0'); pow10 *= 10; }
+    const u128 num = u128(frac) << 64;
     bits = num / pow10;
     rem = num % pow10;
   } else {
+    u128 frac = 0, pow10 = 1;
+    for (char c : fp) { frac = frac * 10 + u128(c - '0'); pow10 *= 10; }
+    rem = frac;
     for (int i = 0; i < 64; ++i) {
       rem <<= 1;
       bits <<= 1;
@@ -104,7 +108,7 @@ Q64 Q64::parse_decimal(std::string_view text) {
     }
   }
   if (rem != 0) bits |= 1;  // sticky: round to odd
-  const i128 mag = i128((int_part << 64) | bits);
+  const i128 mag = i128((u128(int_part) << 64) | bits);
   return Q64{neg ? -mag : mag};
 }
 

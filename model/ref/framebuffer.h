@@ -21,6 +21,7 @@
 // does set_depth(). A pointer stays valid until the next clear, resolve or assignment.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -64,6 +65,20 @@ class Framebuffer {
     return t ? t[in_tile(x, y, s)] : clear_z_;
   }
   void set_depth(int x, int y, int s, uint32_t z) { depth_tile(tile_index(x, y))[in_tile(x, y, s)] = z; }
+
+  // Runs of a one-sample buffer (samples == 1; the ROP's runs, rop.h rop_write_run): the
+  // pixels from (x, y) to the right edge of its storage tile, tile_end_x(x), lie one after
+  // another, 4 colour bytes or one depth value each. color_run and depth_run are for
+  // writing (they allocate the tile, as sample() and set_depth() do); stored_depth_run
+  // reads, and is null for a tile not stored, whose every depth is cleared_depth().
+  int tile_end_x(int x) const { return std::min(width, ((x >> tile_log2_) + 1) << tile_log2_); }
+  uint8_t* color_run(int x, int y) { return sample(x, y, 0); }
+  uint32_t* depth_run(int x, int y) { return depth_tile(tile_index(x, y)) + in_tile(x, y, 0); }
+  const uint32_t* stored_depth_run(int x, int y) const {
+    const uint32_t* t = depth_[tile_index(x, y)].get();
+    return t ? t + in_tile(x, y, 0) : nullptr;
+  }
+  uint32_t cleared_depth() const { return clear_z_; }
 
   // Row y's colour, sample 0 of each pixel, as width x 4 bytes RGBA into `out` (the
   // image row of a one-sample buffer); untouched tiles read as the clear colour.

@@ -14,12 +14,8 @@ float nearest_float(i128 num, i128 den) {
   return static_cast<float>(static_cast<long double>(num) / static_cast<long double>(den));
 }
 
-template <class T>
-uint32_t clamp_attr(T v, int bits) {
-  const T hi = (T(1) << bits) - 1;
-  return static_cast<uint32_t>(std::clamp<T>(v, 0, hi));
-}
-
+using interp_detail::clamp_attr;
+using interp_detail::make_fragment;
 
 // Fixed point: v0 and s in units of 2^-D of the attribute LSB, each rounded to nearest
 // (ties to even); |num0| < 2^(2N+2+bits) <= 2^88 and D <= 32, so the shifted numerators
@@ -68,25 +64,6 @@ void dda_span_values(i128 num0, i128 dnum, i128 den, int64_t n, InterpArith arit
   walk_span(num0, dnum, den, n, arith, frac_bits, bits, [&](int64_t k, uint32_t v) { out[size_t(k)] = v; });
 }
 
-namespace {
-
-// The fragment at pixel (px, py) whose every attribute is attr(a0, a1, a2, bits) of the
-// three vertex values (bits: raster.depth_bits for depth, 8 for colour).
-template <class Attr>
-Fragment make_fragment(const SetupTriangle& t, int px, int py, Attr&& attr) {
-  Fragment f;
-  f.x = px;
-  f.y = py;
-  f.z = attr(t.z[0], t.z[1], t.z[2], t.depth_bits);
-  f.r = static_cast<uint8_t>(attr(t.rgb[0][0], t.rgb[1][0], t.rgb[2][0], 8));
-  f.g = static_cast<uint8_t>(attr(t.rgb[0][1], t.rgb[1][1], t.rgb[2][1], 8));
-  f.b = static_cast<uint8_t>(attr(t.rgb[0][2], t.rgb[1][2], t.rgb[2][2], 8));
-  f.samples = static_cast<uint8_t>(t.samples);
-  return f;
-}
-
-}  // namespace
-
 Fragment interpolate_plane_at(const SetupTriangle& t, int px, int py, int64_t sx, int64_t sy) {
   if (t.edges64) {
     // The 64-bit path: the same weights and rational, when every numerator fits int64
@@ -109,54 +86,40 @@ Fragment interpolate_plane_at(const SetupTriangle& t, int px, int py, int64_t sx
   });
 }
 
-PlaneStepper::PlaneStepper(const SetupTriangle& t, int frac_bits) : t_(t), frac_bits_(frac_bits) {
+PlaneStepper::PlaneStepper(const SetupTriangle& t, int frac_bits) : t_(&t), frac_bits_(frac_bits) {
   if (t.samples != 1 || !t.edges64 || t.area2 > t.w64_limit) return;
   den_ = static_cast<int64_t>(t.area2);
   int i = 0;
   bool fits = true;
   make_fragment(t, 0, 0, [&](uint32_t a0, uint32_t a1, uint32_t a2, int) {
     a_[i][0] = a0, a_[i][1] = a1, a_[i][2] = a2;
-    // x-step of num (weight k is edge (k+1)%3), exact; then its floor quotient and remainder.
-    const i128 d = (i128(t.edge[1].a) * a0 + i128(t.edge[2].a) * a1 + i128(t.edge[0].a) * a2) << frac_bits;
-    fits = fits && fits_signed(d, 63);
-    const i128 q = div_round(d, t.area2, Rounding::Floor);
-    dq_[i] = static_cast<int64_t>(q);
-    dr_[i] = static_cast<int64_t>(d - q * t.area2);
+    if (a0 == a1 && a1 == a2) {
+      q_[i] = a0;  // flat (see the header): dq_, dr_, r_ stay 0
+    } else {
+      var_[nvar_++] = i;
+      // x-step of num (weight k is edge (k+1)%3), exact; then its floor quotient and remainder.
+      const i128 d = (i128(t.edge[1].a) * a0 + i128(t.edge[2].a) * a1 + i128(t.edge[0].a) * a2) << frac_bits;
+      fits = fits && fits_signed(d, 63);
+      const i128 q = div_round(d, t.area2, Rounding::Floor);
+      dq_[i] = static_cast<int64_t>(q);
+      dr_[i] = static_cast<int64_t>(d - q * t.area2);
+    }
     ++i;
     return 0u;
   });
   active_ = fits;
 }
 
-Fragment PlaneStepper::at(int px, int py) {
-  if (have_last_ && py == last_y_ && px == last_x_ + 1) {
-    for (int i = 0; i < kAttrs; ++i) {
-      q_[i] += dq_[i];
-      r_[i] += dr_[i];  // both remainders in [0, den): the sum is below 2 den
-      if (r_[i] >= den_) {
-        r_[i] -= den_;
-        ++q_[i];
-      }
-    }
-  } else {
-    const int64_t sx = t_.sample_x(px, frac_bits_), sy = t_.sample_y(py, frac_bits_);
-    const int64_t w[3] = {t_.edge[1].eval64(sx, sy), t_.edge[2].eval64(sx, sy), t_.edge[0].eval64(sx, sy)};
-    for (int i = 0; i < kAttrs; ++i) {
-      const int64_t num = w[0] * int64_t(a_[i][0]) + w[1] * int64_t(a_[i][1]) + w[2] * int64_t(a_[i][2]);
-      q_[i] = div_round_in<int64_t>(num, den_, Rounding::Floor);
-      r_[i] = num - q_[i] * den_;
-    }
+void PlaneStepper::restart(int px, int py) {
+  const SetupTriangle& t = *t_;
+  const int64_t sx = t.sample_x(px, frac_bits_), sy = t.sample_y(py, frac_bits_);
+  const int64_t w[3] = {t.edge[1].eval64(sx, sy), t.edge[2].eval64(sx, sy), t.edge[0].eval64(sx, sy)};
+  for (int k = 0; k < nvar_; ++k) {
+    const int i = var_[k];
+    const int64_t num = w[0] * int64_t(a_[i][0]) + w[1] * int64_t(a_[i][1]) + w[2] * int64_t(a_[i][2]);
+    q_[i] = div_round_in<int64_t>(num, den_, Rounding::Floor);
+    r_[i] = num - q_[i] * den_;
   }
-  have_last_ = true;
-  last_x_ = px;
-  last_y_ = py;
-  // Round half up from the floor quotient and remainder, as div_round_in does.
-  int i = 0;
-  return make_fragment(t_, px, py, [&](uint32_t, uint32_t, uint32_t, int bits) {
-    const int64_t v = r_[i] >= den_ - r_[i] ? q_[i] + 1 : q_[i];
-    ++i;
-    return clamp_attr(v, bits);
-  });
 }
 
 Fragment interpolate_plane(const SetupTriangle& t, int px, int py, int frac_bits) {

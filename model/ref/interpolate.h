@@ -25,6 +25,7 @@
 // not depend on the order in which traversal delivers it.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -64,20 +65,31 @@ class PlaneStepper {
  public:
   PlaneStepper(const SetupTriangle& t, int frac_bits);
   bool active() const { return active_; }  // else call interpolate_plane
-  Fragment at(int px, int py);
+  // Every attribute flat: at() gives the same depth and colour at every pixel.
+  bool flat() const { return nvar_ == 0; }
+  // Inline below and always inlined: it runs once a fragment, and a call returns the
+  // fragment through memory, which the ROP loop then reads back (a stall behind its stores).
+  [[gnu::always_inline]] Fragment at(int px, int py);
 
  private:
   static constexpr int kAttrs = 4;  // in make_fragment's order: z, r, g, b
-  const SetupTriangle& t_;
+  void restart(int px, int py);     // q_, r_ at (px, py) by division
+  const SetupTriangle* t_;          // a pointer, so that a stepper can be copied (PixelShader)
   int frac_bits_;
   bool active_ = false, have_last_ = false;
   int last_x_ = 0, last_y_ = 0;
   int64_t den_ = 1;
   int64_t q_[kAttrs]{}, r_[kAttrs]{}, dq_[kAttrs]{}, dr_[kAttrs]{};
   uint32_t a_[kAttrs][3]{};
+  // A flat attribute (the same value a at the three vertices) is that value at every
+  // point: num = a (w0 + w1 + w2) = a area2 exactly, so q = a, r = 0 and its x-step is 0
+  // (sum_k edge.a = 0). Its q_ and r_ are set once and restart() divides only the others
+  // (var_[0..nvar_)): a flat-shaded triangle interpolates without a division.
+  int nvar_ = 0;
+  int var_[kAttrs]{};
 };
 
-// The fragments of one pixel whose sample coverage mask is m (docs/antialiasing.md):
+// The fragments of one pixel whose sample coverage mask is m (docs/antialiasing.md):// The fragments of one pixel whose sample coverage mask is m (docs/antialiasing.md):
 // - one sample: interpolate() at the centre, mask 1 (any interp.method);
 // - msaa: one fragment, plane equations at the pixel centre (extrapolated when the centre
 //   is outside), mask m: its colour and depth go to every covered sample;
@@ -99,6 +111,11 @@ class PixelShader {
     if (stepped_) emit(plane_.at(px, py));
     else shade_pixel(t_, px, py, mask, frac_bits_, emit);
   }
+  // True when shade() emits exactly one fragment a pixel, at(px, py): one sample, plane
+  // equations, PlaneStepper active (the pipeline then shades and writes runs).
+  bool stepped() const { return stepped_; }
+  // The stepper of stepped() (covered centres only).
+  PlaneStepper& stepper() { return plane_; }
 
  private:
   const SetupTriangle& t_;
@@ -106,6 +123,58 @@ class PixelShader {
   PlaneStepper plane_;
   bool stepped_;
 };
+
+namespace interp_detail {
+
+template <class T>
+inline uint32_t clamp_attr(T v, int bits) {
+  const T hi = (T(1) << bits) - 1;
+  return static_cast<uint32_t>(std::clamp<T>(v, 0, hi));
+}
+
+// The fragment at pixel (px, py) whose every attribute is attr(a0, a1, a2, bits) of the
+// three vertex values (bits: raster.depth_bits for depth, 8 for colour).
+template <class Attr>
+[[gnu::always_inline]] inline Fragment make_fragment(const SetupTriangle& t, int px, int py, Attr&& attr) {
+  Fragment f;
+  f.x = px;
+  f.y = py;
+  f.z = attr(t.z[0], t.z[1], t.z[2], t.depth_bits);
+  f.r = static_cast<uint8_t>(attr(t.rgb[0][0], t.rgb[1][0], t.rgb[2][0], 8));
+  f.g = static_cast<uint8_t>(attr(t.rgb[0][1], t.rgb[1][1], t.rgb[2][1], 8));
+  f.b = static_cast<uint8_t>(attr(t.rgb[0][2], t.rgb[1][2], t.rgb[2][2], 8));
+  f.samples = static_cast<uint8_t>(t.samples);
+  return f;
+}
+
+}  // namespace interp_detail
+
+inline Fragment PlaneStepper::at(int px, int py) {
+  if (nvar_ == 0) {
+    // Every attribute flat: q_ and r_ hold at every point.
+  } else if (have_last_ && py == last_y_ && px == last_x_ + 1) {
+    for (int i = 0; i < kAttrs; ++i) {  // a flat attribute's steps are 0: a no-op
+      q_[i] += dq_[i];
+      r_[i] += dr_[i];  // both remainders in [0, den): the sum is below 2 den
+      if (r_[i] >= den_) {
+        r_[i] -= den_;
+        ++q_[i];
+      }
+    }
+  } else {
+    restart(px, py);
+  }
+  have_last_ = true;
+  last_x_ = px;
+  last_y_ = py;
+  // Round half up from the floor quotient and remainder, as div_round_in does.
+  int i = 0;
+  return interp_detail::make_fragment(*t_, px, py, [&](uint32_t, uint32_t, uint32_t, int bits) __attribute__((always_inline)) {
+    const int64_t v = r_[i] >= den_ - r_[i] ? q_[i] + 1 : q_[i];
+    ++i;
+    return interp_detail::clamp_attr(v, bits);
+  });
+}
 
 // One DDA span value: the attribute (bits wide) at step k of a span whose exact start
 // value is num0 / den and exact step dnum / den (den > 0), in the given arithmetic.

@@ -122,6 +122,38 @@ void add_draw_stats(RenderStats& into, const RenderStats& part) {
 }  // namespace
 
 struct SceneRenderer::Impl {
+  // The SpanEmitter (fine_raster.h) of draw()'s run path: a one-sample triangle whose
+  // fragments PixelShader's stepper gives, written by rop_write_run.
+  struct RunWriter {
+    Impl& m;
+    PixelShader& shader;
+    RenderStats& s;
+    void operator()(int px, int py, uint32_t mask) { span(py, px, px + 1, mask); }
+    void span(int py, int x0, int x1, uint32_t) {
+      PlaneStepper& plane = shader.stepper();
+      uint32_t n;
+      if (plane.flat()) {
+        // One fragment for the run, its x moved along: nothing is stepped, and the loop
+        // keeps the fragment in registers while the ROP's stores go out.
+        const Fragment f = plane.at(x0, py);
+        n = rop_write_run(
+            m.fb, py, x0, x1,
+            [f](int x) {
+              Fragment g = f;  // a copy, not f changed in place: a store the loads would wait for
+              g.x = x;
+              return g;
+            },
+            m.st.depth_func, m.st.depth_write);
+      } else {
+        n = rop_write_run(
+            m.fb, py, x0, x1, [&](int x) { return plane.at(x, py); }, m.st.depth_func, m.st.depth_write);
+      }
+      s.fragments_shaded += uint64_t(x1 - x0);
+      s.fragments_passed += n;
+      s.samples_passed += n;
+    }
+  };
+
   double seconds = 0;  // spent in the pipeline (constructor, run, finish): parsing excluded
   RasterState st;
   RenderStats& stats;
@@ -164,6 +196,14 @@ struct SceneRenderer::Impl {
   // tests and writes every fragment of tri, counting into s.
   void draw(const SetupTriangle& tri, const SetupTriangle& walk, RenderStats& s) {
     PixelShader shader(tri, F);  // PlaneStepper where it applies
+    if (shader.stepped() && !check && !on_fragment) {
+      // One fragment a covered pixel, no error stats to add and nobody watching the
+      // fragments: traversal's runs of pixels are shaded and written a run at a time
+      // (rop_write_run: the same writes as rop_write on each fragment in turn).
+      RunWriter w{*this, shader, s};
+      traverse(walk, tp, s.traversal, w);
+      return;
+    }
     traverse(walk, tp, s.traversal, [&](int px, int py, uint32_t mask) {
       if (check) pixels.emplace_back(px, py);
       const auto write = [&](const Fragment& f) {
@@ -316,9 +356,19 @@ Framebuffer render_scene(const Scene& scene, const RasterState& arch, RenderStat
 }
 
 std::string fragment_trace_line(const Fragment& f) {
-  std::string line = std::to_string(f.x) + " " + std::to_string(f.y) + " " + std::to_string(f.z) + " " +
-                     std::to_string(f.r) + " " + std::to_string(f.g) + " " + std::to_string(f.b);
-  if (f.samples > 1) line += " " + std::to_string(f.mask);
+  // Appended, not chained operator+: GCC 12 at -O3 reports a false -Wrestrict on
+  // operator+(const char*, string&&) (GCC bug 105329), which -Werror stops.
+  std::string line = std::to_string(f.x);
+  const auto field = [&](auto v) {
+    line += ' ';
+    line += std::to_string(v);
+  };
+  field(f.y);
+  field(f.z);
+  field(unsigned(f.r));
+  field(unsigned(f.g));
+  field(unsigned(f.b));
+  if (f.samples > 1) field(unsigned(f.mask));
   return line;
 }
 

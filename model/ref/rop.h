@@ -2,6 +2,7 @@
 // ROP: depth test against the depth buffer, then colour (and depth) write.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <utility>
@@ -47,6 +48,57 @@ inline bool rop_write(Framebuffer& fb, const Fragment& f, DepthFunc func, bool d
   }
   if (samples_passed) *samples_passed += n;
   return n > 0;
+}
+
+namespace rop_detail {
+
+// rop_write_run, with the depth function's test left out when it is `always` (kAlways).
+template <bool kAlways, class FragAt>
+inline uint32_t write_run(Framebuffer& fb, int y, int x0, int x1, FragAt& frag, DepthFunc func, bool depth_write) {
+  uint32_t n = 0;
+  for (int xa = x0; xa < x1;) {
+    const int xb = std::min(x1, fb.tile_end_x(xa));
+    // Depth read from the stored tile, or the clear value where none is; the tiles are
+    // allocated on the first write, as set_depth() and sample() would. `always` does not
+    // look at the stored depth: not reading it saves a cache miss a fragment.
+    const uint32_t* zr = std::as_const(fb).stored_depth_run(xa, y);
+    const uint32_t zclear = fb.cleared_depth();
+    uint32_t* zw = nullptr;
+    uint8_t* cw = nullptr;
+    for (int x = xa; x < xb; ++x) {
+      const Fragment f = frag(x);
+      const int i = x - xa;
+      if constexpr (!kAlways) {
+        if (!depth_test(func, f.z, zr ? zr[i] : zclear)) continue;
+      }
+      if (depth_write) {
+        if (!zw) zr = zw = fb.depth_run(xa, y);
+        zw[i] = f.z;
+      }
+      if (!cw) cw = fb.color_run(xa, y);
+      const uint8_t rgba[4] = {f.r, f.g, f.b, 255};
+      std::memcpy(cw + size_t(i) * 4, rgba, 4);
+      ++n;
+    }
+    xa = xb;
+  }
+  return n;
+}
+
+}  // namespace rop_detail
+
+// rop_write of the fragments frag(x0), frag(x0 + 1), ..., frag(x1 - 1) of row y, in that
+// order, on a one-sample framebuffer: the same tests, writes and tile allocations as
+// rop_write on each in turn (tb/test_run_paths.cpp), with the tile lookups done once per
+// storage tile the run crosses rather than once a pixel (the pipeline's runs,
+// pipeline.cpp). frag(x) returns the Fragment of pixel (x, y); it is called for every
+// pixel, in order, whatever the test decides. Returns the fragments written (= samples
+// written).
+template <class FragAt>
+inline uint32_t rop_write_run(Framebuffer& fb, int y, int x0, int x1, FragAt&& frag, DepthFunc func,
+                              bool depth_write) {
+  if (func == DepthFunc::Always) return rop_detail::write_run<true>(fb, y, x0, x1, frag, func, depth_write);
+  return rop_detail::write_run<false>(fb, y, x0, x1, frag, func, depth_write);
 }
 
 }  // namespace rastsim

@@ -89,10 +89,7 @@ void traverse(const SetupTriangle& t, const TraversalParams& p, TraversalCounter
       // One "tile": the whole box, tested pixel by pixel.
       ++c.tiles_visited;
       ++c.tiles_partial;
-      c.count_tests(fine_raster_partial(t, t.bbox, F, [&](int px, int py, uint32_t m) {
-        c.count_pixel(m, t.samples);
-        emit_pixel(emit, px, py, m);
-      }), t.samples);
+      c.count_tests(fine_raster_partial(t, t.bbox, F, counted(c, t.samples, emit)), t.samples);
       break;
     case Traversal::Hierarchical:
       walk_hierarchical(t, t.bbox, p.hier_levels, 0, F, c, [&](const PixelRect& fp, TileClass cls) {
@@ -100,10 +97,7 @@ void traverse(const SetupTriangle& t, const TraversalParams& p, TraversalCounter
           c.count_accepted(fp.area(), t.samples);
           fine_raster_accepted(fp, emit, t.full_mask());
         } else {
-          c.count_tests(fine_raster_partial(t, fp, F, [&](int px, int py, uint32_t m) {
-            c.count_pixel(m, t.samples);
-            emit_pixel(emit, px, py, m);
-          }), t.samples);
+          c.count_tests(fine_raster_partial(t, fp, F, counted(c, t.samples, emit)), t.samples);
         }
       });
       break;
@@ -113,7 +107,7 @@ void traverse(const SetupTriangle& t, const TraversalParams& p, TraversalCounter
         ++c.spans;
         c.fragments += static_cast<uint64_t>(x1 - x0);
         c.samples_covered += static_cast<uint64_t>(x1 - x0);  // one sample: config validation
-        for (int px = x0; px < x1; ++px) emit_pixel(emit, px, py, 1u);
+        emit_span(emit, py, x0, x1, 1u);
       });
       break;
   }

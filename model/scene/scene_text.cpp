@@ -6,6 +6,7 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <cstring>
 #include <functional>
 #include <limits>
 #include <optional>
@@ -56,14 +57,20 @@ namespace {
 void one_line(std::string_view s, int line, const std::string& name, Tokens& tokens, const LineFn& fn) {
   if (s.size() > kMaxLineChars)
     fail(name, line, "line is longer than " + std::to_string(kMaxLineChars) + " characters");
-  if (s.find('\0') != std::string_view::npos) fail(name, line, "NUL byte (not a text file?)");
-  s = s.substr(0, s.find('#'));
+  if (std::memchr(s.data(), '\0', s.size()) != nullptr) fail(name, line, "NUL byte (not a text file?)");
+  // Tokens split on " \t\r\v\f", up to a '#' (which also ends a token): one pass over
+  // the characters (find_first_of with a set searched the set once a character, and was
+  // a tenth of reading a trace of small triangles).
   tokens.clear();
-  constexpr std::string_view kSpace = " \t\r\v\f";
-  for (size_t b = s.find_first_not_of(kSpace); b != std::string_view::npos; b = s.find_first_not_of(kSpace, b)) {
-    const size_t e = std::min(s.find_first_of(kSpace, b), s.size());
-    tokens.push_back(s.substr(b, e - b));
-    b = e;
+  const auto space = [](char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; };
+  const char* p = s.data();
+  const char* const end = p + s.size();
+  for (;;) {
+    while (p != end && space(*p)) ++p;
+    if (p == end || *p == '#') break;
+    const char* const b = p;
+    while (p != end && !space(*p) && *p != '#') ++p;
+    tokens.emplace_back(b, size_t(p - b));
   }
   if (!tokens.empty()) fn(line, tokens);
 }

@@ -157,20 +157,45 @@ class TraceParser {
     }
   }
 
-  // `x y` (current colour and depth) or `x y z r g b` starting at t[i].
-  SceneVertex vertex_at(const Tokens& t, size_t i, bool full, const std::string& label) const {
+  // The checks above for a vertex field, with the message's name built only on failure
+  // (once a field of every vertex of a trace): "vertex K NAME" in a `tri` (k >= 0),
+  // "NAME" on a `v` line (k < 0).
+  static std::string field(int k, const char* name) {
+    return k < 0 ? std::string(name) : "vertex " + std::to_string(k) + " " + name;
+  }
+  Q64 coord(std::string_view tok, int k, const char* name) const {
+    if (is_plain_decimal(tok)) {
+      try {
+        return Q64::parse_decimal(tok);
+      } catch (const std::invalid_argument&) {  // reported with its reason below
+      }
+    }
+    return coord(tok, field(k, name));
+  }
+  double unit(std::string_view tok, int k, const char* name) const {
+    if (is_plain_decimal(tok))
+      if (const auto v = scene_text::parse_double(tok); v && *v >= 0.0 && *v <= 1.0) return *v;
+    return unit(tok, field(k, name));
+  }
+  uint8_t channel(std::string_view tok, int k, const char* name) const {
+    if (const auto v = scene_text::parse_int(tok); v && *v >= 0 && *v <= 255) return static_cast<uint8_t>(*v);
+    return channel(tok, field(k, name));
+  }
+
+  // `x y` (current colour and depth) or `x y z r g b` starting at t[i]; k: see field().
+  SceneVertex vertex_at(const Tokens& t, size_t i, bool full, int k) const {
     SceneVertex v;
-    v.x = coord(t[i], label + "x");
-    v.y = coord(t[i + 1], label + "y");
+    v.x = coord(t[i], k, "x");
+    v.y = coord(t[i + 1], k, "y");
     if (!full) {
       v.z = depth_;
       v.r = r_, v.g = g_, v.b = b_;
       return v;
     }
-    v.z = unit(t[i + 2], label + "z");
-    v.r = channel(t[i + 3], label + "red");
-    v.g = channel(t[i + 4], label + "green");
-    v.b = channel(t[i + 5], label + "blue");
+    v.z = unit(t[i + 2], k, "z");
+    v.r = channel(t[i + 3], k, "red");
+    v.g = channel(t[i + 4], k, "green");
+    v.b = channel(t[i + 5], k, "blue");
     return v;
   }
 
@@ -228,8 +253,8 @@ class TraceParser {
     const bool full = n == 18;
     const size_t per = full ? 6 : 2;
     CmdPrimitives p;
-    for (size_t k = 0; k < 3; ++k)
-      p.vertices.push_back(vertex_at(t, 1 + k * per, full, "vertex " + std::to_string(k) + " "));
+    p.vertices.reserve(3);
+    for (size_t k = 0; k < 3; ++k) p.vertices.push_back(vertex_at(t, 1 + k * per, full, int(k)));
     emit(std::move(p), line_);
   }
 
@@ -257,7 +282,7 @@ class TraceParser {
       fail("'v' takes 2 numbers (x y) or 6 (x y z r g b), got " + std::to_string(n));
     }
     if (open_prims_.vertices.empty()) first_vertex_line_ = line_;
-    open_prims_.vertices.push_back(vertex_at(t, 1, n == 6, ""));
+    open_prims_.vertices.push_back(vertex_at(t, 1, n == 6, -1));
   }
 
   void end(const Tokens& t) {
