@@ -34,8 +34,9 @@ namespace {
 // Bump when the method changes (script, JSON layout): old cache entries no longer match.
 constexpr const char* kMethodVersion = "rastsim-area-1";
 
-// The Yosys script of one run (kRead, then kSynth). @DIR@ is the run's directory (sources, rast_params.vh),
-// @FILES@ the sources, @ROOT@ the hierarchy's top (rast_top or rast_engine2d), @RETOP@
+// The Yosys script of one run (kRead, then kSynth). @DIR@ is the run's directory
+// (sources, rast_params.vh), @WORK@ where this process writes (the run's directory, or a
+// module's subdirectory in a split run), @FILES@ the sources, @ROOT@ the hierarchy's top (rast_top or rast_engine2d), @RETOP@
 // empty or the lines that make one module under rast_top the top.
 // - synth's coarse steps (proc, fsm, wreduce, alumacc, share, memory), hierarchy kept
 //   for the per-module stat; then its fine steps with `opt -fast` where synth runs
@@ -200,7 +201,7 @@ YosysUsage run_yosys(const std::string& yosys, const fs::path& dir, const std::s
     // The shell reports a killed child as 128 + signal: SIGKILL is most often the
     // kernel's out-of-memory killer (rast_top of the wide configs needs several GB).
     if (WIFEXITED(status) && WEXITSTATUS(status) == 128 + SIGKILL)
-      msg = "killed (SIGKILL: out of memory? try --top with one stage module)";
+      msg = "killed (SIGKILL: out of memory? --jobs 1 runs one Yosys process at a time)";
     throw std::runtime_error("yosys failed on " + label + ": " + msg + " (log: " + (dir / "yosys.log").string() + ")");
   }
   return usage;
