@@ -47,6 +47,8 @@ void run_area_command(const AreaCommandOptions& o) {
   AreaOptions ao;
   ao.top = o.top;
   ao.use_cache = !o.no_cache;
+  ao.split = !o.one_process;
+  ao.jobs = o.jobs;
   ao.progress = progress_printer(o.quiet);
   const bool tty = isatty(2);
   const AreaReport r = synthesize_area(p, ao);
@@ -56,7 +58,8 @@ void run_area_command(const AreaCommandOptions& o) {
               << r.yosys_version << ", "
               << (r.from_cache ? "from the cache (" + r.key + ")"
                                : "synthesised in " + std::to_string(static_cast<int>(r.synth_seconds + 0.5)) + " s")
-              << "\n";
+              << " (" << r.modules << " Yosys processes, " << static_cast<int>(r.cpu_seconds + 0.5) << " CPU s, peak "
+              << static_cast<int>(r.peak_mb + 0.5) << " MB a process)\n";
     print_table(std::cout, r);
   }
   if (!o.stats_path.empty()) {
@@ -76,6 +79,12 @@ void register_area(CLI::App& app) {
   cmd->add_option("--top", o.top,
                   "Synthesise one module only: rast_top (the raster pipeline), rast_engine2d, or a stage module "
                   "under rast_top such as rast_fine_raster (default: rast_top and rast_engine2d)");
+  cmd->add_flag("--one-process", o.one_process,
+                "Synthesise rast_top's whole hierarchy in one Yosys process (default: one process a module, its "
+                "submodules as blackboxes, summed; one process needs several GB on the wide configs)");
+  cmd->add_option("--jobs,-j", o.jobs, "Yosys processes at once when rast_top is split a module a process")
+      ->check(CLI::Range(1, 64))
+      ->capture_default_str();
   cmd->add_flag("--no-cache", o.no_cache, "Synthesise even when the cache holds this parameter set (and do not store)");
   cmd->add_flag("--quiet,-q", o.quiet, "Print neither progress nor the table");
   cmd->footer(

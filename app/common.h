@@ -124,6 +124,8 @@ struct AreaCommandOptions {
   ConfigOptions config;
   std::string stats_path, top;
   bool no_cache = false, quiet = false;
+  bool one_process = false;  // rast_top in one Yosys process (default: one a module)
+  int jobs = 2;              // Yosys processes at once
 };
 void run_area_command(const AreaCommandOptions& o);
 

@@ -5,6 +5,8 @@
 #include <csignal>
 #include <unistd.h>
 
+#include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -12,9 +14,13 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <memory>
+#include <mutex>
+#include <optional>
 #include <regex>
 #include <sstream>
 #include <stdexcept>
+#include <thread>
 
 #include "rtl/rtl_cache.h"
 #include "rtl/rtl_sources.h"
@@ -28,8 +34,9 @@ namespace {
 // Bump when the method changes (script, JSON layout): old cache entries no longer match.
 constexpr const char* kMethodVersion = "rastsim-area-1";
 
-// The Yosys script of one run. @DIR@ is the run's directory (sources, rast_params.vh),
-// @FILES@ the sources, @ROOT@ the hierarchy's top (rast_top or rast_engine2d), @RETOP@
+// The Yosys script of one run (kRead, then kSynth). @DIR@ is the run's directory
+// (sources, rast_params.vh), @WORK@ where this process writes (the run's directory, or a
+// module's subdirectory in a split run), @FILES@ the sources, @ROOT@ the hierarchy's top (rast_top or rast_engine2d), @RETOP@
 // empty or the lines that make one module under rast_top the top.
 // - synth's coarse steps (proc, fsm, wreduce, alumacc, share, memory), hierarchy kept
 //   for the per-module stat; then its fine steps with `opt -fast` where synth runs
@@ -42,9 +49,7 @@ constexpr const char* kMethodVersion = "rastsim-area-1";
 //   whose lines below the second level land unquoted inside the JSON. The per-module
 //   totals are summed here (area_from_yosys_stat) instead. (Without a top it leaves a
 //   trailing comma, removed before parsing.)
-constexpr const char* kScript = R"(read_verilog -sv -I@DIR@ @FILES@
-hierarchy -top @ROOT@
-@RETOP@synth -noabc -run begin:fine
+constexpr const char* kSynth = R"(synth -noabc -run begin:fine
 opt -fast -full
 memory_map
 opt -fast
@@ -56,8 +61,25 @@ abc -fast
 opt -fast
 opt_clean
 setattr -mod -unset top *
-tee -q -o @DIR@/stat.json stat -json -tech cmos
+tee -q -o @WORK@/stat.json stat -json -tech cmos
 )";
+constexpr const char* kRead = "read_verilog -sv -I@DIR@ @FILES@\nhierarchy -top @ROOT@\n";
+const std::string kScript = std::string(kRead) + "@RETOP@" + kSynth;
+
+// Split synthesis of a hierarchy (docs/area.md, "Method"), so no Yosys process holds the
+// whole of rast_top:
+// - kElaborate: elaborate once and list every derived module with the submodules it
+//   instantiates (stat without -tech on the unsynthesised design: cells by type, the
+//   submodule instances among them). No top at `stat`: see above.
+//   It writes the elaborated design as RTLIL, which a module's run reads back in a tenth
+//   of a second (elaborating again took 9 s on the smallest design).
+// - kModule: read that, turn every other module into a blackbox (ports only), make
+//   @MODULE@ the top and synthesise it alone with kSynth: its own gates, its submodule
+//   instances left as cells of their (blackbox) types.
+constexpr const char* kElaborate =
+    "write_rtlil @DIR@/elaborated.il\nsetattr -mod -unset top *\ntee -q -o @WORK@/stat.json stat -json\n";
+constexpr const char* kModule = "read_rtlil @DIR@/elaborated.il\nblackbox @OTHERS@\nsetattr -mod -unset top *\n"
+                                "setattr -mod -set top 1 =@MODULE@\nhierarchy\n";
 
 std::string replace_all(std::string s, const std::string& from, const std::string& to) {
   for (size_t at = 0; (at = s.find(from, at)) != std::string::npos; at += to.size()) s.replace(at, from.size(), to);
@@ -88,26 +110,32 @@ struct ModuleInfo {
   std::vector<std::pair<std::string, uint64_t>> children;  // submodule id, instances
 };
 
+// One module's entry of `stat -json [-tech cmos]`: its gates ($_*) as its own counts, the
+// cell types is_module() names as submodule instances; anything else is an error.
+ModuleInfo module_from_stat(const std::string& id, const nlohmann::json& m,
+                            const std::function<bool(const std::string&)>& is_module) {
+  ModuleInfo info;
+  if (m.contains("estimated_num_transistors")) info.own.transistors = transistors_of(m);
+  for (const auto& [type, n] : m.at("num_cells_by_type").items()) {
+    const uint64_t count = n.get<uint64_t>();
+    if (is_module(type)) {
+      info.children.emplace_back(type, count);
+      continue;
+    }
+    if (type.rfind("$_", 0) != 0)
+      throw std::runtime_error("yosys stat: cell type " + type + " in " + id + " is neither a gate nor a module");
+    info.own.cells_by_type[type] += count;
+    info.own.cells += count;
+    if (type == "$_DFF_P_" || type == "$_DFF_N_") info.own.flip_flops += count;
+  }
+  return info;
+}
+
 std::map<std::string, ModuleInfo> read_modules(const nlohmann::json& stat) {
   std::map<std::string, ModuleInfo> mods;
   const auto& modules = stat.at("modules");
-  for (const auto& [id, m] : modules.items()) {
-    ModuleInfo info;
-    info.own.transistors = transistors_of(m);
-    for (const auto& [type, n] : m.at("num_cells_by_type").items()) {
-      const uint64_t count = n.get<uint64_t>();
-      if (modules.contains(type)) {
-        info.children.emplace_back(type, count);
-        continue;
-      }
-      if (type.rfind("$_", 0) != 0)
-        throw std::runtime_error("yosys stat: cell type " + type + " in " + id + " is neither a gate nor a module");
-      info.own.cells_by_type[type] += count;
-      info.own.cells += count;
-      if (type == "$_DFF_P_" || type == "$_DFF_N_") info.own.flip_flops += count;
-    }
-    mods[id] = std::move(info);
-  }
+  for (const auto& [id, m] : modules.items())
+    mods[id] = module_from_stat(id, m, [&](const std::string& t) { return modules.contains(t); });
   return mods;
 }
 
@@ -124,14 +152,23 @@ AreaCounts total_of(const std::string& id, const std::map<std::string, ModuleInf
   return memo[id] = t;
 }
 
+// What one Yosys process used, from its closing line ("CPU: user 1.2s system 0.1s, MEM:
+// 95.3 MB peak").
+struct YosysUsage {
+  double cpu_seconds = 0;  // user + system
+  double peak_mb = 0;      // peak resident memory, MB
+};
+
 // Runs Yosys on `script` in `dir`, reporting each pass of the top two levels ("16.6.
 // Executing OPT pass") through `progress`; throws with Yosys' last lines on failure.
-void run_yosys(const std::string& yosys, const fs::path& dir, const std::string& label,
+YosysUsage run_yosys(const std::string& yosys, const fs::path& dir, const std::string& label,
                const std::function<void(const std::string&)>& progress) {
   const std::string cmd = "cd '" + dir.string() + "' && '" + yosys + "' -l yosys.log -s area.ys 2>&1";
   FILE* pipe = popen(cmd.c_str(), "r");
   if (!pipe) throw std::runtime_error("cannot start " + yosys);
   static const std::regex pass_re(R"(^(\d+(\.\d+)?)\. Executing (\S+) pass)");
+  static const std::regex usage_re(R"(CPU: user ([0-9.]+)s system ([0-9.]+)s, MEM: ([0-9.]+) MB peak)");
+  YosysUsage usage;
   std::deque<std::string> tail;
   const auto t0 = std::chrono::steady_clock::now();
   char buf[4096];
@@ -147,6 +184,10 @@ void run_yosys(const std::string& yosys, const fs::path& dir, const std::string&
       os << label << ": " << m[1] << " " << m[3] << " (" << static_cast<int>(s) << " s)";
       progress(os.str());
     }
+    if (std::regex_search(line, m, usage_re)) {
+      usage.cpu_seconds = std::stod(m[1]) + std::stod(m[2]);
+      usage.peak_mb = std::stod(m[3]);
+    }
     tail.push_back(line);
     if (tail.size() > 8) tail.pop_front();
     line.clear();
@@ -160,9 +201,10 @@ void run_yosys(const std::string& yosys, const fs::path& dir, const std::string&
     // The shell reports a killed child as 128 + signal: SIGKILL is most often the
     // kernel's out-of-memory killer (rast_top of the wide configs needs several GB).
     if (WIFEXITED(status) && WEXITSTATUS(status) == 128 + SIGKILL)
-      msg = "killed (SIGKILL: out of memory? try --top with one stage module)";
+      msg = "killed (SIGKILL: out of memory? --jobs 1 runs one Yosys process at a time)";
     throw std::runtime_error("yosys failed on " + label + ": " + msg + " (log: " + (dir / "yosys.log").string() + ")");
   }
+  return usage;
 }
 
 std::string yosys_version(const std::string& yosys) {
@@ -176,43 +218,66 @@ std::string yosys_version(const std::string& yosys) {
   return v;
 }
 
-// One synthesis run: `root` is the hierarchy's top; `stage` (optional) a module under it
-// to synthesise alone, with the parameters rast_top gives it.
-AreaReport synth_run(const std::string& yosys, const std::string& params_vh, const std::string& root,
-                     const std::string& stage, bool split_children,
-                     const std::function<void(const std::string&)>& progress) {
-  char tmpl[] = "/tmp/rastsim-area-XXXXXX";
-  if (!mkdtemp(tmpl)) throw std::runtime_error("cannot create a temporary directory in /tmp");
-  const fs::path dir = tmpl;
-  std::string files;
-  for (const auto& s : rtl_sources()) {
-    std::ofstream(dir / std::string(s.name)) << s.text;
-    files += (files.empty() ? "" : " ") + (dir / std::string(s.name)).string();
+// A run's directory in /tmp: every RTL source and the parameter header; removed with it.
+struct RunDir {
+  fs::path dir;
+  std::string files;  // the sources, space-separated
+  explicit RunDir(const std::string& params_vh) {
+    char tmpl[] = "/tmp/rastsim-area-XXXXXX";
+    if (!mkdtemp(tmpl)) throw std::runtime_error("cannot create a temporary directory in /tmp");
+    dir = tmpl;
+    for (const auto& s : rtl_sources()) {
+      std::ofstream(dir / std::string(s.name)) << s.text;
+      files += (files.empty() ? "" : " ") + (dir / std::string(s.name)).string();
+    }
+    std::ofstream(dir / "rast_params.vh") << params_vh;
   }
-  std::ofstream(dir / "rast_params.vh") << params_vh;
-  const std::string retop =
-      stage.empty() ? "" : "setattr -mod -unset top " + root + "\nsetattr -mod -set top 1 *" + stage + "\nhierarchy\n";
-  std::string script = replace_all(kScript, "@DIR@", dir.string());
-  script = replace_all(replace_all(replace_all(script, "@FILES@", files), "@ROOT@", root), "@RETOP@", retop);
-  std::ofstream(dir / "area.ys") << script;
-  const std::string label = stage.empty() ? root : stage;
-  run_yosys(yosys, dir, label, progress);
-  std::ifstream is(dir / "stat.json");
-  if (!is) throw std::runtime_error("yosys wrote no statistics for " + label + " (log: " + (dir / "yosys.log").string() + ")");
-  const AreaReport r = [&] {
+  ~RunDir() {
+    std::error_code ec;
+    fs::remove_all(dir, ec);
+  }
+  RunDir(const RunDir&) = delete;
+  RunDir& operator=(const RunDir&) = delete;
+
+  // Writes `script` (with @DIR@, @FILES@, @ROOT@ filled in), runs Yosys on it in `work`
+  // (default: the run's directory) and returns the stat JSON it wrote there.
+  nlohmann::json run(const std::string& yosys, std::string script, const std::string& root, const std::string& label,
+                     const std::function<void(const std::string&)>& progress, YosysUsage& usage,
+                     fs::path work = {}) const {
+    if (work.empty()) work = dir;
+    script = replace_all(replace_all(replace_all(script, "@FILES@", files), "@ROOT@", root), "@DIR@", dir.string());
+    script = replace_all(script, "@WORK@", work.string());
+    std::ofstream(work / "area.ys") << script;
+    usage = run_yosys(yosys, work, label, progress);
+    std::ifstream is(work / "stat.json");
+    if (!is) throw std::runtime_error("yosys wrote no statistics for " + label + " (log: " + (work / "yosys.log").string() + ")");
     std::string text((std::istreambuf_iterator<char>(is)), std::istreambuf_iterator<char>());
     // Without a top module Yosys 0.23 ends the JSON with "},\n\n}": drop that comma.
     if (const size_t end = text.find_last_of('}'); end != std::string::npos && end > 0) {
       const size_t prev = text.find_last_not_of(" \t\r\n", end - 1);
       if (prev != std::string::npos && text[prev] == ',') text.erase(prev, 1);
     }
-    const nlohmann::json stat = nlohmann::json::parse(text);
-    AreaReport rep = area_from_yosys_stat(stat, label);
-    if (!split_children) rep.stages = {{label, rep.total}};
-    return rep;
-  }();
-  fs::remove_all(dir);
-  return r;
+    return nlohmann::json::parse(text);
+  }
+};
+
+// One synthesis run of a whole hierarchy in one process: `root` is the hierarchy's top;
+// `stage` (optional) a module under it to synthesise alone, with the parameters rast_top
+// gives it.
+AreaReport synth_run(const std::string& yosys, const std::string& params_vh, const std::string& root,
+                     const std::string& stage, bool split_children,
+                     const std::function<void(const std::string&)>& progress) {
+  const RunDir run(params_vh);
+  const std::string retop =
+      stage.empty() ? "" : "setattr -mod -unset top " + root + "\nsetattr -mod -set top 1 *" + stage + "\nhierarchy\n";
+  const std::string label = stage.empty() ? root : stage;
+  YosysUsage usage;
+  const nlohmann::json stat = run.run(yosys, replace_all(kScript, "@RETOP@", retop), root, label, progress, usage);
+  AreaReport rep = area_from_yosys_stat(stat, label);
+  if (!split_children) rep.stages = {{label, rep.total}};
+  rep.cpu_seconds = usage.cpu_seconds;
+  rep.peak_mb = usage.peak_mb;
+  return rep;
 }
 
 }  // namespace
@@ -245,8 +310,11 @@ std::string find_yosys() {
       "(apt-get install -y --no-install-recommends yosys; scripts/setup.sh installs it)");
 }
 
-AreaReport area_from_yosys_stat(const nlohmann::json& stat, const std::string& root) {
-  const auto mods = read_modules(stat);
+namespace {
+
+// Per-module totals of a hierarchy from each module's own gates and submodule instances
+// (a stat JSON's modules, or the split runs' modules): see area_from_yosys_stat.
+AreaReport area_from_modules(const std::map<std::string, ModuleInfo>& mods, const std::string& root) {
   std::string root_id;
   for (const auto& [id, m] : mods)
     if (base_name(id) == root) {
@@ -278,8 +346,239 @@ AreaReport area_from_yosys_stat(const nlohmann::json& stat, const std::string& r
   return r;
 }
 
+}  // namespace
+
+AreaReport area_from_yosys_stat(const nlohmann::json& stat, const std::string& root) {
+  return area_from_modules(read_modules(stat), root);
+}
+
+namespace {
+
+nlohmann::json counts_json(const AreaCounts& c);
+AreaCounts counts_from(const nlohmann::json& j);
+
+// A cache entry: read (nullopt when absent or unreadable, which is said through
+// `progress`), and written through a temporary file renamed into place, so a concurrent
+// reader (a parallel sweep) never sees half a file.
+std::optional<nlohmann::json> read_cache(const fs::path& file, const std::function<void(const std::string&)>& progress) {
+  if (!fs::exists(file)) return std::nullopt;
+  try {
+    std::ifstream is(file);
+    return nlohmann::json::parse(is);
+  } catch (const std::exception& e) {
+    if (progress) progress("cache entry " + file.string() + " unreadable (" + e.what() + "), synthesising");
+    return std::nullopt;
+  }
+}
+
+void write_cache(const fs::path& file, const nlohmann::json& j) {
+  std::error_code ec;
+  fs::create_directories(file.parent_path(), ec);
+  const fs::path tmp = file.string() + ".tmp" + std::to_string(getpid()) + "-" +
+                       std::to_string(std::hash<std::thread::id>{}(std::this_thread::get_id()));
+  std::ofstream os(tmp);
+  os << j.dump(2) << "\n";
+  os.close();
+  if (os) fs::rename(tmp, file, ec);
+  if (!os || ec) fs::remove(tmp, ec);
+}
+
+// What every cache key holds: the method, Yosys, the RTL sources.
+Fnv64 base_key(const std::string& yosys_version) {
+  Fnv64 h;
+  h.add(kMethodVersion);
+  h.add(yosys_version);
+  for (const auto& s : rtl_sources()) h.add(s.name), h.add(s.text);
+  return h;
+}
+
+// Runs job(0) .. job(n - 1) on at most `workers` threads (each job one Yosys process);
+// after a failure no further job starts, and the first failure is rethrown.
+void run_jobs(size_t n, int workers, const std::function<void(size_t)>& job) {
+  std::atomic<size_t> next{0};
+  std::atomic<bool> failed{false};
+  std::exception_ptr error;
+  std::mutex error_mutex;
+  const auto work = [&] {
+    for (size_t k; !failed && (k = next++) < n;) {
+      try {
+        job(k);
+      } catch (...) {
+        const std::lock_guard<std::mutex> lock(error_mutex);
+        if (!error) error = std::current_exception();
+        failed = true;
+      }
+    }
+  };
+  std::vector<std::thread> threads;
+  for (int w = 1; w < std::min<int>(workers, static_cast<int>(n)); ++w) threads.emplace_back(work);
+  work();
+  for (auto& t : threads) t.join();
+  if (error) std::rethrow_exception(error);
+}
+
+// One module of a split run as cached: its own gates, its submodule instances, what its
+// Yosys process used.
+struct ModuleRun {
+  ModuleInfo info;
+  double seconds = 0;
+  YosysUsage usage;
+  bool hit = false;
+};
+
+// rast_top split into one Yosys process a derived module (docs/area.md, "Method"):
+// elaborate once for the module list, synthesise each module alone with its submodules
+// as blackboxes (at most o.jobs processes at once), then sum own gates x instances up the
+// hierarchy (area_from_modules). Each module is cached on its own: a derived module's
+// name ($paramod...) holds every parameter it was built with, so its entry is keyed by
+// the name and the sources and is shared by every config that derives the same module
+// (a FIFO-depth sweep re-synthesises the FIFOs and rast_top's glue only). rast_top itself
+// (not derived: it takes the header) is keyed with the header too.
+AreaReport synth_split(const std::string& yosys, const std::string& yosys_ver, const std::string& params_vh,
+                       const std::string& root, const fs::path& cache_dir, const AreaOptions& o) {
+  const auto t0 = std::chrono::steady_clock::now();
+  std::mutex progress_mutex;
+  const auto say = [&](const std::string& line) {
+    if (!o.progress) return;
+    const std::lock_guard<std::mutex> lock(progress_mutex);
+    o.progress(line);
+  };
+  bool all_hit = true;
+  YosysUsage total_usage;  // summed CPU, the largest process's peak
+
+  // 1. The derived modules and their submodule instances: from the cache, else by
+  // elaborating (which also writes the RTLIL the modules' runs read).
+  Fnv64 ek = base_key(yosys_ver);
+  ek.add("elaborate");
+  ek.add(kRead);
+  ek.add(kElaborate);
+  ek.add(root);
+  ek.add(params_vh);
+  const fs::path elab_file = cache_dir / (ek.hex() + ".json");
+  std::map<std::string, std::map<std::string, uint64_t>> hierarchy;  // module -> submodule -> instances
+  if (auto j = o.use_cache ? read_cache(elab_file, say) : std::nullopt) {
+    try {
+      hierarchy = j->at("modules").get<decltype(hierarchy)>();
+    } catch (const std::exception&) {
+      hierarchy.clear();
+    }
+  }
+  std::unique_ptr<RunDir> elab;  // the elaborated design, while modules need it
+  const auto elaborate = [&] {
+    if (elab) return;
+    say(root + ": elaborating");
+    elab = std::make_unique<RunDir>(params_vh);
+    YosysUsage usage;
+    const nlohmann::json stat = elab->run(yosys, std::string(kRead) + kElaborate, root, root + " (elaborate)", say, usage);
+    total_usage.cpu_seconds += usage.cpu_seconds;
+    total_usage.peak_mb = std::max(total_usage.peak_mb, usage.peak_mb);
+    const auto& modules = stat.at("modules");
+    hierarchy.clear();
+    for (const auto& [id, m] : modules.items()) {
+      auto& children = hierarchy[id];
+      for (const auto& [type, n] : m.at("num_cells_by_type").items())
+        if (modules.contains(type)) children[type] += n.get<uint64_t>();
+    }
+    if (o.use_cache) write_cache(elab_file, {{"root", root}, {"modules", hierarchy}});
+  };
+  if (hierarchy.empty()) elaborate();
+  std::vector<std::string> ids;
+  for (const auto& [id, children] : hierarchy) ids.push_back(id);
+
+  // 2. Each module alone: the cached ones first, then one process a missing one.
+  const auto module_key = [&](const std::string& id) {
+    Fnv64 h = base_key(yosys_ver);
+    h.add("module");
+    h.add(kRead);
+    h.add(kElaborate);
+    h.add(kModule);
+    h.add(kSynth);
+    h.add(root);
+    h.add(id);
+    h.add(id.rfind("$paramod", 0) == 0 ? "" : params_vh);
+    return cache_dir / (h.hex() + ".json");
+  };
+  std::vector<ModuleRun> runs(ids.size());
+  std::vector<size_t> todo;
+  for (size_t k = 0; k < ids.size(); ++k) {
+    ModuleRun& r = runs[k];
+    if (auto j = o.use_cache ? read_cache(module_key(ids[k]), say) : std::nullopt) {
+      try {
+        r.info.own = counts_from(j->at("own"));
+        r.info.children = j->at("children").get<std::vector<std::pair<std::string, uint64_t>>>();
+        r.seconds = j->value("synth_seconds", 0.0);
+        r.usage.cpu_seconds = j->value("cpu_seconds", 0.0);
+        r.usage.peak_mb = j->value("peak_mb", 0.0);
+        r.hit = true;
+      } catch (const std::exception&) {
+        r = ModuleRun{};
+      }
+    }
+    if (!r.hit) todo.push_back(k);
+  }
+  if (!todo.empty()) {
+    elaborate();  // the RTLIL (a cached module list came without it)
+    if (hierarchy.size() != ids.size())
+      throw std::runtime_error("yosys: " + root + " elaborated into other modules than the cached list");
+    say(root + ": " + std::to_string(todo.size()) + " of " + std::to_string(ids.size()) +
+        " modules to synthesise, one Yosys process each, " + std::to_string(o.jobs) + " at a time");
+  }
+  std::atomic<size_t> done{0};
+  run_jobs(todo.size(), o.jobs, [&](size_t t) {
+    const size_t k = todo[t];
+    const std::string& id = ids[k];
+    ModuleRun& r = runs[k];
+    const std::string label = base_name(id) + " [" + std::to_string(k + 1) + "/" + std::to_string(ids.size()) + "]";
+    std::string others;
+    for (const auto& other : ids)
+      if (other != id) others += (others.empty() ? "=" : " =") + other;
+    const std::string script =
+        replace_all(replace_all(std::string(kModule) + kSynth, "@OTHERS@", others), "@MODULE@", id);
+    const auto t1 = std::chrono::steady_clock::now();
+    const fs::path work = elab->dir / ("m" + std::to_string(k));
+    fs::create_directories(work);
+    const nlohmann::json stat = elab->run(yosys, script, root, label, say, r.usage, work);
+    const auto& modules = stat.at("modules");
+    if (!modules.contains(id)) throw std::runtime_error("yosys stat: no module " + id + " after synthesising it alone");
+    r.info = module_from_stat(id, modules.at(id), [&](const std::string& t) { return hierarchy.count(t) > 0; });
+    r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
+    if (o.use_cache)
+      write_cache(module_key(id), {{"module", id},
+                                   {"own", counts_json(r.info.own)},
+                                   {"children", r.info.children},
+                                   {"synth_seconds", r.seconds},
+                                   {"cpu_seconds", r.usage.cpu_seconds},
+                                   {"peak_mb", r.usage.peak_mb}});
+    std::ostringstream os;
+    os << label << " synthesised (" << ++done << " of " << todo.size() << ", " << static_cast<int>(r.seconds)
+       << " s, " << static_cast<int>(r.usage.peak_mb) << " MB)";
+    say(os.str());
+  });
+
+  // 3. The sums up the hierarchy.
+  std::map<std::string, ModuleInfo> mods;
+  for (size_t k = 0; k < ids.size(); ++k) {
+    mods[ids[k]] = runs[k].info;
+    all_hit = all_hit && runs[k].hit && !elab;
+    total_usage.cpu_seconds += runs[k].usage.cpu_seconds;
+    total_usage.peak_mb = std::max(total_usage.peak_mb, runs[k].usage.peak_mb);
+  }
+  AreaReport rep = area_from_modules(mods, root);
+  rep.modules = ids.size();
+  rep.from_cache = all_hit;
+  rep.cpu_seconds = total_usage.cpu_seconds;
+  rep.peak_mb = total_usage.peak_mb;
+  rep.synth_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (all_hit) {
+    rep.synth_seconds = 0;
+    for (const ModuleRun& r : runs) rep.synth_seconds += r.seconds;  // as cached: the runs' own times
+  }
+  return rep;
+}
+
+}  // namespace
+
 AreaReport synthesize_area(const RtlParams& p, const AreaOptions& o) {
-  static const std::vector<std::string> kRoots = {"rast_top", "rast_engine2d"};
   if (!o.top.empty()) {
     bool known = false;
     std::string names;
@@ -290,6 +589,7 @@ AreaReport synthesize_area(const RtlParams& p, const AreaOptions& o) {
     }
     if (!known) throw std::runtime_error("--top " + o.top + ": not an RTL module (" + names + ")");
   }
+  if (o.jobs < 1) throw std::runtime_error("area: jobs must be at least 1, not " + std::to_string(o.jobs));
   const std::string yosys = find_yosys();
   AreaReport r;
   r.top = o.top;
@@ -299,8 +599,10 @@ AreaReport synthesize_area(const RtlParams& p, const AreaOptions& o) {
   const std::string params_vh = rtl_params_verilog(p, "rastsim area");
 
   // One synthesis a part: the whole design is rast_top (split into its stages) and
-  // rast_engine2d; --top is one part. Each part is cached on its own under a hash of what
-  // decides it; rast_engine2d takes no config parameter, so one entry serves every config.
+  // rast_engine2d; --top is one part. rast_top is synthesised a module a process
+  // (synth_split, o.split) or whole; rast_engine2d (small) and a stage under rast_top in
+  // one process each. rast_engine2d takes no config parameter, so one entry serves every
+  // config.
   struct Part {
     std::string root, stage;
     bool split;
@@ -316,52 +618,55 @@ AreaReport synthesize_area(const RtlParams& p, const AreaOptions& o) {
   r.from_cache = true;
   r.total.instances = 0;
   for (const Part& part : parts) {
-    Fnv64 h;
-    h.add(kMethodVersion);
-    h.add(r.yosys_version);
-    h.add(kScript);
-    h.add(part.root);
-    h.add(part.stage);
-    h.add(part.split ? "split" : "whole");
-    h.add(part.root == "rast_top" ? params_vh : "");
-    for (const auto& s : rtl_sources()) h.add(s.name), h.add(s.text);
-    whole.add(h.hex());
-    last_key = h.hex();
-    const fs::path cache = dir / (h.hex() + ".json");
-
     AreaReport got;
-    bool hit = false;
-    if (o.use_cache && fs::exists(cache)) {
-      try {
-        std::ifstream is(cache);
-        got = area_from_json(nlohmann::json::parse(is));
-        hit = true;
-      } catch (const std::exception& e) {
-        // A truncated or older entry: synthesise again and overwrite it.
-        if (o.progress) o.progress("cache entry " + cache.string() + " unreadable (" + e.what() + "), synthesising");
+    if (part.root == "rast_top" && part.stage.empty() && o.split) {
+      got = synth_split(yosys, r.yosys_version, params_vh, part.root, dir, o);
+      Fnv64 h = base_key(r.yosys_version);
+      h.add("split");
+      h.add(params_vh);
+      last_key = h.hex();
+      whole.add(last_key);
+    } else {
+      Fnv64 h;
+      h.add(kMethodVersion);
+      h.add(r.yosys_version);
+      h.add(kScript);
+      h.add(part.root);
+      h.add(part.stage);
+      h.add(part.split ? "split" : "whole");
+      h.add(part.root == "rast_top" ? params_vh : "");
+      for (const auto& s : rtl_sources()) h.add(s.name), h.add(s.text);
+      whole.add(h.hex());
+      last_key = h.hex();
+      const fs::path cache = dir / (h.hex() + ".json");
+
+      bool hit = false;
+      if (auto j = o.use_cache ? read_cache(cache, o.progress) : std::nullopt) {
+        try {
+          got = area_from_json(*j);
+          hit = true;
+        } catch (const std::exception& e) {
+          // An older entry: synthesise again and overwrite it.
+          if (o.progress) o.progress("cache entry " + cache.string() + " unreadable (" + e.what() + "), synthesising");
+        }
       }
-    }
-    if (!hit) {
-      const auto t0 = std::chrono::steady_clock::now();
-      got = synth_run(yosys, params_vh, part.root, part.stage, part.split, o.progress);
-      got.synth_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      got.yosys_version = r.yosys_version;
-      got.top = part.stage.empty() ? part.root : part.stage;
-      got.key = h.hex();
-      if (o.use_cache) {
-        std::error_code ec;
-        fs::create_directories(dir, ec);
-        const fs::path tmp = cache.string() + ".tmp" + std::to_string(getpid());
-        std::ofstream os(tmp);
-        os << area_to_json(got).dump(2) << "\n";
-        os.close();
-        // Renamed into place, so a concurrent reader (a parallel sweep) never sees half a file.
-        if (os) fs::rename(tmp, cache, ec);
-        if (!os || ec) fs::remove(tmp, ec);
+      if (!hit) {
+        const auto t0 = std::chrono::steady_clock::now();
+        got = synth_run(yosys, params_vh, part.root, part.stage, part.split, o.progress);
+        got.synth_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        got.yosys_version = r.yosys_version;
+        got.top = part.stage.empty() ? part.root : part.stage;
+        got.key = h.hex();
+        got.modules = 1;
+        if (o.use_cache) write_cache(cache, area_to_json(got));
       }
+      got.from_cache = hit;
     }
-    r.from_cache = r.from_cache && hit;
+    r.from_cache = r.from_cache && got.from_cache;
     r.synth_seconds += got.synth_seconds;
+    r.cpu_seconds += got.cpu_seconds;
+    r.peak_mb = std::max(r.peak_mb, got.peak_mb);
+    r.modules += got.modules;
     for (const auto& [name, c] : got.stages) r.stages[name] = c;
     r.total += got.total;
   }
@@ -401,6 +706,9 @@ nlohmann::json area_to_json(const AreaReport& r) {
   j["yosys"] = r.yosys_version;
   j["key"] = r.key;
   j["synth_seconds"] = r.synth_seconds;
+  j["synth_cpu_seconds"] = r.cpu_seconds;
+  j["synth_peak_mb"] = r.peak_mb;
+  j["yosys_processes"] = r.modules;
   j["from_cache"] = r.from_cache;
   nlohmann::json params = nlohmann::json::object();
   for (const auto& [k, v] : r.parameters) params[k] = v;
@@ -417,6 +725,9 @@ AreaReport area_from_json(const nlohmann::json& j) {
   r.yosys_version = j.value("yosys", "");
   r.key = j.value("key", "");
   r.synth_seconds = j.value("synth_seconds", 0.0);
+  r.cpu_seconds = j.value("synth_cpu_seconds", 0.0);
+  r.peak_mb = j.value("synth_peak_mb", 0.0);
+  r.modules = j.value("yosys_processes", 0);
   r.from_cache = j.value("from_cache", false);
   // Params as written (nlohmann's object is sorted by name, not in table order).
   const nlohmann::json params = j.value("parameters", nlohmann::json::object());

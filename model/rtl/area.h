@@ -9,7 +9,11 @@
 //   library, no wires, no placement.
 // - Per stage: the modules rast_top instantiates (grouped by module, instances summed),
 //   rast_top's own glue logic, and rast_engine2d; each counted with its submodules.
-// - Cache: one JSON a Yosys run (rast_top, rast_engine2d, or the one --top module), named
+// - Split: rast_top is elaborated once for its derived modules, then each is synthesised
+//   in its own Yosys process with its submodules as blackboxes (at most two at once), and
+//   the own gates x instance counts are summed up the hierarchy here: no process holds
+//   the whole pipeline (one did not fit in 14.5 GB for the default config).
+// - Cache: one JSON a Yosys run (a module of rast_top, rast_engine2d, or the one --top module), named
 //   by a hash of everything that decides it (Yosys version, the script, the embedded RTL
 //   sources, the parameter header when the run uses it, the top), in area_cache_dir(): a
 //   second call with the same RTL parameters reads it back at once, and rast_engine2d (no
@@ -46,6 +50,9 @@ struct AreaReport {
   std::string yosys_version;
   std::string key;                          // cache key (hex): the cache file's name for one run, else a hash of the runs' keys
   double synth_seconds = 0;                 // Yosys wall time of the runs when they ran (the cached value on a hit)
+  double cpu_seconds = 0;                   // Yosys' own CPU time (user + system), summed over its processes
+  double peak_mb = 0;                       // the largest Yosys process's peak memory, MB
+  uint64_t modules = 0;                     // Yosys processes the figures come from (split: one a module)
   bool from_cache = false;                  // every run read from the cache
   std::vector<std::pair<std::string, int>> parameters;  // the exported RTL parameters
 };
@@ -54,6 +61,11 @@ struct AreaOptions {
   std::string top;        // "" (whole design), "rast_top", "rast_engine2d" or a module under rast_top
   std::string cache_dir;  // "" = area_cache_dir()
   bool use_cache = true;
+  // rast_top one Yosys process a derived module (submodules as blackboxes), the sums
+  // taken here; false: the whole hierarchy in one process (needs several GB on the wide
+  // configs; tests compare the two).
+  bool split = true;
+  int jobs = 2;  // Yosys processes at once in a split run (2 cores, shared machine)
   // Called with one line of progress (a Yosys pass starting, a run finishing).
   std::function<void(const std::string&)> progress;
 };

@@ -127,8 +127,11 @@ RtlParams rtl_params_from_config(const Config& cfg) {
   p.pixel_w = std::bit_width(std::max(schema_max("display.width"), schema_max("display.height")) - 1);
   p.tile_log2_w = std::bit_width(static_cast<unsigned>(std::countr_zero(schema_max("raster.tile_size"))));
   // Multisampling: the sample count and the snapped offsets are run-time inputs (the
-  // testbench drives ref/sample_pattern.h's table); |offset| <= 2^(F-1) raw.
-  p.max_samples = static_cast<int>(schema_max("raster.samples"));
+  // testbench drives ref/sample_pattern.h's table) up to the build-time maximum
+  // raster.max_samples (validated: a power of two, 2 .. the schema's largest
+  // raster.samples, >= raster.samples); |offset| <= 2^(F-1) raw. The port width stays the
+  // schema's, so every config's RTL has the same samples_log2_i port.
+  p.max_samples = static_cast<int>(cfg.get_int("raster.max_samples"));
   p.sample_log2_w = std::bit_width(static_cast<unsigned>(std::countr_zero(schema_max("raster.samples"))));
   p.sample_off_w = st.coord_format.frac_bits + 1;
   // The timing keys, read and checked once (timing_params.cpp), as the SystemC model reads them.

@@ -42,7 +42,7 @@ struct RtlParams {
   int tile_log2_max = 0; // log2 of raster.tile_size: the largest tile the RTL supports
   int tile_log2_w = 0;   // the tile_log2_i port: holds log2 of the schema's largest raster.tile_size
   // Multisampling: raster.samples is a run-time input up to max_samples (docs/rtl.md).
-  int max_samples = 0;    // the schema's largest raster.samples (sample mask bits a pixel)
+  int max_samples = 0;    // raster.max_samples: the largest raster.samples (sample mask bits a pixel)
   int sample_log2_w = 0;  // the samples_log2_i port: holds log2 of max_samples
   int sample_off_w = 0;   // a sample offset from the pixel centre, raw, signed: F + 1
   // Timing keys the RTL implements (config_schema_timing.cpp).

@@ -37,6 +37,42 @@ TEST(RtlRegistry, PortWidthsHoldTheSchemaMaxima) {
   EXPECT_EQ(p.sample_off_w, 17);
 }
 
+// raster.max_samples: the build-time MaxSamples, checked against the rules the RTL states
+// (rtl/rast_top.sv: a power of two >= 2) and raster.samples <= it.
+TEST(RtlParamsMaxSamples, FromConfigAndValidated) {
+  Config c = load_shipped_config("embedded");
+  c.apply_override("raster.max_samples=4");
+  c.apply_override("raster.samples=4");
+  c.validate();
+  const RtlParams p = rtl_params_from_config(c);
+  EXPECT_EQ(p.max_samples, 4);
+  EXPECT_EQ(p.sample_log2_w, 3);  // the port keeps the schema's width
+  // The run-time sample count up to the built maximum: a 4-sample RTL runs 2, not 8.
+  RtlParams two = p, eight = p;
+  two.max_samples = 2;
+  eight.max_samples = 8;
+  std::string why;
+  EXPECT_TRUE(rtl_params_compatible(p, two));
+  EXPECT_FALSE(rtl_params_compatible(p, eight, &why));
+  EXPECT_NE(why.find("MaxSamples is 8, the RTL was built with 4"), std::string::npos) << why;
+
+  const auto error_of = [](const std::vector<std::string>& sets) {
+    Config bad = load_shipped_config("embedded");
+    try {
+      for (const auto& s : sets) bad.apply_override(s);
+      bad.validate();
+    } catch (const std::exception& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  const std::string over = error_of({"raster.max_samples=2", "raster.samples=4"});
+  EXPECT_NE(over.find("raster.samples = 4 exceeds raster.max_samples = 2"), std::string::npos) << over;
+  EXPECT_NE(error_of({"raster.max_samples=1"}).find("raster.max_samples"), std::string::npos);
+  EXPECT_NE(error_of({"raster.max_samples=3"}).find("2, 4, 8 or 16"), std::string::npos) << error_of({"raster.max_samples=3"});
+  EXPECT_NE(error_of({"raster.max_samples=32"}).find("raster.max_samples"), std::string::npos);
+}
+
 TEST(RtlParamsValues, RoundTripAndWrongCount) {
   const RtlParams p = rtl_params_from_config(load_shipped_config("desktop"));
   std::string text = rtl_params_values(p);  // "{v0, v1, ...}"
