@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "common/random_vertex.h"
 #include "config/raster_state_config.h"
 #include "ref/pipeline.h"
 #include "ref/rop.h"
@@ -75,8 +76,8 @@ TEST(RopRun, SameWritesAsRopWriteOnEachFragment) {
 Scene random_scene(std::mt19937& rng, int w, int h, int n) {
   Scene sc;
   sc.source = "random";
-  std::uniform_int_distribution<int> byte(0, 255), pct(0, 99);
-  std::uniform_real_distribution<double> cx(-20, w + 20), cy(-20, h + 20), z(0, 1), ang(0, 6.2831853);
+  std::uniform_int_distribution<int> pct(0, 99);
+  std::uniform_real_distribution<double> cx(-20, w + 20), cy(-20, h + 20);
   CmdPrimitives p;
   for (int t = 0; t < n; ++t) {
     const double x = cx(rng), y = cy(rng), r = std::uniform_real_distribution<double>(0.5, 30)(rng);
@@ -84,12 +85,7 @@ Scene random_scene(std::mt19937& rng, int w, int h, int n) {
     const int flat_mask = kind == 0 ? 15 : kind == 1 ? std::uniform_int_distribution<int>(1, 14)(rng) : 0;
     SceneVertex first;
     for (int v = 0; v < 3; ++v) {
-      SceneVertex sv;
-      const double a = ang(rng);
-      sv.x = Q64::from_double(x + r * std::cos(a));
-      sv.y = Q64::from_double(y + r * std::sin(a));
-      sv.z = z(rng);
-      sv.r = uint8_t(byte(rng)), sv.g = uint8_t(byte(rng)), sv.b = uint8_t(byte(rng));
+      SceneVertex sv = test::random_vertex_on_circle(rng, x, y, r);
       if (v == 0) first = sv;
       if (flat_mask & 1) sv.z = first.z;
       if (flat_mask & 2) sv.r = first.r;

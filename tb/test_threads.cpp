@@ -10,6 +10,7 @@
 #include <random>
 #include <string>
 
+#include "common/random_vertex.h"
 #include "config/raster_state_config.h"
 #include "ref/pipeline.h"
 #include "ref/traverse.h"
@@ -24,7 +25,7 @@ Scene random_scene(std::mt19937& rng, int w, int h) {
   Scene sc;
   sc.source = "random";
   std::uniform_int_distribution<int> byte(0, 255), pct(0, 99);
-  std::uniform_real_distribution<double> cx(-40, w + 40), cy(-40, h + 40), z(0, 1), ang(0, 6.2831853);
+  std::uniform_real_distribution<double> cx(-40, w + 40), cy(-40, h + 40), z(0, 1);
   for (int run = 0; run < 3; ++run) {
     if (run > 0) {
       CommandBody state;
@@ -43,13 +44,7 @@ Scene random_scene(std::mt19937& rng, int w, int h) {
       const double r = pct(rng) < 90 ? std::uniform_real_distribution<double>(0.5, 20)(rng)
                                      : std::uniform_real_distribution<double>(20, 200)(rng);
       for (int v = 0; v < 3; ++v) {
-        SceneVertex sv;
-        const double a = ang(rng);
-        sv.x = Q64::from_double(x + r * std::cos(a));
-        sv.y = Q64::from_double(y + r * std::sin(a));
-        sv.z = z(rng);
-        sv.r = uint8_t(byte(rng)), sv.g = uint8_t(byte(rng)), sv.b = uint8_t(byte(rng));
-        p.vertices.push_back(sv);
+        p.vertices.push_back(test::random_vertex_on_circle(rng, x, y, r));
       }
     }
     sc.commands.push_back({p, {"random", int(sc.commands.size()) + 1}});
