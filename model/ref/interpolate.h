@@ -89,7 +89,7 @@ class PlaneStepper {
   int var_[kAttrs]{};
 };
 
-// The fragments of one pixel whose sample coverage mask is m (docs/antialiasing.md):// The fragments of one pixel whose sample coverage mask is m (docs/antialiasing.md):
+// The fragments of one pixel whose sample coverage mask is m (docs/antialiasing.md):
 // - one sample: interpolate() at the centre, mask 1 (any interp.method);
 // - msaa: one fragment, plane equations at the pixel centre (extrapolated when the centre
 //   is outside), mask m: its colour and depth go to every covered sample;

@@ -157,6 +157,11 @@ AreaCounts total_of(const std::string& id, const std::map<std::string, ModuleInf
 struct YosysUsage {
   double cpu_seconds = 0;  // user + system
   double peak_mb = 0;      // peak resident memory, MB
+  // Another process's usage: CPU summed, the larger peak (processes run side by side).
+  void add(const YosysUsage& u) {
+    cpu_seconds += u.cpu_seconds;
+    peak_mb = std::max(peak_mb, u.peak_mb);
+  }
 };
 
 // Runs Yosys on `script` in `dir`, reporting each pass of the top two levels ("16.6.
@@ -470,8 +475,7 @@ AreaReport synth_split(const std::string& yosys, const std::string& yosys_ver, c
     elab = std::make_unique<RunDir>(params_vh);
     YosysUsage usage;
     const nlohmann::json stat = elab->run(yosys, std::string(kRead) + kElaborate, root, root + " (elaborate)", say, usage);
-    total_usage.cpu_seconds += usage.cpu_seconds;
-    total_usage.peak_mb = std::max(total_usage.peak_mb, usage.peak_mb);
+    total_usage.add(usage);
     const auto& modules = stat.at("modules");
     hierarchy.clear();
     for (const auto& [id, m] : modules.items()) {
@@ -560,8 +564,7 @@ AreaReport synth_split(const std::string& yosys, const std::string& yosys_ver, c
   for (size_t k = 0; k < ids.size(); ++k) {
     mods[ids[k]] = runs[k].info;
     all_hit = all_hit && runs[k].hit && !elab;
-    total_usage.cpu_seconds += runs[k].usage.cpu_seconds;
-    total_usage.peak_mb = std::max(total_usage.peak_mb, runs[k].usage.peak_mb);
+    total_usage.add(runs[k].usage);
   }
   AreaReport rep = area_from_modules(mods, root);
   rep.modules = ids.size();
@@ -627,15 +630,12 @@ AreaReport synthesize_area(const RtlParams& p, const AreaOptions& o) {
       last_key = h.hex();
       whole.add(last_key);
     } else {
-      Fnv64 h;
-      h.add(kMethodVersion);
-      h.add(r.yosys_version);
+      Fnv64 h = base_key(r.yosys_version);
       h.add(kScript);
       h.add(part.root);
       h.add(part.stage);
       h.add(part.split ? "split" : "whole");
       h.add(part.root == "rast_top" ? params_vh : "");
-      for (const auto& s : rtl_sources()) h.add(s.name), h.add(s.text);
       whole.add(h.hex());
       last_key = h.hex();
       const fs::path cache = dir / (h.hex() + ".json");
