@@ -60,6 +60,34 @@ TEST(SceneBatches, SameCommandsAsTheWholeFileInBoundedBatches) {
   std::remove(path.c_str());
 }
 
+// Long strips are one command each: a batch is bounded by the lines it took too, so a
+// reader thread hands the first strips over long before the file ends.
+TEST(SceneBatches, LongStripsAreBatchedByLines) {
+  const std::string path = ::testing::TempDir() + "batches_strips.trace";
+  {
+    std::ofstream os(path);
+    os << "viewport 200 150\n";
+    for (int s = 0; s < 40; ++s) {  // 40 strips of 201 lines each
+      os << "strip\n";
+      for (int v = 0; v < 199; ++v) os << "v " << v % 190 << " " << (v % 2) * 5 + s * 3 << "\n";
+      os << "end\n";
+    }
+  }
+  const Scene whole = load_trace(path);
+  std::vector<size_t> sizes;
+  size_t total = 0;
+  stream_scene(path, ObjPlacement{}, 1000, [&](std::vector<Command>& b) {
+    sizes.push_back(b.size());
+    total += b.size();
+  });
+  EXPECT_EQ(total, whole.commands.size());
+  // 1000 lines hold at most 5 whole strips of 201 lines: batches of <= 6 commands (the
+  // viewport rides with the first), so 40 strips make at least 7 batches.
+  ASSERT_GE(sizes.size(), 7u);
+  for (size_t n : sizes) EXPECT_LE(n, 6u);
+  std::remove(path.c_str());
+}
+
 TEST(SceneBatches, MalformedLastLineStopsWithItsLineAfterTheRest) {
   const std::string path = write_trace("batches_bad.trace", 30000, "tri 1 2 3 4 5");  // no newline, 5 numbers
   const int last_line = 3 + 2 * 30000 + 6 + 1;

@@ -46,7 +46,8 @@ Scene parse_obj(const std::string& text, const std::string& name, const ObjPlace
                 const std::string& base_dir);
 
 // The command stream of a scene in batches: `consume` gets each batch of at least
-// `batch` commands (the last may be shorter) in order, and may take them (the vector is
+// `batch` commands or of the commands of at least `batch` lines of a trace (the last may
+// be shorter) in order, and may take them (the vector is
 // cleared after). A trace is read chunk by chunk and parsed as it is consumed, so memory
 // stays bounded whatever the file's size; a malformed line throws its SceneError
 // (file:line) when the parser reaches it, after the batches before it were consumed. An

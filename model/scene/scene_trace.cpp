@@ -103,12 +103,16 @@ class TraceParser {
     return std::move(scene_);
   }
 
-  // Hands the commands parsed so far to `consume` once there are at least `n` (n = 0:
-  // whatever there is).
+  // Hands the commands parsed so far to `consume` once there are at least `n` of them or
+  // they took at least `n` lines (n = 0: whatever there is). Lines bound a batch of long
+  // strips too (a 200-vertex strip is one command), so a reader thread hands the first
+  // part of such a scene over after n lines, not after the whole file.
   void drain(size_t n, const CommandBatchFn& consume) {
-    if (scene_.commands.empty() || scene_.commands.size() < n) return;
+    if (scene_.commands.empty()) return;
+    if (scene_.commands.size() < n && static_cast<size_t>(line_ - drained_line_) < n) return;
     consume(scene_.commands);
     scene_.commands.clear();
+    drained_line_ = line_;
   }
 
  private:
@@ -498,6 +502,7 @@ class TraceParser {
   bool open_ = false;                    // inside strip/fan ... end
   std::string open_kw_;
   int open_line_ = 0, first_vertex_line_ = 0;
+  int drained_line_ = 0;  // the line of the last drain (batches bounded by lines too)
   CmdPrimitives open_prims_;
   // 2D state: white, black background, solid pattern, PATCOPY, 1-pixel points.
   Style2d style_{{255, 255, 255}, {0, 0, 0}, {}, true, kRopPatCopy, 1};
