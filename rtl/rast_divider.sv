@@ -26,6 +26,13 @@
 //   quotient, and a stage after the last step keeps only low.
 `default_nettype none
 
+// The verilated model's divider form unless RAST_DIVIDER_STEPS asks for the circuit.
+`ifdef VERILATOR
+`ifndef RAST_DIVIDER_STEPS
+`define RAST_DIVIDER_SIM_FORM
+`endif
+`endif
+
 module rast_divider #(
   parameter int NumW    = 56,  // numerator bits (unsigned)
   parameter int DenW    = 48,  // denominator bits (unsigned, > 0)
@@ -49,10 +56,12 @@ module rast_divider #(
     $error("rast_divider: NumW (%0d) must equal DenW + QW (%0d + %0d)", NumW, DenW, QW);
   end
 
-  // Stage s's steps [s*Steps, min((s+1)*Steps, QW)) on {p, low} with divisor d.
-  // Returns {p, low} after them.
-  function automatic logic [DW+QW-1:0] stage_steps(input logic [DW-1:0] p_in, input logic [QW-1:0] low_in,
-                                                   input logic [DW-1:0] d, input int s);
+  // Stage s's steps [s*Steps, min((s+1)*Steps, QW)) on {p, low} with divisor d: p and
+  // low after them. A task with two outputs, not a function returning {p, low}: the
+  // verilated model then keeps p (DW bits) and low (QW bits) in one machine word each
+  // instead of packing and unpacking a DW + QW-bit (multi-word) result every stage.
+  task automatic stage_steps(input logic [DW-1:0] p_in, input logic [QW-1:0] low_in, input logic [DW-1:0] d,
+                             input int s, output logic [DW-1:0] p_out, output logic [QW-1:0] low_out);
     logic [DW-1:0] p;
     logic [QW-1:0] low;
     logic [DW:0]   t;     // {p, next dividend bit}: < 2 d
@@ -72,15 +81,70 @@ module rast_divider #(
         end
       end
     end
-    stage_steps = {p, low};
-  endfunction
+    p_out = p;
+    low_out = low;
+  endtask
 
   logic [RW-1:0] r0;  // the dividend: 2 num + den
   logic [DW-1:0] d0;  // the divisor: 2 den
   assign r0 = {num_i, 1'b0} + RW'(den_i);
   assign d0 = {den_i, 1'b0};
 
-  if (Latency > 0) begin : g_pipe
+  // The simulation form needs a 64-bit division for at least one quotient bit:
+  // 2^ChunkW remainders below d < 2^DW fit 63 bits. Wider formats get the circuit.
+`ifdef RAST_DIVIDER_SIM_FORM
+  localparam bit SimForm = (DW <= 62);  // derived
+`else
+  localparam bit SimForm = 1'b0;        // derived
+`endif
+  if (Latency > 0 && SimForm) begin : g_line
+    // ---- Simulation form (Verilator unless RAST_DIVIDER_STEPS is defined; DW <= 62) ----
+    // The same ports, function and timing as g_pipe below: the quotient of a division
+    // that enters on an en_i cycle appears at q_o Latency en_i cycles later; a division
+    // entered without valid_i leaves an unread value. Computed at entry with 64-bit
+    // machine divisions (ChunkW quotient bits each), then delayed in a ring of Stages
+    // quotients: a verilated cycle costs a wanted division one computation and a ring
+    // write, not Stages register stages of steps and copies (on desktop's 16 lanes x 4
+    // dividers x 12 stages: 768 stage updates a busy cycle). Synthesis (Yosys) and a
+    // build with RAST_DIVIDER_STEPS get g_pipe, the circuit; tb/rtl_divider checks the
+    // two forms cycle for cycle on random operands, valids and stalls.
+    localparam int ChunkW = 63 - DW;                        // derived: quotient bits a division
+    localparam int Chunks = (QW + ChunkW - 1) / ChunkW;     // derived
+    localparam int SlotW = (Stages > 1) ? $clog2(Stages) : 1;  // derived: ring index bits
+    // floor(r / d) for r < d 2^QW: long division ChunkW quotient bits at a time, each a
+    // 64-bit division of {remainder (< d < 2^DW), next bits} < 2^63.
+    function automatic logic [QW-1:0] quotient(input logic [RW-1:0] r, input logic [DW-1:0] d);
+      logic [63:0] rem, acc, qc;
+      logic [QW-1:0] low, q, top;
+      int n;
+      rem = 64'(r[RW-1:QW]);
+      low = r[QW-1:0];
+      q = '0;
+      for (int c = 0; c < Chunks; c++) begin
+        n = (c == Chunks - 1) ? QW - c * ChunkW : ChunkW;
+        top = low >> (QW - n);  // the next n dividend bits
+        acc = (rem << n) | 64'(top);
+        low = low << n;
+        qc = acc / 64'(d);
+        rem = acc - qc * 64'(d);
+        q = (q << n) | QW'(qc);
+      end
+      quotient = q;
+    endfunction
+    logic [QW-1:0]   ring_q [Stages];  // quotients, oldest at slot_q
+    // No reset: the first en_i cycle brings any start value into range, and no division
+    // enters before the interpolator has left reset (en_i is high throughout reset).
+    logic [SlotW-1:0] slot_q;
+    always_ff @(posedge clk_i) begin
+      if (en_i) begin
+        if (valid_i) ring_q[slot_q] <= quotient(r0, d0);
+        /* verilator lint_off UNSIGNED */  // one stage: always slot 0
+        slot_q <= (slot_q >= SlotW'(Stages - 1)) ? '0 : slot_q + 1'b1;
+        /* verilator lint_on UNSIGNED */
+      end
+    end
+    assign q_o = ring_q[slot_q];
+  end else if (Latency > 0) begin : g_pipe
     // Each stage's registers are its own variables (not one array indexed by stage): a
     // verilated model then updates them as plain words, without per-element
     // delayed-assignment bookkeeping.
@@ -118,12 +182,11 @@ module rast_divider #(
         // work only as a test.
         always_ff @(posedge clk_i) begin
           if (en_i && v_in) begin
-            // One call into a variable, then the fields: the steps are computed once
-            // (assigned to {p_q, low_q} directly, Verilator inlines the call per field).
-            logic [DW+QW-1:0] pl;
-            pl = stage_steps(p_in, low_in, d_in, s);
-            p_q   <= pl[DW+QW-1:QW];
-            low_q <= pl[QW-1:0];
+            logic [DW-1:0] p;
+            logic [QW-1:0] low;
+            stage_steps(p_in, low_in, d_in, s, p, low);
+            p_q   <= p;
+            low_q <= low;
             d_q   <= d_in;
           end
         end
@@ -137,10 +200,13 @@ module rast_divider #(
     end
     assign q_o = g_stage[Stages-1].low_q;
   end else begin : g_comb
-    logic [DW+QW-1:0] pl;
-    assign pl  = stage_steps(r0[RW-1:QW], r0[QW-1:0], d0, 0);
-    assign q_o = pl[QW-1:0];
+    /* verilator lint_off UNUSEDSIGNAL */
+    logic [DW-1:0] p;  // the final remainder: not needed
+    /* verilator lint_on UNUSEDSIGNAL */
+    always_comb stage_steps(r0[RW-1:QW], r0[QW-1:0], d0, 0, p, q_o);
   end
 endmodule
+
+`undef RAST_DIVIDER_SIM_FORM
 
 `default_nettype wire
