@@ -75,6 +75,13 @@ module rast_interpolate #(
   localparam int SideW = 3 + Lanes * (1 + 2 * PixelW + MaxSamples + ClampW);  // derived: side data bits
   localparam int CNumW = ColorNumW + 3;                // derived: signed colour numerator
   localparam int ZNumW = DepthNumW + 3;                // derived: signed depth numerator
+  // The depth products e z as two half products, z = z_hi 2^ZLoW + z_lo: each sum of three
+  // (|e| < 2^(EdgeW-1), a half below 2^ZHiW) fits ZPW signed bits, one machine word in the
+  // verilated model on the shipped formats (57-63 bits), where a ZNumW-bit product is a
+  // multi-word call. The same numerator: snum_z = sum_hi 2^ZLoW + sum_lo.
+  localparam int ZLoW  = DepthW / 2;                   // derived: low half of z
+  localparam int ZHiW  = DepthW - ZLoW;                // derived: high half of z
+  localparam int ZPW   = EdgeW + ZHiW + 2;             // derived: a half products' sum, signed
 
   localparam int RowW  = 1 << TileLog2Max;             // derived: mask bits a row of the largest tile
   localparam int Rows  = MaskW / RowW;                 // derived: rows of the mask
@@ -146,6 +153,7 @@ module rast_interpolate #(
     logic signed [EdgeW-1:0] e [3];
     logic signed [CNumW-1:0] snum_c [3];
     logic signed [ZNumW-1:0] snum_z;
+    logic signed [ZPW-1:0]   zsum_lo, zsum_hi;  // sum of e z_lo, of e z_hi
     logic [ColorNumW-1:0]  num_c [3];
     logic [DepthNumW-1:0]  num_z;
     logic [3:0]            lo, hi;  // per divider (r, g, b, z): clamp to 0 / to the maximum
@@ -179,10 +187,14 @@ module rast_interpolate #(
           for (int v = 0; v < 3; v++)
             snum_c[ch] = snum_c[ch] + CNumW'(e[(v+1)%3]) * $signed({{(CNumW - 8){1'b0}}, in_rgb_i[v*24 + ch*8 +: 8]});
       end
-      snum_z = '0;
+      zsum_lo = '0;
+      zsum_hi = '0;
       if (live)
-        for (int v = 0; v < 3; v++)
-          snum_z = snum_z + ZNumW'(e[(v+1)%3]) * $signed({{(ZNumW - DepthW){1'b0}}, in_z_i[v*DepthW +: DepthW]});
+        for (int v = 0; v < 3; v++) begin
+          zsum_lo = zsum_lo + ZPW'(e[(v+1)%3]) * $signed({{(ZPW - ZLoW){1'b0}}, in_z_i[v*DepthW +: ZLoW]});
+          zsum_hi = zsum_hi + ZPW'(e[(v+1)%3]) * $signed({{(ZPW - ZHiW){1'b0}}, in_z_i[v*DepthW + ZLoW +: ZHiW]});
+        end
+      snum_z = (ZNumW'(zsum_hi) <<< ZLoW) + ZNumW'(zsum_lo);
     end
     // Clamp flags: negative numerator, or 2 num + area2 >= 2^(bits+1) area2.
     always_comb begin
