@@ -23,6 +23,13 @@ endfunction()
 # Lint-clean (-Wall) and fast: X values resolved at verilation, not simulated.
 set(RAST_VERILATOR_ARGS -Wall -O3 --x-assign fast --x-initial fast)
 
+# The C++ compiler's options for the generated code, in every build type:
+# - -g0: no debug info (Vrast_desktop__Trace__0.cpp compiles in 11 s without it and
+#   142 s with it, measured on 2 cores; CI builds every model);
+# - -O3 (the default RelWithDebInfo is -O2): 1.06-1.14x faster models (desktop and
+#   d3d11, scripts/bench_rtl; docs/results.md "RTL simulation speed", round 3).
+set(RAST_VERILATED_CXX_OPTIONS -Wno-unused-parameter -g0 -O3)
+
 # rast_top built with the parameter header INC_DIR/rast_params.vh into TARGET as class PREFIX.
 function(rast_verilate_top target prefix inc_dir sources waivers)
   verilate(${target} SOURCES ${waivers} ${sources} PREFIX ${prefix} TOP_MODULE rast_top TRACE_FST

@@ -133,8 +133,8 @@ std::string project_cmake(const RtlBuildInfo& b) {
          "rast_verilate_top(rast_runner Vrast_top ${CMAKE_CURRENT_SOURCE_DIR} \"${top}\" \"${waivers}\")\n"
          "rast_verilate_engine2d(rast_runner \"${engine}\")\n"
          "target_include_directories(rast_runner PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})\n"
-         "# As rastsim_verilated: no debug info for generated code (compile time).\n"
-         "target_compile_options(rast_runner PRIVATE -Wno-unused-parameter -g0)\n"
+         "# As rastsim_verilated (rast_verilate.cmake: -g0 -O3).\n"
+         "target_compile_options(rast_runner PRIVATE ${RAST_VERILATED_CXX_OPTIONS})\n"
          "target_link_libraries(rast_runner PRIVATE rastsim_rtl_bench rastsim_scene ZLIB::ZLIB)\n";
 }
 
