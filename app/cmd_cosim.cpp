@@ -91,6 +91,10 @@ void register_cosim(CLI::App& app) {
   cmd->add_option("--max-error", max_error,
                   "Fail when |cycles_model - cycles_rtl| / cycles_rtl exceeds this (e.g. 0.05; default: report only)");
   cmd->add_flag("--no-model", no_model, "Do not run the SystemC model (fragment check only)");
+  cmd->add_option("--rtl-model", co.rtl_model,
+                  "Run this verilated model: a shipped config's name (default, d3d11, embedded, desktop) or "
+                  "default_circuit, the default config with rast_divider as the circuit Yosys synthesises instead "
+                  "of the simulation form the other models use (docs/rtl.md); it must fit the config");
   cmd->add_flag("--rtl-build-only", build_only,
                 "Only make sure the config's RTL model exists: a shipped one, else build it into the cache "
                 "($RASTSIM_CACHE/rtl, else ~/.cache/rastsim/rtl; docs/rtl.md) and print where; no scene needed");

@@ -30,10 +30,11 @@ set(RAST_VERILATOR_ARGS -Wall -O3 --x-assign fast --x-initial fast)
 #   d3d11, scripts/bench_rtl; docs/results.md "RTL simulation speed", round 3).
 set(RAST_VERILATED_CXX_OPTIONS -Wno-unused-parameter -g0 -O3)
 
-# rast_top built with the parameter header INC_DIR/rast_params.vh into TARGET as class PREFIX.
+# rast_top built with the parameter header INC_DIR/rast_params.vh into TARGET as class PREFIX
+# (further arguments: more Verilator arguments, e.g. -DRAST_DIVIDER_STEPS).
 function(rast_verilate_top target prefix inc_dir sources waivers)
   verilate(${target} SOURCES ${waivers} ${sources} PREFIX ${prefix} TOP_MODULE rast_top TRACE_FST
-    VERILATOR_ARGS -I${inc_dir} ${RAST_VERILATOR_ARGS})
+    VERILATOR_ARGS -I${inc_dir} ${RAST_VERILATOR_ARGS} ${ARGN})
 endfunction()
 
 # The 2D engine (no config parameter: its timing keys are run-time inputs) as Vrast_engine2d.

@@ -21,9 +21,24 @@ std::string config_label(const Config& cfg) {
   return s;
 }
 
-// The first shipped model that runs `wanted`, or -1.
-int shipped_model(const RtlParams& wanted) {
+// The first shipped model that runs `wanted`, or -1; with opts.rtl_model, that model,
+// which must exist and run `wanted`.
+int shipped_model(const RtlParams& wanted, const CosimOptions& opts) {
   const auto& reg = rtl_registry();
+  if (!opts.rtl_model.empty()) {
+    std::string names;
+    for (size_t i = 0; i < reg.size(); ++i) {
+      if (reg[i].name != opts.rtl_model) {
+        names += (names.empty() ? "" : ", ") + std::string(reg[i].name);
+        continue;
+      }
+      if (!rtl_params_compatible(reg[i].params, wanted))
+        throw std::runtime_error("--rtl-model " + opts.rtl_model +
+                                 ": that model was built with other parameters than this config needs");
+      return static_cast<int>(i);
+    }
+    throw std::runtime_error("--rtl-model " + opts.rtl_model + ": no such verilated model (there are: " + names + ")");
+  }
   for (size_t i = 0; i < reg.size(); ++i)
     if (rtl_params_compatible(reg[i].params, wanted)) return static_cast<int>(i);
   return -1;
@@ -69,20 +84,20 @@ RtlCacheEntry on_demand_model(const Config& cfg, const CosimOptions& opts, const
 
 std::vector<RtlModelInfo> rtl_models() {
   std::vector<RtlModelInfo> v;
-  for (const RegistryEntry& e : rtl_registry()) v.push_back({e.name, e.params});
+  for (const RegistryEntry& e : rtl_registry()) v.push_back({e.name, e.config, e.params});
   return v;
 }
 
 RtlModelChoice prepare_rtl_model(const Config& cfg, const CosimOptions& opts) {
   const RtlParams wanted = cosim_wanted_params(cfg, opts);
-  if (const int i = shipped_model(wanted); i >= 0) return {rtl_registry()[size_t(i)].name, "", false, 0};
+  if (const int i = shipped_model(wanted, opts); i >= 0) return {rtl_registry()[size_t(i)].name, "", false, 0};
   const RtlCacheEntry e = on_demand_model(cfg, opts, wanted);
   return {"cache:" + e.key, e.dir, e.hit, e.hit ? 0 : e.build_seconds};
 }
 
 CosimResult run_cosim(const Scene& scene, const Config& cfg, const CosimOptions& opts) {
   const RtlParams wanted = cosim_wanted_params(cfg, opts);
-  if (const int i = shipped_model(wanted); i >= 0) {
+  if (const int i = shipped_model(wanted, opts); i >= 0) {
     const RegistryEntry& m = rtl_registry()[size_t(i)];
     TbSetup s;
     CosimResult r;

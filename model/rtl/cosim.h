@@ -50,6 +50,9 @@ struct CosimOptions {
   // --trace-diff names it as the first difference.
   uint64_t perturb_rop_cycles = 0;
   uint64_t perturb_rop_transaction = 0;
+  // A verilated model by name (rtl_registry: a shipped config, or <cfg>_circuit with the
+  // divider as its circuit); "" = the first that fits, else an on-demand one.
+  std::string rtl_model;
 };
 // The options as the on-demand runner gets them (progress stays behind).
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(CosimOptions, tile_size, backpressure_seed, backpressure, fst_path,
@@ -103,7 +106,8 @@ NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(CosimResult, rtl_config, rtl_mod
 // The verilated configs linked into this binary, and the parameters each was built with
 // (compiled in at configure time: no config file is read).
 struct RtlModelInfo {
-  std::string name;  // configs/<name>.toml
+  std::string name;    // the model: a config's name, or <config>_circuit
+  std::string config;  // configs/<config>.toml, whose parameters it was built with
   RtlParams params;
 };
 std::vector<RtlModelInfo> rtl_models();

@@ -94,7 +94,8 @@ struct TbSetup {
 
 using RunFn = void (*)(const TbSetup&, CosimResult&);
 struct RegistryEntry {
-  const char* name;  // configs/<name>.toml
+  const char* name;    // the config's name, or <config>_circuit (the divider as its circuit)
+  const char* config;  // configs/<config>.toml
   RunFn run;
   RtlParams params;  // what Vrast_<name> was built with
 };

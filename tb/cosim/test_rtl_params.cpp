@@ -4,6 +4,7 @@
 // from, read here independently; and the initializer's round trip.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -20,10 +21,15 @@ TEST(RtlRegistry, CompiledParametersEqualTheShippedConfigs) {
   const auto models = rtl_models();
   ASSERT_FALSE(models.empty());
   for (const RtlModelInfo& m : models) {
-    const RtlParams want = rtl_params_from_config(load_shipped_config(m.name));
+    const RtlParams want = rtl_params_from_config(load_shipped_config(m.config));
     std::string why;
     EXPECT_TRUE(m.params == want) << m.name << ": " << (rtl_params_compatible(m.params, want, &why) ? "" : why);
+    EXPECT_TRUE(m.name == m.config || m.name == m.config + "_circuit") << m.name;
   }
+  // The default config also with the divider circuit (rtl/CMakeLists.txt RAST_RTL_CIRCUIT_CONFIGS).
+  EXPECT_TRUE(std::any_of(models.begin(), models.end(), [](const RtlModelInfo& m) {
+    return m.name == "default_circuit" && m.config == "default";
+  }));
 }
 
 TEST(RtlRegistry, PortWidthsHoldTheSchemaMaxima) {
