@@ -109,7 +109,7 @@ SimResult simulate_stream(const std::string& path, const ObjPlacement& placement
       // model itself stays one SystemC thread; memory stays bounded by those batches).
       stream_scene_ahead(path, placement, batch, kSceneBatchesAhead, [&](std::vector<Command>& b) {
         // The batch moves into one shared block; each command's pointer shares it.
-        const auto owner = std::make_shared<const std::vector<Command>>(std::move(b));
+        const LocalPtr<const std::vector<Command>> owner = make_local<std::vector<Command>>(std::move(b));
         b = {};
         for (const Command& c : *owner) {
           fetching = true;
