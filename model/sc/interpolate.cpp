@@ -17,7 +17,11 @@ void Interpolate::body() {
     // At most one fragment a covered sample (ssaa), one a pixel otherwise.
     Fragment* const first = frags->reset(size_t(batch.pixels) * size_t(tri.samples));
     Fragment* out = first;
-    PixelShader shader(tri, frac_bits_);  // the reference's shading, fast path included
+    if (shader_tri_ != batch.tri) {
+      shader_tri_ = batch.tri;
+      shader_.emplace(tri, frac_bits_);  // the reference's shading, fast path included
+    }
+    PixelShader& shader = *shader_;
     // Per batch, not per fragment: the stepped plane equations with no sink are the
     // common case and store fragments only, a run at a time.
     if (shader.stepped() && !ctx_.on_fragment) {

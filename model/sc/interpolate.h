@@ -14,6 +14,7 @@
 //   flat-shaded run is one fragment with its x moved along.
 #pragma once
 
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -56,6 +57,11 @@ class Interpolate : public Stage {
   Link<PixelItem>& in_;
   Link<FragmentItem>& out_;
   Recycler<FragmentBatch> fragments_;  // no allocation a batch (sc/recycler.h)
+  // The shader of the last batch's triangle, kept for its next tiles (the reference
+  // builds one a triangle too: PlaneStepper's setup divides). Holding the triangle keeps
+  // its pooled object from being reused, so the address identifies it.
+  LocalPtr<const SetupTriangle> shader_tri_;
+  std::optional<PixelShader> shader_;
 };
 
 }  // namespace rastsim::sc
