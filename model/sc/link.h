@@ -21,6 +21,17 @@
 // one suspends on an event until the other side has acted (immediate notification, no
 // delta cycle), as an sc_fifo would, but no process waits for time to pass unless the
 // run is in lock-step (SimContext::lockstep).
+//
+// Wake-ups: a writer suspended on a full FIFO resumes once its reader has emptied it,
+// not at the first free slot (unless in lock-step, where every transfer must happen at
+// its own SystemC time). Which process runs when never changes a timestamp (they come
+// from the two stages' cycle counts and the slots' freed cycles only), so this changes
+// no result; it lets a writer refill the whole FIFO in one go instead of a slot at a
+// time, which on small triangles woke every stage above the busiest one once per few
+// tiles (a quarter of the process switches on the mesh scene). It cannot deadlock: a
+// reader stops short of emptying its input only while its own output is full, which
+// the stages below drain (the ROP, at the bottom, reads its FIFO until empty); the 2D
+// engine's inputs were written before the markers the ROP waits on (sc/command_fetch.h).
 #pragma once
 
 #include <algorithm>
@@ -46,9 +57,11 @@ struct Tx {
 template <class P>
 class Link : public sc_core::sc_module {
  public:
-  Link(sc_core::sc_module_name name, int depth, bool tracing)
+  // tracing: update the occupancy signal; lockstep: wake a waiting writer at the first
+  // free slot (see above).
+  Link(sc_core::sc_module_name name, int depth, bool tracing, bool lockstep)
       : sc_module(name), depth_(depth), slots_(size_t(depth)), freed_(size_t(depth), 0),
-        occupancy_("occupancy", 0), tracing_(tracing) {
+        occupancy_("occupancy", 0), tracing_(tracing), wake_when_empty_(!lockstep) {
     if (depth < 1) throw ModelError(std::string(this->name()) + ": FIFO depth " + std::to_string(depth) + " < 1");
   }
 
@@ -86,7 +99,7 @@ class Link : public sc_core::sc_module {
     left = std::max(at, t.entered);
     freed_[slot] = left;
     ++reads_;
-    if (writer_waiting_) {
+    if (writer_waiting_ && (writes_ == reads_ || !wake_when_empty_)) {
       writer_waiting_ = false;
       read_event_.notify();
     }
@@ -114,6 +127,7 @@ class Link : public sc_core::sc_module {
   bool reader_waiting_ = false, writer_waiting_ = false;
   sc_core::sc_signal<int, sc_core::SC_UNCHECKED_WRITERS> occupancy_;  // both stages write it, the same count: the last write of a delta stands
   bool tracing_;
+  bool wake_when_empty_;  // a waiting writer resumes when the FIFO is empty (not lock-step)
   uint64_t writes_ = 0, reads_ = 0;
   CounterTrack* counter_ = nullptr;
 };
