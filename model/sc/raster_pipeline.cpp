@@ -101,13 +101,16 @@ SimResult simulate_scene(const Scene& scene, const Config& cfg, const SimOptions
 
 SimResult simulate_stream(const std::string& path, const ObjPlacement& placement, const Config& cfg,
                           const SimOptions& opts, size_t batch) {
+  // The reader runs on a thread of its own, kSceneBatchesAhead batches ahead of command
+  // fetch (the model itself stays one SystemC thread; memory stays bounded by those
+  // batches). It starts here, so the first batch is parsed while the pipeline elaborates.
+  SceneAhead reader(path, placement, batch, kSceneBatchesAhead);
   auto source = [&](const CommandTake& take) {
     uint64_t fetched = 0;
     bool fetching = false;  // an error of the pipeline itself, not of the reader, passes unchanged
     try {
-      // The reader runs on a thread of its own, kSceneBatchesAhead batches ahead of command fetch (the
-      // model itself stays one SystemC thread; memory stays bounded by those batches).
-      stream_scene_ahead(path, placement, batch, kSceneBatchesAhead, [&](std::vector<Command>& b) {
+      std::vector<Command> b;
+      while (reader.next(b)) {
         // The batch moves into one shared block; each command's pointer shares it.
         const LocalPtr<const std::vector<Command>> owner = make_local<std::vector<Command>>(std::move(b));
         b = {};
@@ -117,7 +120,7 @@ SimResult simulate_stream(const std::string& path, const ObjPlacement& placement
           fetching = false;
           ++fetched;
         }
-      });
+      }
     } catch (const SceneError& e) {
       if (fetching || fetched == 0) throw;
       throw SceneError(std::string(e.what()) + " (after " + std::to_string(fetched) +
