@@ -74,7 +74,8 @@ class Link : public sc_core::sc_module {
       writer_waiting_ = true;
       sc_core::wait(read_event_);
     }
-    const size_t slot = size_t(writes_ % uint64_t(depth_));
+    const size_t slot = write_slot_;
+    write_slot_ = next_slot(slot);
     const uint64_t entered = std::max(at, freed_[slot]);
     slots_[slot] = Tx<P>{std::move(payload), ready, entered, writes_};
     ++writes_;
@@ -93,7 +94,8 @@ class Link : public sc_core::sc_module {
       reader_waiting_ = true;
       sc_core::wait(write_event_);
     }
-    const size_t slot = size_t(reads_ % uint64_t(depth_));
+    const size_t slot = read_slot_;
+    read_slot_ = next_slot(slot);
     Tx<P> t = std::move(slots_[slot]);
     check_order(name(), reads_, t.seq);
     left = std::max(at, t.entered);
@@ -121,7 +123,10 @@ class Link : public sc_core::sc_module {
     if (counter_) counter_->set(cycle, int(writes_ - reads_));
   }
   int depth_;
+  // The slot after `slot` in the ring (a compare, not a 64-bit division a transfer).
+  size_t next_slot(size_t slot) const { return slot + 1 == size_t(depth_) ? 0 : slot + 1; }
   std::vector<Tx<P>> slots_;     // ring: transaction k in slot k % depth
+  size_t write_slot_ = 0, read_slot_ = 0;  // writes_ % depth, reads_ % depth
   std::vector<uint64_t> freed_;  // per slot: the cycle its last transaction left (0: never used)
   sc_core::sc_event write_event_, read_event_;
   bool reader_waiting_ = false, writer_waiting_ = false;
