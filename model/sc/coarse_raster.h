@@ -31,7 +31,7 @@
 namespace rastsim::sc {
 
 struct TileWork {
-  std::shared_ptr<const SetupTriangle> tri;
+  LocalPtr<const SetupTriangle> tri;
   PixelRect footprint;  // the tile clipped to the triangle's bounding box
   TileClass cls = TileClass::Partial;  // Accepted or Partial
   bool span = false;  // scanline: a span (one row, every pixel covered, no tests)

@@ -21,6 +21,8 @@ void CommandFetch::fetch(const CommandPtr& p) {
   if (const auto* d2 = std::get_if<CmdDraw2d>(&cmd.body)) {
     check_2d_sample_count(cmd, st_);
     busy(p_.fetch_draw2d_cycles(draw2d_vertex_count(*d2)));
+    // The job before its marker: once the ROP holds the marker it waits on the engine,
+    // whose input must not depend on fetch's later writes (sc/link.h, wake-ups).
     write(out_2d_, Draw2dItem{nullptr, Draw2dJob{p, std::make_shared<const RasterState>(st_)}});
     write(out_, CommandItem{p, {}});
     return;

@@ -10,29 +10,53 @@ void Interpolate::body() {
     const PixelItem in = read(in_);
     if (pass_state(in, out_, p_.interp_latency)) continue;
     const PixelBatch& batch = *in.work;
-    std::shared_ptr<std::vector<Fragment>> frags = fragments_.take();
-    frags->clear();  // keeps its capacity
-    frags->reserve(batch.pixels.size());
-    PixelShader shader(*batch.tri, frac_bits_);  // the reference's shading, fast path included
-    // Per batch, not per fragment: the plain loop (plane equations, no sink) is the
-    // common case and stores fragments only.
-    const bool dda = batch.tri->interp_method != InterpMethod::Plane;
-    if (!dda && !ctx_.on_fragment) {
-      for (const Pixel& px : batch.pixels) shader.shade(px.x, px.y, px.mask, [&](const Fragment& f) { frags->push_back(f); });
+    const SetupTriangle& tri = *batch.tri;
+    LocalPtr<FragmentBatch> frags = fragments_.take();
+    frags->runs = batch.runs;  // keeps its capacity
+    frags->one_per_pixel = tri.samples == 1;
+    // At most one fragment a covered sample (ssaa), one a pixel otherwise.
+    Fragment* const first = frags->reset(size_t(batch.pixels) * size_t(tri.samples));
+    Fragment* out = first;
+    if (shader_tri_ != batch.tri) {
+      shader_tri_ = batch.tri;
+      shader_.emplace(tri, frac_bits_);  // the reference's shading, fast path included
+    }
+    PixelShader& shader = *shader_;
+    // Per batch, not per fragment: the stepped plane equations with no sink are the
+    // common case and store fragments only, a run at a time.
+    if (shader.stepped() && !ctx_.on_fragment) {
+      PlaneStepper& plane = shader.stepper();
+      for (const PixelRun& r : batch.runs) {
+        if (plane.flat()) {
+          // Every fragment of the run is the first with its x moved along (as the
+          // reference's RunWriter): nothing is stepped.
+          const Fragment f = plane.at(r.x0, r.y);
+          for (int x = r.x0; x < r.x1; ++x, ++out) {
+            *out = f;
+            out->x = x;
+          }
+        } else {
+          for (int x = r.x0; x < r.x1; ++x) *out++ = plane.at(x, r.y);
+        }
+      }
     } else {
-      for (const Pixel& px : batch.pixels) {
-        shader.shade(px.x, px.y, px.mask, [&](const Fragment& f) {
-          frags->push_back(f);
-          // interp.method = dda: its error against the plane equations, counted as the
-          // reference's render_scene counts it (same stats keys at both levels).
-          if (dda) count_interp_error(f, interpolate_plane(*batch.tri, px.x, px.y, frac_bits_), ctx_.render);
-          if (ctx_.on_fragment) ctx_.on_fragment(f);
-        });
+      const bool dda = tri.interp_method != InterpMethod::Plane;
+      for (const PixelRun& r : batch.runs) {
+        for (int x = r.x0; x < r.x1; ++x) {
+          shader.shade(x, r.y, r.mask, [&](const Fragment& f) {
+            *out++ = f;
+            // interp.method = dda: its error against the plane equations, counted as the
+            // reference's render_scene counts it (same stats keys at both levels).
+            if (dda) count_interp_error(f, interpolate_plane(tri, x, r.y, frac_bits_), ctx_.render);
+            if (ctx_.on_fragment) ctx_.on_fragment(f);
+          });
+        }
       }
     }
-    ctx_.render.fragments_shaded += frags->size();
-    if (!frags->empty()) attribute_to(frags->front().x, frags->front().y);  // the batch's tile
-    busy(p_.interp_batch_cycles(frags->size()));
+    frags->count = size_t(out - first);
+    ctx_.render.fragments_shaded += frags->count;
+    if (frags->count != 0) attribute_to(first->x, first->y);  // the batch's tile
+    busy(p_.interp_batch_cycles(frags->count));
     write(out_, FragmentItem{nullptr, std::move(frags)}, p_.interp_latency);
   }
 }

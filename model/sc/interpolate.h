@@ -9,8 +9,13 @@
 // - Counts fragments_shaded.
 // - Every fragment leaving here goes to the fragment sink, in order: the same stream
 //   (ref/pipeline.h: fragment_trace_line) as the reference model's.
+// - A one-sample triangle shaded by plane equations goes run by run through
+//   PlaneStepper, as the reference's run path does (ref/pipeline.cpp, RunWriter): a
+//   flat-shaded run is one fragment with its x moved along.
 #pragma once
 
+#include <optional>
+#include <span>
 #include <vector>
 
 #include "ref/interpolate.h"
@@ -19,7 +24,25 @@
 
 namespace rastsim::sc {
 
-using FragmentItem = Item<std::shared_ptr<const std::vector<Fragment>>>;
+// One batch's fragments, in pixel order, and the pixel runs they came from. The storage
+// only grows (a recycled batch keeps it, sc/recycler.h), so shading writes fragments in
+// place without a capacity check each.
+struct FragmentBatch {
+  std::vector<PixelRun> runs;  // the pixel batch's runs (sc/fine_raster.h)
+  // One fragment a pixel (the triangle has one sample): fragment k of the batch is the
+  // k-th pixel of `runs`, so the ROP can write a run at a time (ref/rop.h: rop_write_run).
+  bool one_per_pixel = false;
+  std::span<const Fragment> fragments() const { return {storage.data(), count}; }
+  // Empties the batch and returns room for `n` fragments (set `count` once written).
+  Fragment* reset(size_t n) {
+    if (storage.size() < n) storage.resize(n);
+    count = 0;
+    return storage.data();
+  }
+  std::vector<Fragment> storage;
+  size_t count = 0;  // fragments in storage[0, count)
+};
+using FragmentItem = Item<LocalPtr<const FragmentBatch>>;
 
 class Interpolate : public Stage {
  public:
@@ -33,7 +56,12 @@ class Interpolate : public Stage {
   const TimingParams& p_;
   Link<PixelItem>& in_;
   Link<FragmentItem>& out_;
-  Recycler<std::vector<Fragment>> fragments_;  // no allocation a batch (sc/recycler.h)
+  Recycler<FragmentBatch> fragments_;  // no allocation a batch (sc/recycler.h)
+  // The shader of the last batch's triangle, kept for its next tiles (the reference
+  // builds one a triangle too: PlaneStepper's setup divides). Holding the triangle keeps
+  // its pooled object from being reused, so the address identifies it.
+  LocalPtr<const SetupTriangle> shader_tri_;
+  std::optional<PixelShader> shader_;
 };
 
 }  // namespace rastsim::sc

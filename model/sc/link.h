@@ -21,6 +21,17 @@
 // one suspends on an event until the other side has acted (immediate notification, no
 // delta cycle), as an sc_fifo would, but no process waits for time to pass unless the
 // run is in lock-step (SimContext::lockstep).
+//
+// Wake-ups: a writer suspended on a full FIFO resumes once its reader has emptied it,
+// not at the first free slot (unless in lock-step, where every transfer must happen at
+// its own SystemC time). Which process runs when never changes a timestamp (they come
+// from the two stages' cycle counts and the slots' freed cycles only), so this changes
+// no result; it lets a writer refill the whole FIFO in one go instead of a slot at a
+// time, which on small triangles woke every stage above the busiest one once per few
+// tiles (a quarter of the process switches on the mesh scene). It cannot deadlock: a
+// reader stops short of emptying its input only while its own output is full, which
+// the stages below drain (the ROP, at the bottom, reads its FIFO until empty); the 2D
+// engine's inputs were written before the markers the ROP waits on (sc/command_fetch.h).
 #pragma once
 
 #include <algorithm>
@@ -46,9 +57,11 @@ struct Tx {
 template <class P>
 class Link : public sc_core::sc_module {
  public:
-  Link(sc_core::sc_module_name name, int depth, bool tracing)
+  // tracing: update the occupancy signal; lockstep: wake a waiting writer at the first
+  // free slot (see above).
+  Link(sc_core::sc_module_name name, int depth, bool tracing, bool lockstep)
       : sc_module(name), depth_(depth), slots_(size_t(depth)), freed_(size_t(depth), 0),
-        occupancy_("occupancy", 0), tracing_(tracing) {
+        occupancy_("occupancy", 0), tracing_(tracing), wake_when_empty_(!lockstep) {
     if (depth < 1) throw ModelError(std::string(this->name()) + ": FIFO depth " + std::to_string(depth) + " < 1");
   }
 
@@ -61,7 +74,8 @@ class Link : public sc_core::sc_module {
       writer_waiting_ = true;
       sc_core::wait(read_event_);
     }
-    const size_t slot = size_t(writes_ % uint64_t(depth_));
+    const size_t slot = write_slot_;
+    write_slot_ = next_slot(slot);
     const uint64_t entered = std::max(at, freed_[slot]);
     slots_[slot] = Tx<P>{std::move(payload), ready, entered, writes_};
     ++writes_;
@@ -80,13 +94,14 @@ class Link : public sc_core::sc_module {
       reader_waiting_ = true;
       sc_core::wait(write_event_);
     }
-    const size_t slot = size_t(reads_ % uint64_t(depth_));
+    const size_t slot = read_slot_;
+    read_slot_ = next_slot(slot);
     Tx<P> t = std::move(slots_[slot]);
     check_order(name(), reads_, t.seq);
     left = std::max(at, t.entered);
     freed_[slot] = left;
     ++reads_;
-    if (writer_waiting_) {
+    if (writer_waiting_ && (writes_ == reads_ || !wake_when_empty_)) {
       writer_waiting_ = false;
       read_event_.notify();
     }
@@ -108,12 +123,16 @@ class Link : public sc_core::sc_module {
     if (counter_) counter_->set(cycle, int(writes_ - reads_));
   }
   int depth_;
+  // The slot after `slot` in the ring (a compare, not a 64-bit division a transfer).
+  size_t next_slot(size_t slot) const { return slot + 1 == size_t(depth_) ? 0 : slot + 1; }
   std::vector<Tx<P>> slots_;     // ring: transaction k in slot k % depth
+  size_t write_slot_ = 0, read_slot_ = 0;  // writes_ % depth, reads_ % depth
   std::vector<uint64_t> freed_;  // per slot: the cycle its last transaction left (0: never used)
   sc_core::sc_event write_event_, read_event_;
   bool reader_waiting_ = false, writer_waiting_ = false;
   sc_core::sc_signal<int, sc_core::SC_UNCHECKED_WRITERS> occupancy_;  // both stages write it, the same count: the last write of a delta stands
   bool tracing_;
+  bool wake_when_empty_;  // a waiting writer resumes when the FIFO is empty (not lock-step)
   uint64_t writes_ = 0, reads_ = 0;
   CounterTrack* counter_ = nullptr;
 };

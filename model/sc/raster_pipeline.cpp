@@ -22,16 +22,16 @@ struct RasterPipeline : sc_core::sc_module {
   RasterPipeline(sc_core::sc_module_name name, SimContext& ctx, CommandSource source, const RasterState& arch,
                  const TimingParams& p)
       : sc_module(name),
-        command_fifo("command_fifo", p.fifo_command, ctx.tracing),
-        triangle_fifo("triangle_fifo", p.fifo_triangle, ctx.tracing),
-        setup_fifo("setup_fifo", p.setup_fifo_entries(), ctx.tracing),
-        tile_fifo("tile_fifo", p.fifo_tile, ctx.tracing),
-        pixel_fifo("pixel_fifo", p.fifo_pixel, ctx.tracing),
-        fragment_fifo("fragment_fifo", p.fragment_fifo_entries(), ctx.tracing),
-        draw2d_fifo("draw2d_fifo", p.fifo_draw2d, ctx.tracing),
-        op2d_fifo("op2d_fifo", p.fifo_op2d, ctx.tracing),
-        grant_2d("grant_2d", 1, ctx.tracing),
-        done_2d("done_2d", 1, ctx.tracing),
+        command_fifo("command_fifo", p.fifo_command, ctx.tracing, ctx.lockstep),
+        triangle_fifo("triangle_fifo", p.fifo_triangle, ctx.tracing, ctx.lockstep),
+        setup_fifo("setup_fifo", p.setup_fifo_entries(), ctx.tracing, ctx.lockstep),
+        tile_fifo("tile_fifo", p.fifo_tile, ctx.tracing, ctx.lockstep),
+        pixel_fifo("pixel_fifo", p.fifo_pixel, ctx.tracing, ctx.lockstep),
+        fragment_fifo("fragment_fifo", p.fragment_fifo_entries(), ctx.tracing, ctx.lockstep),
+        draw2d_fifo("draw2d_fifo", p.fifo_draw2d, ctx.tracing, ctx.lockstep),
+        op2d_fifo("op2d_fifo", p.fifo_op2d, ctx.tracing, ctx.lockstep),
+        grant_2d("grant_2d", 1, ctx.tracing, ctx.lockstep),
+        done_2d("done_2d", 1, ctx.tracing, ctx.lockstep),
         command_fetch("command_fetch", ctx, std::move(source), arch, p, command_fifo, draw2d_fifo),
         prim_assembly("prim_assembly", ctx, p, command_fifo, triangle_fifo),
         tri_setup("tri_setup", ctx, arch, p, triangle_fifo, setup_fifo),
@@ -101,15 +101,18 @@ SimResult simulate_scene(const Scene& scene, const Config& cfg, const SimOptions
 
 SimResult simulate_stream(const std::string& path, const ObjPlacement& placement, const Config& cfg,
                           const SimOptions& opts, size_t batch) {
+  // The reader runs on a thread of its own, kSceneBatchesAhead batches ahead of command
+  // fetch (the model itself stays one SystemC thread; memory stays bounded by those
+  // batches). It starts here, so the first batch is parsed while the pipeline elaborates.
+  SceneAhead reader(path, placement, batch, kSceneBatchesAhead);
   auto source = [&](const CommandTake& take) {
     uint64_t fetched = 0;
     bool fetching = false;  // an error of the pipeline itself, not of the reader, passes unchanged
     try {
-      // The reader runs on a thread of its own, kSceneBatchesAhead batches ahead of command fetch (the
-      // model itself stays one SystemC thread; memory stays bounded by those batches).
-      stream_scene_ahead(path, placement, batch, kSceneBatchesAhead, [&](std::vector<Command>& b) {
+      std::vector<Command> b;
+      while (reader.next(b)) {
         // The batch moves into one shared block; each command's pointer shares it.
-        const auto owner = std::make_shared<const std::vector<Command>>(std::move(b));
+        const LocalPtr<const std::vector<Command>> owner = make_local<std::vector<Command>>(std::move(b));
         b = {};
         for (const Command& c : *owner) {
           fetching = true;
@@ -117,7 +120,7 @@ SimResult simulate_stream(const std::string& path, const ObjPlacement& placement
           fetching = false;
           ++fetched;
         }
-      });
+      }
     } catch (const SceneError& e) {
       if (fetching || fetched == 0) throw;
       throw SceneError(std::string(e.what()) + " (after " + std::to_string(fetched) +

@@ -43,16 +43,33 @@ void Rop::body() {
       busy(p_.rop_state_cycles(clear, fb_pixels));
       continue;
     }
+    const FragmentBatch& batch = *in.work;
+    const std::span<const Fragment> frags = batch.fragments();
     uint64_t accesses = 0, passed = 0, samples_passed = 0;  // summed locally, added once a batch
-    for (const Fragment& f : *in.work) {
-      accesses += TimingParams::rop_accesses(f.mask, fb_.samples);
-      passed += rop_write(fb_, f, st_.depth_func, st_.depth_write, &samples_passed);
+    if (batch.one_per_pixel && fb_.samples == 1) {
+      // A run at a time: the same tests and writes as rop_write on each fragment in turn
+      // (ref/rop.h), the storage tile looked up once a run. Each fragment is one access
+      // and, written, one sample.
+      const Fragment* f = frags.data();
+      for (const PixelRun& r : batch.runs) {
+        const uint32_t n = rop_write_run(
+            fb_, r.y, r.x0, r.x1, [f, x0 = r.x0](int x) { return f[x - x0]; }, st_.depth_func, st_.depth_write);
+        f += r.x1 - r.x0;
+        passed += n;
+        samples_passed += n;
+      }
+      accesses = uint64_t(frags.size()) * TimingParams::rop_accesses(1u, 1);
+    } else {
+      for (const Fragment& f : frags) {
+        accesses += TimingParams::rop_accesses(f.mask, fb_.samples);
+        passed += rop_write(fb_, f, st_.depth_func, st_.depth_write, &samples_passed);
+      }
     }
     ctx_.render.fragments_passed += passed;
     ctx_.render.samples_passed += samples_passed;
     ctx_.rop_accesses += accesses;
     ctx_.framebuffer_bytes += accesses * (4 + depth_bytes_);
-    if (!in.work->empty()) attribute_to(in.work->front().x, in.work->front().y);  // the batch's tile
+    if (!frags.empty()) attribute_to(frags.front().x, frags.front().y);  // the batch's tile
     busy(p_.rop_fragment_cycles(accesses));
   }
 }

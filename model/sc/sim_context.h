@@ -13,15 +13,17 @@
 #include <systemc>
 
 #include "ref/pipeline.h"
+#include "sc/local_ptr.h"
 
 namespace rastsim::sc {
 
 // A command as the stages hold it. A streamed scene's commands live in their batch,
 // which these pointers share: a batch is freed when the last transaction that names one
 // of its commands is gone (state markers, 2D commands, triangles in flight). A whole
-// Scene's commands are borrowed (no owner, the caller keeps the Scene).
-using CommandPtr = std::shared_ptr<const Command>;
-inline CommandPtr borrow_command(const Command& c) { return CommandPtr(CommandPtr{}, &c); }
+// Scene's commands are borrowed (no owner, the caller keeps the Scene). A LocalPtr
+// (sc/local_ptr.h): counted on the simulation's thread only.
+using CommandPtr = LocalPtr<const Command>;
+inline CommandPtr borrow_command(const Command& c) { return CommandPtr(nullptr, &c); }
 
 struct SimContext {
   // One core clock cycle is one simulated nanosecond; clock.core_mhz only converts cycle

@@ -11,7 +11,7 @@ void TriSetup::body() {
     if (in.state && !ctx_.is_end_of_frame(in.state)) apply_state_command(*in.state, st_, no_fb_);  // viewport, scissor
     if (pass_state(in, out_, p_.setup_pipeline_latency())) continue;
     ++ctx_.render.triangles_in;
-    std::shared_ptr<SetupTriangle> tri = triangles_.take();
+    LocalPtr<SetupTriangle> tri = triangles_.take();
     *tri = SetupTriangle{};  // setup_triangle fills a fresh one
     const SetupOutcome outcome = setup_triangle(in.work.v, st_, in.work.cmd->loc, *tri);
     busy(p_.setup_triangle_cycles());

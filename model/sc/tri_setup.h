@@ -20,7 +20,7 @@
 
 namespace rastsim::sc {
 
-using SetupItem = Item<std::shared_ptr<const SetupTriangle>>;
+using SetupItem = Item<LocalPtr<const SetupTriangle>>;
 
 class TriSetup : public Stage {
  public:

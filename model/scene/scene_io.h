@@ -4,6 +4,7 @@
 #pragma once
 
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -67,6 +68,24 @@ void stream_scene(const std::string& path, const ObjPlacement& placement, size_t
 inline constexpr size_t kSceneBatchesAhead = 2;
 void stream_scene_ahead(const std::string& path, const ObjPlacement& placement, size_t batch_commands,
                         size_t batches_ahead, const CommandBatchFn& consume);
+
+// The reader of stream_scene_ahead as an object, for a consumer that pulls: the thread
+// starts parsing when it is constructed (so a simulation elaborates meanwhile), next()
+// hands over the batches in order, and a parse error is thrown by the next() after the
+// last batch before it. The destructor stops the reader and waits for it.
+class SceneAhead {
+ public:
+  SceneAhead(const std::string& path, const ObjPlacement& placement, size_t batch_commands, size_t batches_ahead);
+  ~SceneAhead();
+  SceneAhead(const SceneAhead&) = delete;
+  SceneAhead& operator=(const SceneAhead&) = delete;
+  // The next batch into `batch` (true), or false at the end of the scene.
+  bool next(std::vector<Command>& batch);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
 
 // By extension, after any .gz / .zst: .obj -> load_obj, anything else -> load_trace.
 // Every loader reads plain, gzip and zstd files alike (scene_stream.h).
