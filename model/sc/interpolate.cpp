@@ -12,8 +12,7 @@ void Interpolate::body() {
     const PixelBatch& batch = *in.work;
     const SetupTriangle& tri = *batch.tri;
     LocalPtr<FragmentBatch> frags = fragments_.take();
-    frags->runs = batch.runs;  // keeps its capacity
-    frags->one_per_pixel = tri.samples == 1;
+    frags->pixels = in.work;
     // At most one fragment a covered sample (ssaa), one a pixel otherwise.
     Fragment* const first = frags->reset(size_t(batch.pixels) * size_t(tri.samples));
     Fragment* out = first;

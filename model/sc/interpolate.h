@@ -24,14 +24,15 @@
 
 namespace rastsim::sc {
 
-// One batch's fragments, in pixel order, and the pixel runs they came from. The storage
-// only grows (a recycled batch keeps it, sc/recycler.h), so shading writes fragments in
-// place without a capacity check each.
+// One batch's fragments, in pixel order, and the pixel batch they came from (held, not
+// copied: its runs). The storage only grows (a recycled batch keeps it, sc/recycler.h),
+// so shading writes fragments in place without a capacity check each.
 struct FragmentBatch {
-  std::vector<PixelRun> runs;  // the pixel batch's runs (sc/fine_raster.h)
+  LocalPtr<const PixelBatch> pixels;  // the runs shaded (sc/fine_raster.h)
   // One fragment a pixel (the triangle has one sample): fragment k of the batch is the
-  // k-th pixel of `runs`, so the ROP can write a run at a time (ref/rop.h: rop_write_run).
-  bool one_per_pixel = false;
+  // k-th pixel of pixels->runs, so the ROP can write a run at a time (ref/rop.h:
+  // rop_write_run).
+  bool one_per_pixel() const { return pixels->tri->samples == 1; }
   std::span<const Fragment> fragments() const { return {storage.data(), count}; }
   // Empties the batch and returns room for `n` fragments (set `count` once written).
   Fragment* reset(size_t n) {

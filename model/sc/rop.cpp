@@ -46,12 +46,12 @@ void Rop::body() {
     const FragmentBatch& batch = *in.work;
     const std::span<const Fragment> frags = batch.fragments();
     uint64_t accesses = 0, passed = 0, samples_passed = 0;  // summed locally, added once a batch
-    if (batch.one_per_pixel && fb_.samples == 1) {
+    if (batch.one_per_pixel() && fb_.samples == 1) {
       // A run at a time: the same tests and writes as rop_write on each fragment in turn
       // (ref/rop.h), the storage tile looked up once a run. Each fragment is one access
       // and, written, one sample.
       const Fragment* f = frags.data();
-      for (const PixelRun& r : batch.runs) {
+      for (const PixelRun& r : batch.pixels->runs) {
         const uint32_t n = rop_write_run(
             fb_, r.y, r.x0, r.x1, [f, x0 = r.x0](int x) { return f[x - x0]; }, st_.depth_func, st_.depth_write);
         f += r.x1 - r.x0;

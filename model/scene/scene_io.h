@@ -48,11 +48,11 @@ Scene parse_obj(const std::string& text, const std::string& name, const ObjPlace
 
 // The command stream of a scene in batches: `consume` gets each batch of at least
 // `batch` commands or of the commands of at least `batch` lines of a trace (the last may
-// be shorter) in order, and may take them (the vector is
-// cleared after). A trace is read chunk by chunk and parsed as it is consumed, so memory
-// stays bounded whatever the file's size; a malformed line throws its SceneError
-// (file:line) when the parser reaches it, after the batches before it were consumed. An
-// OBJ mesh is read whole (its placement needs every vertex), then handed out in batches.
+// be shorter) in order, and may take them (the vector is cleared after). A trace is read
+// chunk by chunk and parsed as it is consumed, so memory stays bounded whatever the
+// file's size; a malformed line throws its SceneError (file:line) when the parser
+// reaches it, after the batches before it were consumed. An OBJ mesh is read whole (its
+// placement needs every vertex), then handed out in batches.
 using CommandBatchFn = std::function<void(std::vector<Command>&)>;
 void stream_trace(const std::string& path, size_t batch, const CommandBatchFn& consume);
 void stream_scene(const std::string& path, const ObjPlacement& placement, size_t batch,
