@@ -23,7 +23,7 @@ void run_estimate_command(const EstimateOptions& o) {
     for (size_t s = 0; s < r.stages.size(); ++s)
       if (r.stages[s].busy > r.stages[busiest].busy) busiest = s;
     std::cout << "estimate: " << r.cycles_estimate << " cycles (lower bound " << r.cycles_lower_bound
-              << ", upper bound " << r.cycles_upper_bound << ", busiest stage " << kEstimateStageNames[busiest] << " "
+              << ", upper bound " << r.cycles_upper_bound << ", busiest stage " << kStages[busiest].name << " "
               << r.stages[busiest].busy << "), " << r.render.triangles_in << " triangles, "
               << r.render.traversal.tiles_visited << " tiles, " << r.render.traversal.fragments << " fragments, "
               << r.wall_seconds << " s wall\n";

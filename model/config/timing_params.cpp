@@ -49,16 +49,36 @@ TimingParams TimingParams::from_config(const Config& cfg) {
   return p;
 }
 
-uint64_t TimingParams::stage_fill_cycles(int stage) const {
-  // The 2D stages start behind command fetch's first header.
-  if (stage >= 7) return fetch_cycles_per_command;
-  uint64_t fill = 0;
-  for (int s = 0; s < stage; ++s) {
-    fill += (s == 0) ? fetch_cycles_per_command : 1;  // every cost is >= 1 cycle (schema minimums)
-    if (s == 2) fill += setup_latency - setup_interval;
-    if (s == 5) fill += interp_latency;
+uint64_t TimingParams::stage_pass_cycles(StagePass pass) const {
+  switch (pass) {
+    case StagePass::FetchHeader: return fetch_cycles_per_command;
+    case StagePass::IssueCycle: return state_pass_cycles();  // every cost is >= 1 cycle (schema minimums)
+    case StagePass::IssueSetupLatency: return state_pass_cycles() + setup_pipeline_latency();
+    case StagePass::IssueInterpLatency: return state_pass_cycles() + interp_latency;
   }
-  return fill;
+  return 0;
+}
+
+uint64_t TimingParams::stage_fill_cycles(StageId stage) const {
+  const StageInfo& s = stage_info(stage);
+  if (s.fed_by == stage) return 0;  // the first stage
+  return stage_fill_cycles(s.fed_by) + stage_pass_cycles(stage_info(s.fed_by).pass);
+}
+
+int TimingParams::fifo_entries(FifoId fifo) const {
+  switch (fifo) {
+    case FifoId::Command: return fifo_command;
+    case FifoId::Triangle: return fifo_triangle;
+    case FifoId::Setup: return setup_fifo_entries();
+    case FifoId::Tile: return fifo_tile;
+    case FifoId::Pixel: return fifo_pixel;
+    case FifoId::Fragment: return fragment_fifo_entries();
+    case FifoId::Draw2d: return fifo_draw2d;
+    case FifoId::Op2d: return fifo_op2d;
+    case FifoId::Grant2d:
+    case FifoId::Done2d: return 1;
+  }
+  return 0;
 }
 
 uint64_t TimingParams::engine2d_op_cycles(const Op2d& op, uint8_t rop3) const {

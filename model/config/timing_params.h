@@ -11,6 +11,8 @@
 #include "config/config.h"
 #include "ref/draw2d.h"
 #include "ref/sample_pattern.h"
+#include "timing/stage_table.h"
+#include "timing/tiled_walk.h"
 
 namespace rastsim {
 
@@ -96,30 +98,7 @@ struct TimingParams {
   // cycle at every level: tile i of a walk (counted from 0 over all levels, in walk order)
   // leaves at cycle i / tiles_per_cycle + 1; a walk of V tiles takes max(1, ceil(V / this)).
   uint64_t coarse_walk_cycles(uint64_t tiles) const { return std::max<uint64_t>(1, ceil_div(tiles, coarse_tiles_per_cycle)); }
-  // The tiled walk (raster.traversal = tiled) as the RTL walker does it
-  // (rtl/rast_coarse_raster.sv): each cycle classifies a window of T =
-  // coarse_tiles_per_cycle tiles in walk order and sends at most one, the window's first
-  // surviving tile; the next window starts at the tile after it. Feed it every tile in
-  // walk order; visit() returns the walk cycle (from 1) in which a surviving tile leaves.
-  struct TiledWalk {
-    uint64_t tiles_per_cycle = 1;
-    uint64_t window = 1, window_start = 0;  // the current cycle and its window's first tile
-    uint64_t visited = 0, last_sent = 0;    // tiles seen; the cycle of the last tile sent
-    uint64_t visit(bool survives) {
-      while (visited >= window_start + tiles_per_cycle) {  // that window found nothing
-        ++window;
-        window_start += tiles_per_cycle;
-      }
-      ++visited;
-      if (!survives) return 0;
-      last_sent = window;
-      window_start = visited;  // the next window starts after this tile, next cycle
-      return window++;
-    }
-    // The walk's cycles: the window holding its last tile, or the cycle its last tile
-    // was sent in when that was the last one; at least one.
-    uint64_t cycles() const { return std::max<uint64_t>(1, window_start < visited ? window : last_sent); }
-  };
+  // The tiled walk's cycle model (timing/tiled_walk.h), at coarse.tiles_per_cycle.
   TiledWalk tiled_walk() const { return TiledWalk{coarse_tiles_per_cycle}; }
   // Fine raster: a partial footprint (a tile, or the whole bbox for raster.traversal =
   // bbox) of A pixels, i.e. A x raster.samples coverage tests, at fine.samples_per_cycle.
@@ -158,12 +137,16 @@ struct TimingParams {
   // Any engine operation of a command painted with ROP3 code `rop3`.
   uint64_t engine2d_op_cycles(const Op2d& op, uint8_t rop3) const;
 
-  // The earliest cycle stage `stage` (the SystemC stage index: 0 command_fetch,
-  // 1 prim_assembly, 2 tri_setup, 3 coarse_raster, 4 fine_raster, 5 interpolate, 6 rop,
-  // 7 draw2d_setup, 8 engine2d) can start its first busy cycle: fetch's first header,
-  // then at least one cycle in each stage upstream, plus the pipeline latencies of
-  // setup and interpolation, which every transaction (state markers too) waits.
-  uint64_t stage_fill_cycles(int stage) const;
+  // What passing one stage costs the transaction behind it (timing/stage_table.h,
+  // StagePass), in cycles: fetch's header, or one issue cycle plus the stage's pipeline
+  // latency (setup, interpolation), which every transaction (state markers too) waits.
+  uint64_t stage_pass_cycles(StagePass pass) const;
+  // The earliest cycle stage `stage` can start its first busy cycle: the pass cycles of
+  // every stage upstream of it in fill order (StageInfo::fed_by).
+  uint64_t stage_fill_cycles(StageId stage) const;
+  // Entries of a link (timing/stage_table.h): the configured depth, plus the pipeline
+  // slots of setup and interpolation behind theirs; a port handshake holds one.
+  int fifo_entries(FifoId fifo) const;
 
   // Reads and cross-checks the keys (setup.latency_cycles >= setup.interval_cycles);
   // throws ConfigError naming the keys.

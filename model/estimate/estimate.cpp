@@ -17,8 +17,6 @@ namespace rastsim {
 
 namespace {
 
-enum StageIndex { Fetch, Assembly, Setup, Coarse, Fine, Interp, Rop, Setup2d, Engine2d };
-
 // One pass over the scene in program order. Every stage of the timed model sees the
 // transactions in program order and keeps no state that changes a cost except the
 // raster state (viewport, scissor), which fetch and setup update at the same commands,
@@ -37,7 +35,7 @@ class Walker {
   // like a command header) and the ROP's resolve pass, as sc/command_fetch and sc/rop.
   void end_of_frame() {
     if (st_.samples == 1) return;
-    work(Fetch, p_.fetch_header_cycles());
+    work(StageId::CommandFetch, p_.fetch_header_cycles());
     r_.resolve_cycles = p_.resolve_cycles(fb_pixels_, st_.samples);
     r_.framebuffer_bytes += r_.render.resolve_bytes;
     marker(r_.resolve_cycles, false);
@@ -50,7 +48,7 @@ class Walker {
     if (!prims) {
       Framebuffer no_fb;  // clears pass to the ROP; only viewport and scissor matter here
       apply_state_command(cmd, st_, no_fb);
-      work(Fetch, p_.fetch_header_cycles());
+      work(StageId::CommandFetch, p_.fetch_header_cycles());
       const bool color = std::holds_alternative<CmdClear>(cmd.body);
       const bool clear = color || std::holds_alternative<CmdClearDepth>(cmd.body);
       if (clear) r_.framebuffer_bytes += fb_pixels_ * (color ? 4 : depth_bytes_);
@@ -58,17 +56,17 @@ class Walker {
     }
     const size_t n = triangle_count(*prims);
     if (n == 0 && progress) progress(index, 0, r_);
-    if (n == 0) r_.stages[Fetch].busy += p_.fetch_header_cycles();  // a header, no transaction
+    if (n == 0) stage(StageId::CommandFetch).busy += p_.fetch_header_cycles();  // a header, no transaction
     for (size_t k = 0; k < n; ++k) {
       if (progress) progress(index, k, r_);
-      work(Fetch, p_.fetch_triangle_cycles(k == 0, (k == 0 || prims->topology == Topology::List) ? 3 : 1));
-      work(Assembly, p_.assembly_triangle_cycles());
+      work(StageId::CommandFetch, p_.fetch_triangle_cycles(k == 0, (k == 0 || prims->topology == Topology::List) ? 3 : 1));
+      work(StageId::PrimAssembly, p_.assembly_triangle_cycles());
       ++r_.render.triangles_in;
       SetupTriangle tri;
       const SetupOutcome outcome = setup_triangle(assemble_triangle(*prims, k), st_, cmd.loc, tri);
-      r_.stages[Setup].busy += p_.setup_triangle_cycles();
+      stage(StageId::TriSetup).busy += p_.setup_triangle_cycles();
       if (!count_setup_outcome(outcome, r_.render)) continue;  // culled: no transaction out
-      emit(Setup);
+      emit(StageId::TriSetup);
       r_.latency_waits += p_.setup_pipeline_latency();
       traverse(tri);
     }
@@ -76,33 +74,34 @@ class Walker {
 
  private:
   // A stage spends `cycles` on one transaction and writes it to the next FIFO.
-  void work(StageIndex s, uint64_t cycles) {
-    r_.stages[s].busy += cycles;
+  void work(StageId s, uint64_t cycles) {
+    stage(s).busy += cycles;
     emit(s);
   }
-  void emit(StageIndex s) { ++r_.stages[s].transactions_out; }
+  void emit(StageId s) { ++stage(s).transactions_out; }
+  EstimateStage& stage(StageId s) { return r_.stages[stage_index(s)]; }
 
   // A state command or 2D marker after fetch: one issue slot in each stage from assembly
   // to interpolation (Stage::pass_state), with setup's and interpolation's latencies,
   // then `rop_cycles` in the ROP (which writes a port grant only for a 2D marker).
   void marker(uint64_t rop_cycles, bool is_2d) {
-    for (StageIndex s : {Assembly, Setup, Coarse, Fine, Interp}) work(s, TimingParams::state_pass_cycles());
+    for (StageId s : {StageId::PrimAssembly, StageId::TriSetup, StageId::CoarseRaster, StageId::FineRaster, StageId::Interpolate}) work(s, TimingParams::state_pass_cycles());
     r_.latency_waits += p_.setup_pipeline_latency() + p_.interp_latency;
-    r_.stages[Rop].busy += rop_cycles;
-    if (is_2d) emit(Rop);
+    stage(StageId::Rop).busy += rop_cycles;
+    if (is_2d) emit(StageId::Rop);
   }
 
   void draw2d(const Command& cmd, const CmdDraw2d& d2) {
     check_2d_sample_count(cmd, st_);
     // Fetch writes the command to the 2D front end and its marker down the triangle path.
-    work(Fetch, p_.fetch_draw2d_cycles(draw2d_vertex_count(d2)));
-    emit(Fetch);
+    work(StageId::CommandFetch, p_.fetch_draw2d_cycles(draw2d_vertex_count(d2)));
+    emit(StageId::CommandFetch);
     const Draw2dWork w = draw2d_ops(d2, cmd.loc, st_);
     ++(w.culled ? r_.render.draw2d.primitives_culled : r_.render.draw2d.primitives);
-    work(Setup2d, p_.setup2d_cycles(w.ops.size()));
+    work(StageId::Draw2dSetup, p_.setup2d_cycles(w.ops.size()));
     uint64_t engine = TimingParams::engine2d_grant_cycles();
     for (const Op2d& op : w.ops) engine += p_.engine2d_op_cycles(op, w.paint.rop3);
-    work(Engine2d, engine);  // its "done" back to the ROP
+    work(StageId::Engine2d, engine);  // its "done" back to the ROP
     marker(TimingParams::rop_draw2d_marker_cycles(), true);
   }
 
@@ -113,7 +112,7 @@ class Walker {
     switch (tp_.method) {
       case Traversal::Tiled: {
         const PixelRect tiles = tile_range(t.bbox, tp_.tile_size);
-        TimingParams::TiledWalk walk = p_.tiled_walk();
+        TiledWalk walk = p_.tiled_walk();
         for (int ty = tiles.y0; ty < tiles.y1; ++ty) {
           for (int tx = tiles.x0; tx < tiles.x1; ++tx) {
             const PixelRect fp = tile_footprint(t.bbox, tp_.tile_size, tx, ty);
@@ -128,20 +127,20 @@ class Walker {
             tile(t, fp, cls, false);
           }
         }
-        r_.stages[Coarse].busy += walk.cycles();
+        stage(StageId::CoarseRaster).busy += walk.cycles();
         break;
       }
       case Traversal::Bbox:
         ++c.tiles_visited;
         ++c.tiles_partial;
         tile(t, t.bbox, TileClass::Partial, false);
-        r_.stages[Coarse].busy += p_.coarse_walk_cycles(1);
+        stage(StageId::CoarseRaster).busy += p_.coarse_walk_cycles(1);
         break;
       case Traversal::Hierarchical: {
         const uint64_t visited0 = c.tiles_visited;
         walk_hierarchical(t, t.bbox, tp_.hier_levels, 0, F, c,
                           [&](const PixelRect& fp, TileClass cls) { tile(t, fp, cls, false); });
-        r_.stages[Coarse].busy += p_.coarse_walk_cycles(c.tiles_visited - visited0);
+        stage(StageId::CoarseRaster).busy += p_.coarse_walk_cycles(c.tiles_visited - visited0);
         break;
       }
       case Traversal::Scanline: {
@@ -152,7 +151,7 @@ class Walker {
           ++c.spans;
           tile(t, PixelRect{x0, py, x1, py + 1}, TileClass::Accepted, true);
         });
-        r_.stages[Coarse].busy += p_.scanline_walk_cycles(rows);
+        stage(StageId::CoarseRaster).busy += p_.scanline_walk_cycles(rows);
         break;
       }
     }
@@ -163,7 +162,7 @@ class Walker {
   // (S = 1, msaa) or popcount(m) (ssaa), and the ROP makes rop_accesses(m, S) accesses
   // (msaa) or one per shaded fragment (ssaa: one sample each), as sc/interpolate, sc/rop.
   void tile(const SetupTriangle& t, const PixelRect& fp, TileClass cls, bool span) {
-    emit(Coarse);
+    emit(StageId::CoarseRaster);
     TraversalCounters& c = r_.render.traversal;
     const int S = t.samples;
     const bool ssaa = S > 1 && t.aa_mode == AaMode::Ssaa;
@@ -195,12 +194,12 @@ class Walker {
     r_.render.fragments_shaded += shaded;
     r_.rop_accesses += acc;
     r_.framebuffer_bytes += acc * (4 + depth_bytes_);
-    r_.stages[Fine].busy += cost;
+    stage(StageId::FineRaster).busy += cost;
     if (n == 0) return;  // an empty tile leaves nothing
-    emit(Fine);
-    work(Interp, p_.interp_batch_cycles(shaded));
+    emit(StageId::FineRaster);
+    work(StageId::Interpolate, p_.interp_batch_cycles(shaded));
     r_.latency_waits += p_.interp_latency;
-    r_.stages[Rop].busy += p_.rop_fragment_cycles(acc);
+    stage(StageId::Rop).busy += p_.rop_fragment_cycles(acc);
   }
 
   RasterState st_;
@@ -230,7 +229,7 @@ EstimateResult estimate_scene(const Scene& scene, const Config& cfg, const Estim
   for (size_t s = 0; s < r.stages.size(); ++s) {
     busy_sum += r.stages[s].busy;
     if (r.stages[s].busy > 0)
-      r.cycles_lower_bound = std::max(r.cycles_lower_bound, p.stage_fill_cycles(int(s)) + r.stages[s].busy);
+      r.cycles_lower_bound = std::max(r.cycles_lower_bound, p.stage_fill_cycles(kStages[s].id) + r.stages[s].busy);
   }
   r.cycles_upper_bound = busy_sum + r.latency_waits;
   r.cycles_estimate = r.cycles_lower_bound +
@@ -252,7 +251,7 @@ nlohmann::json EstimateResult::to_json() const {
   j["framebuffer_bytes"] = framebuffer_bytes;
   j["resolve_cycles"] = resolve_cycles;
   for (size_t s = 0; s < stages.size(); ++s)
-    j["stages"][kEstimateStageNames[s]] = {{"busy", stages[s].busy}, {"transactions_out", stages[s].transactions_out}};
+    j["stages"][std::string(kStages[s].name)] = {{"busy", stages[s].busy}, {"transactions_out", stages[s].transactions_out}};
   // The geometry counters the walk produces (the same values as render/simulate); the
   // ones it does not compute (depth test, image, interpolation error, 2D pixels) are left out.
   const nlohmann::json all = rastsim::to_json(render);

@@ -25,15 +25,11 @@
 
 #include "config/config.h"
 #include "config/timing_params.h"
+#include "timing/stage_table.h"
 #include "ref/pipeline.h"
 #include "ref/scene.h"
 
 namespace rastsim {
-
-// The timed model's stages, in the SystemC stage-index order (TimingParams::stage_fill_cycles).
-inline constexpr std::array<const char*, 9> kEstimateStageNames = {
-    "command_fetch", "prim_assembly", "tri_setup",    "coarse_raster", "fine_raster",
-    "interpolate",   "rop",           "draw2d_setup", "engine2d"};
 
 // Where between the bounds the point estimate sits: the median of (SystemC - lower) /
 // (upper - lower) over the shipped traces and configs (docs/estimate.md), which is 0.
@@ -45,7 +41,7 @@ struct EstimateStage {
 };
 
 struct EstimateResult {
-  std::array<EstimateStage, kEstimateStageNames.size()> stages{};
+  std::array<EstimateStage, kStageCount> stages{};  // by stage index (timing/stage_table.h)
   RenderStats render;  // geometry counters only (no fragments_passed, CRC, interp error)
   // The ROP's traffic, as SimResult's (exact: accesses follow from the coverage masks
   // and aa mode alone, not from the depth test).

@@ -18,8 +18,15 @@ namespace rastsim::fidelity {
 
 namespace {
 
-constexpr size_t kStages = kEstimateStageNames.size();
-using Busy = std::array<uint64_t, kStages>;
+using Busy = std::array<uint64_t, kStageCount>;
+
+// Entries of every FIFO between two triangle-path stages (timing/stage_table.h).
+uint64_t triangle_path_entries(const TimingParams& p) {
+  uint64_t entries = 0;
+  for (const FifoInfo& f : kFifos)
+    if (on_triangle_path(f)) entries += uint64_t(p.fifo_entries(f.id));
+  return entries;
+}
 
 // A stratum with fewer uncertain units than this is simulated whole: a ratio and its
 // residual variance need a few units.
@@ -39,7 +46,7 @@ bool is_triangle_command(const Command& c) {
 
 Busy busy_of(const EstimateResult& r) {
   Busy b{};
-  for (size_t s = 0; s < kStages; ++s) b[s] = r.stages[s].busy;
+  for (size_t s = 0; s < kStageCount; ++s) b[s] = r.stages[s].busy;
   return b;
 }
 
@@ -79,12 +86,10 @@ UnitPlan plan_units(const Scene& scene, const Config& cfg, size_t batch) {
     marks.push_back({c, k, busy_of(r)});
   });
   const uint64_t triangles = plan.analytic.render.triangles_in;
-  // Every FIFO's entries: how far (in triangles, one an entry at least) command fetch can
-  // run ahead of the bottleneck, so how much of a batch's measured cycles its context
-  // (the batch before it in the sampled run) can shift.
-  const TimingParams p = TimingParams::from_config(cfg);
-  const uint64_t fill = uint64_t(p.fifo_command + p.fifo_triangle + p.setup_fifo_entries() + p.fifo_tile +
-                                 p.fifo_pixel + p.fragment_fifo_entries());
+  // The triangle path's FIFO entries: how far (in triangles, one an entry at least)
+  // command fetch can run ahead of the bottleneck, so how much of a batch's measured
+  // cycles its context (the batch before it in the sampled run) can shift.
+  const uint64_t fill = triangle_path_entries(TimingParams::from_config(cfg));
   if (batch == 0) batch = std::max<size_t>({8, size_t((triangles + 199) / 200), size_t(2 * fill)});
   batch += batch % 2;
   plan.batch = batch;
@@ -123,7 +128,7 @@ UnitPlan plan_units(const Scene& scene, const Config& cfg, size_t batch) {
     Unit unit;
     const Busy& b0 = marks[b].busy;
     const Busy& b1 = e < marks.size() ? marks[e].busy : end_busy;
-    for (size_t s = 0; s < kStages; ++s) {
+    for (size_t s = 0; s < kStageCount; ++s) {
       const double w = double(b1[s] - b0[s]);
       if (w > unit.x || unit.stratum < 0) {
         unit.x = w;
@@ -144,7 +149,7 @@ UnitPlan plan_units(const Scene& scene, const Config& cfg, size_t batch) {
     // fill, a clear's ROP time), the last unit (drain, resolve pass).
     unit.certain = whole[u] || u == 0 || whole[u - 1] || u + 1 == ranges.size();
     double since = 0;  // the busiest stage's cycles since the spilling command
-    for (size_t s = 0; s < kStages; ++s) since = std::max(since, double(b0[s] - spill_from[s]));
+    for (size_t s = 0; s < kStageCount; ++s) since = std::max(since, double(b0[s] - spill_from[s]));
     if (whole[u]) {
       if (kSpill * unit.x >= kSpill * spill - since) {  // outlasts the previous command's spill
         spill_from = b1;

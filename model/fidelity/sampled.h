@@ -51,7 +51,7 @@ struct Piece {
 struct Unit {
   std::vector<Piece> pieces;  // consecutive in program order
   bool certain = false;       // always simulated
-  int stratum = -1;           // analytic bottleneck stage (kEstimateStageNames index)
+  int stratum = -1;           // analytic bottleneck stage (stage index, timing/stage_table.h)
   double x = 0;               // analytic busy cycles of that stage in this unit
   uint64_t triangles = 0;
 };

@@ -67,7 +67,7 @@ void CoarseRaster::walk_tiled(const SetupItem& in) {
     const PixelRect tiles = tile_range(t.bbox, tile_size_);
     uint64_t cycles_done = 0;  // cycles of this walk spent
     // One tile a cycle at most, from windows of coarse.tiles_per_cycle (as the RTL).
-    TimingParams::TiledWalk walk = p_.tiled_walk();
+    TiledWalk walk = p_.tiled_walk();
     attribute_to(t.bbox.x0, t.bbox.y0);
     for (int ty = tiles.y0; ty < tiles.y1; ++ty) {
       for (int tx = tiles.x0; tx < tiles.x1; ++tx) {

@@ -5,7 +5,7 @@
 // - Visits every tile overlapping the triangle's clipped bounding box, row by row: each
 //   cycle classifies a window of coarse.tiles_per_cycle tiles and sends at most one,
 //   the window's first surviving tile, the next window starting after it
-//   (TimingParams::TiledWalk, as rtl/rast_coarse_raster.sv): at least
+//   (timing/tiled_walk.h, as rtl/rast_coarse_raster.sv): at least
 //   max(1, ceil(V / tiles_per_cycle)) cycles for V tiles, and one a surviving tile.
 // - Rejected tiles go no further; an accepted or partial tile is written to the tile
 //   FIFO at the end of the cycle that sent it.
@@ -40,9 +40,11 @@ using TileItem = Item<TileWork>;
 
 class CoarseRaster : public Stage {
  public:
-  CoarseRaster(sc_core::sc_module_name name, SimContext& ctx, const RasterState& arch, const TimingParams& p,
-               Link<SetupItem>& in, Link<TileItem>& out)
-      : Stage(name, ctx, 3), tile_size_(arch.tile_size), frac_bits_(arch.coord_format.frac_bits),
+  static constexpr StageId kId = StageId::CoarseRaster;
+  CoarseRaster(SimContext& ctx, const RasterState& arch, const TimingParams& p,
+               Link<SetupItem>& in, Link<TileItem>& out,
+             sc_core::sc_module_name name = stage_name(kId).data())
+      : Stage(name, ctx, kId), tile_size_(arch.tile_size), frac_bits_(arch.coord_format.frac_bits),
         tp_(traversal_params(arch)), p_(p), in_(in), out_(out) {
     if (!traversal_is_exact(tp_.method)) check_.emplace(arch.fb_width, arch.fb_height);
   }

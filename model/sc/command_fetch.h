@@ -49,9 +49,11 @@ CommandSource scene_source(const Scene& scene);
 
 class CommandFetch : public Stage {
  public:
-  CommandFetch(sc_core::sc_module_name name, SimContext& ctx, CommandSource source, const RasterState& arch,
-               const TimingParams& p, Link<CommandItem>& out, Link<Draw2dItem>& out_2d)
-      : Stage(name, ctx, 0), source_(std::move(source)), st_(arch), p_(p), out_(out), out_2d_(out_2d) {
+  static constexpr StageId kId = StageId::CommandFetch;
+  CommandFetch(SimContext& ctx, CommandSource source, const RasterState& arch,
+               const TimingParams& p, Link<CommandItem>& out, Link<Draw2dItem>& out_2d,
+             sc_core::sc_module_name name = stage_name(kId).data())
+      : Stage(name, ctx, kId), source_(std::move(source)), st_(arch), p_(p), out_(out), out_2d_(out_2d) {
     set_stack_size(kStackBytes);  // a streamed source's parser runs on this thread
   }
   // Commands fetched so far (all of their transactions written).

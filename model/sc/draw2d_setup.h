@@ -33,9 +33,11 @@ using Op2dItem = Item<Op2dBatch>;
 
 class Draw2dSetup : public Stage {
  public:
-  Draw2dSetup(sc_core::sc_module_name name, SimContext& ctx, const TimingParams& p, Link<Draw2dItem>& in,
-              Link<Op2dItem>& out)
-      : Stage(name, ctx, 7), p_(p), in_(in), out_(out) {}
+  static constexpr StageId kId = StageId::Draw2dSetup;
+  Draw2dSetup(SimContext& ctx, const TimingParams& p, Link<Draw2dItem>& in,
+              Link<Op2dItem>& out,
+            sc_core::sc_module_name name = stage_name(kId).data())
+      : Stage(name, ctx, kId), p_(p), in_(in), out_(out) {}
 
  private:
   void body() override;

@@ -25,9 +25,11 @@ struct PortGrant {
 
 class Engine2d : public Stage {
  public:
-  Engine2d(sc_core::sc_module_name name, SimContext& ctx, const TimingParams& p, Framebuffer& fb,
-           Link<Op2dItem>& in, Link<PortGrant>& grant, Link<PortGrant>& done)
-      : Stage(name, ctx, 8), p_(p), fb_(fb), in_(in), grant_(grant), done_(done) {}
+  static constexpr StageId kId = StageId::Engine2d;
+  Engine2d(SimContext& ctx, const TimingParams& p, Framebuffer& fb,
+           Link<Op2dItem>& in, Link<PortGrant>& grant, Link<PortGrant>& done,
+         sc_core::sc_module_name name = stage_name(kId).data())
+      : Stage(name, ctx, kId), p_(p), fb_(fb), in_(in), grant_(grant), done_(done) {}
 
  private:
   void body() override;

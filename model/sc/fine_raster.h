@@ -54,9 +54,11 @@ using PixelItem = Item<LocalPtr<const PixelBatch>>;
 
 class FineRaster : public Stage {
  public:
-  FineRaster(sc_core::sc_module_name name, SimContext& ctx, const RasterState& arch, const TimingParams& p,
-             Link<TileItem>& in, Link<PixelItem>& out)
-      : Stage(name, ctx, 4), frac_bits_(arch.coord_format.frac_bits), p_(p), in_(in), out_(out) {}
+  static constexpr StageId kId = StageId::FineRaster;
+  FineRaster(SimContext& ctx, const RasterState& arch, const TimingParams& p,
+             Link<TileItem>& in, Link<PixelItem>& out,
+           sc_core::sc_module_name name = stage_name(kId).data())
+      : Stage(name, ctx, kId), frac_bits_(arch.coord_format.frac_bits), p_(p), in_(in), out_(out) {}
 
  private:
   void body() override;

@@ -47,9 +47,11 @@ using FragmentItem = Item<LocalPtr<const FragmentBatch>>;
 
 class Interpolate : public Stage {
  public:
-  Interpolate(sc_core::sc_module_name name, SimContext& ctx, const RasterState& arch, const TimingParams& p,
-              Link<PixelItem>& in, Link<FragmentItem>& out)
-      : Stage(name, ctx, 5), frac_bits_(arch.coord_format.frac_bits), p_(p), in_(in), out_(out) {}
+  static constexpr StageId kId = StageId::Interpolate;
+  Interpolate(SimContext& ctx, const RasterState& arch, const TimingParams& p,
+              Link<PixelItem>& in, Link<FragmentItem>& out,
+            sc_core::sc_module_name name = stage_name(kId).data())
+      : Stage(name, ctx, kId), frac_bits_(arch.coord_format.frac_bits), p_(p), in_(in), out_(out) {}
 
  private:
   void body() override;

@@ -19,9 +19,11 @@ using TriangleItem = Item<AssembledTriangle>;
 
 class PrimAssembly : public Stage {
  public:
-  PrimAssembly(sc_core::sc_module_name name, SimContext& ctx, const TimingParams& p, Link<CommandItem>& in,
-               Link<TriangleItem>& out)
-      : Stage(name, ctx, 1), p_(p), in_(in), out_(out) {}
+  static constexpr StageId kId = StageId::PrimAssembly;
+  PrimAssembly(SimContext& ctx, const TimingParams& p, Link<CommandItem>& in,
+               Link<TriangleItem>& out,
+             sc_core::sc_module_name name = stage_name(kId).data())
+      : Stage(name, ctx, kId), p_(p), in_(in), out_(out) {}
 
  private:
   void body() override;

@@ -17,30 +17,33 @@ namespace rastsim::sc {
 
 namespace {
 
-// The top module: FIFOs first (stages hold references to them), then the stages.
+// The top module: FIFOs first (stages hold references to them), then the stages. Both
+// lists are timing/stage_table.h's: each channel and module takes its name and depth from
+// its row, and stage() / visit_fifo() map every row to its member (a row without one
+// stops the build: -Wswitch).
 struct RasterPipeline : sc_core::sc_module {
   RasterPipeline(sc_core::sc_module_name name, SimContext& ctx, CommandSource source, const RasterState& arch,
                  const TimingParams& p)
       : sc_module(name),
-        command_fifo("command_fifo", p.fifo_command, ctx.tracing, ctx.lockstep),
-        triangle_fifo("triangle_fifo", p.fifo_triangle, ctx.tracing, ctx.lockstep),
-        setup_fifo("setup_fifo", p.setup_fifo_entries(), ctx.tracing, ctx.lockstep),
-        tile_fifo("tile_fifo", p.fifo_tile, ctx.tracing, ctx.lockstep),
-        pixel_fifo("pixel_fifo", p.fifo_pixel, ctx.tracing, ctx.lockstep),
-        fragment_fifo("fragment_fifo", p.fragment_fifo_entries(), ctx.tracing, ctx.lockstep),
-        draw2d_fifo("draw2d_fifo", p.fifo_draw2d, ctx.tracing, ctx.lockstep),
-        op2d_fifo("op2d_fifo", p.fifo_op2d, ctx.tracing, ctx.lockstep),
-        grant_2d("grant_2d", 1, ctx.tracing, ctx.lockstep),
-        done_2d("done_2d", 1, ctx.tracing, ctx.lockstep),
-        command_fetch("command_fetch", ctx, std::move(source), arch, p, command_fifo, draw2d_fifo),
-        prim_assembly("prim_assembly", ctx, p, command_fifo, triangle_fifo),
-        tri_setup("tri_setup", ctx, arch, p, triangle_fifo, setup_fifo),
-        coarse_raster("coarse_raster", ctx, arch, p, setup_fifo, tile_fifo),
-        fine_raster("fine_raster", ctx, arch, p, tile_fifo, pixel_fifo),
-        interpolate("interpolate", ctx, arch, p, pixel_fifo, fragment_fifo),
-        rop("rop", ctx, arch, p, fragment_fifo, grant_2d, done_2d),
-        draw2d_setup("draw2d_setup", ctx, p, draw2d_fifo, op2d_fifo),
-        engine2d("engine2d", ctx, p, rop.framebuffer(), op2d_fifo, grant_2d, done_2d) {}
+        command_fifo(fifo_name(FifoId::Command).data(), p.fifo_entries(FifoId::Command), ctx.tracing, ctx.lockstep),
+        triangle_fifo(fifo_name(FifoId::Triangle).data(), p.fifo_entries(FifoId::Triangle), ctx.tracing, ctx.lockstep),
+        setup_fifo(fifo_name(FifoId::Setup).data(), p.fifo_entries(FifoId::Setup), ctx.tracing, ctx.lockstep),
+        tile_fifo(fifo_name(FifoId::Tile).data(), p.fifo_entries(FifoId::Tile), ctx.tracing, ctx.lockstep),
+        pixel_fifo(fifo_name(FifoId::Pixel).data(), p.fifo_entries(FifoId::Pixel), ctx.tracing, ctx.lockstep),
+        fragment_fifo(fifo_name(FifoId::Fragment).data(), p.fifo_entries(FifoId::Fragment), ctx.tracing, ctx.lockstep),
+        draw2d_fifo(fifo_name(FifoId::Draw2d).data(), p.fifo_entries(FifoId::Draw2d), ctx.tracing, ctx.lockstep),
+        op2d_fifo(fifo_name(FifoId::Op2d).data(), p.fifo_entries(FifoId::Op2d), ctx.tracing, ctx.lockstep),
+        grant_2d(fifo_name(FifoId::Grant2d).data(), p.fifo_entries(FifoId::Grant2d), ctx.tracing, ctx.lockstep),
+        done_2d(fifo_name(FifoId::Done2d).data(), p.fifo_entries(FifoId::Done2d), ctx.tracing, ctx.lockstep),
+        command_fetch(ctx, std::move(source), arch, p, command_fifo, draw2d_fifo),
+        prim_assembly(ctx, p, command_fifo, triangle_fifo),
+        tri_setup(ctx, arch, p, triangle_fifo, setup_fifo),
+        coarse_raster(ctx, arch, p, setup_fifo, tile_fifo),
+        fine_raster(ctx, arch, p, tile_fifo, pixel_fifo),
+        interpolate(ctx, arch, p, pixel_fifo, fragment_fifo),
+        rop(ctx, arch, p, fragment_fifo, grant_2d, done_2d),
+        draw2d_setup(ctx, p, draw2d_fifo, op2d_fifo),
+        engine2d(ctx, p, rop.framebuffer(), op2d_fifo, grant_2d, done_2d) {}
 
   Link<CommandItem> command_fifo;
   Link<TriangleItem> triangle_fifo;
@@ -61,23 +64,45 @@ struct RasterPipeline : sc_core::sc_module {
   Draw2dSetup draw2d_setup;
   Engine2d engine2d;
 
-  // The triangle path in pipeline order, then the 2D path.
-  std::vector<Stage*> stages() {
-    return {&command_fetch, &prim_assembly, &tri_setup, &coarse_raster, &fine_raster,
-            &interpolate,   &rop,           &draw2d_setup, &engine2d};
+  Stage& stage(StageId id) {
+    switch (id) {
+      case StageId::CommandFetch: return command_fetch;
+      case StageId::PrimAssembly: return prim_assembly;
+      case StageId::TriSetup: return tri_setup;
+      case StageId::CoarseRaster: return coarse_raster;
+      case StageId::FineRaster: return fine_raster;
+      case StageId::Interpolate: return interpolate;
+      case StageId::Rop: return rop;
+      case StageId::Draw2dSetup: return draw2d_setup;
+      case StageId::Engine2d: return engine2d;
+    }
+    throw std::logic_error("RasterPipeline::stage: not a stage");
+  }
+  template <class F>
+  void visit_fifo(FifoId id, F&& f) {
+    switch (id) {
+      case FifoId::Command: return f(command_fifo);
+      case FifoId::Triangle: return f(triangle_fifo);
+      case FifoId::Setup: return f(setup_fifo);
+      case FifoId::Tile: return f(tile_fifo);
+      case FifoId::Pixel: return f(pixel_fifo);
+      case FifoId::Fragment: return f(fragment_fifo);
+      case FifoId::Draw2d: return f(draw2d_fifo);
+      case FifoId::Op2d: return f(op2d_fifo);
+      case FifoId::Grant2d: return f(grant_2d);
+      case FifoId::Done2d: return f(done_2d);
+    }
+  }
+
+  // Every stage in table order: the triangle path in pipeline order, then the 2D path.
+  std::array<Stage*, kStageCount> stages() {
+    std::array<Stage*, kStageCount> all{};
+    for (const StageInfo& s : kStages) all[stage_index(s.id)] = &stage(s.id);
+    return all;
   }
   template <class F>
   void for_each_fifo(F&& f) {
-    f(command_fifo);
-    f(triangle_fifo);
-    f(setup_fifo);
-    f(tile_fifo);
-    f(pixel_fifo);
-    f(fragment_fifo);
-    f(draw2d_fifo);
-    f(op2d_fifo);
-    f(grant_2d);
-    f(done_2d);
+    for (const FifoInfo& l : kFifos) visit_fifo(l.id, f);
   }
 };
 
@@ -89,10 +114,12 @@ std::string strip_suffix(std::string path, const std::string& suffix) {
 
 }  // namespace
 
-// Fetch's header, one issue cycle in each of the 6 later stages, and the pipeline
-// latencies of setup and interpolation, which every transaction (state markers too) waits.
+// Passing every stage of the triangle path: fetch's header, one issue cycle in each later
+// stage, and the pipeline latencies of setup and interpolation, which every transaction
+// (state markers too) waits.
 uint64_t fixed_latency_cycles(const TimingParams& p) {
-  return p.fetch_cycles_per_command + 6 + (p.setup_latency - p.setup_interval) + p.interp_latency;
+  const StageId last = last_triangle_stage();
+  return p.stage_fill_cycles(last) + p.stage_pass_cycles(stage_info(last).pass);
 }
 
 SimResult simulate_scene(const Scene& scene, const Config& cfg, const SimOptions& opts) {
@@ -191,15 +218,15 @@ SimResult simulate_commands(CommandSource source, const Config& cfg, const SimOp
   SimResult r;
   r.core_mhz = p.core_mhz;
   r.cycles = end;
-  int index = 0;
-  for (Stage* s : top->stages()) {
+  for (const StageInfo& info : kStages) {
+    Stage* s = &top->stage(info.id);
+    const size_t index = stage_index(info.id);
     s->finish(end);
     const StageStats& st = s->stats();
     r.stages.push_back({s->basename(), st.busy, st.stalled, st.starved, st.transactions_in, st.transactions_out,
-                        std::move(spans[size_t(index)]), st.transactions()});
+                        std::move(spans[index]), st.transactions()});
     // A stage with work starts no earlier than its fill (TimingParams::stage_fill_cycles).
-    if (st.busy > 0) r.cycles_lower_bound = std::max(r.cycles_lower_bound, p.stage_fill_cycles(index) + st.busy);
-    ++index;
+    if (st.busy > 0) r.cycles_lower_bound = std::max(r.cycles_lower_bound, p.stage_fill_cycles(info.id) + st.busy);
   }
   if (!opts.timeline_path.empty())
     r.timeline = timeline.write_trace_json(opts.timeline_path, r.cycles, opts.timeline_max_events);

@@ -6,9 +6,9 @@
 
 namespace rastsim::sc {
 
-Rop::Rop(sc_core::sc_module_name name, SimContext& ctx, const RasterState& arch, const TimingParams& p,
-         Link<FragmentItem>& in, Link<PortGrant>& grant_2d, Link<PortGrant>& done_2d)
-    : Stage(name, ctx, 6), st_(arch), fb_(arch.fb_width, arch.fb_height, arch.samples),
+Rop::Rop(SimContext& ctx, const RasterState& arch, const TimingParams& p,
+         Link<FragmentItem>& in, Link<PortGrant>& grant_2d, Link<PortGrant>& done_2d, sc_core::sc_module_name name)
+    : Stage(name, ctx, kId), st_(arch), fb_(arch.fb_width, arch.fb_height, arch.samples),
       depth_bytes_(uint64_t((arch.depth_bits + 7) / 8)), p_(p), in_(in), grant_2d_(grant_2d),
       done_2d_(done_2d) {
   // As render_scene: the depth buffer starts at the far value.

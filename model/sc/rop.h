@@ -30,8 +30,10 @@ namespace rastsim::sc {
 
 class Rop : public Stage {
  public:
-  Rop(sc_core::sc_module_name name, SimContext& ctx, const RasterState& arch, const TimingParams& p,
-      Link<FragmentItem>& in, Link<PortGrant>& grant_2d, Link<PortGrant>& done_2d);
+  static constexpr StageId kId = StageId::Rop;
+  Rop(SimContext& ctx, const RasterState& arch, const TimingParams& p,
+      Link<FragmentItem>& in, Link<PortGrant>& grant_2d, Link<PortGrant>& done_2d,
+    sc_core::sc_module_name name = stage_name(kId).data());
   Framebuffer& framebuffer() { return fb_; }
 
  private:

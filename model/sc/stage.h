@@ -37,6 +37,7 @@
 #include "config/timing_params.h"
 #include "sc/tile_heat.h"
 #include "sc/timeline.h"
+#include "timing/stage_table.h"
 
 namespace rastsim::sc {
 
@@ -64,8 +65,9 @@ struct Item {
 class Stage : public sc_core::sc_module {
  public:
   SC_HAS_PROCESS(Stage);
-  Stage(sc_core::sc_module_name name, SimContext& ctx, int index)
-      : sc_module(name), ctx_(ctx), rng_(ctx.stall_seed * 0x9e3779b97f4a7c15ull + uint64_t(index)),
+  // `id` is the stage's row of timing/stage_table.h; its index offsets the stall seed.
+  Stage(sc_core::sc_module_name name, SimContext& ctx, StageId id)
+      : sc_module(name), ctx_(ctx), rng_(ctx.stall_seed * 0x9e3779b97f4a7c15ull + uint64_t(stage_index(id))),
         state_("state", int(StageState::Starved)) {
     SC_THREAD(thread);
   }

@@ -24,9 +24,11 @@ using SetupItem = Item<LocalPtr<const SetupTriangle>>;
 
 class TriSetup : public Stage {
  public:
-  TriSetup(sc_core::sc_module_name name, SimContext& ctx, const RasterState& arch, const TimingParams& p,
-           Link<TriangleItem>& in, Link<SetupItem>& out)
-      : Stage(name, ctx, 2), st_(arch), p_(p), in_(in), out_(out) {}
+  static constexpr StageId kId = StageId::TriSetup;
+  TriSetup(SimContext& ctx, const RasterState& arch, const TimingParams& p,
+           Link<TriangleItem>& in, Link<SetupItem>& out,
+         sc_core::sc_module_name name = stage_name(kId).data())
+      : Stage(name, ctx, kId), st_(arch), p_(p), in_(in), out_(out) {}
 
  private:
   void body() override;

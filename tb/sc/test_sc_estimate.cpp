@@ -45,10 +45,11 @@ bool check_against_systemc(const Scene& scene, const Config& cfg, const sc::SimO
   }
   // SystemC's own lower bound is the same formula over the same busy totals.
   EXPECT_EQ(est.cycles_lower_bound, sim["cycles_lower_bound"].get<uint64_t>());
-  for (size_t s = 0; s < kEstimateStageNames.size(); ++s) {
-    const nlohmann::json& st = sim["stages"][kEstimateStageNames[s]];
-    EXPECT_EQ(est.stages[s].busy, st["busy"].get<uint64_t>()) << kEstimateStageNames[s];
-    EXPECT_EQ(est.stages[s].transactions_out, st["transactions_out"].get<uint64_t>()) << kEstimateStageNames[s];
+  for (size_t s = 0; s < kStageCount; ++s) {
+    const std::string name(kStages[s].name);
+    const nlohmann::json& st = sim["stages"][name];
+    EXPECT_EQ(est.stages[s].busy, st["busy"].get<uint64_t>()) << name;
+    EXPECT_EQ(est.stages[s].transactions_out, st["transactions_out"].get<uint64_t>()) << name;
   }
   const nlohmann::json ej = est.to_json();
   for (const char* key : {"triangles_in", "triangles_culled", "tiles_visited", "pixel_tests", "fragments", "samples",
