@@ -91,6 +91,22 @@ struct Command {
   SourceLoc loc;
 };
 
+// Every walk of the command stream visits a command through one overload set:
+//   visit_command(cmd, Overloaded{[&](const CmdViewport& v) {...}, [&](const CmdClear& c) {...}, ...});
+// std::visit needs a handler for every alternative of CommandBody, so a new command type
+// stops the build wherever it is not handled. Walkers write no catch-all (`auto`) handler:
+// a state command each walker treats alike is still named.
+template <class... F>
+struct Overloaded : F... {
+  using F::operator()...;
+};
+template <class... F>
+Overloaded(F...) -> Overloaded<F...>;
+template <class V>
+decltype(auto) visit_command(const Command& c, V&& visitor) {
+  return std::visit(std::forward<V>(visitor), c.body);
+}
+
 struct Scene {
   std::string source;                 // file name
   std::vector<Command> commands;
