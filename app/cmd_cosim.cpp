@@ -116,7 +116,7 @@ void register_cosim(CLI::App& app) {
     }
     if (scene_path.empty()) throw std::runtime_error("cosim: --scene is required (unless --rtl-build-only)");
     if (simulate_stats && no_model) throw std::runtime_error("cosim: --simulate-stats needs the SystemC model (drop --no-model)");
-    const Scene scene = load_scene(scene_path, obj_placement(cfg));
+    const Scene scene = load_scene(scene_path, obj_placement_from_config(cfg));
     if (!trace_diff_dir.empty() && no_model) throw std::runtime_error("--trace-diff needs the SystemC model (drop --no-model)");
     co.record_transactions = !trace_diff_dir.empty();
     const cosim::CosimResult r = cosim::run_cosim(scene, cfg, co);
@@ -157,7 +157,7 @@ void register_cosim(CLI::App& app) {
     if (!no_model) {
       sc::SimOptions so;
       so.spans = !trace_diff_dir.empty();
-      const sc::SimResult m = sc::simulate_scene(scene, cfg, so);
+      const sc::SimResult m = sc::simulate_scene(scene, ArchParams::resolve(cfg), so);
       const double err = r.cycles_rtl ? (double(m.cycles) - double(r.cycles_rtl)) / double(r.cycles_rtl) : 0.0;
       j["cycles_model"] = m.cycles;
       j["cycle_error"] = err;

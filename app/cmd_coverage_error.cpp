@@ -22,7 +22,7 @@ struct CoverageErrorOptions {
 };
 
 void run_coverage_error_command(const CoverageErrorOptions& o) {
-  const Config cfg = load_config(o.config);
+  const ArchParams arch = resolve_arch(o.config);
   for (int s : o.samples) {  // each count through the config's own checks (e.g. scanline)
     ConfigOptions with = o.config;
     with.sets.push_back("raster.samples=" + std::to_string(s));
@@ -32,10 +32,10 @@ void run_coverage_error_command(const CoverageErrorOptions& o) {
       throw std::runtime_error("--samples " + std::to_string(s) + " (as " + e.what() + ")");
     }
   }
-  const Scene scene = load_scene(o.scene_path, obj_placement(cfg));
-  const CoverageErrorResult r = measure_coverage_error(scene, raster_state_from_config(cfg), o.samples);
+  const Scene scene = load_scene(o.scene_path, arch.placement);
+  const CoverageErrorResult r = measure_coverage_error(scene, arch.raster, o.samples);
   nlohmann::json j;
-  j["config"] = cfg.source_name();
+  j["config"] = arch.config.source_name();
   j["scene"] = o.scene_path;
   j["pixels_clipped"] = r.pixels_clipped;
   j["wall_seconds"] = r.wall_seconds;

@@ -11,11 +11,11 @@
 namespace rastsim::app {
 
 void run_estimate_command(const EstimateOptions& o) {
-  const Config cfg = load_config(o.config);
-  const Scene scene = load_scene(o.scene_path, obj_placement(cfg));
-  const EstimateResult r = estimate_scene(scene, cfg);
+  const ArchParams arch = resolve_arch(o.config);
+  const Scene scene = load_scene(o.scene_path, arch.placement);
+  const EstimateResult r = estimate_scene(scene, arch);
   nlohmann::json j = r.to_json();
-  j["config"] = cfg.source_name();
+  j["config"] = arch.config.source_name();
   j["scene"] = o.scene_path;
   if (!o.stats_path.empty()) write_json(o.stats_path, j);
   if (!o.quiet) {

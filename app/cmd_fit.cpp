@@ -26,12 +26,12 @@ nlohmann::json widths_json(const DatapathWidths& w) {
 }
 
 void run_fit_command(const FitOptions& o) {
-  const Config cfg = load_config(o.config);
-  const RasterState arch = raster_state_from_config(cfg);
-  const Scene scene = load_scene(o.scene_path, obj_placement(cfg));
+  const ArchParams params = resolve_arch(o.config);
+  const RasterState& arch = params.raster;
+  const Scene scene = load_scene(o.scene_path, params.placement);
   const CoordFit fit = fit_coord_format(scene, arch);
   nlohmann::json j;
-  j["config"] = cfg.source_name();
+  j["config"] = params.config.source_name();
   j["scene"] = o.scene_path;
   j["coord_format"] = fit.format.name();
   j["reference_format"] = fit.widest.name();
@@ -49,7 +49,7 @@ void run_fit_command(const FitOptions& o) {
     std::cout << fit.format.name() << "\n";
   } else {
     const DatapathWidths& w = fit.widths;
-    std::cout << "fit: " << o.scene_path << " (" << cfg.source_name() << ")\n"
+    std::cout << "fit: " << o.scene_path << " (" << params.config.source_name() << ")\n"
               << "  integer bits " << fit.widest.int_bits << ": viewport needs " << fit.int_bits_viewport
               << ", vertices need " << fit.int_bits_vertices << "\n"
               << "  reference " << fit.widest.name() << " (I + F = " << kMaxFormatBits << "): crc32 "

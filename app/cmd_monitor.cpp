@@ -20,8 +20,9 @@ nlohmann::json measured_json(const MonitorResult& r);  // cmd_scanout.cpp
 
 void run_monitor_command(const MonitorOptions& o) {
   const Config cfg = load_config(o.config);
-  const VideoTiming t = video_timing_from_config(cfg);
-  const Dac dac(dac_config_from_config(cfg));
+  const DisplayParams display = DisplayParams::resolve(cfg);
+  const VideoTiming& t = display.video;
+  const Dac dac(display.dac);
   Monitor mon(t, dac.config());
   const SignalReadInfo info =
       read_video_signal(o.signal_path, t, dac, [&](const VideoSample& s) { mon.push(s); }, {o.clock});

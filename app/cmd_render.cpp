@@ -18,8 +18,8 @@ constexpr size_t kSceneBatchCommands = 4096;  // commands parsed ahead of the pi
 }  // namespace
 
 void run_render_command(const RenderOptions& o) {
-  const Config cfg = load_config(o.config);
-  const RasterState arch = raster_state_from_config(cfg);
+  const ArchParams params = resolve_arch(o.config);
+  const RasterState& arch = params.raster;
   RenderStats stats;
   std::ofstream frag_os;
   FragmentSink sink;
@@ -40,8 +40,8 @@ void run_render_command(const RenderOptions& o) {
       drawing = false;
       done += batch.size();
     };
-    if (threads > 1) stream_scene_ahead(o.scene_path, obj_placement(cfg), kSceneBatchCommands, kSceneBatchesAhead, draw);
-    else stream_scene(o.scene_path, obj_placement(cfg), kSceneBatchCommands, draw);
+    if (threads > 1) stream_scene_ahead(o.scene_path, params.placement, kSceneBatchCommands, kSceneBatchesAhead, draw);
+    else stream_scene(o.scene_path, params.placement, kSceneBatchCommands, draw);
   } catch (const SceneError& e) {
     if (drawing || done == 0) throw;
     throw SceneError(std::string(e.what()) + " (after " + std::to_string(done) +
@@ -50,7 +50,7 @@ void run_render_command(const RenderOptions& o) {
   const Framebuffer fb = renderer.finish();
   if (!o.out_path.empty()) write_image(fb, o.out_path);
   nlohmann::json j = to_json(stats);
-  j["config"] = cfg.source_name();
+  j["config"] = params.config.source_name();
   j["scene"] = o.scene_path;
   if (!o.stats_path.empty()) write_json(o.stats_path, j);
   if (!o.quiet) {

@@ -89,17 +89,17 @@ SignalWindow signal_window(const VideoTiming& t, const std::string& lines_arg, i
 // Scans `scanout` out into `sink`: untimed (two frames at least: a picture lies between
 // two vsync leading edges), or timed from a raster finish time. Returns the timed
 // run's deadline report, null when untimed.
-nlohmann::json scan_out(const ScanoutOptions& o, const Config& cfg, int64_t raster_cycles, const Scanout& scanout,
-                        const SampleSink& sink) {
+nlohmann::json scan_out(const ScanoutOptions& o, const ArchParams& arch, const DisplayParams& display,
+                        int64_t raster_cycles, const Scanout& scanout, const SampleSink& sink) {
   if (raster_cycles < 0) {
     scanout.run(std::max(2, o.signal_frames), sink);
     return nullptr;
   }
   // Timed: vertical blanking, then the frame (one vsync pulse each side of it).
-  const auto p = sc::scanout_params_from_config(cfg, cfg.get_float("clock.core_mhz"));
+  const auto p = sc::scanout_params(display, arch.timing.core_mhz);
   nlohmann::json deadline = sc::run_scanout(p, static_cast<uint64_t>(raster_cycles), &scanout, sink).to_json();
-  deadline["buffering"] = cfg.get_string("scanout.buffering");
-  deadline["core_mhz"] = cfg.get_float("clock.core_mhz");
+  deadline["buffering"] = arch.config.get_string("scanout.buffering");
+  deadline["core_mhz"] = arch.timing.core_mhz;
   return deadline;
 }
 
@@ -189,12 +189,13 @@ void add_scanout_options(CLI::App* cmd, ScanoutOptions& o) {
 }  // namespace
 
 void run_scanout_command(const ScanoutOptions& o) {
-  const Config cfg = load_config(o.config);
-  const VideoTiming t = video_timing_from_config(cfg);  // faults in the timing keys stop here
-  const Dac dac(dac_config_from_config(cfg));
-  const Scene scene = load_scene(o.scene_path, obj_placement(cfg));
+  const ArchParams arch = resolve_arch(o.config);
+  const DisplayParams display = DisplayParams::resolve(arch.config);  // faults in the timing keys stop here
+  const VideoTiming& t = display.video;
+  const Dac dac(display.dac);
+  const Scene scene = load_scene(o.scene_path, arch.placement);
   RenderStats rstats;
-  const Framebuffer fb = render_scene(scene, raster_state_from_config(cfg), rstats);
+  const Framebuffer fb = render_scene(scene, arch.raster, rstats);
 
   const SignalWindow win = signal_window(t, o.lines_arg, o.signal_frames);
   std::unique_ptr<SignalFile> sig;
@@ -207,13 +208,13 @@ void run_scanout_command(const ScanoutOptions& o) {
   const Scanout scanout(t, dac, fb);
   const int64_t raster_cycles =
       o.timed ? simulate_in_child(o.config, o.scene_path).at("cycles").get<int64_t>() : o.raster_cycles;
-  const nlohmann::json deadline = scan_out(o, cfg, raster_cycles, scanout, sink);
+  const nlohmann::json deadline = scan_out(o, arch, display, raster_cycles, scanout, sink);
   if (sig) sig->close();
   const MonitorResult r = mon.finish();
   write_image(r.image, o.out_path);
 
   const DecodeCheck d = compare_decoded(r, fb, t);
-  if (!o.stats_path.empty()) write_json(o.stats_path, scanout_stats(o, cfg, t, dac, r, d, rstats.framebuffer_crc32, deadline));
+  if (!o.stats_path.empty()) write_json(o.stats_path, scanout_stats(o, arch.config, t, dac, r, d, rstats.framebuffer_crc32, deadline));
   if (!o.quiet) print_summary(t, r, d, deadline);
   std::cout.flush();  // the summary first, then the monitor's messages
   for (const auto& e : r.errors) std::cerr << "scanout: monitor: " << e << "\n";

@@ -87,65 +87,80 @@ void print_level(const nlohmann::json& j) {
   if (j.contains("fidelity_reason")) std::cout << "  " << j["fidelity_reason"].get<std::string>() << "\n";
 }
 
-}  // namespace
+// --heatmap-stage: "all" or a stage whose busy cycles are attributed to tiles.
+std::vector<std::string> heat_stage_choices() {
+  std::vector<std::string> names = {"all"};
+  for (const StageInfo& s : kStages)
+    if (s.tile_heat) names.emplace_back(s.name);
+  return names;
+}
 
-void run_simulate_command(const SimulateOptions& o) {
-  const Config cfg = load_config(o.config);
-  if (o.sample != 0 && !o.tolerance.empty()) throw std::runtime_error("--sample and --tolerance exclude each other");
-  if (o.sample != 0 && !(o.sample > 0 && o.sample <= 1))
-    throw std::runtime_error("--sample: the fraction must be in (0, 1], got " + std::to_string(o.sample));
-  const bool level_mode = o.sample != 0 || !o.tolerance.empty();
-  if (level_mode) {
-    const double tol = o.tolerance.empty() ? 0 : parse_tolerance(o.tolerance);
-    for (const std::string* p : {&o.out_path, &o.vcd_path, &o.timeline_path, &o.heatmap_path,
-                                 &o.heatmap_data_path, &o.frag_path})
-      if (!p->empty())
-        throw std::runtime_error(std::string(o.sample != 0 ? "--sample" : "--tolerance") +
-                                 " makes no image, VCD, timeline, heatmap or fragment stream: drop " + *p);
-    check_writable(o.stats_path);
-    const Scene scene = load_scene(o.scene_path, obj_placement(cfg));
-    nlohmann::json j;
-    if (o.sample != 0) {
-      j = fidelity::simulate_sampled(scene, cfg, o.sample, o.sample_seed).to_json();
-    } else {
-      bool full = false;
-      std::string reason;
-      j = fidelity::choose_level(scene, cfg, tol, o.sample_seed, full, reason);
-      if (full) {
-        const sc::SimResult r = sc::simulate_scene(scene, cfg);
-        j = {{"fidelity_level", "systemc"}, {"cycles", r.cycles},  {"cycles_error_bound", 0.0},
-             {"fidelity_reason", reason},   {"wall_seconds", r.sim_wall_seconds}};
-      }
-      j["tolerance"] = tol;
+// --sample and --tolerance: a level below the full SystemC run answers (docs/fidelity.md).
+void run_level_mode(const SimulateOptions& o, const ArchParams& arch) {
+  const double tol = o.tolerance.empty() ? 0 : parse_tolerance(o.tolerance);
+  for (const std::string* p : {&o.out_path, &o.vcd_path, &o.timeline_path, &o.heatmap_path,
+                               &o.heatmap_data_path, &o.frag_path})
+    if (!p->empty())
+      throw std::runtime_error(std::string(o.sample != 0 ? "--sample" : "--tolerance") +
+                               " makes no image, VCD, timeline, heatmap or fragment stream: drop " + *p);
+  check_writable(o.stats_path);
+  const Scene scene = load_scene(o.scene_path, arch.placement);
+  nlohmann::json j;
+  if (o.sample != 0) {
+    j = fidelity::simulate_sampled(scene, arch, o.sample, o.sample_seed).to_json();
+  } else {
+    bool full = false;
+    std::string reason;
+    j = fidelity::choose_level(scene, arch, tol, o.sample_seed, full, reason);
+    if (full) {
+      const sc::SimResult r = sc::simulate_scene(scene, arch);
+      j = {{"fidelity_level", "systemc"}, {"cycles", r.cycles},  {"cycles_error_bound", 0.0},
+           {"fidelity_reason", reason},   {"wall_seconds", r.sim_wall_seconds}};
     }
-    j["config"] = cfg.source_name();
-    j["scene"] = o.scene_path;
-    if (!o.stats_path.empty()) write_json(o.stats_path, j);
-    if (!o.quiet) print_level(j);
-    return;
+    j["tolerance"] = tol;
   }
+  j["config"] = arch.config.source_name();
+  j["scene"] = o.scene_path;
+  if (!o.stats_path.empty()) write_json(o.stats_path, j);
+  if (!o.quiet) print_level(j);
+}
+
+// The recorders and test hooks of a full run, from the options.
+sc::SimOptions sim_options(const SimulateOptions& o, std::ofstream& frag_os) {
   sc::SimOptions sim;
   sim.stall_seed = o.stall_seed;
   sim.stall_probability = o.stall_probability;
-  std::ofstream frag_os;
   if (!o.frag_path.empty()) {
     frag_os.open(o.frag_path);
     if (!frag_os) throw std::runtime_error(o.frag_path + ": cannot open for writing");
-    sim.on_fragment = [&](const Fragment& f) { frag_os << fragment_trace_line(f) << '\n'; };
+    sim.on_fragment = [&frag_os](const Fragment& f) { frag_os << fragment_trace_line(f) << '\n'; };
   }
   sim.vcd_path = o.vcd_path;
   sim.timeline_path = o.timeline_path;
   if (o.timeline_max_events) sim.timeline_max_events = o.timeline_max_events;
   sim.heatmap = !o.heatmap_path.empty() || !o.heatmap_data_path.empty();
+  return sim;
+}
+
+}  // namespace
+
+void run_simulate_command(const SimulateOptions& o) {
+  const ArchParams arch = resolve_arch(o.config);
+  if (o.sample != 0 && !o.tolerance.empty()) throw std::runtime_error("--sample and --tolerance exclude each other");
+  if (o.sample != 0 && !(o.sample > 0 && o.sample <= 1))
+    throw std::runtime_error("--sample: the fraction must be in (0, 1], got " + std::to_string(o.sample));
+  if (o.sample != 0 || !o.tolerance.empty()) return run_level_mode(o, arch);
+  std::ofstream frag_os;
+  const sc::SimOptions sim = sim_options(o, frag_os);
   for (const std::string* p : {&o.out_path, &o.stats_path, &o.timeline_path, &o.heatmap_path, &o.heatmap_data_path})
     check_writable(*p);
   // The scene streamed in bounded batches while the simulation runs (memory does not grow
   // with the file); --sample and --tolerance above still load it whole.
-  const sc::SimResult r = sc::simulate_stream(o.scene_path, obj_placement(cfg), cfg, sim);
+  const sc::SimResult r = sc::simulate_stream(o.scene_path, arch, sim);
   if (!o.out_path.empty()) write_image(r.fb, o.out_path);
   nlohmann::json j = r.to_json();
   j["fidelity_level"] = "systemc";
-  j["config"] = cfg.source_name();
+  j["config"] = arch.config.source_name();
   j["scene"] = o.scene_path;
   if (!o.timeline_path.empty())
     j["timeline"] = {{"events", r.timeline.events},
@@ -158,7 +173,7 @@ void run_simulate_command(const SimulateOptions& o) {
   // configured core and pixel clocks. A second SystemC elaboration is not possible in
   // this process, so the scan-out module itself runs in `rastsim scanout`.
   try {
-    const sc::ScanoutParams sp = sc::scanout_params_from_config(cfg, cfg.get_float("clock.core_mhz"));
+    const sc::ScanoutParams sp = sc::scanout_params(DisplayParams::resolve(arch.config), arch.timing.core_mhz);
     const uint64_t deadline = sc::scanout_deadline_cycles(sp);
     j["frame_time_cycles"] = r.cycles;
     j["frame_deadline_cycles"] = deadline;
@@ -200,7 +215,7 @@ void register_simulate(CLI::App& app) {
   cmd->add_option("--heatmap", o.heatmap_path,
                   "Write a PNG of the busy cycles each screen tile cost, over the dimmed frame, with a colour bar");
   cmd->add_option("--heatmap-stage", o.heatmap_stage, "Stage the heatmap shows (default all four summed)")
-      ->check(CLI::IsMember({"all", "coarse_raster", "fine_raster", "interpolate", "rop"}));
+      ->check(CLI::IsMember(heat_stage_choices()));
   cmd->add_option("--heatmap-data", o.heatmap_data_path,
                   "Write the per-tile busy cycles of every attributed stage as JSON ('-' for stdout)");
   cmd->add_option("--fragments", o.frag_path,

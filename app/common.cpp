@@ -42,7 +42,7 @@ Config load_config(const ConfigOptions& o) {
   return cfg;
 }
 
-ObjPlacement obj_placement(const Config& cfg) { return obj_placement_from_config(cfg); }
+ArchParams resolve_arch(const ConfigOptions& o) { return ArchParams::resolve(load_config(o)); }
 
 void write_json(const std::string& path, const nlohmann::json& j) {
   if (path == "-") {

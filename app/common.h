@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "config/config.h"
+#include "config/arch_params.h"
 #include "ref/scene.h"
 #include "scene/scene_io.h"
 
@@ -26,8 +26,9 @@ void add_scene_option(CLI::App* cmd, std::string& scene_path);
 // Defaults, then the file, then the overrides in order; validated.
 Config load_config(const ConfigOptions& o);
 
-// Where an OBJ mesh is placed, from the config's [scene] keys.
-ObjPlacement obj_placement(const Config& cfg);
+// load_config, resolved into the run's typed parameters (config/arch_params.h): the one
+// place a command turns its config into what the model reads.
+ArchParams resolve_arch(const ConfigOptions& o);
 
 // Writes JSON to a file (pretty, with a trailing newline); "-" means stdout.
 void write_json(const std::string& path, const nlohmann::json& j);
@@ -59,7 +60,7 @@ struct SimulateOptions {
   std::string timeline_path;                // trace-event JSON ("" = none)
   uint64_t timeline_max_events = 0;  // above it the timeline is quantized (0: sc::SimOptions's)
   std::string heatmap_path, heatmap_data_path;  // PNG and per-tile JSON ("" = none)
-  std::string heatmap_stage = "all";        // coarse_raster, fine_raster, interpolate, rop or all
+  std::string heatmap_stage = "all";        // a tile_heat stage (timing/stage_table.h) or all
   uint64_t stall_seed = 0;
   double stall_probability = 0;  // 0 = off
   double sample = 0;             // --sample F: the sampled level (0 = off; docs/fidelity.md)

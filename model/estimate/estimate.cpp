@@ -211,10 +211,10 @@ class Walker {
 
 }  // namespace
 
-EstimateResult estimate_scene(const Scene& scene, const Config& cfg, const EstimateProgress& progress) {
+EstimateResult estimate_scene(const Scene& scene, const ArchParams& params, const EstimateProgress& progress) {
   const auto t0 = std::chrono::steady_clock::now();
-  const RasterState arch = raster_state_from_config(cfg);
-  const TimingParams p = TimingParams::from_config(cfg);
+  const RasterState& arch = params.raster;
+  const TimingParams& p = params.timing;
   EstimateResult r;
   r.core_mhz = p.core_mhz;
   Walker walker(arch, p, r);

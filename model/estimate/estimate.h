@@ -23,7 +23,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "config/config.h"
+#include "config/arch_params.h"
 #include "config/timing_params.h"
 #include "timing/stage_table.h"
 #include "ref/pipeline.h"
@@ -63,8 +63,8 @@ struct EstimateResult {
 // per-stage work (the sampled level's auxiliary variable, model/fidelity/sampled.h).
 using EstimateProgress = std::function<void(size_t command, size_t triangle, const EstimateResult& so_far)>;
 
-// The analytic estimate of `scene` on `cfg`. Throws SceneError on bad input (the
-// reference model's message), ConfigError on bad timing keys.
-EstimateResult estimate_scene(const Scene& scene, const Config& cfg, const EstimateProgress& progress = {});
+// The analytic estimate of `scene` on `arch`. Throws SceneError on bad input (the
+// reference model's message).
+EstimateResult estimate_scene(const Scene& scene, const ArchParams& arch, const EstimateProgress& progress = {});
 
 }  // namespace rastsim

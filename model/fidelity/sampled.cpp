@@ -20,14 +20,6 @@ namespace {
 
 using Busy = std::array<uint64_t, kStageCount>;
 
-// Entries of every FIFO between two triangle-path stages (timing/stage_table.h).
-uint64_t triangle_path_entries(const TimingParams& p) {
-  uint64_t entries = 0;
-  for (const FifoInfo& f : kFifos)
-    if (on_triangle_path(f)) entries += uint64_t(p.fifo_entries(f.id));
-  return entries;
-}
-
 // A stratum with fewer uncertain units than this is simulated whole: a ratio and its
 // residual variance need a few units.
 constexpr size_t kMinStratumUnits = 4;
@@ -75,21 +67,28 @@ Command slice(const Command& c, size_t k0, size_t k1) {
 
 }  // namespace
 
-UnitPlan plan_units(const Scene& scene, const Config& cfg, size_t batch) {
+uint64_t triangle_path_entries(const TimingParams& p) {
+  uint64_t entries = 0;
+  for (const FifoInfo& f : kFifos)
+    if (on_triangle_path(f)) entries += uint64_t(p.fifo_entries(f.id));
+  return entries;
+}
+
+UnitPlan plan_units(const Scene& scene, const ArchParams& arch, size_t batch) {
   struct Mark {
     size_t cmd, k;
     Busy busy;
   };
   std::vector<Mark> marks;
   UnitPlan plan;
-  plan.analytic = estimate_scene(scene, cfg, [&](size_t c, size_t k, const EstimateResult& r) {
+  plan.analytic = estimate_scene(scene, arch, [&](size_t c, size_t k, const EstimateResult& r) {
     marks.push_back({c, k, busy_of(r)});
   });
   const uint64_t triangles = plan.analytic.render.triangles_in;
   // The triangle path's FIFO entries: how far (in triangles, one an entry at least)
   // command fetch can run ahead of the bottleneck, so how much of a batch's measured
   // cycles its context (the batch before it in the sampled run) can shift.
-  const uint64_t fill = triangle_path_entries(TimingParams::from_config(cfg));
+  const uint64_t fill = triangle_path_entries(arch.timing);
   if (batch == 0) batch = std::max<size_t>({8, size_t((triangles + 199) / 200), size_t(2 * fill)});
   batch += batch % 2;
   plan.batch = batch;
@@ -367,10 +366,10 @@ SampledResult extrapolate(const UnitPlan& plan, const std::vector<bool>& chosen,
   return r;
 }
 
-SampledResult simulate_sampled(const Scene& scene, const Config& cfg, double fraction, uint64_t seed,
+SampledResult simulate_sampled(const Scene& scene, const ArchParams& arch, double fraction, uint64_t seed,
                                double confidence) {
   const auto t0 = std::chrono::steady_clock::now();
-  const UnitPlan plan = plan_units(scene, cfg);
+  const UnitPlan plan = plan_units(scene, arch);
   const std::vector<bool> chosen = draw_sample(plan, fraction, seed);
   const SubScene sub = sub_scene(scene, plan, chosen);
   // Each segment's start: command fetch starting its first triangle (or command).
@@ -383,7 +382,7 @@ SampledResult simulate_sampled(const Scene& scene, const Config& cfg, double fra
     const auto it = segment_at.find({size_t(&c - base), k});
     if (it != segment_at.end() && start[it->second] < 0) start[it->second] = double(cycle);
   };
-  const sc::SimResult sim = sc::simulate_scene(sub.scene, cfg, opts);
+  const sc::SimResult sim = sc::simulate_scene(sub.scene, arch, opts);
   // A unit's cycles: fetch starting it to fetch starting the next segment (or the end).
   // The first segment also carries anything before it.
   std::vector<double> y(plan.units.size(), 0.0);

@@ -33,7 +33,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "config/config.h"
+#include "config/arch_params.h"
 #include "estimate/estimate.h"
 #include "ref/scene.h"
 
@@ -67,7 +67,11 @@ struct UnitPlan {
 // Cuts `scene` into units and weighs them by the analytic walk. batch = 0: the largest
 // of 8, total triangles / 200 and twice all FIFOs' entries (so the context a batch
 // inherits from the one before it is a small part of it), made even.
-UnitPlan plan_units(const Scene& scene, const Config& cfg, size_t batch = 0);
+UnitPlan plan_units(const Scene& scene, const ArchParams& arch, size_t batch = 0);
+
+// Entries of every FIFO between two triangle-path stages (timing/stage_table.h): how far,
+// in transactions, command fetch can run ahead of a bottleneck downstream.
+uint64_t triangle_path_entries(const TimingParams& p);
 
 // A stratified simple random sample without replacement of the plan's uncertain units,
 // n = ceil(fraction x N) allocated to strata in proportion to their analytic work, at
@@ -120,7 +124,7 @@ SampledResult extrapolate(const UnitPlan& plan, const std::vector<bool>& chosen,
 
 // The whole level: plan, sample, one SystemC run (elaborates: once per process),
 // extrapolate. 0 < fraction <= 1.
-SampledResult simulate_sampled(const Scene& scene, const Config& cfg, double fraction, uint64_t seed,
+SampledResult simulate_sampled(const Scene& scene, const ArchParams& arch, double fraction, uint64_t seed,
                                double confidence = kDefaultConfidence);
 
 }  // namespace rastsim::fidelity

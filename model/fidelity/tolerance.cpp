@@ -17,12 +17,12 @@ double sampled_error(const nlohmann::json& s) {
   return c > 0 ? std::max(s["cycles_ci_high"].get<double>() - c, c - s["cycles_ci_low"].get<double>()) / c : 0.0;
 }
 
-nlohmann::json choose_level(const Scene& scene, const Config& cfg, double tol, uint64_t seed, bool& run_full,
+nlohmann::json choose_level(const Scene& scene, const ArchParams& arch, double tol, uint64_t seed, bool& run_full,
                             std::string& reason) {
   const auto t0 = std::chrono::steady_clock::now();
   const auto wall = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
   char buf[400];
-  const EstimateResult est = estimate_scene(scene, cfg);
+  const EstimateResult est = estimate_scene(scene, arch);
   const double lo = double(est.cycles_lower_bound), hi = double(est.cycles_upper_bound);
   const double mid = 0.5 * (lo + hi), half = mid > 0 ? 0.5 * (hi - lo) / mid : 0.0;
   if (half <= tol) {
@@ -35,7 +35,7 @@ nlohmann::json choose_level(const Scene& scene, const Config& cfg, double tol, u
   double f = 0.1, err = 0;
   nlohmann::json s;
   for (int attempt = 0; attempt < 2; ++attempt) {
-    s = run_in_child([&] { return simulate_sampled(scene, cfg, f, seed).to_json(); });
+    s = run_in_child([&] { return simulate_sampled(scene, arch, f, seed).to_json(); });
     err = sampled_error(s);
     if (s["units_simulated"] == s["units_total"]) {  // nothing left out: no cheaper than the full run
       std::snprintf(buf, sizeof buf,

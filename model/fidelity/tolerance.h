@@ -8,7 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "config/config.h"
+#include "config/arch_params.h"
 #include "ref/scene.h"
 
 namespace rastsim::fidelity {
@@ -22,7 +22,7 @@ double sampled_error(const nlohmann::json& sampled_stats);
 // SystemC model (in its own process: nothing here elaborates SystemC in the caller).
 // Returns the answering level's stats: fidelity_level, cycles, cycles_error_bound,
 // fidelity_reason, wall_seconds.
-nlohmann::json choose_level(const Scene& scene, const Config& cfg, double tol, uint64_t seed, bool& run_full,
+nlohmann::json choose_level(const Scene& scene, const ArchParams& arch, double tol, uint64_t seed, bool& run_full,
                             std::string& reason);
 
 }  // namespace rastsim::fidelity

@@ -11,7 +11,6 @@
 #include "sc/model_error.h"
 #include "sc/rop.h"
 #include "scene/scene_io.h"
-#include "config/raster_state_config.h"
 
 namespace rastsim::sc {
 
@@ -122,16 +121,15 @@ uint64_t fixed_latency_cycles(const TimingParams& p) {
   return p.stage_fill_cycles(last) + p.stage_pass_cycles(stage_info(last).pass);
 }
 
-SimResult simulate_scene(const Scene& scene, const Config& cfg, const SimOptions& opts) {
-  return simulate_commands(scene_source(scene), cfg, opts);
+SimResult simulate_scene(const Scene& scene, const ArchParams& arch, const SimOptions& opts) {
+  return simulate_commands(scene_source(scene), arch, opts);
 }
 
-SimResult simulate_stream(const std::string& path, const ObjPlacement& placement, const Config& cfg,
-                          const SimOptions& opts, size_t batch) {
+SimResult simulate_stream(const std::string& path, const ArchParams& arch, const SimOptions& opts, size_t batch) {
   // The reader runs on a thread of its own, kSceneBatchesAhead batches ahead of command
   // fetch (the model itself stays one SystemC thread; memory stays bounded by those
   // batches). It starts here, so the first batch is parsed while the pipeline elaborates.
-  SceneAhead reader(path, placement, batch, kSceneBatchesAhead);
+  SceneAhead reader(path, arch.placement, batch, kSceneBatchesAhead);
   auto source = [&](const CommandTake& take) {
     uint64_t fetched = 0;
     bool fetching = false;  // an error of the pipeline itself, not of the reader, passes unchanged
@@ -156,13 +154,13 @@ SimResult simulate_stream(const std::string& path, const ObjPlacement& placement
                        " of the simulation; no image or stats written)");
     }
   };
-  return simulate_commands(source, cfg, opts);
+  return simulate_commands(source, arch, opts);
 }
 
-SimResult simulate_commands(CommandSource source, const Config& cfg, const SimOptions& opts) {
+SimResult simulate_commands(CommandSource source, const ArchParams& params, const SimOptions& opts) {
   const auto t0 = std::chrono::steady_clock::now();
-  const RasterState arch = raster_state_from_config(cfg);
-  const TimingParams p = TimingParams::from_config(cfg);
+  const RasterState& arch = params.raster;
+  const TimingParams& p = params.timing;
 
   setenv("SC_COPYRIGHT_MESSAGE", "DISABLE", 1);  // before the simulation context exists
   sc_core::sc_report_handler::set_actions(sc_core::SC_INFO, sc_core::SC_DO_NOTHING);
@@ -191,9 +189,10 @@ SimResult simulate_commands(CommandSource source, const Config& cfg, const SimOp
     for (size_t k = 0; k < spans.size(); ++k) top->stages()[k]->set_spans(&spans[k]);
   std::vector<TileHeat> heat;
   if (opts.heatmap) {
-    const std::vector<Stage*> attributed = {&top->coarse_raster, &top->fine_raster, &top->interpolate, &top->rop};
-    heat.reserve(attributed.size());  // the stages keep pointers into it
-    for (Stage* s : attributed) s->set_heat(&heat.emplace_back(s->basename(), arch.fb_width, arch.fb_height, arch.tile_size));
+    heat.reserve(kStageCount);  // the stages keep pointers into it
+    for (const StageInfo& info : kStages)
+      if (info.tile_heat)
+        top->stage(info.id).set_heat(&heat.emplace_back(std::string(info.name), arch.fb_width, arch.fb_height, arch.tile_size));
   }
 
   sc_core::sc_trace_file* tf = nullptr;

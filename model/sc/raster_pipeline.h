@@ -17,7 +17,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "config/config.h"
+#include "config/arch_params.h"
 #include "ref/pipeline.h"
 #include "sc/command_fetch.h"
 #include "scene/scene_io.h"
@@ -89,23 +89,23 @@ struct SimResult {
 // cycle in each later stage): what a scene without primitives or clears costs.
 uint64_t fixed_latency_cycles(const TimingParams& p);
 
-// Elaborates the pipeline for `cfg`, runs `scene` through it and returns the result.
+// Elaborates the pipeline for `arch` (the run's resolved config), runs `scene` through it and returns the result.
 // SystemC allows one elaboration per process: call this once per process (the sweep
 // and the tests run each simulation in a child process). Throws SceneError on bad input
 // (the reference model's message) and ModelError (sc/model_error.h) on a fault of the
 // model itself, such as a lost or reordered transaction.
-SimResult simulate_scene(const Scene& scene, const Config& cfg, const SimOptions& opts = {});
+SimResult simulate_scene(const Scene& scene, const ArchParams& arch, const SimOptions& opts = {});
 
 // The same for any command source (sc/command_fetch.h): simulate_scene is this on the
 // scene's commands.
-SimResult simulate_commands(CommandSource source, const Config& cfg, const SimOptions& opts = {});
+SimResult simulate_commands(CommandSource source, const ArchParams& arch, const SimOptions& opts = {});
 
-// The same on a scene file streamed in batches of `batch` commands (scene_io.h
+// The same on a scene file (an OBJ placed by arch.placement) streamed in batches of `batch` commands (scene_io.h
 // stream_scene_ahead): the reader runs on a thread of its own, up to two batches ahead of
 // command fetch, so memory stays bounded by those batches, not the file. Cycles, image and stats are simulate_scene's on the
 // loaded scene. A malformed line stops the run with its SceneError (file:line), saying
 // how many commands were fetched and at which cycle, when any were.
-SimResult simulate_stream(const std::string& path, const ObjPlacement& placement, const Config& cfg,
-                          const SimOptions& opts = {}, size_t batch = 4096);
+SimResult simulate_stream(const std::string& path, const ArchParams& arch, const SimOptions& opts = {},
+                          size_t batch = 4096);
 
 }  // namespace rastsim::sc

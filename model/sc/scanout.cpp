@@ -13,12 +13,12 @@ namespace rastsim::sc {
 using sc_core::sc_time;
 using sc_core::SC_PS;
 
-ScanoutParams scanout_params_from_config(const Config& cfg, double core_mhz) {
+ScanoutParams scanout_params(const DisplayParams& d, double core_mhz) {
   ScanoutParams p;
-  p.timing = video_timing_from_config(cfg);
-  p.single_buffered = cfg.get_string("scanout.buffering") == "single";
-  p.line_buffer_lines = static_cast<int>(cfg.get_int("scanout.line_buffer_lines"));
-  p.fetch_px_per_cycle = static_cast<int>(cfg.get_int("scanout.fetch_px_per_cycle"));
+  p.timing = d.video;
+  p.single_buffered = d.single_buffered;
+  p.line_buffer_lines = d.line_buffer_lines;
+  p.fetch_px_per_cycle = d.fetch_px_per_cycle;
   p.core_hz = core_mhz * 1e6;
   return p;
 }

@@ -26,13 +26,13 @@
 #include <nlohmann/json.hpp>
 #include <systemc>
 
-#include "config/config.h"
+#include "config/arch_params.h"
 #include "display/scanout.h"
 #include "config/video_timing.h"
 
 namespace rastsim::sc {
 
-// Every value comes from the config (scanout_params_from_config); none has a default here.
+// Every value comes from the config (scanout_params); none has a default here.
 struct ScanoutParams {
   VideoTiming timing;
   bool single_buffered = false;  // scanout.buffering == "single"
@@ -41,8 +41,8 @@ struct ScanoutParams {
   double core_hz = 0;            // the raster pipeline's clock (clock.core_mhz), Hz
 };
 
-// From a validated config; `core_mhz` is the raster pipeline's clock.
-ScanoutParams scanout_params_from_config(const Config& cfg, double core_mhz);
+// From the resolved display parameters; `core_mhz` is the raster pipeline's clock.
+ScanoutParams scanout_params(const DisplayParams& display, double core_mhz);
 
 struct ScanoutReport {
   uint64_t frame_time_cycles = 0;     // raster finish time T_r, core cycles

@@ -9,33 +9,10 @@
 #include <string>
 #include <vector>
 
-#include "config/config.h"
+#include "config/obj_placement.h"
 #include "ref/scene.h"
 
 namespace rastsim {
-
-// The axis of an OBJ mesh that points up (scene.obj_up). Placement turns it to +y by
-// an exact quarter or half turn (never a mirror), before yaw and pitch.
-enum class ObjUp { PosY, PosZ, NegY, NegZ, PosX, NegX };
-
-// "y", "z", "-y", "-z", "x", "-x" (the config's spelling); nullopt for anything else.
-std::optional<ObjUp> parse_obj_up(const std::string& name);
-
-// Where an OBJ mesh lands on screen: a camera looking at the mesh's bounding sphere.
-// Every value comes from the config (obj_placement_from_config); none has a default here.
-struct ObjPlacement {
-  int viewport_width = 0, viewport_height = 0;  // px (display.width, display.height)
-  ObjUp up = ObjUp::PosY;             // the mesh's up axis (scene.obj_up)
-  double yaw_deg = 0, pitch_deg = 0;  // then rotation about up (y), then x (scene.obj_*_deg)
-  double fill = 0;                    // fraction of the viewport the sphere spans (scene.obj_fill)
-  // Faces sent in one List command (scene.obj_faces_per_command): 1, each face its own
-  // command as a naive driver would send it; more, as a draw call would batch them.
-  int faces_per_command = 0;
-  uint8_t clear_r = 0, clear_g = 0, clear_b = 0;
-};
-
-// From a validated config: the display size and the scene.obj_* keys.
-ObjPlacement obj_placement_from_config(const Config& cfg);
 
 // Parse a trace file. Throws SceneError("file:line: ...") on any malformed input.
 Scene load_trace(const std::string& path);

@@ -54,19 +54,20 @@ struct StageInfo {
   // first stage names itself. The 2D stages start behind command fetch's first header.
   StageId fed_by;
   StagePass pass;  // what passing this stage adds to the fill of the stages it feeds
+  bool tile_heat;  // its busy cycles are attributed to screen tiles (simulate --heatmap)
 };
 
 inline constexpr std::array kStages = {
-    StageInfo{StageId::CommandFetch, "command_fetch", StagePath::Triangle, StageId::CommandFetch, StagePass::FetchHeader},
-    StageInfo{StageId::PrimAssembly, "prim_assembly", StagePath::Triangle, StageId::CommandFetch, StagePass::IssueCycle},
-    StageInfo{StageId::TriSetup, "tri_setup", StagePath::Triangle, StageId::PrimAssembly, StagePass::IssueSetupLatency},
-    StageInfo{StageId::CoarseRaster, "coarse_raster", StagePath::Triangle, StageId::TriSetup, StagePass::IssueCycle},
-    StageInfo{StageId::FineRaster, "fine_raster", StagePath::Triangle, StageId::CoarseRaster, StagePass::IssueCycle},
-    StageInfo{StageId::Interpolate, "interpolate", StagePath::Triangle, StageId::FineRaster, StagePass::IssueInterpLatency},
-    StageInfo{StageId::Rop, "rop", StagePath::Triangle, StageId::Interpolate, StagePass::IssueCycle},
+    StageInfo{StageId::CommandFetch, "command_fetch", StagePath::Triangle, StageId::CommandFetch, StagePass::FetchHeader, false},
+    StageInfo{StageId::PrimAssembly, "prim_assembly", StagePath::Triangle, StageId::CommandFetch, StagePass::IssueCycle, false},
+    StageInfo{StageId::TriSetup, "tri_setup", StagePath::Triangle, StageId::PrimAssembly, StagePass::IssueSetupLatency, false},
+    StageInfo{StageId::CoarseRaster, "coarse_raster", StagePath::Triangle, StageId::TriSetup, StagePass::IssueCycle, true},
+    StageInfo{StageId::FineRaster, "fine_raster", StagePath::Triangle, StageId::CoarseRaster, StagePass::IssueCycle, true},
+    StageInfo{StageId::Interpolate, "interpolate", StagePath::Triangle, StageId::FineRaster, StagePass::IssueInterpLatency, true},
+    StageInfo{StageId::Rop, "rop", StagePath::Triangle, StageId::Interpolate, StagePass::IssueCycle, true},
     // Lower bound: a 2D command's first operation leaves command fetch with its header.
-    StageInfo{StageId::Draw2dSetup, "draw2d_setup", StagePath::TwoD, StageId::CommandFetch, StagePass::IssueCycle},
-    StageInfo{StageId::Engine2d, "engine2d", StagePath::TwoD, StageId::CommandFetch, StagePass::IssueCycle},
+    StageInfo{StageId::Draw2dSetup, "draw2d_setup", StagePath::TwoD, StageId::CommandFetch, StagePass::IssueCycle, false},
+    StageInfo{StageId::Engine2d, "engine2d", StagePath::TwoD, StageId::CommandFetch, StagePass::IssueCycle, false},
 };
 inline constexpr size_t kStageCount = kStages.size();
 

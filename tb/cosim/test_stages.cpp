@@ -43,7 +43,7 @@ nlohmann::json records_json(const std::vector<StageRecord>& v) {
 // The SystemC model's stages on `scene`, in a child (one elaboration per process).
 std::vector<StageRecord> model_stages(const Scene& scene, const Config& cfg, uint64_t& cycles) {
   const nlohmann::json j = fidelity::run_in_child([&] {
-    const sc::SimResult m = sc::simulate_scene(scene, cfg);
+    const sc::SimResult m = sc::simulate_scene(scene, ArchParams::resolve(cfg));
     return nlohmann::json{{"cycles", m.cycles}, {"stages", records_json(stage_records(m.stages))}};
   });
   cycles = j.at("cycles").get<uint64_t>();

@@ -28,7 +28,7 @@ nlohmann::json compare_with_reference(const Scene& scene, const Config& cfg, con
                                           [&](const Fragment& f) { ref_frags.push_back(fragment_trace_line(f)); });
   sc::SimOptions o = opts;
   o.on_fragment = [&](const Fragment& f) { sim_frags.push_back(fragment_trace_line(f)); };
-  const sc::SimResult r = sc::simulate_scene(scene, cfg, o);
+  const sc::SimResult r = sc::simulate_scene(scene, ArchParams::resolve(cfg), o);
   int64_t first = -1;
   const size_t n = std::min(ref_frags.size(), sim_frags.size());
   for (size_t i = 0; i < n && first < 0; ++i)
@@ -71,7 +71,7 @@ void expect_matches_reference(const nlohmann::json& r) {
 }
 
 nlohmann::json simulate_stats(const Scene& scene, const Config& cfg, const sc::SimOptions& opts) {
-  return sc::simulate_scene(scene, cfg, opts).to_json();
+  return sc::simulate_scene(scene, ArchParams::resolve(cfg), opts).to_json();
 }
 
 namespace {

@@ -39,7 +39,7 @@ TEST(ScErrors, LinkOrderCheckThrowsModelError) {
 
 // A one-stage design whose body raises `fault` at cycle 3, as a failing stage would.
 struct FaultyStage : sc::Stage {
-  FaultyStage(sc_core::sc_module_name n, sc::SimContext& ctx, void (*fault)()) : Stage(n, ctx, 0), fault_(fault) {}
+  FaultyStage(sc_core::sc_module_name n, sc::SimContext& ctx, void (*fault)()) : Stage(n, ctx, StageId::CommandFetch), fault_(fault) {}
   void body() override {
     busy(3);
     fault_();

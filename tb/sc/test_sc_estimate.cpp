@@ -32,10 +32,10 @@ bool check_against_systemc(const Scene& scene, const Config& cfg, const sc::SimO
   const nlohmann::json sim = run_isolated([&] { return simulate_stats(scene, cfg, opts); });
   if (sim.contains("error")) {
     // Bad input fails both levels alike.
-    EXPECT_ANY_THROW(estimate_scene(scene, cfg)) << "SystemC failed with " << sim["error"];
+    EXPECT_ANY_THROW(estimate_scene(scene, ArchParams::resolve(cfg))) << "SystemC failed with " << sim["error"];
     return false;
   }
-  const EstimateResult est = estimate_scene(scene, cfg);
+  const EstimateResult est = estimate_scene(scene, ArchParams::resolve(cfg));
   const uint64_t cycles = sim["cycles"];
   EXPECT_LE(est.cycles_lower_bound, cycles);
   if (upper_bound_holds) {
@@ -149,7 +149,7 @@ TEST(ScEstimate, StallsChangeNoBusyTotal) {
 }
 
 TEST(ScEstimate, EmptySceneIsZero) {
-  const EstimateResult r = estimate_scene(Scene{}, Config{});
+  const EstimateResult r = estimate_scene(Scene{}, ArchParams::resolve(Config{}));
   EXPECT_EQ(r.cycles_lower_bound, 0u);
   EXPECT_EQ(r.cycles_upper_bound, 0u);
   EXPECT_EQ(r.cycles_estimate, 0u);
@@ -183,7 +183,7 @@ TEST(ScEstimate, DISABLED_EstimateTable) {
       EstimateResult est;
       uint64_t cycles = 0;
       for (int run = 0; run < 3; ++run) {
-        est = estimate_scene(scene, cfg);
+        est = estimate_scene(scene, ArchParams::resolve(cfg));
         const nlohmann::json sim = run_isolated([&] { return simulate_stats(scene, cfg); });
         ASSERT_FALSE(sim.contains("error")) << sim["error"];
         cycles = sim["cycles"];

@@ -34,13 +34,13 @@ TEST(ScSampled, EveryUnitChosenIsTheFullRun) {
   for (const char* name : {"default", "desktop"}) {
     const Config cfg = config_file(name);
     for (const Scene& scene : {load_trace(source("traces/torus.trace")), random_scene(7, 128, 96, 300)}) {
-      const fidelity::UnitPlan plan = fidelity::plan_units(scene, cfg);
+      const fidelity::UnitPlan plan = fidelity::plan_units(scene, ArchParams::resolve(cfg));
       const std::vector<bool> all = fidelity::draw_sample(plan, 1.0, 1);
       EXPECT_TRUE(std::all_of(all.begin(), all.end(), [](bool b) { return b; }));
       const fidelity::SubScene sub = fidelity::sub_scene(scene, plan, all);
       ASSERT_EQ(sub.scene.commands.size(), scene.commands.size());
       const nlohmann::json full = run_isolated([&] { return simulate_stats(scene, cfg); });
-      const nlohmann::json s = run_isolated([&] { return fidelity::simulate_sampled(scene, cfg, 1.0, 1).to_json(); });
+      const nlohmann::json s = run_isolated([&] { return fidelity::simulate_sampled(scene, ArchParams::resolve(cfg), 1.0, 1).to_json(); });
       ASSERT_FALSE(s.contains("error")) << s;
       EXPECT_EQ(s["cycles"], full["cycles"]) << name;
       EXPECT_EQ(s["cycles_ci_low"].get<double>(), s["cycles_ci_high"].get<double>());
@@ -83,7 +83,7 @@ TEST(ScSampled, IntervalCoversTheFullRun) {
       for (double f : fractions)
         for (int s = 1; s <= seeds; ++s) {
           const nlohmann::json r =
-              run_isolated([&] { return fidelity::simulate_sampled(c.scene, cfg, f, uint64_t(s)).to_json(); });
+              run_isolated([&] { return fidelity::simulate_sampled(c.scene, ArchParams::resolve(cfg), f, uint64_t(s)).to_json(); });
           ASSERT_FALSE(r.contains("error")) << r;
           const bool in = r["cycles_ci_low"].get<double>() <= truth && truth <= r["cycles_ci_high"].get<double>();
           ++here.trials;
@@ -143,7 +143,7 @@ TEST(ScSampled, ToleranceBoundHoldsForTheLevelThatAnswers) {
     const double truth = full["cycles"].get<double>();
     bool run_full = false;
     std::string reason;
-    nlohmann::json j = fidelity::choose_level(c.scene, cfg, c.tol, 1, run_full, reason);
+    nlohmann::json j = fidelity::choose_level(c.scene, ArchParams::resolve(cfg), c.tol, 1, run_full, reason);
     const std::string level = run_full ? "systemc" : j["fidelity_level"].get<std::string>();
     std::printf("  %-18s %-9s tol %4.1f %%: %s %s\n", c.name.c_str(), c.config.c_str(), 100 * c.tol, level.c_str(),
                 run_full ? reason.c_str() : j["fidelity_reason"].get<std::string>().c_str());

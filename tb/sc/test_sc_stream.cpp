@@ -70,13 +70,13 @@ nlohmann::json comparable(nlohmann::json j) {
 
 void expect_stream_equals_whole(const std::string& path, const Config& cfg, size_t batch) {
   const nlohmann::json whole = run_isolated([&] {
-    return sc::simulate_scene(load_trace(path), cfg).to_json();
+    return sc::simulate_scene(load_trace(path), ArchParams::resolve(cfg)).to_json();
   });
   uint64_t fragments = 0;
   const nlohmann::json streamed = run_isolated([&] {
     sc::SimOptions o;
     o.on_fragment = [&](const Fragment&) { ++fragments; };
-    nlohmann::json j = sc::simulate_stream(path, ObjPlacement{}, cfg, o, batch).to_json();
+    nlohmann::json j = sc::simulate_stream(path, ArchParams::resolve(cfg), o, batch).to_json();
     j["fragments_seen"] = fragments;
     return j;
   });
@@ -120,7 +120,7 @@ TEST(ScStream, MalformedLastLineStopsWithItsLineAndWhatWasFetched) {
   const std::string path = write_file("sc_stream_bad.trace", text);
   const Config cfg = make_config({"display.width=64", "display.height=48"});
   const nlohmann::json r = run_isolated([&] {
-    sc::simulate_stream(path, ObjPlacement{}, cfg, {}, 100);
+    sc::simulate_stream(path, ArchParams::resolve(cfg), {}, 100);
     return nlohmann::json{{"finished", true}};
   });
   ASSERT_TRUE(r.contains("error")) << r.dump();

@@ -32,7 +32,7 @@ nlohmann::json run_recorded(const Scene& scene, const Config& cfg, const std::st
     o.heatmap = true;
     o.stall_seed = 7;
     o.stall_probability = stall_probability;
-    const sc::SimResult r = sc::simulate_scene(scene, cfg, o);
+    const sc::SimResult r = sc::simulate_scene(scene, ArchParams::resolve(cfg), o);
     nlohmann::json j = r.to_json();
     j["timeline_events"] = r.timeline.events;
     j["timeline_resolution"] = r.timeline.resolution_cycles;

@@ -18,7 +18,7 @@ namespace {
 // The DAC and scan-out of a default config: tests change only what they are about.
 DacConfig default_dac_config() { return dac_config_from_config(Config{}); }
 sc::ScanoutParams default_params(const char* preset, double core_mhz) {
-  sc::ScanoutParams p = sc::scanout_params_from_config(Config{}, core_mhz);
+  sc::ScanoutParams p = sc::scanout_params(DisplayParams::resolve(Config{}), core_mhz);
   p.timing = *find_timing_preset(preset);
   return p;
 }
