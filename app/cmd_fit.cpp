@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: Apache-2.0
-// `rastsim fit`: the narrowest raster.coord_format a scene needs (ref/coord_fit.h) and
+// `rastsim fit`: the narrowest raster.coord_format a scene needs (ref/study/coord_fit.h) and
 // the datapath widths it implies (datapath_widths, as export-rtl); with --precision,
 // the coordinate-precision table of docs/stability.md for F = 0..16.
 #include <iostream>
 
 #include "common.h"
 #include "config/raster_state_config.h"
-#include "ref/coord_fit.h"
+#include "ref/study/coord_fit.h"
 #include "report/stats_json.h"
 #include "scene/scene_io.h"
 

@@ -11,7 +11,7 @@
 #include "display/monitor.h"
 #include "display/signal_reader.h"
 #include "config/video_timing.h"
-#include "display/image_io.h"
+#include "image/image_io.h"
 
 namespace rastsim::app {
 

@@ -8,7 +8,7 @@
 #include "ref/pipeline.h"
 #include "report/stats_json.h"
 #include "scene/scene_io.h"
-#include "display/image_io.h"
+#include "image/image_io.h"
 #include "config/raster_state_config.h"
 
 namespace rastsim::app {

@@ -16,7 +16,7 @@
 #include "rtl/rtl_params.h"
 #include "sc/scanout.h"
 #include "scene/scene_io.h"
-#include "display/image_io.h"
+#include "image/image_io.h"
 #include "config/raster_state_config.h"
 
 namespace rastsim::app {

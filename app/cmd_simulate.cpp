@@ -2,7 +2,7 @@
 // `rastsim simulate`: the SystemC cycle-approximate model on one scene; the same image
 // and stats as `render`, plus cycles and per-stage busy/stalled/starved cycles, and on
 // request where they went: a timeline (sc/timeline.h) and a tile heatmap (sc/tile_heat.h,
-// display/heatmap.h); docs/timeline.md.
+// image/heatmap.h); docs/timeline.md.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -19,8 +19,8 @@
 #include "sc/scanout.h"
 #include "sc/raster_pipeline.h"
 #include "scene/scene_io.h"
-#include "display/heatmap.h"
-#include "display/image_io.h"
+#include "image/heatmap.h"
+#include "image/image_io.h"
 
 namespace rastsim::app {
 

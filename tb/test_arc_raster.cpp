@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Arcs (ref/circle_raster.h: arc_outline) against an independent angle test in long
+// Arcs (ref/2d/circle_raster.h: arc_outline) against an independent angle test in long
 // double, a hand-worked quarter of r = 3, the full circle, and complementary arcs.
 #include <gtest/gtest.h>
 
@@ -7,7 +7,7 @@
 #include <random>
 #include <set>
 
-#include "ref/circle_raster.h"
+#include "ref/2d/circle_raster.h"
 
 namespace rastsim {
 namespace {

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Midpoint circles (ref/circle_raster.h) against the notes' decision evaluated directly
+// Midpoint circles (ref/2d/circle_raster.h) against the notes' decision evaluated directly
 // from F(x, y) = x^2 + y^2 - r^2 at every step (not incrementally), for radii 0..2000;
 // hand-worked small radii; each outline pixel once; eight-way symmetry; filled rows.
 #include <gtest/gtest.h>
@@ -9,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-#include "ref/circle_raster.h"
+#include "ref/2d/circle_raster.h"
 
 namespace rastsim {
 namespace {

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// `rastsim fit` (ref/coord_fit.h): on the shipped traces and on generated scenes, the
+// `rastsim fit` (ref/study/coord_fit.h): on the shipped traces and on generated scenes, the
 // fitted format renders identically to the widest format with the same integer bits
 // (I + F = 31), one fraction bit fewer does not (unless F is already the smallest, 1),
 // and one integer bit fewer is rejected or renders differently. Independent goldens: a
@@ -14,7 +14,7 @@
 
 #include "common/default_state.h"
 #include "config/raster_state_config.h"
-#include "ref/coord_fit.h"
+#include "ref/study/coord_fit.h"
 #include "scene/scene_io.h"
 
 namespace rastsim {

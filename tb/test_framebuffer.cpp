@@ -17,7 +17,7 @@
 
 #include "config/config.h"
 #include "config/raster_state_config.h"
-#include "display/image_io.h"
+#include "image/image_io.h"
 #include "ref/pipeline.h"
 #include "ref/rop.h"
 

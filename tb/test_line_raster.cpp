@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Line rasterization on pixel indices (ref/line_raster.h) against goldens written
+// Line rasterization on pixel indices (ref/2d/line_raster.h) against goldens written
 // independently of the incremental code: the pixel of each major-axis step computed
 // directly from the exact line in integer arithmetic (round half toward the minor step
 // for Bresenham, half away from it for midpoint, half up for the DDA), hand-worked
@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "common/exact_line.h"
-#include "ref/line_raster.h"
+#include "ref/2d/line_raster.h"
 
 namespace rastsim {
 namespace {

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Points (ref/point_raster.h) against a brute-force test of every pixel centre near the
+// Points (ref/2d/point_raster.h) against a brute-force test of every pixel centre near the
 // point (exact integers), hand-worked cases, and tiling: points of size S at S-pixel
 // spacing cover every pixel once.
 #include <gtest/gtest.h>
@@ -7,7 +7,7 @@
 #include <map>
 #include <random>
 
-#include "ref/point_raster.h"
+#include "ref/2d/point_raster.h"
 
 namespace rastsim {
 namespace {

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Scanline polygon fill (ref/polygon_fill.h) against a brute-force test of every pixel
+// Scanline polygon fill (ref/2d/polygon_fill.h) against a brute-force test of every pixel
 // centre (a ray to the left, crossings counted per edge, exact integers) for both
 // rules on random simple and self-intersecting polygons; hand-worked shapes; and meshes
 // of polygons that tile a rectangle cover every pixel exactly once.
@@ -10,7 +10,7 @@
 #include <set>
 
 #include "ref/fixed_point.h"
-#include "ref/polygon_fill.h"
+#include "ref/2d/polygon_fill.h"
 
 namespace rastsim {
 namespace {

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// 2D pixel operations (ref/raster2d.h): blits against a copy-then-write model evaluated
+// 2D pixel operations (ref/2d/raster2d.h): blits against a copy-then-write model evaluated
 // per destination pixel from a snapshot of the whole framebuffer (random overlapping
 // copies in all four directions, random codes, clips and scissors), hand-worked
 // overlapping copies, and pattern fills by hand.
@@ -7,8 +7,8 @@
 
 #include <random>
 
-#include "ref/raster2d.h"
-#include "ref/rop3.h"
+#include "ref/2d/raster2d.h"
+#include "ref/2d/rop3.h"
 
 namespace rastsim {
 namespace {

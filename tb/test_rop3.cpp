@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: Apache-2.0
-// ROP3 (ref/rop3.h): all 256 codes against the truth table evaluated one bit at a time
+// ROP3 (ref/2d/rop3.h): all 256 codes against the truth table evaluated one bit at a time
 // (the notes' definition), on random P, S, D; the named codes against their boolean
 // formulas (hand-written); which codes read S and D, by brute force over the table.
 #include <gtest/gtest.h>
 
 #include <random>
 
-#include "ref/rop3.h"
+#include "ref/2d/rop3.h"
 
 namespace rastsim {
 namespace {

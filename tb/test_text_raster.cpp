@@ -14,7 +14,7 @@
 
 #include "scene_test.h"
 #include "config/raster_state_config.h"
-#include "ref/font.h"
+#include "ref/2d/font.h"
 #include "ref/pipeline.h"
 #include "scene/scene_io.h"
 
@@ -63,7 +63,7 @@ TEST(Font, EveryPrintableCharacterHasADistinctGlyph) {
   }
 }
 
-// Worked by hand from the pictures in model/ref/font.cpp and the cell rules: fixed
+// Worked by hand from the pictures in model/ref/2d/font.cpp and the cell rules: fixed
 // spacing puts 'H' (5 wide) at columns 0..4 of a 6-column cell and 'i' (1 wide) at
 // column (5 - 1) / 2 = 2 of the next; proportional gives 'i' the columns right after
 // H's one spacing column.

@@ -3,7 +3,7 @@
 
 #include <cstdlib>
 
-#include "ref/rop3.h"
+#include "ref/2d/rop3.h"
 
 namespace rastsim {
 

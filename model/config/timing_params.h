@@ -9,7 +9,7 @@
 #include <cstdint>
 
 #include "config/config.h"
-#include "ref/draw2d.h"
+#include "ref/2d/draw2d.h"
 #include "ref/sample_pattern.h"
 #include "timing/stage_table.h"
 #include "timing/tiled_walk.h"

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // SystemC elaborates once per process: a level that needs more than one simulation
 // (the tolerance rule's sampled attempts) runs each in a forked child, which sends its
-// JSON back through a pipe. The SystemC tests (tb/sc/harness.h, run_isolated) use the
+// JSON back through a pipe. The SystemC tests (tb/sc/sim_harness.h, run_isolated) use the
 // same code.
 #pragma once
 

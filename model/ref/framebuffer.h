@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // Framebuffer: RGBA8 colour and unorm depth, row 0 at the top; its CRC.
-// (Image files: display/image_io.h.)
+// (Image files: image/image_io.h.)
 //
 // With raster.samples = S > 1 every pixel holds S colour and S depth samples. resolve()
 // box-filters them to a one-sample framebuffer: each channel is the average of the S

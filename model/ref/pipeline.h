@@ -10,13 +10,13 @@
 #include <span>
 #include <string>
 
-#include "ref/draw2d.h"
+#include "ref/2d/draw2d.h"
 #include "ref/framebuffer.h"
 #include "ref/interpolate.h"
 #include "ref/raster_state.h"
 #include "ref/scene.h"
 #include "ref/coarse_raster.h"
-#include "ref/coverage_check.h"
+#include "ref/study/coverage_check.h"
 
 namespace rastsim {
 

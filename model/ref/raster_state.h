@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "ref/fixed_point.h"
-#include "ref/line_raster.h"
-#include "ref/polygon_fill.h"
+#include "ref/2d/line_raster.h"
+#include "ref/2d/polygon_fill.h"
 
 namespace rastsim {
 

@@ -37,7 +37,7 @@
 #include <cmath>
 #include <cstdint>
 
-#include "ref/line_raster.h"
+#include "ref/2d/line_raster.h"
 #include "ref/tri_setup.h"
 
 namespace rastsim {

@@ -11,7 +11,7 @@
 //   level's tiles, a partial tile of the last level tested per pixel. Exact: the same
 //   classify_tile and fine raster as tiled, on smaller footprints.
 // - scanline: the lecture notes' screen coordinate setup (ref/scanline.h). Inexact in
-//   f32/f64/fixed; counted against the exact coverage (ref/coverage_check.h). One
+//   f32/f64/fixed; counted against the exact coverage (ref/study/coverage_check.h). One
 //   sample a pixel only (the config rejects raster.samples > 1 with it).
 //
 // The exact methods emit the same SET of pixels as tiled, in a different order (bbox:

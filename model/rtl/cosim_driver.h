@@ -60,7 +60,7 @@ struct TbItem {
   const Command* cmd = nullptr;  // markers: the state or 2D command (none: the end-of-frame marker)
   int work2d = -1;             // 2D markers: index in TbSetup::work2d
 };
-// A 2D command's engine operations (ref/draw2d.h) and its front-end cost.
+// A 2D command's engine operations (ref/2d/draw2d.h) and its front-end cost.
 struct TbWork2d {
   Draw2dWork work;
   uint64_t setup_cost = 1;     // 2D front end cycles (TimingParams::setup2d_cycles)

@@ -19,12 +19,12 @@
 // - scanline: the edge walker. coarse.scanline_setup_cycles, then one row a cycle; each
 //   non-empty span leaves as one tile item (a one-row footprint marked `span`) at the
 //   end of its row's cycle. The spans are checked against the exact coverage here
-//   (ref/coverage_check.h), where the whole triangle's pixels are known.
+//   (ref/study/coverage_check.h), where the whole triangle's pixels are known.
 #pragma once
 
 #include <optional>
 
-#include "ref/coverage_check.h"
+#include "ref/study/coverage_check.h"
 #include "ref/traverse.h"
 #include "sc/tri_setup.h"
 

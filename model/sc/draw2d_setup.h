@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // 2D front end: the line, point and shape stage beside the triangle path. Turns one 2D
-// command into the 2D engine's operations (ref/draw2d.h: draw2d_ops): spans of points,
+// command into the 2D engine's operations (ref/2d/draw2d.h: draw2d_ops): spans of points,
 // rectangles, filled circles and polygons; pixel streams of diamond and DDA lines and of
 // outlines; whole index-method lines for the engine's line unit; clipped blits.
 //
@@ -13,7 +13,7 @@
 
 #include <memory>
 
-#include "ref/draw2d.h"
+#include "ref/2d/draw2d.h"
 #include "sc/stage.h"
 #include "config/timing_params.h"
 

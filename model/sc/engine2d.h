@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // 2D engine: executes the 2D front end's operations (spans, pixel streams, index-method
 // lines through its line unit, blits) with the pattern and ROP3 on the framebuffer
-// (ref/draw2d.h: execute_op2d), through the ROP's framebuffer port.
+// (ref/2d/draw2d.h: execute_op2d), through the ROP's framebuffer port.
 //
 // - Program order with the triangles: command fetch also sends each 2D command down the
 //   triangle path as a marker. When the marker reaches the ROP (every fragment before it

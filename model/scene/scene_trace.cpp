@@ -21,8 +21,8 @@
 #include <sstream>
 #include <string_view>
 
-#include "ref/font.h"
-#include "ref/rop3.h"
+#include "ref/2d/font.h"
+#include "ref/2d/rop3.h"
 #include "ref/scene.h"
 #include "scene/scene_text.h"
 #include "scene/scene_io.h"

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Goldens for the index line methods (ref/line_raster.h), written from dx, dy directly
+// Goldens for the index line methods (ref/2d/line_raster.h), written from dx, dy directly
 // in integer arithmetic, not through LineOctant: shared by tb/test_line_raster.cpp and
 // the stability searches (tb/stability/test_dda_lines.cpp).
 #pragma once

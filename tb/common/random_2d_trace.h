@@ -11,7 +11,7 @@
 #include <sstream>
 #include <string>
 
-#include "ref/rop3.h"
+#include "ref/2d/rop3.h"
 
 namespace rastsim::testing {
 

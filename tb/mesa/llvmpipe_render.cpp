@@ -25,7 +25,7 @@
 #include <string>
 #include <vector>
 
-#include "display/image_io.h"
+#include "image/image_io.h"
 #include "osmesa_renderer.h"
 #include "ref/prim_assembly.h"
 #include "ref/scene.h"

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// rast_line against the reference index methods (model/ref/line_raster.h), pixel by pixel,
+// rast_line against the reference index methods (model/ref/2d/line_raster.h), pixel by pixel,
 // with random stalls on the output; counts cycles and checks the cycle equation
 // cycles = 1 (set-up) + max(|dX|, |dY|) + 1 pixels + stall cycles.
 #include <gtest/gtest.h>
@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "Vrast_line.h"
-#include "ref/line_raster.h"
+#include "ref/2d/line_raster.h"
 
 namespace {
 

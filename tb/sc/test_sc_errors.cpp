@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "harness.h"
+#include "sim_harness.h"
 #include "sc/model_error.h"
 #include "sc/stage.h"
 

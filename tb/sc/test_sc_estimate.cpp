@@ -18,7 +18,7 @@
 
 #include "common/random_2d_trace.h"
 #include "estimate/estimate.h"
-#include "harness.h"
+#include "sim_harness.h"
 #include "scene/scene_io.h"
 
 namespace rastsim::sctest {

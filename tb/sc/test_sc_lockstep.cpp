@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "common/random_2d_trace.h"
-#include "harness.h"
+#include "sim_harness.h"
 #include "scene/scene_io.h"
 
 namespace rastsim::sctest {

@@ -11,7 +11,7 @@
 // - 2D commands with raster.samples > 1 are the reference model's error.
 #include <gtest/gtest.h>
 
-#include "harness.h"
+#include "sim_harness.h"
 #include "scene/scene_io.h"
 
 namespace rastsim::sctest {

@@ -15,7 +15,7 @@
 
 #include "fidelity/sampled.h"
 #include "fidelity/tolerance.h"
-#include "harness.h"
+#include "sim_harness.h"
 #include "scene/scene_io.h"
 
 namespace rastsim::sctest {

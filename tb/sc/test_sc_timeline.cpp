@@ -12,7 +12,7 @@
 
 #include <unistd.h>
 
-#include "harness.h"
+#include "sim_harness.h"
 
 namespace rastsim::sctest {
 namespace {

@@ -4,7 +4,7 @@
 // a timing bug can break.
 #include <gtest/gtest.h>
 
-#include "harness.h"
+#include "sim_harness.h"
 
 namespace rastsim::sctest {
 namespace {

@@ -10,7 +10,7 @@
 #include <set>
 
 #include "config/raster_state_config.h"
-#include "harness.h"
+#include "sim_harness.h"
 #include "ref/prim_assembly.h"
 #include "ref/traverse.h"
 #include "scene/scene_io.h"

@@ -11,7 +11,7 @@
 #include "estimate/estimate.h"
 #include "fidelity/sampled.h"
 #include "ref/scene.h"
-#include "sc/harness.h"
+#include "sc/sim_harness.h"
 #include "scene/scene_io.h"
 #include "timing/stage_table.h"
 

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // DDA lines (docs/stability.md, "DDA lines"): the shortest line at which the f32, f64 and
-// fixed-point DDA (ref/line_raster.h) first differ from the exact rule.
+// fixed-point DDA (ref/2d/line_raster.h) first differ from the exact rule.
 //
 // Search space: every line from the origin (0, 0) to (n, d), 0 <= d <= n (the first
 // octant, x-major, diagonal included), by increasing major length n = 1, 2, ... up to a
@@ -16,7 +16,7 @@
 #include <string>
 
 #include "common/exact_line.h"
-#include "ref/line_raster.h"
+#include "ref/2d/line_raster.h"
 #include "stability/doc_table.h"
 
 namespace rastsim {

@@ -2,7 +2,7 @@
 // Coordinate precision (docs/stability.md, "Coordinate precision"): for sub-pixel bits
 // F = 0..16 on the shipped triangle traces with configs/default.toml, the pixels whose
 // colour differs from the F = 16 render, the cracks of the closed torus mesh (pixels
-// whose front and back coverage do not balance, ref/coord_fit.h: unbalanced_pixels) and
+// whose front and back coverage do not balance, ref/study/coord_fit.h: unbalanced_pixels) and
 // the edge width of the format (datapath_widths). The doc's table is what
 // `scripts/precision_table` printed; this test recomputes every figure and compares.
 #include <gtest/gtest.h>
@@ -10,7 +10,7 @@
 #include <string>
 
 #include "config/raster_state_config.h"
-#include "ref/coord_fit.h"
+#include "ref/study/coord_fit.h"
 #include "scene/scene_io.h"
 #include "stability/doc_table.h"
 

@@ -1,16 +1,16 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "ref/draw2d.h"
+#include "ref/2d/draw2d.h"
 
 #include <algorithm>
 #include <optional>
 #include <vector>
 
-#include "ref/circle_raster.h"
-#include "ref/line_raster.h"
-#include "ref/point_raster.h"
-#include "ref/polygon_fill.h"
-#include "ref/raster2d.h"
-#include "ref/text_raster.h"
+#include "ref/2d/circle_raster.h"
+#include "ref/2d/line_raster.h"
+#include "ref/2d/point_raster.h"
+#include "ref/2d/polygon_fill.h"
+#include "ref/2d/raster2d.h"
+#include "ref/2d/text_raster.h"
 
 namespace rastsim {
 

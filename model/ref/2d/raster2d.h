@@ -6,7 +6,7 @@
 //   screen: pixel (x, y) uses row y mod 8, column x mod 8 (mod taken towards -inf). A 1
 //   bit takes the foreground colour, a 0 bit the background colour. A solid pattern is
 //   the foreground everywhere.
-// - Every written pixel goes through ROP3 per colour channel (ref/rop3.h) with P the
+// - Every written pixel goes through ROP3 per colour channel (ref/2d/rop3.h) with P the
 //   pattern colour at that pixel, S the source pixel (blit only) and D the destination;
 //   alpha is written 255.
 // - Clipping: fills are clipped to `clip` (the framebuffer, viewport and scissor);

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "ref/polygon_fill.h"
+#include "ref/2d/polygon_fill.h"
 
 #include <algorithm>
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "ref/text_raster.h"
+#include "ref/2d/text_raster.h"
 
 namespace rastsim {
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "harness.h"
+#include "sim_harness.h"
 
 #include <gtest/gtest.h>
 

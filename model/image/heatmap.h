@@ -6,7 +6,7 @@
 //   from 0 to the costliest tile) at 65 % opacity; tiles of zero cost stay clear.
 // - A colour bar on the right with tick labels in cycles, and a legend above: what is
 //   counted, the tile size, the maximum and the total. Text in the 2D engine's font
-//   (ref/font.h), so no font library is needed.
+//   (ref/2d/font.h), so no font library is needed.
 #pragma once
 
 #include <cstdint>

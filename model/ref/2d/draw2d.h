@@ -5,7 +5,7 @@
 //   operations (Op2d) with the geometry of line_raster, point_raster, circle_raster,
 //   polygon_fill and text_raster. It reads no pixel.
 // - The engine, execute_op2d: one operation on the framebuffer through the pattern and
-//   ROP3 (ref/raster2d.h). The SystemC engine2d stage and the RTL rast_engine2d execute
+//   ROP3 (ref/2d/raster2d.h). The SystemC engine2d stage and the RTL rast_engine2d execute
 //   the same operations; their cost equations are on TimingParams.
 //
 // - Coordinates of points, lines and polygons are snapped like triangle vertices
@@ -20,7 +20,7 @@
 #include <vector>
 
 #include "ref/framebuffer.h"
-#include "ref/raster2d.h"
+#include "ref/2d/raster2d.h"
 #include "ref/raster_state.h"
 #include "ref/scene.h"
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "ref/coord_fit.h"
+#include "ref/study/coord_fit.h"
 
 #include <zlib.h>
 

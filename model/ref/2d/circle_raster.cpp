@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "ref/circle_raster.h"
+#include "ref/2d/circle_raster.h"
 
 #include <cmath>
 

@@ -23,7 +23,7 @@
 #include <utility>
 #include <vector>
 
-#include "ref/circle_raster.h"
+#include "ref/2d/circle_raster.h"
 
 namespace rastsim {
 

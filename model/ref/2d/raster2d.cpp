@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "ref/raster2d.h"
+#include "ref/2d/raster2d.h"
 
 #include <algorithm>
 #include <utility>
 
-#include "ref/rop3.h"
+#include "ref/2d/rop3.h"
 
 namespace rastsim {
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "ref/line_raster.h"
+#include "ref/2d/line_raster.h"
 
 #include <numeric>
 

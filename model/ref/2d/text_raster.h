@@ -20,7 +20,7 @@
 #include <cstdint>
 #include <string_view>
 
-#include "ref/font.h"
+#include "ref/2d/font.h"
 #include "ref/scene.h"
 
 namespace rastsim {

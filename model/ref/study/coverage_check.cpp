@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "ref/coverage_check.h"
+#include "ref/study/coverage_check.h"
 
 #include "ref/fine_raster.h"
 

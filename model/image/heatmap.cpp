@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "display/heatmap.h"
+#include "image/heatmap.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <numeric>
 
-#include "ref/font.h"
+#include "ref/2d/font.h"
 
 namespace rastsim {
 

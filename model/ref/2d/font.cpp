@@ -6,7 +6,7 @@
 // Picture format: a header "@HH c" (HH = the character code in hex, c = the character
 // for the reader), then 7 to 9 rows of '#' (ink) and '.' (paper), all of one width
 // 1..kFontMaxWidth. Rows not given are paper; only descenders use rows 7 and 8.
-#include "ref/font.h"
+#include "ref/2d/font.h"
 
 #include <stdexcept>
 #include <string>

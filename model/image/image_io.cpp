@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "display/image_io.h"
+#include "image/image_io.h"
 
 #include <png.h>
 
