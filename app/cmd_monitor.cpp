@@ -12,11 +12,9 @@
 #include "display/signal_reader.h"
 #include "config/video_timing.h"
 #include "image/image_io.h"
+#include "video_json.h"
 
 namespace rastsim::app {
-
-nlohmann::json timing_json(const VideoTiming& t);     // cmd_scanout.cpp
-nlohmann::json measured_json(const MonitorResult& r);  // cmd_scanout.cpp
 
 void run_monitor_command(const MonitorOptions& o) {
   const Config cfg = load_config(o.config);

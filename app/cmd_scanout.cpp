@@ -18,6 +18,7 @@
 #include "scene/scene_io.h"
 #include "image/image_io.h"
 #include "config/raster_state_config.h"
+#include "video_json.h"
 
 namespace rastsim::app {
 

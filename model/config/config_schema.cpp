@@ -1,27 +1,14 @@
 // SPDX-License-Identifier: Apache-2.0
 // The configuration schema: every key rastsim reads, declared once.
-// Later stages (timed model, RTL export, scan-out) add their keys to this table.
+// The keys of display and raster setup are here; each further group of keys is in its
+// own config_schema_*.cpp (config_schema.h).
 #include <sstream>
 
 #include "config/config.h"
+#include "config/config_schema.h"
 #include "ref/fixed_point.h"
 
 namespace rastsim {
-
-// Keys of the timed model (clock, stage latencies/throughputs, FIFO depths), declared in
-// config_schema_timing.cpp next to nothing else.
-void add_timing_params(std::vector<ParamDef>& schema);
-// Keys of video timing, the DAC and scan-out, declared in config_schema_scanout.cpp.
-void add_scanout_params(std::vector<ParamDef>& schema);
-// Keys of the 2D primitives (lines, polygons), declared in config_schema_2d.cpp.
-void add_2d_params(std::vector<ParamDef>& schema);
-// Keys of the triangle traversal method, declared in config_schema_traversal.cpp.
-void add_traversal_params(std::vector<ParamDef>& schema);
-void add_aa_params(std::vector<ParamDef>& schema);
-// Keys of the attribute interpolation method, declared in config_schema_interp.cpp.
-void add_interp_params(std::vector<ParamDef>& schema);
-// Keys of OBJ mesh placement (up axis, yaw, pitch, fill), in config_schema_scene.cpp.
-void add_scene_params(std::vector<ParamDef>& schema);
 
 namespace {
 

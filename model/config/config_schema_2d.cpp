@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // Keys of the 2D primitives (docs/2d.md): the line rasterization method and its
 // arithmetic, and the polygon fill rule. Sweepable like any key.
-#include "config/config.h"
+#include "config/config_schema.h"
 
 namespace rastsim {
 

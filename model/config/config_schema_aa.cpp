@@ -2,7 +2,7 @@
 // Keys of multisample anti-aliasing (docs/antialiasing.md): raster.samples at the
 // standard D3D11 / Vulkan positions (ref/sample_pattern.h), raster.aa_mode, and
 // raster.max_samples, the hardware's build-time maximum (the RTL's MaxSamples).
-#include "config/config.h"
+#include "config/config_schema.h"
 #include "ref/sample_pattern.h"
 
 namespace rastsim {

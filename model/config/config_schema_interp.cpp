@@ -2,7 +2,7 @@
 // Keys of the attribute interpolation method (docs/stability.md, "Interpolation"):
 // exact plane equations (the default) or the lecture notes' incremental span DDA, and
 // the DDA's arithmetic. Sweepable like any key.
-#include "config/config.h"
+#include "config/config_schema.h"
 
 namespace rastsim {
 

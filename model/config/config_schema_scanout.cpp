@@ -5,7 +5,7 @@
 // (Self-contained with config.cpp: tools that build only the config sources link it.)
 #include <cstdio>
 
-#include "config/config.h"
+#include "config/config_schema.h"
 #include "config/video_timing.h"
 
 namespace rastsim {

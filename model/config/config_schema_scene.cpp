@@ -2,7 +2,7 @@
 // Keys of OBJ mesh placement (model/scene/scene_obj.cpp): where a mesh lands on screen.
 // Not architecture: they choose the workload's view, so a real mesh (the Stanford bunny,
 // Y-up; glmark2's horse and cat, Z-up) can be shown upright from any side.
-#include "config/config.h"
+#include "config/config_schema.h"
 
 namespace rastsim {
 

@@ -7,13 +7,23 @@
 // cycles, 8 coverage samples and 4 fragments a cycle); configs/embedded.toml and
 // configs/desktop.toml are the small and large ends. docs/microarchitecture.md gives the
 // timing equation each key enters.
-#include "config/config.h"
+#include "config/config_schema.h"
 
 namespace rastsim {
 
-void add_timing_params(std::vector<ParamDef>& s) {
-  using T = ParamType;
-  auto add = [&](ParamDef d) { s.push_back(std::move(d)); };
+namespace {
+
+using T = ParamType;
+
+// Appends one key to the schema.
+struct AddKey {
+  std::vector<ParamDef>& schema;
+  void operator()(ParamDef d) const { schema.push_back(std::move(d)); }
+};
+
+// The clock and the stages ahead of the rasterizer: command fetch, primitive assembly,
+// triangle setup.
+void add_front_end_keys(const AddKey& add) {
   // ---- clock ----
   add({"clock.core_mhz", T::Float, 500.0, "MHz", 1, 10000, {},
        "Core clock of the raster pipeline; converts cycles to seconds in the stats (1 simulated ns = 1 cycle)"});
@@ -30,6 +40,10 @@ void add_timing_params(std::vector<ParamDef>& s) {
        "Initiation interval of triangle setup: cycles between two triangles entering it"});
   add({"setup.latency_cycles", T::Int, int64_t{12}, "cycles", 1, 4096, {},
        "Latency of triangle setup: cycles from a triangle entering to its edge equations leaving (>= interval)"});
+}
+
+// The coarse and fine rasterizer (tile walk, coverage tests, scanline spans).
+void add_raster_keys(const AddKey& add) {
   // ---- coarse raster ----
   add({"coarse.tiles_per_cycle", T::Int, int64_t{1}, "tiles/cycle", 1, 64, {},
        "Tiles the coarse walker classifies (early-out / early-in) per cycle, at every level of "
@@ -46,6 +60,10 @@ void add_timing_params(std::vector<ParamDef>& s) {
        "raster.traversal = scanline: cycles the span filler spends on each span before its pixels"});
   add({"fine.span_pixels_per_cycle", T::Int, int64_t{8}, "pixels/cycle", 1, 4096, {},
        "raster.traversal = scanline: pixels of one span the span filler emits per cycle"});
+}
+
+// The stages after the rasterizer: attribute interpolation and the ROP.
+void add_back_end_keys(const AddKey& add) {
   // ---- attribute interpolation ----
   add({"interp.fragments_per_cycle", T::Int, int64_t{4}, "fragments/cycle", 1, 1024, {},
        "Fragments whose colour and depth are interpolated per cycle"});
@@ -59,9 +77,12 @@ void add_timing_params(std::vector<ParamDef>& s) {
   add({"rop.resolve_bytes_per_cycle", T::Int, int64_t{64}, "bytes/cycle", 1, 1 << 20, {},
        "Bandwidth of the frame-end multisample resolve pass (raster.samples > 1): it reads W x H x samples x 4 "
        "bytes and writes W x H x 4"});
-  // ---- FIFOs between stages (depth in transactions) ----
-  // The 2D path (docs/2d.md, "Timing"): command fetch -> 2D front end -> 2D engine, the
-  // engine writing the framebuffer through the ROP's port while the ROP holds for it.
+}
+
+// The 2D path (docs/2d.md, "Timing"): command fetch -> 2D front end -> 2D engine, the
+// engine writing the framebuffer through the ROP's port while the ROP holds for it; its
+// two FIFOs' depths (in transactions) too.
+void add_2d_path_keys(const AddKey& add) {
   add({"setup2d.ops_per_cycle", T::Int, int64_t{1}, "operations/cycle", 1, 64, {},
        "Engine operations (spans, pixels, lines, blits) the 2D front end turns out per cycle; a command of N "
        "operations takes max(1, ceil(N / this))"});
@@ -79,7 +100,10 @@ void add_timing_params(std::vector<ParamDef>& s) {
        "Command fetch -> 2D front end FIFO (one entry: a 2D command)"});
   add({"fifo.op2d_depth", T::Int, int64_t{2}, "entries", 1, 65536, {},
        "2D front end -> 2D engine FIFO (one entry: one command's engine operations)"});
+}
 
+// The depths of the 3D pipeline's FIFOs between stages (in transactions).
+void add_fifo_keys(const AddKey& add) {
   add({"fifo.command_depth", T::Int, int64_t{8}, "entries", 1, 65536, {},
        "Command fetch -> primitive assembly FIFO (one entry: a state command or one triangle's vertices)"});
   add({"fifo.triangle_depth", T::Int, int64_t{4}, "entries", 1, 65536, {},
@@ -92,6 +116,17 @@ void add_timing_params(std::vector<ParamDef>& s) {
        "Fine raster -> interpolation FIFO (one entry: one tile's covered pixels)"});
   add({"fifo.fragment_depth", T::Int, int64_t{4}, "entries", 1, 65536, {},
        "Interpolation -> ROP FIFO (one entry: one tile's shaded fragments)"});
+}
+
+}  // namespace
+
+void add_timing_params(std::vector<ParamDef>& s) {
+  const AddKey add{s};
+  add_front_end_keys(add);
+  add_raster_keys(add);
+  add_back_end_keys(add);
+  add_2d_path_keys(add);
+  add_fifo_keys(add);
 }
 
 }  // namespace rastsim

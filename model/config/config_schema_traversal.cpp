@@ -2,7 +2,7 @@
 // Keys of the triangle traversal method (docs/traversal.md): raster.traversal and the
 // parameters of the hierarchical and scanline methods. Sweepable like any key (the
 // levels are '/'-separated so that `rastsim sweep --set` can list several with ',').
-#include "config/config.h"
+#include "config/config_schema.h"
 #include "ref/traverse.h"
 
 namespace rastsim {

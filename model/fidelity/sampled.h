@@ -112,7 +112,6 @@ struct SampledResult {
   double wall_seconds = 0;        // planning + the SystemC run + the estimator
   EstimateResult analytic;
 
-  double half_width() const { return 0.5 * (ci_high - ci_low); }
   // cycles, cycles_ci_low, cycles_ci_high, confidence, sample_fraction, units_total,
   // units_simulated, wall_seconds, fidelity_level = "sampled", and the details.
   nlohmann::json to_json() const;

@@ -29,10 +29,6 @@
 
 namespace rastsim {
 
-// The text layer shared with the trace parser, defined in scene_trace.cpp. (It has no
-// header of its own because this change may not add one; see docs/trace-format.md.)
-
-
 namespace {
 
 using scene_text::quote;

@@ -11,14 +11,8 @@
 //   or trusts a number's size before checking it.
 #include <algorithm>
 #include <cctype>
-#include <charconv>
-#include <cmath>
 #include <filesystem>
-#include <fstream>
-#include <functional>
-#include <limits>
 #include <optional>
-#include <sstream>
 #include <string_view>
 
 #include "ref/2d/font.h"

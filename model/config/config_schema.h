@@ -1,0 +1,28 @@
+// SPDX-License-Identifier: Apache-2.0
+// The parts of the configuration schema (config_schema() in config.h): one function a
+// group of keys, each defined in its own config_schema_*.cpp and appended by
+// config_schema.cpp in this order. Internal to rastsim_config.
+#pragma once
+
+#include <vector>
+
+#include "config/config.h"
+
+namespace rastsim {
+
+// Keys of the triangle traversal method.
+void add_traversal_params(std::vector<ParamDef>& schema);  // config_schema_traversal.cpp
+// Keys of multisample anti-aliasing (samples, mode, build-time maximum).
+void add_aa_params(std::vector<ParamDef>& schema);  // config_schema_aa.cpp
+// Keys of OBJ mesh placement (up axis, yaw, pitch, fill).
+void add_scene_params(std::vector<ParamDef>& schema);  // config_schema_scene.cpp
+// Keys of the timed model (clock, stage latencies/throughputs, FIFO depths).
+void add_timing_params(std::vector<ParamDef>& schema);  // config_schema_timing.cpp
+// Keys of video timing, the DAC and scan-out.
+void add_scanout_params(std::vector<ParamDef>& schema);  // config_schema_scanout.cpp
+// Keys of the 2D primitives (lines, polygons).
+void add_2d_params(std::vector<ParamDef>& schema);  // config_schema_2d.cpp
+// Keys of the attribute interpolation method.
+void add_interp_params(std::vector<ParamDef>& schema);  // config_schema_interp.cpp
+
+}  // namespace rastsim
