@@ -5,8 +5,9 @@
 #include <filesystem>
 #include <stdexcept>
 
-#include "rtl/cosim_driver.h"
+#include "rtl/testbench.h"
 #include "rtl/cosim_setup.h"
+#include "report/stats_json.h"
 #include "rtl/rtl_cache.h"
 
 namespace rastsim::cosim {
@@ -81,6 +82,30 @@ RtlCacheEntry on_demand_model(const Config& cfg, const CosimOptions& opts, const
 }
 
 }  // namespace
+
+nlohmann::json CosimResult::to_json(const CosimOptions& opts) const {
+  return {{"rtl_model", rtl_config},
+          {"rtl_model_dir", rtl_model_dir},
+          {"rtl_cache_hit", rtl_cache_hit},
+          {"rtl_build_seconds", rtl_build_seconds},
+          {"cycles_rtl", cycles_rtl},
+          {"fragments_expected", fragments_expected},
+          {"fragments_compared", fragments_compared},
+          {"mismatches", mismatches},
+          {"commands_2d", commands_2d},
+          {"pixels_2d", pixels_2d},
+          {"samples", samples},
+          {"rop_accesses", rop_accesses},
+          {"resolve_cycles", resolve_cycles},
+          {"framebuffer_crc32_rtl", crc32_hex(crc_rtl)},
+          {"framebuffer_crc32_ref", crc32_hex(crc_ref)},
+          {"first_mismatch", first_mismatch},
+          {"backpressure", opts.backpressure},
+          {"valid_gaps", opts.valid_gaps},
+          {"seed", opts.stress_seed},
+          {"rtl_wall_seconds", wall_seconds},
+          {"rtl_cycles_per_second", wall_seconds > 0 ? double(cycles_rtl) / wall_seconds : 0.0}};
+}
 
 std::vector<RtlModelInfo> rtl_models() {
   std::vector<RtlModelInfo> v;

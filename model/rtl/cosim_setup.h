@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // One co-simulation run's testbench before any model is clocked: the checks a config
 // must pass to run on the RTL, the parameters it needs, and the stimulus, expected
-// fragments and reference image (TbSetup, cosim_driver.h). Shared by run_cosim (the
+// fragments and reference image (TbSetup, testbench.h). Shared by run_cosim (the
 // shipped models, in the calling process) and the on-demand runner (rtl_runner_main.cpp,
 // a process of its own, built into the cache by rtl_cache.cpp), so both run the same
 // testbench. Internal to model/rtl; callers use cosim.h.
@@ -15,7 +15,7 @@
 
 namespace rastsim::cosim {
 
-struct TbSetup;  // cosim_driver.h (which names the verilated headers)
+struct TbSetup;  // testbench.h
 
 // Throws, naming the config's key, when the RTL cannot run `cfg` (raster.traversal,
 // interp.method, raster.aa_mode, the tile size); else the parameters a model must be

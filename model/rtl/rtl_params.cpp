@@ -78,7 +78,34 @@ constexpr ParamField<ScanoutRtlParams> kScanoutFields[] = {
     {"DacBits", &ScanoutRtlParams::dac_bits, "DAC code width a channel (dac.bits)"},
 };
 
+constexpr ParamField<Engine2dRtlParams> kEngine2dFields[] = {
+    {"Width", &Engine2dRtlParams::width, "bits of a signed pixel index"},
+    {"LanesMax", &Engine2dRtlParams::lanes_max, "largest engine2d.fill_pixels_per_cycle"},
+};
+
+// Bits of the 2D engine's signed pixel indices: a 2D command's coordinates, clipped or
+// not (a line's far end, a blit's source), with room above the largest framebuffer.
+constexpr int kEngine2dIndexBits = 20;
+
 }  // namespace
+
+const Engine2dRtlParams& engine2d_rtl_params() {
+  static const Engine2dRtlParams p{
+      kEngine2dIndexBits, static_cast<int>(find_param("engine2d.fill_pixels_per_cycle")->max)};
+  return p;
+}
+
+bool engine2d_rtl_params_compatible(const Engine2dRtlParams& built, const Engine2dRtlParams& wanted,
+                                    std::string* why) {
+  for (const auto& f : kEngine2dFields) {
+    if (built.*f.member == wanted.*f.member) continue;
+    if (why)
+      *why = std::string(f.name) + " is " + std::to_string(wanted.*f.member) + " (" + f.comment +
+             "), the RTL was built with " + std::to_string(built.*f.member);
+    return false;
+  }
+  return true;
+}
 
 ScanoutRtlParams scanout_rtl_params_from_config(const Config& cfg) {
   const VideoTiming t = video_timing_from_config(cfg);

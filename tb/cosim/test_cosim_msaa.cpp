@@ -108,7 +108,7 @@ TEST(MsaaDirectedCosim, EdgeCasesAtEverySampleCount) {
       CosimOptions o;
       o.tile_size = 8;
       o.backpressure = 0.5;
-      o.backpressure_seed = 3;
+      o.stress_seed = 3;
       const CosimResult r = run_cosim(msaa_directed_scene(cfg), cfg, o);
       expect_clean(r);
       EXPECT_EQ(r.crc_rtl, r.crc_ref);

@@ -8,7 +8,7 @@
 //   random scene of ~400 triangles of both windings (quads split along a diagonal,
 //   fans around a vertex on a pixel centre, free triangles), edges through pixel
 //   centres and shared edges, compared fragment by fragment with the reference model
-//   under random backpressure (seeded; the seed is printed).
+//   under random backpressure and valid gaps (seeded; the seed is printed).
 // - BackFaceCull: triangles culled as back faces produce no fragments and cost setup's
 //   interval like any culled triangle (the model's rule: the same cycles as zero-area
 //   triangles); the same triangles are drawn when they face front.
@@ -95,7 +95,7 @@ struct StateCase {
   const char* fill;   // raster.fill_rule
   const char* cull;   // raster.cull
   const char* front;  // raster.front_face
-  uint64_t seed;      // of the scene and the backpressure
+  uint64_t seed;      // of the scene and the stress
 };
 void PrintTo(const StateCase& k, std::ostream* os) {
   *os << "fill_rule=" << k.fill << " cull=" << k.cull << " front_face=" << k.front << " seed=" << k.seed;
@@ -110,7 +110,7 @@ TEST_P(RasterStateCosim, MixedWindingsMatchReference) {
   cfg.apply_override(std::string("raster.cull=") + k.cull);
   cfg.apply_override(std::string("raster.front_face=") + k.front);
   const uint64_t seed = k.seed;
-  std::cout << "seed " << seed << " (scene and backpressure)\n";
+  std::cout << "seed " << seed << " (scene and stress)\n";
   const int w = static_cast<int>(cfg.get_int("display.width")), h = static_cast<int>(cfg.get_int("display.height"));
   int cw = 0, ccw = 0;
   const Scene scene = state_scene(seed, 400, w, h, &cw, &ccw);
@@ -127,7 +127,8 @@ TEST_P(RasterStateCosim, MixedWindingsMatchReference) {
   CosimOptions o;
   o.tile_size = 8;
   o.backpressure = 0.2;
-  o.backpressure_seed = seed;
+  o.valid_gaps = 0.2;
+  o.stress_seed = seed;
   const CosimResult r = run_cosim(scene, cfg, o);
   std::cout << r.rtl_config << ": " << r.fragments_compared << " fragments, " << r.cycles_rtl << " cycles, "
             << r.wall_seconds << " s\n";

@@ -29,7 +29,7 @@ TEST(RtlRunnerRequest, CarriesEveryConfigValueAndOrigin) {
   CosimOptions o;
   o.tile_size = 4;
   o.backpressure = 0.25;
-  o.backpressure_seed = 7;
+  o.stress_seed = 7;
   o.fst_path = "w.fst";
   const RunnerRequest q = read_runner_request(nlohmann::json::parse(runner_request(scene, cfg, o).dump()));
   ASSERT_EQ(q.config.values().size(), cfg.values().size());
@@ -43,7 +43,7 @@ TEST(RtlRunnerRequest, CarriesEveryConfigValueAndOrigin) {
   EXPECT_EQ(q.scene_commands, 3u);
   EXPECT_EQ(q.options.tile_size, 4);
   EXPECT_EQ(q.options.backpressure, 0.25);
-  EXPECT_EQ(q.options.backpressure_seed, 7u);
+  EXPECT_EQ(q.options.stress_seed, 7u);
   EXPECT_EQ(q.options.fst_path, "w.fst");
   EXPECT_EQ(q.options.max_cycles, o.max_cycles);
 }

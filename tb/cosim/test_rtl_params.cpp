@@ -91,5 +91,20 @@ TEST(RtlParamsValues, RoundTripAndWrongCount) {
   EXPECT_THROW(rtl_params_from_values({1, 2, 3}), std::invalid_argument);
 }
 
+// The 2D engine's lanes are the schema's largest engine2d.fill_pixels_per_cycle (the
+// verilated engine is checked against the table at every run, cosim_driver.h); a
+// differing parameter is named.
+TEST(Engine2dRtlParams, LanesFromTheSchemaAndMismatchNamed) {
+  const Engine2dRtlParams& p = engine2d_rtl_params();
+  EXPECT_EQ(p.lanes_max, int(find_param("engine2d.fill_pixels_per_cycle")->max));
+  EXPECT_GT(p.width, 0);
+  std::string why;
+  EXPECT_TRUE(engine2d_rtl_params_compatible(p, p, &why));
+  Engine2dRtlParams narrow = p;
+  narrow.lanes_max = p.lanes_max / 2;
+  EXPECT_FALSE(engine2d_rtl_params_compatible(narrow, p, &why));
+  EXPECT_NE(why.find("LanesMax is " + std::to_string(p.lanes_max)), std::string::npos) << why;
+}
+
 }  // namespace
 }  // namespace rastsim::cosim
