@@ -43,7 +43,7 @@ void print_table(std::ostream& os, const AreaReport& r) {
 
 void run_area_command(const AreaCommandOptions& o) {
   const Config cfg = load_config(o.config);
-  const RtlParams p = rtl_params_from_config(cfg);
+  const RtlParams p = rtl_params(ArchParams::resolve(cfg));
   AreaOptions ao;
   ao.top = o.top;
   ao.use_cache = !o.no_cache;

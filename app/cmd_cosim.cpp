@@ -66,119 +66,141 @@ void report_stages(const std::vector<cosim::StageAgreement>& a, const std::strin
             << "\n";
 }
 
+// The options of one `rastsim cosim` (register_cosim).
+struct CosimCommand {
+  ConfigOptions config;
+  std::string scene_path, stats_path, trace_diff_dir;
+  cosim::CosimOptions run;
+  bool no_model = false, build_only = false, simulate_stats = false;
+  double max_error = -1;
+};
+
+// --rtl-build-only: the config's model, shipped or built into the cache.
+void build_rtl_model(const ArchParams& arch, const cosim::CosimOptions& co) {
+  const cosim::RtlModelChoice m = cosim::prepare_rtl_model(arch, co);
+  std::cout << "cosim: RTL model " << m.name
+            << (m.dir.empty() ? " (shipped)" : (m.cache_hit ? " (in the cache: " : " (built: ") + m.dir + ")") << "\n";
+}
+
+// The RTL run's summary lines on stdout; the stress seed whenever a stress was on.
+void print_rtl_run(const cosim::CosimResult& r, const cosim::CosimOptions& co) {
+  if (!r.rtl_model_dir.empty())
+    std::cout << "cosim: on-demand RTL model " << r.rtl_model_dir
+              << (r.rtl_cache_hit ? " (cache hit)" : " (built in " + std::to_string(r.rtl_build_seconds) + " s)")
+              << "\n";
+  std::cout << "cosim: RTL model " << r.rtl_config << ", " << r.triangles << " triangles, " << r.cycles_rtl
+            << " cycles (" << r.wall_seconds << " s wall), " << r.fragments_compared << " fragments compared, "
+            << r.mismatches << " mismatches";
+  if (r.commands_2d) std::cout << ", " << r.commands_2d << " 2D commands (" << r.pixels_2d << " pixels)";
+  std::cout << ", crc32 " << crc32_hex(r.crc_rtl)
+            << (r.crc_rtl == r.crc_ref ? " (= reference)" : " (reference " + crc32_hex(r.crc_ref) + ")");
+  if (co.backpressure > 0 || co.valid_gaps > 0) {
+    std::cout << " (backpressure " << co.backpressure;
+    if (co.valid_gaps > 0) std::cout << ", valid gaps " << co.valid_gaps;
+    std::cout << ", seed " << co.stress_seed << ")";
+  }
+  std::cout << "\n";
+  if (!r.first_mismatch.empty()) std::cout << "cosim: first mismatch: " << r.first_mismatch << "\n";
+}
+
+// The SystemC model on the same scene: its cycles and error into `j` (with
+// --simulate-stats its whole stats under simulate's names), the per-stage comparison.
+void compare_with_model(const Scene& scene, const ArchParams& arch, const CosimCommand& c, const cosim::CosimResult& r,
+                        nlohmann::json& j) {
+  sc::SimOptions so;
+  so.spans = !c.trace_diff_dir.empty();
+  const sc::SimResult m = sc::simulate_scene(scene, arch, so);
+  const double err = r.cycles_rtl ? (double(m.cycles) - double(r.cycles_rtl)) / double(r.cycles_rtl) : 0.0;
+  j["cycles_model"] = m.cycles;
+  j["cycle_error"] = err;
+  j["model_wall_seconds"] = m.sim_wall_seconds;
+  if (c.simulate_stats) {
+    // The SystemC figures under simulate's names, the RTL's beside them (cosim's own
+    // names win where both have one: config, scene).
+    nlohmann::json s = m.to_json();
+    s["fidelity_level"] = "systemc";
+    s.update(j);
+    j = s;
+  }
+  std::cout << "cosim: cycles_rtl " << r.cycles_rtl << ", cycles_model " << m.cycles << ", error "
+            << std::round(err * 10000) / 100 << " %\n";
+  report_stages(cosim::compare_stages(cosim::stage_records(m.stages), r.stages), c.trace_diff_dir, j);
+}
+
+// One `rastsim cosim` run: the RTL against the reference, then (unless --no-model) the
+// SystemC model; the stats, and the failures --max-error and a mismatch make.
+void run_cosim_command(CosimCommand& c) {
+  const ArchParams arch = resolve_arch(c.config);
+  if (c.build_only) {
+    build_rtl_model(arch, c.run);
+    return;
+  }
+  if (c.scene_path.empty()) throw std::runtime_error("cosim: --scene is required (unless --rtl-build-only)");
+  if (c.simulate_stats && c.no_model)
+    throw std::runtime_error("cosim: --simulate-stats needs the SystemC model (drop --no-model)");
+  const Scene scene = load_scene(c.scene_path, arch.placement);
+  if (!c.trace_diff_dir.empty() && c.no_model)
+    throw std::runtime_error("--trace-diff needs the SystemC model (drop --no-model)");
+  c.run.record_transactions = !c.trace_diff_dir.empty();
+  const cosim::CosimResult r = cosim::run_cosim(scene, arch, c.run);
+  nlohmann::json j = r.to_json(c.run);
+  j["config"] = arch.config.source_name();
+  j["scene"] = c.scene_path;
+  print_rtl_run(r, c.run);
+  if (!c.no_model) compare_with_model(scene, arch, c, r, j);
+  if (!c.stats_path.empty()) write_json(c.stats_path, j);
+  if (!c.no_model && c.max_error >= 0 && std::abs(j["cycle_error"].get<double>()) > c.max_error)
+    throw std::runtime_error("cycle error of the SystemC model exceeds " + std::to_string(c.max_error));
+  if (r.mismatches) throw std::runtime_error(std::to_string(r.mismatches) + " mismatches (fragments or framebuffer)");
+}
+
+// The stress and waveform options of the RTL run.
+void add_rtl_run_options(CLI::App* cmd, cosim::CosimOptions& co) {
+  cmd->add_option("--fst", co.fst_path, "Write an FST waveform of the RTL");
+  cmd->add_option("--backpressure", co.backpressure,
+                  "Probability that the ROP refuses fragments (frag_ready_i low) in a cycle (random, seeded by --seed; "
+                  "changes cycles_rtl)")
+      ->check(CLI::Range(0.0, 1.0));
+  cmd->add_option("--valid-gaps", co.valid_gaps,
+                  "Probability that the testbench holds an offered triangle (tri_valid_i) or 2D operation "
+                  "(in_valid_i) back in a cycle (random, seeded by --seed; changes cycles_rtl)")
+      ->check(CLI::Range(0.0, 1.0));
+  cmd->add_option("--seed", co.stress_seed,
+                  "Seed of the random backpressure and valid gaps (printed; the same seed replays the run)");
+  cmd->add_option("--rtl-model", co.rtl_model,
+                  "Run this verilated model: a shipped config's name (default, d3d11, embedded, desktop) or "
+                  "default_circuit, the default config with rast_divider as the circuit Yosys synthesises instead "
+                  "of the simulation form the other models use (docs/rtl.md); it must fit the config");
+}
+
 }  // namespace
 
 void register_cosim(CLI::App& app) {
   auto* cmd = app.add_subcommand(
       "cosim", "Co-simulate the Verilog RTL against the reference model (fragments) and the SystemC model (cycles)");
-  static ConfigOptions opts;
-  static std::string scene_path, stats_path, trace_diff_dir;
-  static cosim::CosimOptions co;
-  static bool no_model = false, build_only = false, simulate_stats = false;
-  static double max_error = -1;
-  add_config_options(cmd, opts);
-  add_scene_option(cmd, scene_path);
+  static CosimCommand c;
+  add_config_options(cmd, c.config);
+  add_scene_option(cmd, c.scene_path);
   cmd->get_option("--scene")->required(false);  // not with --rtl-build-only (checked below)
-  cmd->add_option("--fst", co.fst_path, "Write an FST waveform of the RTL");
-  cmd->add_option("--stats", stats_path,
+  add_rtl_run_options(cmd, c.run);
+  cmd->add_option("--stats", c.stats_path,
                   "Write cycles_rtl, cycles_model, cycle_error, fragments_compared, mismatches, per stage "
                   "stages.<name>.{busy,stalled,starved}_{rtl,model} and busy_error, stage_worst_busy_error, ... "
                   "as JSON ('-' for stdout)");
-  cmd->add_option("--backpressure", co.backpressure,
-                  "Probability that the ROP refuses fragments in a cycle (random, seeded; changes cycles_rtl)")
-      ->check(CLI::Range(0.0, 1.0));
-  cmd->add_option("--seed", co.backpressure_seed, "Seed of the random backpressure");
-  cmd->add_option("--max-error", max_error,
+  cmd->add_option("--max-error", c.max_error,
                   "Fail when |cycles_model - cycles_rtl| / cycles_rtl exceeds this (e.g. 0.05; default: report only)");
-  cmd->add_flag("--no-model", no_model, "Do not run the SystemC model (fragment check only)");
-  cmd->add_option("--rtl-model", co.rtl_model,
-                  "Run this verilated model: a shipped config's name (default, d3d11, embedded, desktop) or "
-                  "default_circuit, the default config with rast_divider as the circuit Yosys synthesises instead "
-                  "of the simulation form the other models use (docs/rtl.md); it must fit the config");
-  cmd->add_flag("--rtl-build-only", build_only,
+  cmd->add_flag("--no-model", c.no_model, "Do not run the SystemC model (fragment check only)");
+  cmd->add_flag("--rtl-build-only", c.build_only,
                 "Only make sure the config's RTL model exists: a shipped one, else build it into the cache "
                 "($RASTSIM_CACHE/rtl, else ~/.cache/rastsim/rtl; docs/rtl.md) and print where; no scene needed");
-  cmd->add_flag("--simulate-stats", simulate_stats,
+  cmd->add_flag("--simulate-stats", c.simulate_stats,
                 "With --stats: the SystemC model's whole stats (as `simulate --stats`: cycles, stages.*, ...) with "
                 "cycles_rtl, mismatches, cycle_error and the RTL model's keys beside them (a `sweep --level cosim` "
                 "row)");
-  cmd->add_option("--trace-diff", trace_diff_dir,
+  cmd->add_option("--trace-diff", c.trace_diff_dir,
                   "Write DIR/model.csv and DIR/rtl.csv: every stage's transactions (stage,transaction,start_cycle,"
                   "end_cycle) on both sides in the same row order, and print the first whose timing differs");
-  cmd->callback([] {
-    const Config cfg = load_config(opts);
-    if (build_only) {
-      const cosim::RtlModelChoice m = cosim::prepare_rtl_model(cfg, co);
-      std::cout << "cosim: RTL model " << m.name
-                << (m.dir.empty() ? " (shipped)" : (m.cache_hit ? " (in the cache: " : " (built: ") + m.dir + ")")
-                << "\n";
-      return;
-    }
-    if (scene_path.empty()) throw std::runtime_error("cosim: --scene is required (unless --rtl-build-only)");
-    if (simulate_stats && no_model) throw std::runtime_error("cosim: --simulate-stats needs the SystemC model (drop --no-model)");
-    const Scene scene = load_scene(scene_path, obj_placement_from_config(cfg));
-    if (!trace_diff_dir.empty() && no_model) throw std::runtime_error("--trace-diff needs the SystemC model (drop --no-model)");
-    co.record_transactions = !trace_diff_dir.empty();
-    const cosim::CosimResult r = cosim::run_cosim(scene, cfg, co);
-    nlohmann::json j = {{"config", cfg.source_name()},
-                        {"scene", scene_path},
-                        {"rtl_model", r.rtl_config},
-                        {"rtl_model_dir", r.rtl_model_dir},
-                        {"rtl_cache_hit", r.rtl_cache_hit},
-                        {"rtl_build_seconds", r.rtl_build_seconds},
-                        {"cycles_rtl", r.cycles_rtl},
-                        {"fragments_expected", r.fragments_expected},
-                        {"fragments_compared", r.fragments_compared},
-                        {"mismatches", r.mismatches},
-                        {"commands_2d", r.commands_2d},
-                        {"pixels_2d", r.pixels_2d},
-                        {"samples", r.samples},
-                        {"rop_accesses", r.rop_accesses},
-                        {"resolve_cycles", r.resolve_cycles},
-                        {"framebuffer_crc32_rtl", crc32_hex(r.crc_rtl)},
-                        {"framebuffer_crc32_ref", crc32_hex(r.crc_ref)},
-                        {"first_mismatch", r.first_mismatch},
-                        {"backpressure", co.backpressure},
-                        {"seed", co.backpressure_seed},
-                        {"rtl_wall_seconds", r.wall_seconds},
-                        {"rtl_cycles_per_second", r.wall_seconds > 0 ? double(r.cycles_rtl) / r.wall_seconds : 0.0}};
-    if (!r.rtl_model_dir.empty())
-      std::cout << "cosim: on-demand RTL model " << r.rtl_model_dir
-                << (r.rtl_cache_hit ? " (cache hit)" : " (built in " + std::to_string(r.rtl_build_seconds) + " s)")
-                << "\n";
-    std::cout << "cosim: RTL model " << r.rtl_config << ", " << r.triangles << " triangles, " << r.cycles_rtl
-              << " cycles (" << r.wall_seconds << " s wall), " << r.fragments_compared << " fragments compared, "
-              << r.mismatches << " mismatches";
-    if (r.commands_2d) std::cout << ", " << r.commands_2d << " 2D commands (" << r.pixels_2d << " pixels)";
-    std::cout << ", crc32 " << crc32_hex(r.crc_rtl) << (r.crc_rtl == r.crc_ref ? " (= reference)" : " (reference " + crc32_hex(r.crc_ref) + ")");
-    if (co.backpressure > 0) std::cout << " (backpressure " << co.backpressure << ", seed " << co.backpressure_seed << ")";
-    std::cout << "\n";
-    if (!r.first_mismatch.empty()) std::cout << "cosim: first mismatch: " << r.first_mismatch << "\n";
-    if (!no_model) {
-      sc::SimOptions so;
-      so.spans = !trace_diff_dir.empty();
-      const sc::SimResult m = sc::simulate_scene(scene, ArchParams::resolve(cfg), so);
-      const double err = r.cycles_rtl ? (double(m.cycles) - double(r.cycles_rtl)) / double(r.cycles_rtl) : 0.0;
-      j["cycles_model"] = m.cycles;
-      j["cycle_error"] = err;
-      j["model_wall_seconds"] = m.sim_wall_seconds;
-      if (simulate_stats) {
-        // The SystemC figures under simulate's names, the RTL's beside them (cosim's
-        // own names win where both have one: config, scene).
-        nlohmann::json s = m.to_json();
-        s["fidelity_level"] = "systemc";
-        s.update(j);
-        j = s;
-      }
-      std::cout << "cosim: cycles_rtl " << r.cycles_rtl << ", cycles_model " << m.cycles << ", error "
-                << std::round(err * 10000) / 100 << " %\n";
-      report_stages(cosim::compare_stages(cosim::stage_records(m.stages), r.stages), trace_diff_dir, j);
-    }
-    if (!stats_path.empty()) write_json(stats_path, j);
-    if (!no_model && max_error >= 0 && std::abs(j["cycle_error"].get<double>()) > max_error)
-      throw std::runtime_error("cycle error of the SystemC model exceeds " + std::to_string(max_error));
-    if (r.mismatches) throw std::runtime_error(std::to_string(r.mismatches) + " mismatches (fragments or framebuffer)");
-  });
+  cmd->callback([] { run_cosim_command(c); });
   register_rtl_cache(app);  // its cache's listing, next to it in --help
 }
 

@@ -17,7 +17,7 @@ void register_export_rtl(CLI::App& app) {
   cmd->add_option("-o,--output", out_path, "Header to write ('-' for stdout)");
   cmd->callback([] {
     const Config cfg = load_config(opts);
-    const std::string text = rtl_params_verilog(rtl_params_from_config(cfg), cfg.source_name());
+    const std::string text = rtl_params_verilog(rtl_params(ArchParams::resolve(cfg)), cfg.source_name());
     if (out_path == "-") {
       std::cout << text;
       return;

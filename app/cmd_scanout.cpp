@@ -237,7 +237,7 @@ void register_scanout(CLI::App& app) {
   exp->add_option("-o,--output", vh_path, "Verilog header to write ('-' for stdout)")->required();
   exp->callback([] {
     const Config cfg = load_config(eopts);
-    const std::string text = scanout_rtl_params_verilog(scanout_rtl_params_from_config(cfg), cfg.source_name());
+    const std::string text = scanout_rtl_params_verilog(scanout_rtl_params(ArchParams::resolve(cfg), DisplayParams::resolve(cfg)), cfg.source_name());
     if (vh_path == "-") {
       std::cout << text;
       return;

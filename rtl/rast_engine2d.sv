@@ -25,8 +25,10 @@
 `default_nettype none
 
 module rast_engine2d #(
-  parameter int Width    = 20,  // bits of a signed pixel index
-  parameter int LanesMax = 8    // largest engine2d.fill_pixels_per_cycle
+  // Public: the testbench checks them against its table (model/rtl/rtl_params.cpp,
+  // Engine2dRtlParams), which takes LanesMax from the config schema.
+  parameter int Width    /*verilator public*/ = 20,  // bits of a signed pixel index
+  parameter int LanesMax /*verilator public*/ = 8    // largest engine2d.fill_pixels_per_cycle
 ) (
   input  wire logic                       clk_i,            // core clock
   input  wire logic                       rst_ni,           // asynchronous reset, active low

@@ -78,12 +78,62 @@ module rast_top #(
 );
   localparam int MaskW = 1 << (2 * TileLog2Max);      // derived: coverage mask bits
   localparam int SMaskW = MaskW * MaxSamples;         // derived: sample mask bits of a tile
-  localparam int AttrW = 3 * DepthW + 3 * 24;         // derived: vertex attributes
-  localparam int EdgesW = 6 * CoefW + 3 * EdgeW + 3;  // derived: a, b, c, bias
-  localparam int TriW  = 1 + 6 * CoordW + 6 * PixelW + AttrW;                      // derived
-  localparam int SetW  = 1 + EdgesW + 4 * PixelW + 2 * PixelW + AreaW + AttrW;     // derived
-  localparam int TileW = 1 + 1 + 4 * PixelW + EdgesW + 2 * PixelW + AreaW + AttrW;  // derived
-  localparam int PixW  = 1 + MaskW + SMaskW + 2 * PixelW + EdgesW - 3 + 2 * PixelW + AreaW + AttrW;  // derived
+
+  // ---- Transaction bundles: what each FIFO holds, one field a line. A FIFO's width is
+  // derived from its bundle ($bits of a signal of its type: Yosys 0.23 takes $bits of a
+  // signal, not of a type). Per-vertex and per-edge fields are {2, 1, 0}.
+  typedef struct packed {
+    logic [3*DepthW-1:0] z;    // depth, unorm
+    logic [3*24-1:0]     rgb;  // colour {b, g, r}
+  } attr_t;
+  // A set-up triangle's edge functions E(x, y) = a x + b y + c (rast_tri_setup).
+  typedef struct packed {
+    logic [3*CoefW-1:0] a;     // signed
+    logic [3*CoefW-1:0] b;     // signed
+    logic [3*EdgeW-1:0] c;     // signed
+    logic [2:0]         bias;  // fill-rule bias of each edge
+  } edges_t;
+  // Triangle FIFO: a snapped triangle (or marker) with the state it was drawn in.
+  typedef struct packed {
+    logic                marker;
+    logic [3*CoordW-1:0] x;       // raw s.I.F
+    logic [3*CoordW-1:0] y;
+    logic [4*PixelW-1:0] clip;    // {y1, x1, y0, x0}, half-open px
+    logic [2*PixelW-1:0] origin;  // {y, x}: pixel of raw 0
+    attr_t               attr;
+  } tri_t;
+  // Setup FIFO: a set-up triangle.
+  typedef struct packed {
+    logic                marker;
+    edges_t              edges;
+    logic [4*PixelW-1:0] bbox;    // {y1, x1, y0, x0}
+    logic [2*PixelW-1:0] origin;
+    logic [AreaW-1:0]    area2;
+    attr_t               attr;
+  } set_t;
+  // Tile FIFO: one tile of a triangle.
+  typedef struct packed {
+    logic                marker;
+    logic                accepted;  // wholly covered: fine raster tests no sample
+    logic [4*PixelW-1:0] fp;        // footprint {y1, x1, y0, x0}
+    edges_t              edges;
+    logic [2*PixelW-1:0] origin;
+    logic [AreaW-1:0]    area2;
+    attr_t               attr;
+  } tile_t;
+  // Pixel FIFO: one tile's coverage; interpolation needs the edges but not their bias.
+  typedef struct packed {
+    logic                marker;
+    logic [MaskW-1:0]    mask;    // covered pixels
+    logic [SMaskW-1:0]   smask;   // covered samples, {pixel, sample}
+    logic [2*PixelW-1:0] tile;    // {y, x} of the tile
+    logic [3*CoefW-1:0]  a;
+    logic [3*CoefW-1:0]  b;
+    logic [3*EdgeW-1:0]  c;
+    logic [2*PixelW-1:0] origin;
+    logic [AreaW-1:0]    area2;
+    attr_t               attr;
+  } pix_t;
 
   // Elaboration-time checks of the exported parameters.
   if (SetupLatency < SetupInterval) begin : g_check_setup
@@ -144,138 +194,140 @@ module rast_top #(
   end
 
   // ---- Triangle FIFO (fifo.triangle_depth) ----
-  logic            t_valid, t_ready, t_marker, t_empty;
-  logic [TriW-1:0] t_data;
-  logic [3*CoordW-1:0] t_x, t_y;
-  logic [4*PixelW-1:0] t_clip;
-  logic [2*PixelW-1:0] t_origin;
-  logic [AttrW-1:0]    t_attr;
+  logic  t_valid, t_ready, t_empty;
+  tri_t  t_push, t_in;
+  attr_t t_attr;
+  localparam int TriW = $bits(t_push);   // derived
+  localparam int AttrW = $bits(t_attr);  // derived
+  assign t_push.marker = tri_marker_i;
+  assign t_push.x = {tri_x2_i, tri_x1_i, tri_x0_i};
+  assign t_push.y = {tri_y2_i, tri_y1_i, tri_y0_i};
+  assign t_push.clip = {tri_clip_y1_i, tri_clip_x1_i, tri_clip_y0_i, tri_clip_x0_i};
+  assign t_push.origin = {tri_origin_y_i, tri_origin_x_i};
+  assign t_push.attr.z = {tri_z2_i, tri_z1_i, tri_z0_i};
+  assign t_push.attr.rgb = {tri_rgb2_i, tri_rgb1_i, tri_rgb0_i};
   rast_fifo #(.Width(TriW), .Depth(TriangleFifoDepth)) u_triangle_fifo (
-    .clk_i, .rst_ni, .in_valid_i(tri_valid_i), .in_ready_o(tri_ready_o),
-    .in_data_i({tri_marker_i, tri_x2_i, tri_x1_i, tri_x0_i, tri_y2_i, tri_y1_i, tri_y0_i,
-                tri_clip_y1_i, tri_clip_x1_i, tri_clip_y0_i, tri_clip_x0_i, tri_origin_y_i, tri_origin_x_i,
-                tri_z2_i, tri_z1_i, tri_z0_i, tri_rgb2_i, tri_rgb1_i, tri_rgb0_i}),
-    .out_valid_o(t_valid), .out_ready_i(t_ready), .out_data_o(t_data), .empty_o(t_empty));
-  assign {t_marker, t_x, t_y, t_clip, t_origin, t_attr} = t_data;
+    .clk_i, .rst_ni, .in_valid_i(tri_valid_i), .in_ready_o(tri_ready_o), .in_data_i(t_push),
+    .out_valid_o(t_valid), .out_ready_i(t_ready), .out_data_o(t_in), .empty_o(t_empty));
+  assign t_attr = t_in.attr;
 
   // ---- Triangle setup ----
   logic                s_valid, s_ready, s_marker, s_busy, s_done;
-  logic [EdgesW-1:0]   s_edges;
   logic [3*CoefW-1:0]  s_a, s_b;
   logic [3*EdgeW-1:0]  s_c;
   logic [2:0]          s_bias;
   logic [AreaW-1:0]    s_area2;
   logic [4*PixelW-1:0] s_bbox;
   logic [2*PixelW-1:0] s_origin;
-  logic [AttrW-1:0]    s_attr;
+  attr_t               s_attr;
+  set_t                s_push;
+  localparam int SetW = $bits(s_push);  // derived
   rast_tri_setup #(
     .CoordW(CoordW), .CoordFrac(CoordFrac), .CoefW(CoefW), .EdgeW(EdgeW), .AreaW(AreaW),
     .PixelW(PixelW), .AttrW(AttrW), .SampleOffW(SampleOffW), .SetupInterval(SetupInterval)
   ) u_tri_setup (
     .clk_i, .rst_ni, .fill_rule_i(fill_rule_q), .cull_mode_i(cull_mode_q), .front_ccw_i(front_ccw_q), .box_i(box),
-    .in_valid_i(t_valid), .in_ready_o(t_ready), .in_marker_i(t_marker),
-    .in_x_i(t_x), .in_y_i(t_y), .in_clip_i(t_clip), .in_origin_i(t_origin), .in_attr_i(t_attr),
+    .in_valid_i(t_valid), .in_ready_o(t_ready), .in_marker_i(t_in.marker),
+    .in_x_i(t_in.x), .in_y_i(t_in.y), .in_clip_i(t_in.clip), .in_origin_i(t_in.origin), .in_attr_i(t_attr),
     .out_valid_o(s_valid), .out_ready_i(s_ready), .out_marker_o(s_marker), .out_a_o(s_a),
     .out_b_o(s_b), .out_c_o(s_c), .out_bias_o(s_bias), .out_area2_o(s_area2), .out_bbox_o(s_bbox),
     .out_origin_o(s_origin), .out_attr_o(s_attr), .busy_o(s_busy), .done_o(s_done));
-  assign s_edges = {s_a, s_b, s_c, s_bias};
+  assign s_push.marker = s_marker;
+  assign s_push.edges.a = s_a;
+  assign s_push.edges.b = s_b;
+  assign s_push.edges.c = s_c;
+  assign s_push.edges.bias = s_bias;
+  assign s_push.bbox = s_bbox;
+  assign s_push.origin = s_origin;
+  assign s_push.area2 = s_area2;
+  assign s_push.attr = s_attr;
 
   // ---- Setup FIFO (SetupFifoEntries: fifo.setup_depth plus the triangles inside setup's
   // latency pipeline, TimingParams::setup_fifo_entries; entries wait setup.latency -
   // interval cycles) ----
-  logic                c_valid, c_ready, c_marker, c_empty, c_busy;
-  logic                c_fifo_valid, c_fifo_ready;
-  logic [SetW-1:0]     c_data, c_fifo_data;
-  logic [EdgesW-1:0]   c_edges;
-  logic [3*CoefW-1:0]  c_a, c_b;
-  logic [3*EdgeW-1:0]  c_c;
-  logic [2:0]          c_bias;
-  logic [4*PixelW-1:0] c_bbox;
-  logic [2*PixelW-1:0] c_origin;
-  logic [AreaW-1:0]    c_area2;
-  logic [AttrW-1:0]    c_attr;
+  logic c_valid, c_ready, c_empty, c_busy;
+  logic c_fifo_valid, c_fifo_ready;
+  set_t c_fifo_data, c_in;
   rast_fifo #(.Width(SetW), .Depth(SetupFifoEntries), .Latency(SetupLatency - SetupInterval)) u_setup_fifo (
-    .clk_i, .rst_ni, .in_valid_i(s_valid), .in_ready_o(s_ready),
-    .in_data_i({s_marker, s_edges, s_bbox, s_origin, s_area2, s_attr}),
+    .clk_i, .rst_ni, .in_valid_i(s_valid), .in_ready_o(s_ready), .in_data_i(s_push),
     .out_valid_o(c_fifo_valid), .out_ready_i(c_fifo_ready), .out_data_o(c_fifo_data), .empty_o(c_empty));
   rast_hold #(.Width(SetW)) u_coarse_hold (
     .clk_i, .rst_ni, .in_valid_i(c_fifo_valid), .in_ready_o(c_fifo_ready), .in_data_i(c_fifo_data),
-    .out_valid_o(c_valid), .out_ready_i(c_ready), .out_data_o(c_data));
-  assign {c_marker, c_edges, c_bbox, c_origin, c_area2, c_attr} = c_data;
-  assign {c_a, c_b, c_c, c_bias} = c_edges;
+    .out_valid_o(c_valid), .out_ready_i(c_ready), .out_data_o(c_in));
 
   // ---- Coarse raster ----
   logic                k_valid, k_ready, k_marker, k_accepted;
   logic [4*PixelW-1:0] k_fp;
+  tile_t               k_push;
+  localparam int TileW = $bits(k_push);  // derived
   rast_coarse_raster #(
     .CoordW(CoordW), .CoordFrac(CoordFrac), .CoefW(CoefW), .EdgeW(EdgeW), .PixelW(PixelW),
     .TileLog2W(TileLog2W), .SampleOffW(SampleOffW), .TilesPerCycle(CoarseTilesPerCycle)
   ) u_coarse_raster (
-    .clk_i, .rst_ni, .tile_log2_i(tile_log2_q), .box_i(box), .in_valid_i(c_valid), .in_ready_o(c_ready), .in_marker_i(c_marker),
-    .in_a_i(c_a), .in_b_i(c_b), .in_c_i(c_c), .in_bias_i(c_bias), .in_bbox_i(c_bbox), .in_origin_i(c_origin),
+    .clk_i, .rst_ni, .tile_log2_i(tile_log2_q), .box_i(box), .in_valid_i(c_valid), .in_ready_o(c_ready),
+    .in_marker_i(c_in.marker), .in_a_i(c_in.edges.a), .in_b_i(c_in.edges.b), .in_c_i(c_in.edges.c),
+    .in_bias_i(c_in.edges.bias), .in_bbox_i(c_in.bbox), .in_origin_i(c_in.origin),
     .out_valid_o(k_valid), .out_ready_i(k_ready), .out_marker_o(k_marker), .out_accepted_o(k_accepted),
     .out_fp_o(k_fp), .busy_o(c_busy));
+  assign k_push.marker = k_marker;
+  assign k_push.accepted = k_accepted;
+  assign k_push.fp = k_fp;
+  assign k_push.edges = c_in.edges;
+  assign k_push.origin = c_in.origin;
+  assign k_push.area2 = c_in.area2;
+  assign k_push.attr = c_in.attr;
 
   // ---- Tile FIFO (fifo.tile_depth) ----
-  logic                f_valid, f_ready, f_marker, f_accepted, f_empty, f_busy;
-  logic                f_fifo_valid, f_fifo_ready;
-  logic [TileW-1:0]    f_data, f_fifo_data;
-  logic [4*PixelW-1:0] f_fp;
-  logic [EdgesW-1:0]   f_edges;
-  logic [3*CoefW-1:0]  f_a, f_b;
-  logic [3*EdgeW-1:0]  f_c;
-  logic [2:0]          f_bias;
-  logic [2*PixelW-1:0] f_origin;
-  logic [AreaW-1:0]    f_area2;
-  logic [AttrW-1:0]    f_attr;
+  logic  f_valid, f_ready, f_empty, f_busy;
+  logic  f_fifo_valid, f_fifo_ready;
+  tile_t f_fifo_data, f_in;
   rast_fifo #(.Width(TileW), .Depth(TileFifoDepth)) u_tile_fifo (
-    .clk_i, .rst_ni, .in_valid_i(k_valid), .in_ready_o(k_ready),
-    .in_data_i({k_marker, k_accepted, k_fp, c_edges, c_origin, c_area2, c_attr}),
+    .clk_i, .rst_ni, .in_valid_i(k_valid), .in_ready_o(k_ready), .in_data_i(k_push),
     .out_valid_o(f_fifo_valid), .out_ready_i(f_fifo_ready), .out_data_o(f_fifo_data), .empty_o(f_empty));
   rast_hold #(.Width(TileW)) u_fine_hold (
     .clk_i, .rst_ni, .in_valid_i(f_fifo_valid), .in_ready_o(f_fifo_ready), .in_data_i(f_fifo_data),
-    .out_valid_o(f_valid), .out_ready_i(f_ready), .out_data_o(f_data));
-  assign {f_marker, f_accepted, f_fp, f_edges, f_origin, f_area2, f_attr} = f_data;
-  assign {f_a, f_b, f_c, f_bias} = f_edges;
+    .out_valid_o(f_valid), .out_ready_i(f_ready), .out_data_o(f_in));
 
   // ---- Fine raster ----
   logic                m_valid, m_ready, m_marker;
   logic [MaskW-1:0]    m_mask;
   logic [SMaskW-1:0]   m_smask;
   logic [2*PixelW-1:0] m_tile;
+  pix_t                m_push;
+  localparam int PixW = $bits(m_push);  // derived
   rast_fine_raster #(
     .CoordW(CoordW), .CoordFrac(CoordFrac), .CoefW(CoefW), .EdgeW(EdgeW), .PixelW(PixelW),
     .TileLog2Max(TileLog2Max), .TileLog2W(TileLog2W), .SamplesPerCycle(FineSamplesPerCycle),
     .AcceptedTileCycles(FineAcceptedTileCycles), .MaxSamples(MaxSamples), .SampleLog2W(SampleLog2W),
     .SampleOffW(SampleOffW)
   ) u_fine_raster (
-    .clk_i, .rst_ni, .tile_log2_i(tile_log2_q), .samples_log2_i(samples_log2_q), .sample_dx_i(sample_dx_q), .sample_dy_i(sample_dy_q), .in_valid_i(f_valid), .in_ready_o(f_ready), .in_marker_i(f_marker),
-    .in_accepted_i(f_accepted), .in_fp_i(f_fp), .in_a_i(f_a), .in_b_i(f_b), .in_c_i(f_c),
-    .in_bias_i(f_bias), .in_origin_i(f_origin), .out_valid_o(m_valid), .out_ready_i(m_ready),
-    .out_marker_o(m_marker), .out_mask_o(m_mask), .out_smask_o(m_smask), .out_tile_o(m_tile), .busy_o(f_busy));
+    .clk_i, .rst_ni, .tile_log2_i(tile_log2_q), .samples_log2_i(samples_log2_q), .sample_dx_i(sample_dx_q),
+    .sample_dy_i(sample_dy_q), .in_valid_i(f_valid), .in_ready_o(f_ready), .in_marker_i(f_in.marker),
+    .in_accepted_i(f_in.accepted), .in_fp_i(f_in.fp), .in_a_i(f_in.edges.a), .in_b_i(f_in.edges.b),
+    .in_c_i(f_in.edges.c), .in_bias_i(f_in.edges.bias), .in_origin_i(f_in.origin), .out_valid_o(m_valid),
+    .out_ready_i(m_ready), .out_marker_o(m_marker), .out_mask_o(m_mask), .out_smask_o(m_smask),
+    .out_tile_o(m_tile), .busy_o(f_busy));
+  assign m_push.marker = m_marker;
+  assign m_push.mask = m_mask;
+  assign m_push.smask = m_smask;
+  assign m_push.tile = m_tile;
+  assign m_push.a = f_in.edges.a;
+  assign m_push.b = f_in.edges.b;
+  assign m_push.c = f_in.edges.c;
+  assign m_push.origin = f_in.origin;
+  assign m_push.area2 = f_in.area2;
+  assign m_push.attr = f_in.attr;
 
   // ---- Pixel FIFO (fifo.pixel_depth; one entry = one tile's coverage mask) ----
-  logic                p_valid, p_ready, p_marker, p_empty, p_busy;
-  logic                p_fifo_valid, p_fifo_ready;
-  logic [PixW-1:0]     p_data, p_fifo_data;
-  logic [MaskW-1:0]    p_mask;
-  logic [SMaskW-1:0]   p_smask;
-  logic [2*PixelW-1:0] p_tile, p_origin;
-  logic [3*CoefW-1:0]  p_a, p_b;
-  logic [3*EdgeW-1:0]  p_c;
-  logic [AreaW-1:0]    p_area2;
-  logic [AttrW-1:0]    p_attr;
-  logic [3*DepthW-1:0] p_z;
-  logic [3*24-1:0]     p_rgb;
+  logic p_valid, p_ready, p_empty, p_busy;
+  logic p_fifo_valid, p_fifo_ready;
+  pix_t p_fifo_data, p_in;
   rast_fifo #(.Width(PixW), .Depth(PixelFifoDepth)) u_pixel_fifo (
-    .clk_i, .rst_ni, .in_valid_i(m_valid), .in_ready_o(m_ready),
-    .in_data_i({m_marker, m_mask, m_smask, m_tile, f_a, f_b, f_c, f_origin, f_area2, f_attr}),
+    .clk_i, .rst_ni, .in_valid_i(m_valid), .in_ready_o(m_ready), .in_data_i(m_push),
     .out_valid_o(p_fifo_valid), .out_ready_i(p_fifo_ready), .out_data_o(p_fifo_data), .empty_o(p_empty));
   rast_hold #(.Width(PixW)) u_interp_hold (
     .clk_i, .rst_ni, .in_valid_i(p_fifo_valid), .in_ready_o(p_fifo_ready), .in_data_i(p_fifo_data),
-    .out_valid_o(p_valid), .out_ready_i(p_ready), .out_data_o(p_data));
-  assign {p_marker, p_mask, p_smask, p_tile, p_a, p_b, p_c, p_origin, p_area2, p_attr} = p_data;
-  assign {p_z, p_rgb} = p_attr;
+    .out_valid_o(p_valid), .out_ready_i(p_ready), .out_data_o(p_in));
 
   // ---- Interpolation ----
   rast_interpolate #(
@@ -284,9 +336,10 @@ module rast_top #(
     .TileLog2Max(TileLog2Max), .TileLog2W(TileLog2W), .FragmentsPerCycle(InterpFragmentsPerCycle), .Latency(InterpLatency),
     .MaxSamples(MaxSamples)
   ) u_interpolate (
-    .clk_i, .rst_ni, .tile_log2_i(tile_log2_q), .in_valid_i(p_valid), .in_ready_o(p_ready), .in_marker_i(p_marker),
-    .in_mask_i(p_mask), .in_smask_i(p_smask), .in_tile_i(p_tile), .in_a_i(p_a), .in_b_i(p_b), .in_c_i(p_c),
-    .in_origin_i(p_origin), .in_area2_i(p_area2), .in_z_i(p_z), .in_rgb_i(p_rgb),
+    .clk_i, .rst_ni, .tile_log2_i(tile_log2_q), .in_valid_i(p_valid), .in_ready_o(p_ready), .in_marker_i(p_in.marker),
+    .in_mask_i(p_in.mask), .in_smask_i(p_in.smask), .in_tile_i(p_in.tile), .in_a_i(p_in.a), .in_b_i(p_in.b),
+    .in_c_i(p_in.c), .in_origin_i(p_in.origin), .in_area2_i(p_in.area2), .in_z_i(p_in.attr.z),
+    .in_rgb_i(p_in.attr.rgb),
     .out_valid_o(frag_valid_o), .out_ready_i(frag_ready_i), .out_marker_o(frag_marker_o),
     .out_last_o(frag_last_o), .out_lanes_o(frag_lanes_o), .out_x_o(frag_x_o), .out_y_o(frag_y_o),
     .out_z_o(frag_z_o), .out_rgb_o(frag_rgb_o), .out_smask_o(frag_mask_o), .busy_o(p_busy));

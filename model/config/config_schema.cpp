@@ -7,6 +7,7 @@
 #include "config/config.h"
 #include "config/config_schema.h"
 #include "ref/fixed_point.h"
+#include "ref/framebuffer.h"
 
 namespace rastsim {
 
@@ -31,9 +32,9 @@ std::vector<ParamDef> make_schema() {
   std::vector<ParamDef> s;
   auto add = [&](ParamDef d) { s.push_back(std::move(d)); };
   // ---- display: the framebuffer and the viewport ----
-  add({"display.width", T::Int, int64_t{128}, "px", 1, 16384, {},
+  add({"display.width", T::Int, int64_t{128}, "px", 1, kMaxImageExtent, {},
        "Framebuffer and viewport width in pixels"});
-  add({"display.height", T::Int, int64_t{128}, "px", 1, 16384, {},
+  add({"display.height", T::Int, int64_t{128}, "px", 1, kMaxImageExtent, {},
        "Framebuffer and viewport height in pixels"});
   // ---- raster: setup and traversal ----
   add({"raster.coord_format", T::String, std::string("s7.16"), "", 1, 0, {},

@@ -7,6 +7,7 @@
 
 #include "config/config_schema.h"
 #include "config/video_timing.h"
+#include "ref/framebuffer.h"
 
 namespace rastsim {
 
@@ -81,10 +82,10 @@ void add_scanout_params(std::vector<ParamDef>& s) {
   add({"display.timing", T::Enum, std::string("panel"), "", 1, 0, names, doc});
 
   auto px = [&](const char* key, int def, double lo, const char* what) {
-    add({key, T::Int, int64_t{def}, "px", lo, 16384, {}, std::string("Custom timing: ") + what});
+    add({key, T::Int, int64_t{def}, "px", lo, kMaxImageExtent, {}, std::string("Custom timing: ") + what});
   };
   auto lines = [&](const char* key, int def, double lo, const char* what) {
-    add({key, T::Int, int64_t{def}, "lines", lo, 16384, {}, std::string("Custom timing: ") + what});
+    add({key, T::Int, int64_t{def}, "lines", lo, kMaxImageExtent, {}, std::string("Custom timing: ") + what});
   };
   px("display.h_active_px", panel.h_active, 1, "active pixels a line");
   px("display.h_front_porch_px", panel.h_front_porch, 0, "blanking from the last active pixel to hsync");

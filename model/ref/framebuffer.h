@@ -29,6 +29,11 @@
 
 namespace rastsim {
 
+// The largest image extent anything names, px (or lines): a framebuffer side
+// (display.width, display.height), a video mode's active size and blanking, a trace's
+// viewport and scissor. Small enough that x + width never overflows an int.
+inline constexpr int kMaxImageExtent = 16384;
+
 class Framebuffer {
  public:
   static constexpr int kDefaultTileLog2 = 5;  // 32 x 32 pixel tiles

@@ -5,8 +5,9 @@
 #include <filesystem>
 #include <stdexcept>
 
-#include "rtl/cosim_driver.h"
+#include "rtl/testbench.h"
 #include "rtl/cosim_setup.h"
+#include "report/stats_json.h"
 #include "rtl/rtl_cache.h"
 
 namespace rastsim::cosim {
@@ -14,7 +15,8 @@ namespace rastsim::cosim {
 namespace {
 
 // The config as a user names it: its file and every --set that changed it.
-std::string config_label(const Config& cfg) {
+std::string config_label(const ArchParams& arch) {
+  const Config& cfg = arch.config;
   std::string s = cfg.source_name();
   for (const auto& [key, v] : cfg.values())
     if (cfg.origin(key).rfind("--set", 0) == 0) s += " --set " + key + "=" + to_string(v);
@@ -49,13 +51,14 @@ int shipped_model(const RtlParams& wanted, const CosimOptions& opts) {
 // the RTL's tile pixels x MaxSamples must stay within it.
 constexpr int64_t kMaxMaskBits = 8192;
 
-RtlCacheEntry on_demand_model(const Config& cfg, const CosimOptions& opts, const RtlParams& wanted) {
+RtlCacheEntry on_demand_model(const ArchParams& arch, const CosimOptions& opts, const RtlParams& wanted) {
+  const Config& cfg = arch.config;  // its name and --set overrides label the build
   // Built with the config's parameters; the tile size as the larger of the config's and
   // the one asked for (a run-time input up to the built maximum); the sample count (also
   // a run-time input) as large as the sample mask allows, up to the schema's maximum
   // (rtl_params_from_config), at least 2 (the RTL's minimum): the config's other tile sizes
   // and sample counts below these find the entry too.
-  RtlParams build = rtl_params_from_config(cfg);
+  RtlParams build = rtl_params(arch);
   build.tile_log2_max = std::max(build.tile_log2_max, wanted.tile_log2_max);
   const int64_t tile_pixels = int64_t{1} << (2 * build.tile_log2_max);
   const int64_t needed = std::max(2, wanted.max_samples);
@@ -63,7 +66,7 @@ RtlCacheEntry on_demand_model(const Config& cfg, const CosimOptions& opts, const
     const std::string tile = opts.tile_size ? "a tile size of " + std::to_string(opts.tile_size) + " px"
                                             : "raster.tile_size = " + std::to_string(cfg.get_int("raster.tile_size")) +
                                                   " (" + cfg.origin("raster.tile_size") + ")";
-    throw ConfigError(config_label(cfg) + ": no RTL model for this config: " + tile + " with raster.samples = " +
+    throw ConfigError(config_label(arch) + ": no RTL model for this config: " + tile + " with raster.samples = " +
                       std::to_string(wanted.max_samples) + " needs a " + std::to_string(tile_pixels * needed) +
                       "-bit sample mask a tile (pixels x max(2, samples)), above the " +
                       std::to_string(kMaxMaskBits) + " bits Verilator builds the RTL with (rtl/rast_fine_raster.sv); "
@@ -71,7 +74,7 @@ RtlCacheEntry on_demand_model(const Config& cfg, const CosimOptions& opts, const
   }
   while (build.max_samples > needed && tile_pixels * build.max_samples > kMaxMaskBits) build.max_samples /= 2;
   RtlBuildOptions bo;
-  bo.label = config_label(cfg);
+  bo.label = config_label(arch);
   bo.progress = opts.progress;
   try {
     return find_or_build_rtl_model(wanted, build, bo);
@@ -82,27 +85,51 @@ RtlCacheEntry on_demand_model(const Config& cfg, const CosimOptions& opts, const
 
 }  // namespace
 
+nlohmann::json CosimResult::to_json(const CosimOptions& opts) const {
+  return {{"rtl_model", rtl_config},
+          {"rtl_model_dir", rtl_model_dir},
+          {"rtl_cache_hit", rtl_cache_hit},
+          {"rtl_build_seconds", rtl_build_seconds},
+          {"cycles_rtl", cycles_rtl},
+          {"fragments_expected", fragments_expected},
+          {"fragments_compared", fragments_compared},
+          {"mismatches", mismatches},
+          {"commands_2d", commands_2d},
+          {"pixels_2d", pixels_2d},
+          {"samples", samples},
+          {"rop_accesses", rop_accesses},
+          {"resolve_cycles", resolve_cycles},
+          {"framebuffer_crc32_rtl", crc32_hex(crc_rtl)},
+          {"framebuffer_crc32_ref", crc32_hex(crc_ref)},
+          {"first_mismatch", first_mismatch},
+          {"backpressure", opts.backpressure},
+          {"valid_gaps", opts.valid_gaps},
+          {"seed", opts.stress_seed},
+          {"rtl_wall_seconds", wall_seconds},
+          {"rtl_cycles_per_second", wall_seconds > 0 ? double(cycles_rtl) / wall_seconds : 0.0}};
+}
+
 std::vector<RtlModelInfo> rtl_models() {
   std::vector<RtlModelInfo> v;
   for (const RegistryEntry& e : rtl_registry()) v.push_back({e.name, e.config, e.params});
   return v;
 }
 
-RtlModelChoice prepare_rtl_model(const Config& cfg, const CosimOptions& opts) {
-  const RtlParams wanted = cosim_wanted_params(cfg, opts);
+RtlModelChoice prepare_rtl_model(const ArchParams& arch, const CosimOptions& opts) {
+  const RtlParams wanted = cosim_wanted_params(arch, opts);
   if (const int i = shipped_model(wanted, opts); i >= 0) return {rtl_registry()[size_t(i)].name, "", false, 0};
-  const RtlCacheEntry e = on_demand_model(cfg, opts, wanted);
+  const RtlCacheEntry e = on_demand_model(arch, opts, wanted);
   return {"cache:" + e.key, e.dir, e.hit, e.hit ? 0 : e.build_seconds};
 }
 
-CosimResult run_cosim(const Scene& scene, const Config& cfg, const CosimOptions& opts) {
-  const RtlParams wanted = cosim_wanted_params(cfg, opts);
+CosimResult run_cosim(const Scene& scene, const ArchParams& arch, const CosimOptions& opts) {
+  const RtlParams wanted = cosim_wanted_params(arch, opts);
   if (const int i = shipped_model(wanted, opts); i >= 0) {
     const RegistryEntry& m = rtl_registry()[size_t(i)];
     TbSetup s;
     CosimResult r;
     r.rtl_config = m.name;
-    cosim_setup(scene, cfg, opts, m.params, s, r);
+    cosim_setup(scene, arch, opts, m.params, s, r);
     m.run(s, r);
     return r;
   }
@@ -110,11 +137,11 @@ CosimResult run_cosim(const Scene& scene, const Config& cfg, const CosimOptions&
   // again from its file (checked first, before a build).
   std::error_code ec;
   if (!std::filesystem::is_regular_file(scene.source, ec))
-    throw std::runtime_error(config_label(cfg) + ": no shipped RTL model fits this config, and an on-demand model "
+    throw std::runtime_error(config_label(arch) + ": no shipped RTL model fits this config, and an on-demand model "
                              "reads the scene from its file, but scene '" + scene.source +
                              "' is not a file (co-simulate a scene from a file)");
-  const RtlCacheEntry e = on_demand_model(cfg, opts, wanted);
-  CosimResult r = run_rtl_runner(e, runner_request(scene, cfg, opts)).get<CosimResult>();
+  const RtlCacheEntry e = on_demand_model(arch, opts, wanted);
+  CosimResult r = run_rtl_runner(e, runner_request(scene, arch, opts)).get<CosimResult>();
   r.rtl_config = "cache:" + e.key;
   r.rtl_model_dir = e.dir;
   r.rtl_cache_hit = e.hit;

@@ -19,7 +19,8 @@
 //   reference model's stream for the same tile size (tiles row-major, pixels row-major
 //   within a tile, triangles in order); the first mismatch is reported with its
 //   triangle (scene file:line and index) and pixel.
-// - Optional random backpressure on the fragment stream (seeded), FST waveform.
+// - Optional random backpressure on the fragment stream and gaps in the triangle and 2D
+//   operation valids (seeded, replayable), FST waveform.
 #pragma once
 
 #include <cstdint>
@@ -29,7 +30,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "config/config.h"
+#include "config/arch_params.h"
 #include "rtl/rtl_params.h"
 #include "ref/scene.h"
 
@@ -37,8 +38,11 @@ namespace rastsim::cosim {
 
 struct CosimOptions {
   int tile_size = 0;               // 0: raster.tile_size of the config
-  uint64_t backpressure_seed = 0;  // seed of the random fragment backpressure
-  double backpressure = 0;         // probability that frag_ready is low in a cycle (0 = off)
+  // Random stress on the RTL's valid/ready inputs, each input its own generator seeded by
+  // stress_seed (testbench.cpp): the same seed replays the same run.
+  uint64_t stress_seed = 0;
+  double backpressure = 0;         // probability that frag_ready_i is low in a cycle (0 = off)
+  double valid_gaps = 0;           // probability that an offered tri_valid_i or 2D in_valid_i is held low in a cycle
   std::string fst_path;            // write an FST waveform ("" = none)
   uint64_t max_cycles = 2'000'000'000;
   // Lines of progress while an on-demand model builds (rtl_cache.h); empty: printed on
@@ -55,7 +59,7 @@ struct CosimOptions {
   std::string rtl_model;
 };
 // The options as the on-demand runner gets them (progress stays behind).
-NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(CosimOptions, tile_size, backpressure_seed, backpressure, fst_path,
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(CosimOptions, tile_size, stress_seed, backpressure, valid_gaps, fst_path,
                                                 max_cycles, record_transactions, perturb_rop_cycles,
                                                 perturb_rop_transaction)
 
@@ -91,10 +95,15 @@ struct CosimResult {
   uint64_t rop_accesses = 0;       // ROP accesses of the fragments (TimingParams::rop_accesses)
   uint64_t resolve_cycles = 0;     // the frame-end resolve pass (end-of-frame marker), included in cycles_rtl
   double wall_seconds = 0;         // the RTL simulation (testbench included)
-  // Per stage, in pipeline order: command_fetch, prim_assembly (testbench accounting),
-  // tri_setup, coarse_raster, fine_raster, interpolate (the RTL's handshakes, rast_top's
-  // dbg_*_o ports), rop (testbench). The 2D stages are not counted yet.
+  // Per stage, every row of the stage table in its order (timing/stage_table.h, kStages):
+  // the RTL's stages from its handshakes (rast_top's dbg_*_o ports), the others from the
+  // testbench's own accounting (command fetch, assembly, ROP, the 2D front end and engine).
   std::vector<StageRecord> stages;
+
+  // The run's figures under `rastsim cosim --stats` names (cycles_rtl, mismatches,
+  // framebuffer_crc32_rtl, ...), with the stress options it ran under; the caller adds the
+  // config, the scene and the SystemC model's figures.
+  nlohmann::json to_json(const CosimOptions& opts) const;
 };
 // Every field, for the on-demand runner's answer (a new field: add it here too).
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(CosimResult, rtl_config, rtl_model_dir, rtl_cache_hit,
@@ -122,11 +131,11 @@ struct RtlModelChoice {
   bool cache_hit = false;  // on-demand: found in the cache
   double build_seconds = 0;
 };
-RtlModelChoice prepare_rtl_model(const Config& cfg, const CosimOptions& opts = {});
+RtlModelChoice prepare_rtl_model(const ArchParams& arch, const CosimOptions& opts = {});
 
 // Runs `scene` through the RTL model prepare_rtl_model chooses: a shipped model in this
 // process, an on-demand one as a child process (the cache entry's runner, which reads
 // the scene again from its file, Scene::source: an in-memory scene needs a shipped model).
-CosimResult run_cosim(const Scene& scene, const Config& cfg, const CosimOptions& opts = {});
+CosimResult run_cosim(const Scene& scene, const ArchParams& arch, const CosimOptions& opts = {});
 
 }  // namespace rastsim::cosim

@@ -9,7 +9,7 @@
 #include <stdexcept>
 
 #include "config/timing_params.h"
-#include "rtl/cosim_driver.h"
+#include "rtl/testbench.h"
 #include "ref/pipeline.h"
 #include "ref/prim_assembly.h"
 #include "ref/raster_state.h"
@@ -29,109 +29,150 @@ static_assert(int(FillRule::TopLeft) == 0 && int(FillRule::BottomRight) == 1 && 
 static_assert(int(CullMode::None) == 0 && int(CullMode::Back) == 1 && int(CullMode::Front) == 2);
 
 // The scene as the testbench's command stream, and the reference model's fragments for
-// the same tile size: the same loop as ref/pipeline.cpp render_scene.
-void build(const Scene& scene, const Config& cfg, int tile_size, TbSetup& s) {
-  RasterState st = raster_state_from_config(cfg);
-  st.tile_size = tile_size;
-  const int F = st.coord_format.frac_bits;
-  const TimingParams& tp = s.timing;
-  const uint64_t cpc = tp.fetch_cycles_per_command;
-  Framebuffer fb(1, 1);  // state commands need one; the testbench ROP keeps no pixels
-  TraversalCounters counters;
-  for (const Command& cmd : scene.commands) {
-    if (const auto* d2 = std::get_if<CmdDraw2d>(&cmd.body)) {
-      TbItem m;
-      m.kind = TbItem::Marker;
-      m.cmd = &cmd;
-      m.fetch_cost = tp.fetch_draw2d_cycles(draw2d_vertex_count(*d2));
-      m.work2d = static_cast<int>(s.work2d.size());
-      TbWork2d w{draw2d_ops(*d2, cmd.loc, st), 0, cmd.loc.str()};
-      w.setup_cost = tp.setup2d_cycles(w.work.ops.size());
-      s.work2d.push_back(std::move(w));
-      s.items.push_back(m);
-      continue;
-    }
-    const auto* prims = std::get_if<CmdPrimitives>(&cmd.body);
-    if (!prims) {
-      apply_state_command(cmd, st, fb);
-      TbItem m;
-      m.kind = TbItem::Marker;
-      m.cmd = &cmd;
-      m.fetch_cost = cpc;
-      const bool clear = std::holds_alternative<CmdClear>(cmd.body) || std::holds_alternative<CmdClearDepth>(cmd.body);
-      m.rop_cost = clear ? tp.rop_clear_cycles(uint64_t(st.fb_width) * uint64_t(st.fb_height)) : 1;
-      s.items.push_back(m);
-      continue;
-    }
-    const size_t n = triangle_count(*prims);
-    if (n == 0) {
-      TbItem e;
-      e.kind = TbItem::Null;
-      e.fetch_cost = cpc;
-      s.items.push_back(e);
-    }
-    for (size_t k = 0; k < n; ++k) {
-      TbItem it;
-      const uint64_t new_vertices = (k == 0 || prims->topology == Topology::List) ? 3 : 1;
-      it.fetch_cost = tp.fetch_triangle_cycles(k == 0, new_vertices);
-      it.assembly_cost = tp.assembly_cycles_per_triangle;
-      it.tri = static_cast<int>(s.tri_names.size());
-      s.tri_names.push_back(cmd.loc.str() + " triangle " + std::to_string(k));
-      SetupTriangle t;
-      const SetupOutcome o = setup_triangle(assemble_triangle(*prims, k), st, cmd.loc, t);
-      if (o == SetupOutcome::CulledOutOfRange) {
-        // Nothing the RTL can represent: a zero-area triangle costs setup the same.
-        it.x[0] = it.x[1] = it.x[2] = it.y[0] = it.y[1] = it.y[2] = 0;
-      } else {
-        for (int v = 0; v < 3; ++v) {
-          it.x[v] = t.x[v];
-          it.y[v] = t.y[v];
-          it.z[v] = t.z[v];
-          it.rgb[v] = uint32_t(t.rgb[v][0]) | uint32_t(t.rgb[v][1]) << 8 | uint32_t(t.rgb[v][2]) << 16;
-        }
-      }
-      const PixelRect clip = st.clip_rect();
-      it.clip[0] = clip.x0;
-      it.clip[1] = clip.y0;
-      it.clip[2] = clip.x1;
-      it.clip[3] = clip.y1;
-      it.origin[0] = static_cast<int>(st.origin_x());
-      it.origin[1] = static_cast<int>(st.origin_y());
-      s.items.push_back(it);
-      if (o != SetupOutcome::Accepted) continue;
-      // Per pixel with a covered sample: its fragment (msaa: one, at the centre, with the
-      // mask; one sample: interpolate() with mask 1), as render_scene shades it.
-      traverse_triangle(t, tile_size, F, counters, [&](int px, int py, uint32_t m) {
-        shade_pixel(t, px, py, m, F, [&](const Fragment& f) { s.expected.push_back(Expected{f, it.tri}); });
-      });
+// the same tile size: the same walk as ref/pipeline.cpp render_scene, one handler per
+// command type.
+class StreamBuilder {
+ public:
+  StreamBuilder(const ArchParams& arch, int tile_size, TbSetup& s)
+      : setup_(s), timing_(s.timing), state_(arch.raster), tile_size_(tile_size) {
+    state_.tile_size = tile_size;
+  }
+
+  void add(const Command& cmd) {
+    visit_command(cmd, Overloaded{
+                           [&](const CmdViewport&) { state_marker(cmd, false); },
+                           [&](const CmdClear&) { state_marker(cmd, true); },
+                           [&](const CmdClearDepth&) { state_marker(cmd, true); },
+                           [&](const CmdScissor&) { state_marker(cmd, false); },
+                           [&](const CmdPrimitives& p) { primitives(cmd, p); },
+                           [&](const CmdDraw2d& d) { draw2d(cmd, d); },
+                       });
+  }
+  void end_of_frame();
+
+ private:
+  void state_marker(const Command& cmd, bool clear);
+  void draw2d(const Command& cmd, const CmdDraw2d& d2);
+  void primitives(const Command& cmd, const CmdPrimitives& prims);
+  void triangle(const Command& cmd, const CmdPrimitives& prims, size_t k);
+
+  TbSetup& setup_;
+  const TimingParams& timing_;
+  RasterState state_;  // the state the scene's commands set, as far as the walk has gone
+  const int tile_size_;
+  Framebuffer fb_{1, 1};  // state commands need one; the testbench ROP keeps no pixels
+  TraversalCounters counters_;
+};
+
+// A state command travels as a marker: fetched as a header, 1 ROP cycle (a clear: the
+// fast clear of the framebuffer).
+void StreamBuilder::state_marker(const Command& cmd, bool clear) {
+  apply_state_command(cmd, state_, fb_);
+  TbItem m;
+  m.kind = TbItem::Marker;
+  m.cmd = &cmd;
+  m.fetch_cost = timing_.fetch_cycles_per_command;
+  m.rop_cost = clear ? timing_.rop_clear_cycles(uint64_t(state_.fb_width) * uint64_t(state_.fb_height)) : 1;
+  setup_.items.push_back(m);
+}
+
+// A 2D command: its engine operations for the 2D path, and a marker through the RTL
+// that orders them with the triangles at the ROP.
+void StreamBuilder::draw2d(const Command& cmd, const CmdDraw2d& d2) {
+  TbItem m;
+  m.kind = TbItem::Marker;
+  m.cmd = &cmd;
+  m.fetch_cost = timing_.fetch_draw2d_cycles(draw2d_vertex_count(d2));
+  m.work2d = static_cast<int>(setup_.work2d.size());
+  TbWork2d w{draw2d_ops(d2, cmd.loc, state_), 0, cmd.loc.str()};
+  w.setup_cost = timing_.setup2d_cycles(w.work.ops.size());
+  setup_.work2d.push_back(std::move(w));
+  setup_.items.push_back(m);
+}
+
+// A primitive command: a triangle item each (an empty one: a header-only item).
+void StreamBuilder::primitives(const Command& cmd, const CmdPrimitives& prims) {
+  const size_t n = triangle_count(prims);
+  if (n == 0) {
+    TbItem e;
+    e.kind = TbItem::Null;
+    e.fetch_cost = timing_.fetch_cycles_per_command;
+    setup_.items.push_back(e);
+  }
+  for (size_t k = 0; k < n; ++k) triangle(cmd, prims, k);
+}
+
+// Triangle k of a primitive command, snapped by the reference's setup, and its expected
+// fragments.
+void StreamBuilder::triangle(const Command& cmd, const CmdPrimitives& prims, size_t k) {
+  TbItem it;
+  const uint64_t new_vertices = (k == 0 || prims.topology == Topology::List) ? 3 : 1;
+  it.fetch_cost = timing_.fetch_triangle_cycles(k == 0, new_vertices);
+  it.assembly_cost = timing_.assembly_cycles_per_triangle;
+  it.tri = static_cast<int>(setup_.tri_names.size());
+  setup_.tri_names.push_back(cmd.loc.str() + " triangle " + std::to_string(k));
+  SetupTriangle t;
+  const SetupOutcome o = setup_triangle(assemble_triangle(prims, k), state_, cmd.loc, t);
+  // CulledOutOfRange: nothing the RTL can represent; a zero-area triangle (all vertices
+  // 0) costs setup the same.
+  if (o != SetupOutcome::CulledOutOfRange) {
+    for (int v = 0; v < 3; ++v) {
+      it.x[v] = t.x[v];
+      it.y[v] = t.y[v];
+      it.z[v] = t.z[v];
+      it.rgb[v] = uint32_t(t.rgb[v][0]) | uint32_t(t.rgb[v][1]) << 8 | uint32_t(t.rgb[v][2]) << 16;
     }
   }
-  // Multisampling: the frame ends with the resolve pass, ordered after every fragment by
-  // a marker fetched like a command header that travels through the RTL like a state
-  // command (as the SystemC model's command fetch sends it); the ROP is busy
-  // resolve_cycles(W H, S) on it.
-  if (st.samples > 1) {
-    TbItem m;
-    m.kind = TbItem::Marker;
-    m.fetch_cost = tp.fetch_header_cycles();
-    m.rop_cost = tp.resolve_cycles(uint64_t(st.fb_width) * uint64_t(st.fb_height), st.samples);
-    s.items.push_back(m);
-  }
+  const PixelRect clip = state_.clip_rect();
+  it.clip[0] = clip.x0;
+  it.clip[1] = clip.y0;
+  it.clip[2] = clip.x1;
+  it.clip[3] = clip.y1;
+  it.origin[0] = static_cast<int>(state_.origin_x());
+  it.origin[1] = static_cast<int>(state_.origin_y());
+  setup_.items.push_back(it);
+  if (o != SetupOutcome::Accepted) return;
+  // Per pixel with a covered sample: its fragment (msaa: one, at the centre, with the
+  // mask; one sample: interpolate() with mask 1), as render_scene shades it.
+  const int F = state_.coord_format.frac_bits;
+  traverse_triangle(t, tile_size_, F, counters_, [&](int px, int py, uint32_t m) {
+    shade_pixel(t, px, py, m, F, [&](const Fragment& f) { setup_.expected.push_back(Expected{f, it.tri}); });
+  });
+}
+
+// Multisampling: the frame ends with the resolve pass, ordered after every fragment by
+// a marker fetched like a command header that travels through the RTL like a state
+// command (as the SystemC model's command fetch sends it); the ROP is busy
+// resolve_cycles(W H, S) on it.
+void StreamBuilder::end_of_frame() {
+  if (state_.samples <= 1) return;
+  TbItem m;
+  m.kind = TbItem::Marker;
+  m.fetch_cost = timing_.fetch_header_cycles();
+  m.rop_cost = timing_.resolve_cycles(uint64_t(state_.fb_width) * uint64_t(state_.fb_height), state_.samples);
+  setup_.items.push_back(m);
+}
+
+void build(const Scene& scene, const ArchParams& arch, int tile_size, TbSetup& s) {
+  StreamBuilder b(arch, tile_size, s);
+  for (const Command& cmd : scene.commands) b.add(cmd);
+  b.end_of_frame();
 }
 
 }  // namespace
 
-RtlParams cosim_wanted_params(const Config& cfg, const CosimOptions& opts) {
+RtlParams cosim_wanted_params(const ArchParams& arch, const CosimOptions& opts) {
+  const Config& cfg = arch.config;  // for the keys' names and origins in messages
   // The RTL has the tiled walker only; another method would be compared against the
   // wrong expectation, so stop before building anything.
   if (cfg.get_string("raster.traversal") != "tiled")
     throw ConfigError(cfg.origin("raster.traversal") + ": raster.traversal = " + cfg.get_string("raster.traversal") +
                       " has no RTL; the RTL (rtl/) walks tiles only: co-simulate with raster.traversal = tiled "
                       "(render and simulate run every method)");
-  const int tile = opts.tile_size ? opts.tile_size : static_cast<int>(cfg.get_int("raster.tile_size"));
+  const int tile = opts.tile_size ? opts.tile_size : arch.raster.tile_size;
   if (tile < 2 || !std::has_single_bit(static_cast<unsigned>(tile)))
     throw std::runtime_error("tile size " + std::to_string(tile) + " is not a power of two >= 2");
-  const RasterState st = raster_state_from_config(cfg);
+  const RasterState& st = arch.raster;
   // The RTL interpolator divides the plane-equation numerators (rtl/rast_interpolate.sv):
   // the dda method has no RTL, and comparing against it would only count its error.
   if (st.interp_method != InterpMethod::Plane)
@@ -144,21 +185,21 @@ RtlParams cosim_wanted_params(const Config& cfg, const CosimOptions& opts) {
     throw ConfigError(cfg.origin("raster.aa_mode") + ": raster.aa_mode = " + cfg.get_string("raster.aa_mode") +
                       " has no RTL (the RTL shades once a pixel, at its centre: msaa); co-simulate with "
                       "raster.aa_mode = msaa (render and simulate run ssaa)");
-  RtlParams wanted = rtl_params_from_config(cfg);
+  RtlParams wanted = rtl_params(arch);
   wanted.tile_log2_max = std::countr_zero(static_cast<unsigned>(tile));
   wanted.max_samples = st.samples;  // a run-time input up to the built maximum
   return wanted;
 }
 
-void cosim_setup(const Scene& scene, const Config& cfg, const CosimOptions& opts, const RtlParams& model, TbSetup& s,
+void cosim_setup(const Scene& scene, const ArchParams& arch, const CosimOptions& opts, const RtlParams& model, TbSetup& s,
                  CosimResult& r) {
   s.opts = opts;
   s.opts.progress = {};
   s.params = model;  // the built widths and maximum tile size
-  const int tile = opts.tile_size ? opts.tile_size : static_cast<int>(cfg.get_int("raster.tile_size"));
+  const int tile = opts.tile_size ? opts.tile_size : arch.raster.tile_size;
   s.tile_log2 = std::countr_zero(static_cast<unsigned>(tile));
   // Fill rule, cull mode and front face: run-time inputs, from this config (not the model's).
-  const RasterState st = raster_state_from_config(cfg);
+  const RasterState& st = arch.raster;
   s.samples = st.samples;
   {
     const SamplePattern& pat = sample_pattern(st.samples, st.coord_format.frac_bits);
@@ -170,12 +211,12 @@ void cosim_setup(const Scene& scene, const Config& cfg, const CosimOptions& opts
   s.fill_rule = static_cast<int>(st.fill_rule);
   s.cull_mode = static_cast<int>(st.cull);
   s.front_ccw = st.front_ccw ? 1 : 0;
-  s.timing = TimingParams::from_config(cfg);
+  s.timing = arch.timing;
   s.arch = st;
   s.arch.tile_size = tile;
   RenderStats ref_stats;
   s.reference = render_scene(scene, s.arch, ref_stats);
-  build(scene, cfg, tile, s);
+  build(scene, arch, tile, s);
   r.fragments_expected = s.expected.size();
   for (const TbItem& it : s.items) (it.kind == TbItem::Marker ? r.markers : r.triangles) += it.kind != TbItem::Null;
   r.commands_2d = s.work2d.size();
@@ -200,7 +241,8 @@ std::string value_text(const ParamValue& v) {
 
 }  // namespace
 
-nlohmann::json runner_request(const Scene& scene, const Config& cfg, const CosimOptions& opts) {
+nlohmann::json runner_request(const Scene& scene, const ArchParams& arch, const CosimOptions& opts) {
+  const Config& cfg = arch.config;  // the runner process resolves the same config again
   nlohmann::json config = nlohmann::json::object();
   for (const auto& [key, v] : cfg.values()) config[key] = {value_text(v), cfg.origin(key)};
   return {{"config", config},

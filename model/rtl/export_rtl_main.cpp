@@ -45,10 +45,10 @@ int main(int argc, char** argv) {
     cfg.load_file(cfg_path);
     cfg.validate();
     if (scanout) {
-      write_if_changed(argv[3], rastsim::scanout_rtl_params_verilog(rastsim::scanout_rtl_params_from_config(cfg), cfg_path));
+      write_if_changed(argv[3], rastsim::scanout_rtl_params_verilog(rastsim::scanout_rtl_params(rastsim::ArchParams::resolve(cfg), rastsim::DisplayParams::resolve(cfg)), cfg_path));
       return 0;
     }
-    const rastsim::RtlParams p = rastsim::rtl_params_from_config(cfg);
+    const rastsim::RtlParams p = rastsim::rtl_params(rastsim::ArchParams::resolve(cfg));
     write_if_changed(argv[2], rastsim::rtl_params_verilog(p, cfg_path));
     write_if_changed(argv[3], rastsim::rtl_params_values(p) + "\n");
   } catch (const std::exception& e) {

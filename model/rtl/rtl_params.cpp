@@ -78,10 +78,37 @@ constexpr ParamField<ScanoutRtlParams> kScanoutFields[] = {
     {"DacBits", &ScanoutRtlParams::dac_bits, "DAC code width a channel (dac.bits)"},
 };
 
+constexpr ParamField<Engine2dRtlParams> kEngine2dFields[] = {
+    {"Width", &Engine2dRtlParams::width, "bits of a signed pixel index"},
+    {"LanesMax", &Engine2dRtlParams::lanes_max, "largest engine2d.fill_pixels_per_cycle"},
+};
+
+// Bits of the 2D engine's signed pixel indices: a 2D command's coordinates, clipped or
+// not (a line's far end, a blit's source), with room above the largest framebuffer.
+constexpr int kEngine2dIndexBits = 20;
+
 }  // namespace
 
-ScanoutRtlParams scanout_rtl_params_from_config(const Config& cfg) {
-  const VideoTiming t = video_timing_from_config(cfg);
+const Engine2dRtlParams& engine2d_rtl_params() {
+  static const Engine2dRtlParams p{
+      kEngine2dIndexBits, static_cast<int>(find_param("engine2d.fill_pixels_per_cycle")->max)};
+  return p;
+}
+
+bool engine2d_rtl_params_compatible(const Engine2dRtlParams& built, const Engine2dRtlParams& wanted,
+                                    std::string* why) {
+  for (const auto& f : kEngine2dFields) {
+    if (built.*f.member == wanted.*f.member) continue;
+    if (why)
+      *why = std::string(f.name) + " is " + std::to_string(wanted.*f.member) + " (" + f.comment +
+             "), the RTL was built with " + std::to_string(built.*f.member);
+    return false;
+  }
+  return true;
+}
+
+ScanoutRtlParams scanout_rtl_params(const ArchParams& arch, const DisplayParams& display) {
+  const VideoTiming& t = display.video;
   ScanoutRtlParams p;
   p.h_active = t.h_active;
   p.h_front_porch = t.h_front_porch;
@@ -93,9 +120,9 @@ ScanoutRtlParams scanout_rtl_params_from_config(const Config& cfg) {
   p.v_back_porch = t.v_back_porch;
   p.h_sync_positive = t.h_sync_positive ? 1 : 0;
   p.v_sync_positive = t.v_sync_positive ? 1 : 0;
-  p.fb_width = static_cast<int>(cfg.get_int("display.width"));
-  p.fb_height = static_cast<int>(cfg.get_int("display.height"));
-  p.dac_bits = static_cast<int>(cfg.get_int("dac.bits"));
+  p.fb_width = arch.raster.fb_width;
+  p.fb_height = arch.raster.fb_height;
+  p.dac_bits = display.dac.bits;
   return p;
 }
 
@@ -107,8 +134,8 @@ std::string scanout_rtl_params_verilog(const ScanoutRtlParams& p, const std::str
   return os.str();
 }
 
-RtlParams rtl_params_from_config(const Config& cfg) {
-  const RasterState st = raster_state_from_config(cfg);  // validates
+RtlParams rtl_params(const ArchParams& arch) {
+  const RasterState& st = arch.raster;
   RtlParams p;
   p.coord_int = st.coord_format.int_bits;
   p.coord_frac = st.coord_format.frac_bits;
@@ -131,11 +158,11 @@ RtlParams rtl_params_from_config(const Config& cfg) {
   // raster.max_samples (validated: a power of two, 2 .. the schema's largest
   // raster.samples, >= raster.samples); |offset| <= 2^(F-1) raw. The port width stays the
   // schema's, so every config's RTL has the same samples_log2_i port.
-  p.max_samples = static_cast<int>(cfg.get_int("raster.max_samples"));
+  p.max_samples = arch.rtl_max_samples;
   p.sample_log2_w = std::bit_width(static_cast<unsigned>(std::countr_zero(schema_max("raster.samples"))));
   p.sample_off_w = st.coord_format.frac_bits + 1;
   // The timing keys, read and checked once (timing_params.cpp), as the SystemC model reads them.
-  const TimingParams t = TimingParams::from_config(cfg);
+  const TimingParams& t = arch.timing;
   p.setup_interval = static_cast<int>(t.setup_interval);
   p.setup_latency = static_cast<int>(t.setup_latency);
   p.coarse_tiles_per_cycle = static_cast<int>(t.coarse_tiles_per_cycle);

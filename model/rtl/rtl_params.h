@@ -24,7 +24,7 @@
 #include <utility>
 #include <vector>
 
-#include "config/config.h"
+#include "config/arch_params.h"
 
 namespace rastsim {
 
@@ -56,7 +56,7 @@ struct RtlParams {
   bool operator==(const RtlParams&) const = default;
 };
 
-RtlParams rtl_params_from_config(const Config& cfg);
+RtlParams rtl_params(const ArchParams& arch);
 
 // The Verilog header: "parameter Name = value, // comment" lines (the last without a
 // comma), to be `include`d in rast_top's parameter port list. `source` names the
@@ -87,7 +87,23 @@ struct ScanoutRtlParams {
   bool operator==(const ScanoutRtlParams&) const = default;
 };
 
-ScanoutRtlParams scanout_rtl_params_from_config(const Config& cfg);
+ScanoutRtlParams scanout_rtl_params(const ArchParams& arch, const DisplayParams& display);
+
+// The 2D engine (rtl/rast_engine2d.sv, rast_line, rast_pattern, rast_rop3) is one
+// verilated model for every config (its timing keys are run-time inputs): its two
+// parameters, for the testbench's port packing (model/rtl/testbench.cpp, cosim_driver.h).
+struct Engine2dRtlParams {
+  int width = 0;      // Width: bits of a signed pixel index on its operation, clip and memory ports
+  int lanes_max = 0;  // LanesMax: framebuffer lanes a beat, the largest engine2d.fill_pixels_per_cycle
+
+  bool operator==(const Engine2dRtlParams&) const = default;
+};
+const Engine2dRtlParams& engine2d_rtl_params();
+
+// The verilated engine (its public parameters, `built`) is the one the testbench packs
+// ports for (`wanted`): every parameter equal. On false, `why` names the one that differs.
+bool engine2d_rtl_params_compatible(const Engine2dRtlParams& built, const Engine2dRtlParams& wanted,
+                                    std::string* why = nullptr);
 
 // The Verilog header of the scan-out: "parameter int Name = value, // comment" lines,
 // the body of the scan-out top's parameter port list (tb/scanout/scanout_cosim_top.sv).

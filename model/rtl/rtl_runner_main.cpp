@@ -36,17 +36,18 @@ int main(int argc, char** argv) {
     std::ifstream is(argv[1]);
     if (!is) throw std::runtime_error(std::string(argv[1]) + ": cannot read the request");
     const RunnerRequest q = read_runner_request(nlohmann::json::parse(is));
-    const RtlParams wanted = cosim_wanted_params(q.config, q.options);
+    const ArchParams arch = ArchParams::resolve(q.config);  // this process's entry: the config resolved once
+    const RtlParams wanted = cosim_wanted_params(arch, q.options);
     std::string why;
     if (!rtl_params_compatible(built, wanted, &why))
       throw std::runtime_error(std::string(argv[0]) + " cannot run this config: " + why);
-    const Scene scene = load_scene(q.scene, obj_placement_from_config(q.config));
+    const Scene scene = load_scene(q.scene, arch.placement);
     if (scene.commands.size() != q.scene_commands)
       throw std::runtime_error(q.scene + ": has " + std::to_string(scene.commands.size()) + " commands, rastsim read " +
                                std::to_string(q.scene_commands) + " (did the file change?)");
     TbSetup s;
     CosimResult r;
-    cosim_setup(scene, q.config, q.options, built, s, r);
+    cosim_setup(scene, arch, q.options, built, s, r);
     run_rtl<Vrast_top>(s, r);
     out = r;
   } catch (const std::exception& e) {

@@ -16,6 +16,7 @@
 #include <string_view>
 
 #include "ref/2d/font.h"
+#include "ref/framebuffer.h"
 #include "ref/2d/rop3.h"
 #include "ref/scene.h"
 #include "scene/scene_text.h"
@@ -31,9 +32,9 @@ namespace {
 using scene_text::quote;
 using scene_text::Tokens;
 
-// Largest viewport or scissor coordinate a trace may name: far beyond any framebuffer
-// the config accepts, small enough that x + width never overflows an int.
-constexpr int64_t kMaxExtent = 16384;
+// Largest viewport or scissor coordinate a trace may name: the largest framebuffer the
+// config accepts.
+constexpr int64_t kMaxExtent = kMaxImageExtent;
 
 // "[-+]digits[.digits]" with at least one digit: the grammar Q64::parse_decimal reads.
 bool is_plain_decimal(std::string_view tok) {

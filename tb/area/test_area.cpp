@@ -127,7 +127,7 @@ TEST(Area, MoreFineLanesMoreCells) {
   AreaOptions ao;
   ao.top = "rast_fine_raster";
   ao.use_cache = false;
-  const auto area_of = [&](int lanes) { return synthesize_area(rtl_params_from_config(app::load_config(small_config(lanes))), ao); };
+  const auto area_of = [&](int lanes) { return synthesize_area(rtl_params(ArchParams::resolve(app::load_config(small_config(lanes)))), ao); };
   const AreaReport one = area_of(1), four = area_of(4);
   EXPECT_GT(four.total.cells, one.total.cells);
   EXPECT_GT(four.total.transistors, one.total.transistors);
@@ -150,7 +150,7 @@ TEST(Area, SplitEqualsOneProcessWithinTolerance) {
   app::ConfigOptions c = small_config(1);
   c.sets.push_back("interp.fragments_per_cycle=1");
   c.sets.push_back("raster.max_samples=2");
-  const RtlParams p = rtl_params_from_config(app::load_config(c));
+  const RtlParams p = rtl_params(ArchParams::resolve(app::load_config(c)));
   const fs::path cache = temp_path("split_cache");
   AreaOptions ao;
   ao.top = "rast_top";

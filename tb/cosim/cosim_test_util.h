@@ -101,15 +101,16 @@ inline Scene random_scene(const Config& cfg, uint64_t seed, int n) {
 }
 
 // A random scene of `triangles` through the RTL at tile size `tile` with 30 % random
-// backpressure; `seed` (printed) seeds both.
+// backpressure and 30 % gaps in the triangle valid; `seed` (printed) seeds all three.
 inline CosimResult run_random_scene(const Config& cfg, uint64_t seed, int triangles, int tile) {
-  std::cout << "seed " << seed << " (scene and backpressure)\n";
+  std::cout << "seed " << seed << " (scene, backpressure and valid gaps)\n";
   const Scene scene = random_scene(cfg, seed, triangles);
   CosimOptions o;
   o.tile_size = tile;
   o.backpressure = 0.3;
-  o.backpressure_seed = seed;
-  return run_cosim(scene, cfg, o);
+  o.valid_gaps = 0.3;
+  o.stress_seed = seed;
+  return run_cosim(scene, ArchParams::resolve(cfg), o);
 }
 
 inline void expect_clean(const CosimResult& r) {

@@ -108,8 +108,8 @@ TEST(MsaaDirectedCosim, EdgeCasesAtEverySampleCount) {
       CosimOptions o;
       o.tile_size = 8;
       o.backpressure = 0.5;
-      o.backpressure_seed = 3;
-      const CosimResult r = run_cosim(msaa_directed_scene(cfg), cfg, o);
+      o.stress_seed = 3;
+      const CosimResult r = run_cosim(msaa_directed_scene(cfg), ArchParams::resolve(cfg), o);
       expect_clean(r);
       EXPECT_EQ(r.crc_rtl, r.crc_ref);
     }
@@ -138,7 +138,7 @@ TEST(MsaaTiming, OneTileAddsTheEquationsCycles) {
                         [&](int, int, uint32_t m) { accesses += TimingParams::rop_accesses(m, samples); });
       EXPECT_EQ(c.tiles_partial, 1u);
       EXPECT_EQ(c.tiles_accepted, 0u);
-      const CosimResult r = run_cosim(scene, cfg);
+      const CosimResult r = run_cosim(scene, ArchParams::resolve(cfg));
       expect_clean(r);
       EXPECT_EQ(r.rop_accesses, accesses);
       const uint64_t fb = uint64_t(st.fb_width) * uint64_t(st.fb_height);
@@ -165,7 +165,7 @@ TEST(MsaaCosim, SsaaHasNoRtlAndSaysWhichKey) {
   Scene scene;
   scene.source = "ssaa";
   try {
-    run_cosim(scene, cfg);
+    run_cosim(scene, ArchParams::resolve(cfg));
     FAIL() << "ssaa co-simulated";
   } catch (const std::exception& e) {
     EXPECT_NE(std::string(e.what()).find("raster.aa_mode"), std::string::npos) << e.what();

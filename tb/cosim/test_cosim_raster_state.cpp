@@ -8,7 +8,7 @@
 //   random scene of ~400 triangles of both windings (quads split along a diagonal,
 //   fans around a vertex on a pixel centre, free triangles), edges through pixel
 //   centres and shared edges, compared fragment by fragment with the reference model
-//   under random backpressure (seeded; the seed is printed).
+//   under random backpressure and valid gaps (seeded; the seed is printed).
 // - BackFaceCull: triangles culled as back faces produce no fragments and cost setup's
 //   interval like any culled triangle (the model's rule: the same cycles as zero-area
 //   triangles); the same triangles are drawn when they face front.
@@ -95,7 +95,7 @@ struct StateCase {
   const char* fill;   // raster.fill_rule
   const char* cull;   // raster.cull
   const char* front;  // raster.front_face
-  uint64_t seed;      // of the scene and the backpressure
+  uint64_t seed;      // of the scene and the stress
 };
 void PrintTo(const StateCase& k, std::ostream* os) {
   *os << "fill_rule=" << k.fill << " cull=" << k.cull << " front_face=" << k.front << " seed=" << k.seed;
@@ -110,7 +110,7 @@ TEST_P(RasterStateCosim, MixedWindingsMatchReference) {
   cfg.apply_override(std::string("raster.cull=") + k.cull);
   cfg.apply_override(std::string("raster.front_face=") + k.front);
   const uint64_t seed = k.seed;
-  std::cout << "seed " << seed << " (scene and backpressure)\n";
+  std::cout << "seed " << seed << " (scene and stress)\n";
   const int w = static_cast<int>(cfg.get_int("display.width")), h = static_cast<int>(cfg.get_int("display.height"));
   int cw = 0, ccw = 0;
   const Scene scene = state_scene(seed, 400, w, h, &cw, &ccw);
@@ -127,8 +127,9 @@ TEST_P(RasterStateCosim, MixedWindingsMatchReference) {
   CosimOptions o;
   o.tile_size = 8;
   o.backpressure = 0.2;
-  o.backpressure_seed = seed;
-  const CosimResult r = run_cosim(scene, cfg, o);
+  o.valid_gaps = 0.2;
+  o.stress_seed = seed;
+  const CosimResult r = run_cosim(scene, ArchParams::resolve(cfg), o);
   std::cout << r.rtl_config << ": " << r.fragments_compared << " fragments, " << r.cycles_rtl << " cycles, "
             << r.wall_seconds << " s\n";
   EXPECT_EQ(r.rtl_config, "default");  // the state is run-time input: no model of its own
@@ -181,7 +182,7 @@ TEST(BackFaceCull, NoFragmentsAndCostOfACulledTriangle) {
   cull_back.apply_override("raster.cull=back");
   const Scene back = repeated(false, kTriangles), zero = repeated(true, kTriangles);
 
-  const CosimResult culled = run_cosim(back, cull_back);
+  const CosimResult culled = run_cosim(back, ArchParams::resolve(cull_back));
   EXPECT_EQ(culled.rtl_config, "default");
   EXPECT_EQ(culled.triangles, uint64_t(kTriangles));
   EXPECT_EQ(culled.fragments_expected, 0u);
@@ -189,20 +190,20 @@ TEST(BackFaceCull, NoFragmentsAndCostOfACulledTriangle) {
   EXPECT_EQ(culled.mismatches, 0u) << culled.first_mismatch;
   // Setup spends its interval on a facing-culled triangle as on a zero-area one and
   // hands nothing on: the same cycles, end to end.
-  const CosimResult degenerate = run_cosim(zero, cull_back);
+  const CosimResult degenerate = run_cosim(zero, ArchParams::resolve(cull_back));
   EXPECT_EQ(degenerate.fragments_compared, 0u);
   EXPECT_EQ(culled.cycles_rtl, degenerate.cycles_rtl);
   // The same triangles culled as front faces (front_face = cw, cull = front) cost the same.
   Config cull_front = cull_back;
   cull_front.apply_override("raster.cull=front");
   cull_front.apply_override("raster.front_face=cw");
-  const CosimResult culled_front = run_cosim(back, cull_front);
+  const CosimResult culled_front = run_cosim(back, ArchParams::resolve(cull_front));
   EXPECT_EQ(culled_front.fragments_compared, 0u);
   EXPECT_EQ(culled_front.cycles_rtl, culled.cycles_rtl);
   // Facing front (front_face = cw), they are drawn: every one, and later than culled.
   Config drawn_cfg = cull_back;
   drawn_cfg.apply_override("raster.front_face=cw");
-  const CosimResult drawn = run_cosim(back, drawn_cfg);
+  const CosimResult drawn = run_cosim(back, ArchParams::resolve(drawn_cfg));
   EXPECT_EQ(drawn.mismatches, 0u) << drawn.first_mismatch;
   EXPECT_EQ(drawn.fragments_compared, drawn.fragments_expected);
   EXPECT_GT(drawn.fragments_compared, uint64_t(kTriangles) * 3000);

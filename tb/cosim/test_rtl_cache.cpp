@@ -29,9 +29,9 @@ TEST(RtlRunnerRequest, CarriesEveryConfigValueAndOrigin) {
   CosimOptions o;
   o.tile_size = 4;
   o.backpressure = 0.25;
-  o.backpressure_seed = 7;
+  o.stress_seed = 7;
   o.fst_path = "w.fst";
-  const RunnerRequest q = read_runner_request(nlohmann::json::parse(runner_request(scene, cfg, o).dump()));
+  const RunnerRequest q = read_runner_request(nlohmann::json::parse(runner_request(scene, ArchParams::resolve(cfg), o).dump()));
   ASSERT_EQ(q.config.values().size(), cfg.values().size());
   for (const auto& [key, v] : cfg.values()) {
     SCOPED_TRACE(key);
@@ -43,7 +43,7 @@ TEST(RtlRunnerRequest, CarriesEveryConfigValueAndOrigin) {
   EXPECT_EQ(q.scene_commands, 3u);
   EXPECT_EQ(q.options.tile_size, 4);
   EXPECT_EQ(q.options.backpressure, 0.25);
-  EXPECT_EQ(q.options.backpressure_seed, 7u);
+  EXPECT_EQ(q.options.stress_seed, 7u);
   EXPECT_EQ(q.options.fst_path, "w.fst");
   EXPECT_EQ(q.options.max_cycles, o.max_cycles);
 }
@@ -85,7 +85,7 @@ std::string cosim_error(const std::string& set) {
   cfg.apply_override(set);
   cfg.validate();
   try {
-    run_cosim(parse_trace("viewport 64 64\n", "mem.trace"), cfg);
+    run_cosim(parse_trace("viewport 64 64\n", "mem.trace"), ArchParams::resolve(cfg));
   } catch (const std::exception& e) {
     return e.what();
   }
@@ -109,7 +109,7 @@ TEST(RtlOnDemand, TileTooLargeForVerilatorNamesTileSizeAndSamples) {
   cfg.apply_override("raster.tile_size=128");
   cfg.validate();
   try {
-    prepare_rtl_model(cfg);
+    prepare_rtl_model(ArchParams::resolve(cfg));
     FAIL() << "expected an error";
   } catch (const std::exception& e) {
     const std::string m = e.what();

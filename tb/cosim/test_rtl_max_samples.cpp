@@ -35,20 +35,20 @@ TEST(RtlMaxSamples, SmallModelMatchesShippedModel) {
     SCOPED_TRACE("raster.samples = " + std::to_string(samples));
     // The shipped model (MaxSamples = 16) with the config as shipped.
     const Config shipped_cfg = embedded_with(samples, 0);
-    ASSERT_EQ(rtl_params_from_config(shipped_cfg).max_samples, 16);
-    const CosimResult want = run_cosim(scene, shipped_cfg, {});
+    ASSERT_EQ(rtl_params(ArchParams::resolve(shipped_cfg)).max_samples, 16);
+    const CosimResult want = run_cosim(scene, ArchParams::resolve(shipped_cfg), {});
     ASSERT_EQ(want.rtl_config, "embedded");
 
     // The same config built with MaxSamples = 2, through the RTL cache.
     const Config small_cfg = embedded_with(samples, 2);
-    const RtlParams build = rtl_params_from_config(small_cfg);
+    const RtlParams build = rtl_params(ArchParams::resolve(small_cfg));
     ASSERT_EQ(build.max_samples, 2);
     RtlBuildOptions bo;
     bo.cache_dir = RASTSIM_TEST_CACHE;
     bo.label = "embedded --set raster.max_samples=2";
     const RtlCacheEntry e = find_or_build_rtl_model(build, build, bo);
     ASSERT_EQ(e.params.max_samples, 2) << e.dir;
-    CosimResult got = run_rtl_runner(e, runner_request(scene, small_cfg, {})).get<CosimResult>();
+    CosimResult got = run_rtl_runner(e, runner_request(scene, ArchParams::resolve(small_cfg), {})).get<CosimResult>();
 
     EXPECT_EQ(want.mismatches, 0u) << want.first_mismatch;
     EXPECT_EQ(got.mismatches, 0u) << got.first_mismatch;

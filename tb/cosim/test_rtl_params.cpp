@@ -21,7 +21,7 @@ TEST(RtlRegistry, CompiledParametersEqualTheShippedConfigs) {
   const auto models = rtl_models();
   ASSERT_FALSE(models.empty());
   for (const RtlModelInfo& m : models) {
-    const RtlParams want = rtl_params_from_config(load_shipped_config(m.config));
+    const RtlParams want = rtl_params(ArchParams::resolve(load_shipped_config(m.config)));
     std::string why;
     EXPECT_TRUE(m.params == want) << m.name << ": " << (rtl_params_compatible(m.params, want, &why) ? "" : why);
     EXPECT_TRUE(m.name == m.config || m.name == m.config + "_circuit") << m.name;
@@ -34,7 +34,7 @@ TEST(RtlRegistry, CompiledParametersEqualTheShippedConfigs) {
 
 TEST(RtlRegistry, PortWidthsHoldTheSchemaMaxima) {
   // 16384 px displays: pixel coordinates 0..16383 in 14 bits; 128 px tiles: log2 7 in 3 bits.
-  const RtlParams p = rtl_params_from_config(load_shipped_config("default"));
+  const RtlParams p = rtl_params(ArchParams::resolve(load_shipped_config("default")));
   EXPECT_EQ(p.pixel_w, 14);
   EXPECT_EQ(p.tile_log2_w, 3);
   // raster.samples up to 16: the mask of 16 bits, log2 4 in 3 bits; offsets F + 1 = 17 bits (s7.16).
@@ -50,7 +50,7 @@ TEST(RtlParamsMaxSamples, FromConfigAndValidated) {
   c.apply_override("raster.max_samples=4");
   c.apply_override("raster.samples=4");
   c.validate();
-  const RtlParams p = rtl_params_from_config(c);
+  const RtlParams p = rtl_params(ArchParams::resolve(c));
   EXPECT_EQ(p.max_samples, 4);
   EXPECT_EQ(p.sample_log2_w, 3);  // the port keeps the schema's width
   // The run-time sample count up to the built maximum: a 4-sample RTL runs 2, not 8.
@@ -80,7 +80,7 @@ TEST(RtlParamsMaxSamples, FromConfigAndValidated) {
 }
 
 TEST(RtlParamsValues, RoundTripAndWrongCount) {
-  const RtlParams p = rtl_params_from_config(load_shipped_config("desktop"));
+  const RtlParams p = rtl_params(ArchParams::resolve(load_shipped_config("desktop")));
   std::string text = rtl_params_values(p);  // "{v0, v1, ...}"
   ASSERT_EQ(text.front(), '{');
   ASSERT_EQ(text.back(), '}');
@@ -89,6 +89,21 @@ TEST(RtlParamsValues, RoundTripAndWrongCount) {
   for (std::string item; std::getline(is, item, ',');) values.push_back(std::stoi(item));
   EXPECT_TRUE(rtl_params_from_values(values) == p);
   EXPECT_THROW(rtl_params_from_values({1, 2, 3}), std::invalid_argument);
+}
+
+// The 2D engine's lanes are the schema's largest engine2d.fill_pixels_per_cycle (the
+// verilated engine is checked against the table at every run, cosim_driver.h); a
+// differing parameter is named.
+TEST(Engine2dRtlParams, LanesFromTheSchemaAndMismatchNamed) {
+  const Engine2dRtlParams& p = engine2d_rtl_params();
+  EXPECT_EQ(p.lanes_max, int(find_param("engine2d.fill_pixels_per_cycle")->max));
+  EXPECT_GT(p.width, 0);
+  std::string why;
+  EXPECT_TRUE(engine2d_rtl_params_compatible(p, p, &why));
+  Engine2dRtlParams narrow = p;
+  narrow.lanes_max = p.lanes_max / 2;
+  EXPECT_FALSE(engine2d_rtl_params_compatible(narrow, p, &why));
+  EXPECT_NE(why.find("LanesMax is " + std::to_string(p.lanes_max)), std::string::npos) << why;
 }
 
 }  // namespace

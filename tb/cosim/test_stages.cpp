@@ -28,6 +28,7 @@
 #include "fidelity/run_child.h"
 #include "rtl/stage_compare.h"
 #include "sc/raster_pipeline.h"
+#include "timing/stage_table.h"
 
 namespace rastsim::cosim {
 namespace {
@@ -55,27 +56,24 @@ std::vector<StageRecord> model_stages(const Scene& scene, const Config& cfg, uin
   return v;
 }
 
-// The stages the SystemC model and the RTL co-simulation both count, in pipeline order.
-const std::vector<std::string> kAllStages = {"command_fetch", "prim_assembly", "tri_setup",
-                                             "coarse_raster", "fine_raster",   "interpolate",
-                                             "rop",           "draw2d_setup",  "engine2d"};
-bool is_2d_stage(const std::string& name) { return name == "draw2d_setup" || name == "engine2d"; }
+// A stage's name in both sides' records (timing/stage_table.h).
+std::string name_of(StageId id) { return std::string(stage_name(id)); }
 
 // Every stage's figures agree on `scene`: busy within `bound` (with `busy_nonzero` the
 // stages that must have worked), the three states add up to each side's cycles, and
 // both sides take the same number of transactions.
 void expect_stages_agree(const Scene& scene, const Config& cfg, const std::set<std::string>& busy_nonzero,
                          const std::set<std::string>& idle) {
-  const CosimResult r = run_cosim(scene, cfg);
+  const CosimResult r = run_cosim(scene, ArchParams::resolve(cfg));
   expect_clean(r);
   uint64_t cycles_model = 0;
   const std::vector<StageRecord> model = model_stages(scene, cfg, cycles_model);
   const std::vector<StageAgreement> a = compare_stages(model, r.stages);
-  ASSERT_EQ(a.size(), kAllStages.size()) << "every stage the RTL co-simulation counts has a SystemC twin";
+  ASSERT_EQ(a.size(), kStageCount) << "every stage of the table is counted by the RTL co-simulation and the SystemC model";
   for (size_t k = 0; k < a.size(); ++k) {
     const StageAgreement& s = a[k];
     SCOPED_TRACE(s.name);
-    EXPECT_EQ(s.name, kAllStages[k]);
+    EXPECT_EQ(s.name, kStages[k].name);
     std::cout << s.name << ": busy model " << s.model.busy << ", RTL " << s.rtl.busy << "; transactions model "
               << s.model.transactions << ", RTL " << s.rtl.transactions << "\n";
     if (busy_nonzero.count(s.name)) {
@@ -101,7 +99,7 @@ TEST_P(StageAgreementTest, RandomSceneBusyWithinTwoPercent) {
   std::cout << "seed " << seed << "\n";
   const Scene scene = random_scene(cfg, seed, 2000);
   std::set<std::string> triangle, two_d;
-  for (const std::string& n : kAllStages) (is_2d_stage(n) ? two_d : triangle).insert(n);
+  for (const StageInfo& st : kStages) (st.path == StagePath::TwoD ? two_d : triangle).insert(std::string(st.name));
   expect_stages_agree(scene, cfg, triangle, two_d);
 }
 
@@ -113,7 +111,10 @@ TEST_P(StageAgreementTest, TwoDScenesBusyWithinTwoPercent) {
     if (e.path().extension() != ".trace") continue;
     SCOPED_TRACE(e.path().string());
     ++scenes;
-    expect_stages_agree(load_trace(e.path().string()), cfg, {"command_fetch", "rop", "draw2d_setup", "engine2d"}, {});
+    expect_stages_agree(load_trace(e.path().string()), cfg,
+                        {name_of(StageId::CommandFetch), name_of(StageId::Rop), name_of(StageId::Draw2dSetup),
+                         name_of(StageId::Engine2d)},
+                        {});
   }
   EXPECT_GT(scenes, 0) << "no 2D scene in " << dir;
 }
@@ -124,7 +125,7 @@ INSTANTIATE_TEST_SUITE_P(ShippedConfigs, StageAgreementTest,
 
 const StageRecord& rop(const CosimResult& r) {
   for (const StageRecord& s : r.stages)
-    if (s.name == "rop") return s;
+    if (s.name == stage_name(StageId::Rop)) return s;
   throw std::runtime_error("no rop stage");
 }
 
@@ -142,7 +143,7 @@ TEST(TraceDiff, PerturbedRopTransactionIsTheFirstDifference) {
   const Scene scene = random_scene(cfg, 0x7d1ffu, 200);
   CosimOptions o;
   o.record_transactions = true;
-  const CosimResult base = run_cosim(scene, cfg, o);
+  const CosimResult base = run_cosim(scene, ArchParams::resolve(cfg), o);
   expect_clean(base);
   // Identical runs: identical files.
   const std::string dir = ::testing::TempDir() + "rastsim_trace_diff";
@@ -151,7 +152,7 @@ TEST(TraceDiff, PerturbedRopTransactionIsTheFirstDifference) {
   // Transaction 5 of the ROP 7 cycles longer.
   o.perturb_rop_transaction = 5;
   o.perturb_rop_cycles = 7;
-  const CosimResult slow = run_cosim(scene, cfg, o);
+  const CosimResult slow = run_cosim(scene, ArchParams::resolve(cfg), o);
   expect_clean(slow);
   const TraceDiff d = write_trace_diff(dir, compare_stages(base.stages, slow.stages));
   EXPECT_EQ(csv_rows(dir + "/model.csv"), d.rows_model);

@@ -1,0 +1,679 @@
+// SPDX-License-Identifier: Apache-2.0
+// The co-simulation testbench (testbench.h): everything of a run but the verilated
+// models, which it reaches through RastPorts.
+//
+// Timing convention (the same as the RTL's and, shifted by nothing, the SystemC
+// model's): a stage that takes an item in cycle u and needs n cycles offers its result
+// in cycle u + n - 1; a FIFO entry pushed in cycle v is visible in cycle v + 1 (SystemC
+// time v + 1); a push into a full FIFO succeeds when the reader pops in the same cycle.
+// The testbench stages below follow model/sc/command_fetch.cpp, prim_assembly.cpp and
+// rop.cpp exactly, with the cost equations of TimingParams; the cycle count is the
+// ROP's last busy cycle + 1, as the model's.
+//
+// Stage statistics (docs/microarchitecture.md "Stage statistics"): every cycle each
+// stage is busy, stalled or starved, as the SystemC Stage accounts it. The testbench
+// stages (and the 2D front end and engine) count their own cycles; setup, coarse raster,
+// fine raster and interpolation are classified from rast_top's dbg_has_o / dbg_done_o /
+// dbg_blocked_o handshake ports.
+//
+// Stress (CosimOptions): random backpressure on frag_ready_i and random gaps in
+// tri_valid_i and the 2D engine's in_valid_i, each from its own generator seeded by
+// CosimOptions::stress_seed, drawn only when its probability is above 0 (so a run
+// without stress, or with backpressure only, is the same run as before either existed).
+#include "rtl/testbench.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstring>
+#include <deque>
+#include <random>
+
+#include "ref/pipeline.h"
+#include "ref/rop.h"
+#include "timing/stage_table.h"
+
+namespace rastsim::cosim {
+
+namespace {
+
+// A testbench stage: takes an item, is busy `cost` cycles, offers its output in the
+// last of them and holds it until taken.
+struct TbStage {
+  bool active = false;
+  uint64_t left = 0;  // busy cycles left, including the current one
+  size_t item = 0;
+  bool offering() const { return active && left == 1; }
+};
+
+enum class Cyc : uint8_t { Starved, Busy, Stalled };  // a stage's state in one cycle
+
+// The RTL stages rast_top's dbg_*_o ports observe, bit s of each port.
+constexpr std::array kObservedStages = {StageId::TriSetup, StageId::CoarseRaster, StageId::FineRaster,
+                                        StageId::Interpolate};
+
+// A FIFO entry, visible to its reader from the cycle after its push: a command-FIFO
+// entry (a scene item) or a 2D FIFO entry (a work2d index).
+struct Entry {
+  size_t item;
+  uint64_t pushed;
+};
+// A fragment-FIFO entry: a tile's fragments or a marker, visible to the ROP from the
+// cycle after its push.
+struct Batch {
+  uint64_t fragments = 0;
+  uint64_t accesses = 0;  // ROP accesses (TimingParams::rop_accesses of each fragment's mask)
+  bool marker = false;
+  size_t marker_item = 0;
+  uint64_t pushed = 0;
+  std::vector<Fragment> frags;  // written into the testbench framebuffer by the ROP
+};
+
+// A random low on one valid or ready input, with probability p a cycle (0: never, and
+// no number drawn).
+class PortStress {
+ public:
+  PortStress(std::mt19937_64 rng, double p) : rng_(rng), p_(p), low_(p) {}
+  bool low() { return p_ > 0 && low_(rng_); }
+
+ private:
+  std::mt19937_64 rng_;
+  double p_;
+  std::bernoulli_distribution low_;
+};
+// frag_ready_i's generator is seeded with the seed itself, each valid input's with the
+// seed and its own index (port 1, 2, ...).
+std::mt19937_64 port_rng(uint64_t seed, uint32_t port) {
+  if (port == 0) return std::mt19937_64(seed);
+  std::seed_seq seq{uint32_t(seed), uint32_t(seed >> 32), port};
+  return std::mt19937_64(seq);
+}
+
+// One co-simulation run: the verilated rast_top between the testbench's front end
+// (command fetch, command FIFO, primitive assembly) and its back end (fragment
+// staging, fragment FIFO, the ROP as a memory model). Each cycle: the back end and
+// assembly act on what is visible (ROP, staging, assembly take), the triangle port is
+// driven, the clock falls, the fragment port is read, assembly and fetch advance, the
+// clock rises.
+class Testbench {
+ public:
+  Testbench(const TbSetup& setup, RastPorts& ports, CosimResult& result)
+      : setup_(setup), ports_(ports), result_(result),
+        frag_ready_stress_(port_rng(setup.opts.stress_seed, 0), setup.opts.backpressure),
+        tri_valid_stress_(port_rng(setup.opts.stress_seed, 1), setup.opts.valid_gaps),
+        op_valid_stress_(port_rng(setup.opts.stress_seed, 2), setup.opts.valid_gaps),
+        cmd_depth_(size_t(setup.timing.fifo_entries(FifoId::Command))),
+        frag_depth_(size_t(setup.timing.fifo_entries(FifoId::Fragment))),
+        draw2d_depth_(size_t(setup.timing.fifo_entries(FifoId::Draw2d))),
+        op2d_depth_(size_t(setup.timing.fifo_entries(FifoId::Op2d))), rop_state_(setup.arch),
+        fb_(setup.arch.fb_width, setup.arch.fb_height, setup.samples) {
+    fb_.clear_depth(static_cast<uint32_t>((uint64_t{1} << rop_state_.depth_bits) - 1));  // as render_scene
+  }
+
+  void run();
+
+ private:
+  void reset();
+  bool cycle(uint64_t t);
+  // Back end: the ROP as a memory model (model/sc/rop.cpp).
+  void rop_step(uint64_t t);
+  bool rop_start(uint64_t t);
+  void push_staging(uint64_t t);
+  void unblock_staging(uint64_t t) {
+    if (staging_blocked_) push_staging(t);
+  }
+  void take_beat(uint64_t t, const FragmentBeat& beat);
+  // The 2D path (model/sc/draw2d_setup.cpp, engine2d.cpp).
+  void engine_take(uint64_t t);
+  void engine_done(uint64_t t);
+  bool engine_drive();
+  uint32_t fb_rgb(int x, int y) const;
+  void engine_memory_and_handshake(uint64_t t, bool op_valid);
+  void engine_write(uint64_t t, int x, int y);
+  void front_end_take(uint64_t t);
+  void front_end_step(uint64_t t);
+  // Front end: command fetch and primitive assembly (model/sc/command_fetch.cpp, prim_assembly.cpp).
+  void assembly_take(uint64_t t);
+  void assembly_step(uint64_t t, bool tri_taken);
+  void fetch_step(uint64_t t);
+  bool fetch_push(uint64_t t, Cyc& state);
+  // Stage statistics.
+  StageRecord& record(StageId k) { return result_.stages[stage_index(k)]; }
+  void count(StageId k, Cyc c);
+  void tx_begin(StageId k, uint64_t t);
+  void tx_end(StageId k, uint64_t t);
+  void observe_rtl_stages(uint64_t t);
+  void close_stage_counts(uint64_t counted);
+  // Checks.
+  void mismatch(const std::string& what);
+  void compare(const Fragment& f);
+  bool done() const { return rop_left_ == 0 && done_but_rop(); }
+  bool done_but_rop() const;
+  void end_of_run_check();
+  void framebuffer_check();
+
+  const TbSetup& setup_;
+  RastPorts& ports_;
+  CosimResult& result_;
+  PortStress frag_ready_stress_, tri_valid_stress_, op_valid_stress_;
+  const size_t cmd_depth_, frag_depth_;  // command FIFO; fragment FIFO with the interpolator's latency slots
+  const size_t draw2d_depth_, op2d_depth_;  // the 2D command and operation FIFOs
+
+  std::deque<Entry> cmd_fifo_;
+  std::deque<Batch> frag_fifo_;
+  std::deque<size_t> markers_in_flight_;  // marker items sent to the RTL, in order
+  Batch staging_;                         // the batch the interpolator is filling
+  bool staging_blocked_ = false;          // completed, waiting for fragment-FIFO room
+  TbStage fetch_, assembly_;
+  size_t next_item_ = 0;
+  uint64_t rop_left_ = 0;                 // ROP busy cycles left
+  uint64_t last_busy_ = 0;                // last cycle any stage worked
+  size_t next_expected_ = 0;
+  // The 2D path.
+  RasterState rop_state_;                 // the ROP's state (depth function, clears)
+  Framebuffer fb_;                        // the memory: fragments, clears, 2D writes
+  std::deque<Entry> draw2d_fifo_, op2d_fifo_;  // fetch -> front end -> engine (items: work2d indices)
+  TbStage front_end_;                     // the 2D front end
+  bool front_end_blocked_ = false;        // the front end waited for op2d FIFO room
+  bool fetch_blocked_ = false;            // fetch waited for command or 2D FIFO room
+  bool fetch_2d_pushed_ = false;          // fetch pushed its 2D command, the marker still to go
+  int engine_work_ = -1;                  // the batch the engine holds (work2d index)
+  bool engine_busy_ = false;              // executing `engine_work_` (the port is lent)
+  bool engine_worked_ = false;            // the engine is busy in this cycle (stage statistics)
+  size_t next_op_ = 0;                    // next operation of `engine_work_` to offer
+  bool rop_wait_2d_ = false;              // the ROP holds for the engine
+  int granted_work_ = -1;                 // the 2D command the ROP granted
+  // Stage statistics.
+  struct Meter {
+    bool open = false;   // a transaction is in progress
+    uint64_t start = 0;  // its first cycle
+  };
+  std::array<Meter, kStageCount> meter_{};
+  std::array<bool, kObservedStages.size()> rtl_blocked_{};  // observed stage s was stalled on its output last cycle
+  bool assembly_offered_ = false;         // assembly offered its triangle in an earlier cycle
+};
+
+void Testbench::run() {
+  const auto t0 = std::chrono::steady_clock::now();
+  result_.stages.assign(kStageCount, StageRecord{});
+  for (const StageInfo& s : kStages) record(s.id).name = std::string(s.name);
+  reset();
+  uint64_t counted = 0;  // cycles classified (0 .. the last one run)
+  for (uint64_t t = 0;; ++t) {
+    counted = t + 1;
+    if (t >= setup_.opts.max_cycles) {
+      mismatch("simulation did not finish within " + std::to_string(setup_.opts.max_cycles) + " cycles");
+      break;
+    }
+    if (cycle(t)) {
+      result_.cycles_rtl = last_busy_ + 1;
+      break;
+    }
+    // Only the ROP left, counting down a long operation (a multisampled frame's resolve
+    // pass: up to millions of cycles): skip to its last cycle instead of clocking an
+    // idle RTL (the waveform stops here).
+    if (rop_left_ > 1 && done_but_rop()) {
+      last_busy_ = std::max(last_busy_, t + rop_left_);
+      result_.cycles_rtl = last_busy_ + 1;
+      // The skipped cycles t + 1 .. t + rop_left_: the ROP busy, every other stage starved.
+      for (const StageInfo& s : kStages) (s.id == StageId::Rop ? record(s.id).busy : record(s.id).starved) += rop_left_;
+      counted = t + 1 + rop_left_;
+      tx_end(StageId::Rop, counted);
+      rop_left_ = 0;
+      break;
+    }
+  }
+  close_stage_counts(counted);
+  end_of_run_check();
+  ports_.finish();
+  result_.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// Static raster state on its ports, then one reset cycle.
+void Testbench::reset() {
+  ports_.drive_static(setup_);
+  ports_.clock_edge(false);
+  ports_.clock_edge(true);
+  ports_.release_reset();
+}
+
+// One clock cycle t; true when the run is complete.
+bool Testbench::cycle(uint64_t t) {
+  rop_step(t);
+  unblock_staging(t);
+  engine_take(t);
+  front_end_take(t);
+  front_end_step(t);
+  const bool op_valid = engine_drive();
+  assembly_take(t);
+  const bool tri_valid = assembly_.offering() && !tri_valid_stress_.low();
+  ports_.drive_triangle(tri_valid ? &setup_.items[assembly_.item] : nullptr);
+  const bool frag_ready = !staging_blocked_ && !frag_ready_stress_.low();
+  ports_.drive_fragment_ready(frag_ready);
+  ports_.clock_edge(false);
+  const bool tri_taken = tri_valid && ports_.triangle_ready();
+  observe_rtl_stages(t);
+  const FragmentBeat beat = ports_.fragment_beat();
+  if (!ports_.idle() || beat.valid || fetch_.active || assembly_.active) last_busy_ = std::max(last_busy_, t);
+  if (beat.valid && frag_ready) take_beat(t, beat);
+  engine_memory_and_handshake(t, op_valid);
+  assembly_step(t, tri_taken);
+  fetch_step(t);
+  ports_.clock_edge(true);
+  return done();
+}
+
+// ---- Back end: the ROP as a memory model (model/sc/rop.cpp) ----
+
+// Starts the next visible batch when idle and counts its busy cycles.
+void Testbench::rop_step(uint64_t t) {
+  if (rop_wait_2d_) {  // the port is lent to the 2D engine (the SystemC ROP waits in read: starved)
+    last_busy_ = t;
+    count(StageId::Rop, Cyc::Starved);
+    return;
+  }
+  if (rop_left_ == 0 && !frag_fifo_.empty() && frag_fifo_.front().pushed < t && !rop_start(t)) return;
+  if (rop_left_ > 0) {
+    --rop_left_;
+    last_busy_ = t;
+    count(StageId::Rop, Cyc::Busy);
+    if (rop_left_ == 0) tx_end(StageId::Rop, t + 1);
+  } else {
+    count(StageId::Rop, Cyc::Starved);
+  }
+}
+// The ROP takes the fragment FIFO's head: a batch or a state marker is written and
+// costed; a 2D marker lends the port to the engine (false: this cycle is counted).
+bool Testbench::rop_start(uint64_t t) {
+  const Batch b = std::move(frag_fifo_.front());
+  frag_fifo_.pop_front();
+  if (b.marker && setup_.items[b.marker_item].work2d >= 0) {
+    // One transaction (the model's marker read): the wait for the engine, then the
+    // marker's own cycle (engine_done), whose end closes it.
+    tx_begin(StageId::Rop, t);
+    rop_wait_2d_ = true;
+    granted_work_ = setup_.items[b.marker_item].work2d;
+    last_busy_ = t;
+    count(StageId::Rop, Cyc::Starved);
+    return false;
+  }
+  // (The end-of-frame marker has no command: its cost is the resolve pass.)
+  if (b.marker && setup_.items[b.marker_item].cmd) apply_state_command(*setup_.items[b.marker_item].cmd, rop_state_, fb_);
+  for (const Fragment& f : b.frags) rop_write(fb_, f, rop_state_.depth_func, rop_state_.depth_write);
+  rop_left_ = b.marker ? setup_.items[b.marker_item].rop_cost : setup_.timing.rop_fragment_cycles(b.accesses);
+  if (setup_.opts.perturb_rop_cycles && record(StageId::Rop).transactions == setup_.opts.perturb_rop_transaction)
+    rop_left_ += setup_.opts.perturb_rop_cycles;  // test-only (CosimOptions)
+  tx_begin(StageId::Rop, t);
+  return true;
+}
+// A completed batch pushes into the fragment FIFO, or waits for room there while
+// blocking the interpolator (frag_ready low).
+void Testbench::push_staging(uint64_t t) {
+  if (frag_fifo_.size() < frag_depth_) {
+    staging_.pushed = t;
+    frag_fifo_.push_back(staging_);
+    staging_ = Batch{};
+    staging_blocked_ = false;
+  } else {
+    staging_blocked_ = true;
+  }
+}
+// A taken beat: a marker, or up to interp.fragments_per_cycle fragments, each compared
+// in order with the reference; a marker or a tile's last beat completes the batch.
+void Testbench::take_beat(uint64_t t, const FragmentBeat& beat) {
+  if (beat.marker) {
+    if (markers_in_flight_.empty()) {
+      mismatch("cycle " + std::to_string(t) + ": a marker the testbench never sent");
+    } else {
+      staging_.marker = true;
+      staging_.marker_item = markers_in_flight_.front();
+      markers_in_flight_.pop_front();
+    }
+  } else {
+    for (int j = 0; j < setup_.params.interp_fragments_per_cycle; ++j) {
+      if (!ports_.fragment_lane_valid(j)) continue;
+      Fragment f = ports_.fragment_lane(j);
+      f.samples = static_cast<uint8_t>(setup_.samples);
+      ++staging_.fragments;
+      staging_.frags.push_back(f);
+      const uint64_t acc = TimingParams::rop_accesses(f.mask, setup_.samples);
+      staging_.accesses += acc;
+      result_.rop_accesses += acc;
+      compare(f);
+    }
+  }
+  if (beat.marker || beat.last) push_staging(t);
+}
+
+// ---- The 2D path (model/sc/draw2d_setup.cpp, engine2d.cpp) ----
+
+// The engine takes the next visible operation batch when it has none.
+void Testbench::engine_take(uint64_t t) {
+  engine_worked_ = false;
+  if (engine_work_ < 0 && !engine_busy_ && !op2d_fifo_.empty() && op2d_fifo_.front().pushed < t) {
+    engine_work_ = int(op2d_fifo_.front().item);
+    op2d_fifo_.pop_front();
+    tx_begin(StageId::Engine2d, t);  // the model's read of the operation batch
+  }
+  // The ROP's grant and the held batch: the engine starts (its first cycle takes the port).
+  if (rop_wait_2d_ && engine_work_ >= 0 && !engine_busy_) {
+    if (engine_work_ != granted_work_)
+      mismatch("2D engine holds " + setup_.work2d[size_t(engine_work_)].name + " but the ROP granted " +
+               setup_.work2d[size_t(granted_work_)].name);
+    engine_busy_ = true;
+    engine_worked_ = true;  // the cycle that takes the port (TimingParams::engine2d_grant_cycles)
+    next_op_ = 0;
+    if (setup_.work2d[size_t(engine_work_)].work.ops.empty()) engine_done(t);
+  }
+}
+// The engine's last busy cycle t: its transaction ends (the model's write of done
+// returns at once: the ROP waits for it), the ROP's marker cycle is t + 1.
+void Testbench::engine_done(uint64_t t) {
+  tx_end(StageId::Engine2d, t + 1);
+  engine_busy_ = false;
+  engine_work_ = -1;
+  rop_wait_2d_ = false;
+  rop_left_ = 1;  // the ROP's own cycle for the marker, next cycle
+}
+// Drives the next operation and the command's paint state; true when one is offered
+// (none while the valid-gap stress holds in_valid_i low).
+bool Testbench::engine_drive() {
+  const bool has_op = engine_busy_ && next_op_ < setup_.work2d[size_t(engine_work_)].work.ops.size();
+  if (!has_op || op_valid_stress_.low()) {
+    ports_.drive_operation(nullptr, nullptr);
+    return false;
+  }
+  const Draw2dWork& w = setup_.work2d[size_t(engine_work_)].work;
+  ports_.drive_operation(&w, &w.ops[next_op_]);
+  return true;
+}
+uint32_t Testbench::fb_rgb(int x, int y) const {
+  if (x < 0 || y < 0 || x >= fb_.width || y >= fb_.height) return 0;
+  const uint8_t* p = fb_.pixel(x, y);
+  return uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16;
+}
+// The framebuffer port (asynchronous read, write at the edge), then the handshake.
+// The engine's cycle is busy from the one that takes the port to the one whose
+// operation completes the command (without valid gaps the testbench offers every
+// operation at once, so the engine never waits: the model's busy(1) +
+// busy(engine2d_op_cycles) per operation); starved otherwise (the model's reads of the
+// operations and of the ROP's grant).
+void Testbench::engine_memory_and_handshake(uint64_t t, bool op_valid) {
+  engine_worked_ = engine_worked_ || engine_busy_;
+  count(StageId::Engine2d, engine_worked_ ? Cyc::Busy : Cyc::Starved);
+  if (!engine_busy_) return;
+  last_busy_ = t;
+  const Engine2dAccess a = ports_.engine_access();
+  for (int k = 0; k < engine2d_rtl_params().lanes_max; ++k) ports_.drive_engine_read(k, fb_rgb(a.x + k, a.y));
+  ports_.answer_engine_reads(fb_rgb(a.sx, a.sy));
+  engine_write(t, a.x, a.y);
+  const size_t n = setup_.work2d[size_t(engine_work_)].work.ops.size();
+  const bool all_taken = next_op_ >= n;
+  const bool ready = ports_.operation_ready();
+  if (op_valid && ready) ++next_op_;
+  if (all_taken && ready) engine_done(t);
+}
+// The engine's write at this cycle's edge into the framebuffer, lane k at (x + k, y).
+void Testbench::engine_write(uint64_t t, int x, int y) {
+  const Engine2dWrite w = ports_.engine_write();
+  if (!w.enable) return;
+  for (int k = 0; k < engine2d_rtl_params().lanes_max; ++k) {
+    if (!((w.lane_mask >> k) & 1)) continue;
+    if (x + k < 0 || y < 0 || x + k >= fb_.width || y >= fb_.height) {
+      mismatch("cycle " + std::to_string(t) + ": the 2D engine wrote outside the framebuffer at (" +
+               std::to_string(x + k) + ", " + std::to_string(y) + ")");
+      continue;
+    }
+    const uint32_t v = ports_.engine_write_rgb(k);
+    uint8_t* p = fb_.pixel(x + k, y);
+    p[0] = uint8_t(v);
+    p[1] = uint8_t(v >> 8);
+    p[2] = uint8_t(v >> 16);
+    p[3] = 255;
+    ++result_.pixels_2d;
+  }
+}
+// The 2D front end: takes a visible command, is busy its cost, pushes its operations.
+void Testbench::front_end_take(uint64_t t) {
+  if (!front_end_.active && !draw2d_fifo_.empty() && draw2d_fifo_.front().pushed < t) {
+    front_end_ = TbStage{true, setup_.work2d[draw2d_fifo_.front().item].setup_cost, draw2d_fifo_.front().item};
+    draw2d_fifo_.pop_front();
+    tx_begin(StageId::Draw2dSetup, t);
+  }
+}
+// A stage that pushes in its last busy cycle starts its next item the cycle after; one
+// that was blocked on a full FIFO pushes in the cycle the reader pops and starts its
+// next item in that same cycle (the SystemC writer returns from its blocked write then).
+// The cycle is counted as fetch's (fetch_step): busy for a countdown or the first push
+// attempt, stalled for a retried push, and a push after a stall ends that transaction
+// as the cycle starts.
+void Testbench::front_end_step(uint64_t t) {
+  Cyc state = Cyc::Starved;
+  for (;;) {
+    front_end_take(t);
+    if (!front_end_.active) break;
+    last_busy_ = std::max(last_busy_, t);
+    if (front_end_.left > 1) {
+      --front_end_.left;
+      state = Cyc::Busy;
+      break;
+    }
+    if (!front_end_blocked_) state = Cyc::Busy;
+    if (op2d_fifo_.size() >= op2d_depth_) {
+      if (front_end_blocked_) state = Cyc::Stalled;
+      front_end_blocked_ = true;
+      break;
+    }
+    op2d_fifo_.push_back(Entry{front_end_.item, t});
+    front_end_.active = false;
+    const bool was_blocked = front_end_blocked_;
+    front_end_blocked_ = false;
+    tx_end(StageId::Draw2dSetup, was_blocked ? t : t + 1);
+    if (!was_blocked) break;
+  }
+  count(StageId::Draw2dSetup, state);
+}
+
+// ---- Front end: command fetch and primitive assembly (model/sc/command_fetch.cpp,
+// prim_assembly.cpp) ----
+
+// Assembly takes a visible command.
+void Testbench::assembly_take(uint64_t t) {
+  if (!assembly_.active && !cmd_fifo_.empty() && cmd_fifo_.front().pushed < t) {
+    assembly_ = TbStage{true, setup_.items[cmd_fifo_.front().item].assembly_cost, cmd_fifo_.front().item};
+    cmd_fifo_.pop_front();
+    assembly_offered_ = false;
+    tx_begin(StageId::PrimAssembly, t);
+  }
+}
+// Assembly counts its busy cycle and hands over on a taken offer. Its last busy cycle
+// offers the triangle; later cycles of the offer are stalled, including the one in
+// which a waited-for offer is taken (the SystemC write returns as that cycle starts).
+void Testbench::assembly_step(uint64_t t, bool tri_taken) {
+  if (!assembly_.active) {
+    count(StageId::PrimAssembly, Cyc::Starved);
+    return;
+  }
+  if (assembly_.left > 1) {
+    --assembly_.left;
+    count(StageId::PrimAssembly, Cyc::Busy);
+    return;
+  }
+  const bool retry = assembly_offered_;
+  assembly_offered_ = true;
+  count(StageId::PrimAssembly, retry ? Cyc::Stalled : Cyc::Busy);
+  if (tri_taken) {
+    if (setup_.items[assembly_.item].kind == TbItem::Marker) markers_in_flight_.push_back(assembly_.item);
+    assembly_.active = false;
+    tx_end(StageId::PrimAssembly, retry ? t : t + 1);
+  }
+}
+// Fetch starts the scene's next item and pushes it into the command FIFO when done
+// (a 2D command into the 2D front end's FIFO first). Like the front end: after a push
+// that waited for FIFO room, the next item starts in the same cycle.
+// The cycle is busy when fetch works in it (a countdown or the last cycle's first push
+// attempt), stalled when it only retries a blocked push, starved otherwise (a push
+// after a stall ends that transaction as the cycle starts, as the SystemC write returns).
+void Testbench::fetch_step(uint64_t t) {
+  Cyc state = Cyc::Starved;
+  for (;;) {
+    if (!fetch_.active && next_item_ < setup_.items.size()) {
+      fetch_ = TbStage{true, setup_.items[next_item_].fetch_cost, next_item_++};
+      tx_begin(StageId::CommandFetch, t);
+    }
+    if (!fetch_.active) break;
+    last_busy_ = std::max(last_busy_, t);
+    if (fetch_.left > 1) {
+      --fetch_.left;
+      state = Cyc::Busy;
+      break;
+    }
+    if (!fetch_blocked_) state = Cyc::Busy;
+    if (setup_.items[fetch_.item].kind == TbItem::Null) {
+      fetch_.active = false;  // an empty primitive command: header only, nothing out
+      tx_end(StageId::CommandFetch, t + 1);
+      break;
+    }
+    if (!fetch_push(t, state)) break;
+  }
+  count(StageId::CommandFetch, state);
+}
+// Fetch's last cycle: its 2D command into the 2D FIFO (once), then the item into the
+// command FIFO. True when fetch goes on to its next item in this cycle (it pushed after
+// waiting for room).
+bool Testbench::fetch_push(uint64_t t, Cyc& state) {
+  const int w2 = setup_.items[fetch_.item].work2d;
+  if (w2 >= 0 && !fetch_2d_pushed_) {
+    if (draw2d_fifo_.size() >= draw2d_depth_) {
+      if (fetch_blocked_) state = Cyc::Stalled;
+      fetch_blocked_ = true;
+      return false;
+    }
+    draw2d_fifo_.push_back(Entry{size_t(w2), t});
+    fetch_2d_pushed_ = true;
+  }
+  if (cmd_fifo_.size() >= cmd_depth_) {
+    if (fetch_blocked_) state = Cyc::Stalled;
+    fetch_blocked_ = true;
+    return false;
+  }
+  cmd_fifo_.push_back(Entry{fetch_.item, t});
+  fetch_.active = false;
+  fetch_2d_pushed_ = false;
+  const bool was_blocked = fetch_blocked_;
+  fetch_blocked_ = false;
+  tx_end(StageId::CommandFetch, was_blocked ? t : t + 1);
+  return was_blocked;
+}
+
+// ---- Stage statistics ----
+
+void Testbench::count(StageId k, Cyc c) {
+  StageRecord& r = record(k);
+  ++(c == Cyc::Busy ? r.busy : c == Cyc::Stalled ? r.stalled : r.starved);
+}
+void Testbench::tx_begin(StageId k, uint64_t t) {
+  meter_[stage_index(k)] = Meter{true, t};
+  ++record(k).transactions;
+}
+void Testbench::tx_end(StageId k, uint64_t t) {
+  Meter& m = meter_[stage_index(k)];
+  if (!m.open) return;
+  m.open = false;
+  if (setup_.opts.record_transactions) record(k).spans.push_back(StageSpan{m.start, t});
+}
+// The RTL stages from rast_top's debug ports. No transaction: starved. Setup, coarse
+// and fine raster offer an output in the last cycle of its work (busy, as the SystemC
+// busy(n) before its write), the later cycles of a refused offer are stalled, and so is
+// the cycle in which a waited-for output is finally taken (its work was done before;
+// the SystemC write returns as that cycle starts). The interpolator's refused output
+// freezes its whole pipeline, so each such cycle is stalled, and the cycle it moves
+// again picks pixels (busy).
+void Testbench::observe_rtl_stages(uint64_t t) {
+  const RtlStageBits bits = ports_.stage_bits();
+  for (size_t s = 0; s < kObservedStages.size(); ++s) {
+    const StageId k = kObservedStages[s];
+    const bool pipelined = k == StageId::Interpolate;
+    const bool has = (bits.has >> s) & 1, done = (bits.done >> s) & 1;
+    const bool blocked = has && ((bits.blocked >> s) & 1);
+    const bool waited = rtl_blocked_[s];  // refused last cycle
+    rtl_blocked_[s] = blocked;
+    const bool stalled = pipelined ? blocked : (blocked ? waited : (has && waited));
+    const bool handshake_only = has && !blocked && waited && !pipelined;
+    if (has && !meter_[stage_index(k)].open) tx_begin(k, t);
+    count(k, !has ? Cyc::Starved : stalled ? Cyc::Stalled : Cyc::Busy);
+    if (done) tx_end(k, handshake_only ? t : t + 1);
+  }
+}
+// The run is cycles_rtl cycles (to the ROP's last busy cycle); the loop may have
+// classified a few more, in which every stage is starved: drop them.
+void Testbench::close_stage_counts(uint64_t counted) {
+  for (const StageInfo& s : kStages) {
+    StageRecord& r = record(s.id);
+    tx_end(s.id, result_.cycles_rtl);
+    const uint64_t extra = counted > result_.cycles_rtl ? counted - result_.cycles_rtl : 0;
+    if (r.starved < extra) {
+      mismatch("stage statistics: " + std::string(s.name) + " was not starved after the last busy cycle");
+      continue;
+    }
+    r.starved -= extra;
+  }
+}
+
+// ---- Checks ----
+
+void Testbench::mismatch(const std::string& what) {
+  if (result_.first_mismatch.empty()) result_.first_mismatch = what;
+  ++result_.mismatches;
+}
+void Testbench::compare(const Fragment& f) {
+  ++result_.fragments_compared;
+  if (next_expected_ >= setup_.expected.size()) {
+    mismatch("extra fragment from the RTL: " + fragment_trace_line(f));
+    return;
+  }
+  const Expected& e = setup_.expected[next_expected_++];
+  if (!(e.f == f))
+    mismatch("fragment #" + std::to_string(next_expected_ - 1) + " of " + setup_.tri_names[e.tri] + ": pixel (" +
+             std::to_string(e.f.x) + ", " + std::to_string(e.f.y) + ") expected '" + fragment_trace_line(e.f) +
+             "' mask " + std::to_string(e.f.mask) + ", RTL gave '" + fragment_trace_line(f) + "' mask " +
+             std::to_string(f.mask));
+}
+// Nothing left anywhere but the ROP's countdown: scene fetched, FIFOs and stages
+// empty, the RTL idle (its idle_o covers the interpolator's pipeline) with no beat out.
+bool Testbench::done_but_rop() const {
+  return next_item_ >= setup_.items.size() && !fetch_.active && cmd_fifo_.empty() && !assembly_.active &&
+         ports_.idle() && !ports_.fragment_beat().valid && !staging_blocked_ && staging_.fragments == 0 &&
+         !staging_.marker && frag_fifo_.empty() && draw2d_fifo_.empty() && !front_end_.active &&
+         op2d_fifo_.empty() && engine_work_ < 0 && !engine_busy_ && !rop_wait_2d_;
+}
+void Testbench::end_of_run_check() {
+  if (next_expected_ < setup_.expected.size())
+    mismatch(std::to_string(setup_.expected.size() - next_expected_) + " fragments missing from the RTL, first: #" +
+             std::to_string(next_expected_) + " of " + setup_.tri_names[setup_.expected[next_expected_].tri] +
+             ": '" + fragment_trace_line(setup_.expected[next_expected_].f) + "'");
+  if (!markers_in_flight_.empty()) mismatch(std::to_string(markers_in_flight_.size()) + " markers lost in the RTL");
+  framebuffer_check();
+}
+// The whole picture: the testbench framebuffer (fragments, clears and the 2D engine's
+// writes) against the reference model's. Multisampled: the resolved image (the
+// reference's is resolved by render_scene).
+void Testbench::framebuffer_check() {
+  const Framebuffer resolved = fb_.resolve();
+  result_.samples = setup_.samples;
+  result_.crc_rtl = resolved.color_crc32();
+  result_.crc_ref = setup_.reference.color_crc32();
+  for (int y = 0; y < resolved.height && result_.crc_rtl != result_.crc_ref; ++y)
+    for (int x = 0; x < resolved.width; ++x)
+      if (std::memcmp(resolved.pixel(x, y), setup_.reference.pixel(x, y), 3) != 0) {
+        mismatch("framebuffer pixel (" + std::to_string(x) + ", " + std::to_string(y) + ") differs from the reference");
+        return;
+      }
+}
+
+}  // namespace
+
+void run_testbench(const TbSetup& setup, RastPorts& ports, CosimResult& result) {
+  Testbench(setup, ports, result).run();
+}
+
+}  // namespace rastsim::cosim

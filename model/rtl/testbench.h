@@ -1,0 +1,149 @@
+// SPDX-License-Identifier: Apache-2.0
+// The co-simulation testbench around the verilated RTL, with no Verilator type in it:
+// the stimulus and expectation of one run (TbSetup, filled by cosim_setup.cpp), the
+// RTL's ports as the testbench sees them (RastPorts, implemented per verilated config by
+// the port adapter in cosim_driver.h), and the testbench itself (run_testbench,
+// testbench.cpp): the command front end, the ROP and framebuffer as a memory model, the
+// stage meters and the checks. Internal to model/rtl; callers use cosim.h.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "config/timing_params.h"
+#include "ref/2d/draw2d.h"
+#include "ref/framebuffer.h"
+#include "ref/interpolate.h"
+#include "ref/raster_state.h"
+#include "ref/sample_pattern.h"
+#include "ref/scene.h"
+#include "rtl/cosim.h"
+
+namespace rastsim::cosim {
+
+// One transaction of the testbench's command stream.
+struct TbItem {
+  enum Kind { Triangle, Marker, Null } kind = Triangle;
+  uint64_t fetch_cost = 1;     // command fetch cycles (header + vertices)
+  uint64_t assembly_cost = 1;  // primitive assembly cycles (1 for a marker)
+  uint64_t rop_cost = 1;       // markers: ROP cycles (a clear's fast-clear time, else 1)
+  int64_t x[3] = {}, y[3] = {};  // snapped raw coordinates
+  uint32_t z[3] = {};
+  uint32_t rgb[3] = {};        // {b, g, r} packed as the RTL port
+  int clip[4] = {};            // x0, y0, x1, y1
+  int origin[2] = {};          // x, y
+  int tri = -1;                // triangle index (names in TbSetup::tri_names)
+  const Command* cmd = nullptr;  // markers: the state or 2D command (none: the end-of-frame marker)
+  int work2d = -1;             // 2D markers: index in TbSetup::work2d
+};
+// A 2D command's engine operations (ref/draw2d.h) and its front-end cost.
+struct TbWork2d {
+  Draw2dWork work;
+  uint64_t setup_cost = 1;     // 2D front end cycles (TimingParams::setup2d_cycles)
+  std::string name;            // "file:line"
+};
+
+struct Expected {
+  Fragment f;
+  int tri = 0;
+};
+
+struct TbSetup {
+  RtlParams params;                     // of the verilated model (widths, timing)
+  // Run-time raster state of the config being simulated, driven on rast_top's static
+  // inputs: log2 tile size, fill rule, cull mode (raster_state.h's enum values), front face.
+  int tile_log2 = 0;
+  int fill_rule = 0, cull_mode = 0, front_ccw = 1;
+  // Multisampling: raster.samples and its snapped offsets (ref/sample_pattern.h), raw,
+  // driven on samples_log2_i / sample_dx_i / sample_dy_i.
+  int samples = 1;
+  std::array<int64_t, kMaxSamples> sample_dx{}, sample_dy{};
+  std::vector<TbItem> items;
+  std::vector<Expected> expected;
+  std::vector<std::string> tri_names;   // "file:line triangle k"
+  std::vector<TbWork2d> work2d;         // the 2D commands, in order
+  RasterState arch;                     // the config's state: the testbench ROP applies state commands to it
+  Framebuffer reference;                // the reference model's image of the scene
+  TimingParams timing;                  // of the config being simulated: FIFO depths, ROP cost
+  CosimOptions opts;
+};
+
+// ---- The RTL's ports (rtl/rast_top.sv, rtl/rast_engine2d.sv) as plain values ----
+
+// rast_top's fragment port this cycle.
+struct FragmentBeat {
+  bool valid = false;   // frag_valid_o
+  bool marker = false;  // frag_marker_o: the beat is a marker
+  bool last = false;    // frag_last_o: a tile's last beat
+};
+// rast_top's stage observation ports (bit s: 0 setup, 1 coarse raster, 2 fine raster,
+// 3 interpolation).
+struct RtlStageBits {
+  uint32_t has = 0;      // dbg_has_o: stage s holds a transaction
+  uint32_t done = 0;     // dbg_done_o: stage s finishes its transaction this cycle
+  uint32_t blocked = 0;  // dbg_blocked_o: stage s offers an output that is not taken
+};
+// The 2D engine's framebuffer reads this cycle, sign-extended pixel indices.
+struct Engine2dAccess {
+  int x = 0, y = 0;    // mem_x_o, mem_y_o: lane 0's destination (lane k at x + k)
+  int sx = 0, sy = 0;  // mem_sx_o, mem_sy_o: the blit source
+};
+// The 2D engine's framebuffer write at this cycle's edge (its data: engine_write_rgb).
+struct Engine2dWrite {
+  bool enable = false;     // mem_we_o
+  uint32_t lane_mask = 0;  // mem_wmask_o: bit k writes lane k (Engine2dRtlParams::lanes_max lanes)
+};
+
+// The verilated rast_top and rast_engine2d of one config, clocked together. Every call
+// reads or drives ports of the models as they are now (outputs after the last eval).
+class RastPorts {
+ public:
+  virtual ~RastPorts() = default;
+  // Static inputs (raster state, multisampling, the 2D engine's timing), valids low,
+  // reset asserted.
+  virtual void drive_static(const TbSetup& s) = 0;
+  virtual void release_reset() = 0;
+  virtual void clock_edge(bool high) = 0;  // clk_i of both models, evaluated, waveform dumped
+  virtual void finish() = 0;               // waveform closed, models finalised
+
+  // rast_top's triangle port: `it` offered (tri_valid_i high), or nothing (nullptr).
+  virtual void drive_triangle(const TbItem* it) = 0;
+  virtual bool triangle_ready() const = 0;  // tri_ready_o
+  virtual void drive_fragment_ready(bool ready) = 0;  // frag_ready_i
+  virtual FragmentBeat fragment_beat() const = 0;
+  virtual bool fragment_lane_valid(int lane) const = 0;  // frag_lanes_o bit
+  // Lane `lane` of the fragment port (x, y, z, colour, sample mask; samples left 1).
+  virtual Fragment fragment_lane(int lane) const = 0;
+  virtual bool idle() const = 0;  // idle_o
+  virtual RtlStageBits stage_bits() const = 0;
+
+  // The 2D engine's operation port: `op` of `work` offered (in_valid_i high with the
+  // command's paint state and clip box), or nothing (nullptr).
+  virtual void drive_operation(const Draw2dWork* work, const Op2d* op) = 0;
+  virtual bool operation_ready() const = 0;  // in_ready_o
+  virtual Engine2dAccess engine_access() const = 0;
+  // The memory's answer to engine_access (asynchronous read): each lane's destination
+  // colour {b, g, r} (mem_d_i), then the blit source's (mem_s_i), which evaluates the
+  // engine again.
+  virtual void drive_engine_read(int lane, uint32_t rgb) = 0;
+  virtual void answer_engine_reads(uint32_t source_rgb) = 0;
+  virtual Engine2dWrite engine_write() const = 0;
+  virtual uint32_t engine_write_rgb(int lane) const = 0;  // mem_wdata_o lane {b, g, r}
+};
+
+// One co-simulation run of `setup` on `ports` (cosim.h's comment): every fragment
+// compared, cycles, stage statistics and the framebuffer's CRC into `result`.
+void run_testbench(const TbSetup& setup, RastPorts& ports, CosimResult& result);
+
+using RunFn = void (*)(const TbSetup&, CosimResult&);
+struct RegistryEntry {
+  const char* name;    // the config's name, or <config>_circuit (the divider as its circuit)
+  const char* config;  // configs/<config>.toml
+  RunFn run;
+  RtlParams params;  // what Vrast_<name> was built with
+};
+const std::vector<RegistryEntry>& rtl_registry();  // generated: rtl_registry.cpp
+
+}  // namespace rastsim::cosim
