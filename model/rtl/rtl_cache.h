@@ -40,13 +40,6 @@ namespace rastsim {
 // $RASTSIM_CACHE/<sub>, else $XDG_CACHE_HOME/rastsim/<sub>, else ~/.cache/rastsim/<sub>.
 std::string rastsim_cache_dir(const std::string& sub);
 
-// FNV-1a, 64 bits: a cache key, not a security boundary.
-struct Fnv64 {
-  uint64_t h = 1469598103934665603ull;
-  void add(std::string_view s);  // s, then a separator: "ab","c" differs from "a","bc"
-  std::string hex() const;       // 16 hex digits
-};
-
 // What this binary's build tree provides for on-demand builds (generated at configure
 // time by model/rtl/CMakeLists.txt: rtl_build_info.cpp).
 struct RtlBuildInfo {
