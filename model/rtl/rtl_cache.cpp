@@ -85,7 +85,8 @@ std::string project_cmake(const RtlBuildInfo& b) {
          "rast_verilate_top(rast_runner Vrast_top ${CMAKE_CURRENT_SOURCE_DIR} \"${top}\" \"${waivers}\")\n"
          "rast_verilate_engine2d(rast_runner \"${engine}\")\n"
          "target_include_directories(rast_runner PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})\n"
-
+         "# The embedded testbench headers (project_path) before the build tree's include paths.\n"
+         "target_include_directories(rast_runner BEFORE PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/include)\n"
          "# As rastsim_verilated (rast_verilate.cmake: -g0 -O3).\n"
          "target_compile_options(rast_runner PRIVATE ${RAST_VERILATED_CXX_OPTIONS})\n"
          "target_link_libraries(rast_runner PRIVATE rastsim_rtl_bench rastsim_scene ZLIB::ZLIB)\n";
@@ -137,11 +138,20 @@ bool find_entry(const fs::path& root, const std::string& key, const std::string&
   return false;
 }
 
+// Where an embedded build file goes in the project. The testbench headers are embedded
+// as "key/<name>.h" (those names are hashed into every entry's key) and written to
+// include/rtl/, which is first on the runner's include path: its #include "rtl/<name>.h"
+// compiles these copies, the ones the key was made from, not the source tree's.
+std::string project_path(std::string_view name) {
+  constexpr std::string_view kHeaders = "key/";
+  if (name.substr(0, kHeaders.size()) == kHeaders) return "include/rtl/" + std::string(name.substr(kHeaders.size()));
+  return std::string(name);
+}
+
 // The project's sources in `src`: the embedded RTL and build files, the parameters.
 void write_project(const fs::path& src, const RtlParams& build, const std::string& label, const RtlBuildInfo& b) {
   for (const auto& s : rtl_sources()) write_file(src / "rtl" / std::string(s.name), s.text);
-  for (const auto& s : rtl_build_files())
-    if (s.name.rfind("key/", 0) != 0) write_file(src / std::string(s.name), s.text);
+  for (const auto& s : rtl_build_files()) write_file(src / project_path(s.name), s.text);
   write_file(src / "rast_params.vh", rtl_params_verilog(build, label.empty() ? "rastsim" : label));
   write_file(src / "rast_params.inc", rtl_params_values(build) + "\n");
   write_file(src / "CMakeLists.txt", project_cmake(b));

@@ -18,10 +18,11 @@
 //   up to the built maxima), else a build.
 // - Build: under an exclusive flock on <key>.lock (a second process waits, saying so, then
 //   finds the entry), in <key>.tmp-<pid>/: the project (the embedded RTL and its
-//   rast_verilate.cmake, the exported parameter header, the runner's main and a
-//   CMakeLists.txt that links rastsim's exported libraries), cmake configure (Verilator
-//   runs here) and build with the same compiler; then the runner, manifest and log are
-//   kept and the directory renamed to <key> at once, so a reader never sees half an entry.
+//   rast_verilate.cmake, the exported parameter header, the runner's main, the embedded
+//   testbench headers it compiles, and a CMakeLists.txt that links rastsim's exported
+//   libraries), cmake configure (Verilator runs here) and build with the same compiler;
+//   then the runner, manifest and log are kept and the directory renamed to <key> at
+//   once, so a reader never sees half an entry.
 // - An installed rastsim without its build tree cannot build: the error says so.
 #pragma once
 
