@@ -18,6 +18,7 @@
 #include "scene/scene_io.h"
 #include "image/image_io.h"
 #include "config/raster_state_config.h"
+#include "util/process.h"
 #include "video_json.h"
 
 namespace rastsim::app {
@@ -61,10 +62,11 @@ struct SignalFile {
   void close() {
     w->close();
     if (vcd_path == path) return;
-    const std::string cmd = "vcd2fst " + shell_quote(vcd_path) + " " + shell_quote(path) + " > /dev/null";
-    const int rc = std::system(cmd.c_str());
+    ProcessOptions po;
+    po.out = Sink::Null;
+    const bool ok = run_process({"vcd2fst", vcd_path, path}, po).ok();
     std::remove(vcd_path.c_str());
-    if (rc != 0) throw std::runtime_error(path + ": vcd2fst failed (install gtkwave, or write .vcd)");
+    if (!ok) throw std::runtime_error(path + ": vcd2fst failed (install gtkwave, or write .vcd)");
   }
 };
 

@@ -2,15 +2,13 @@
 #include "common.h"
 #include "scene/scene_io.h"
 
-#include <fcntl.h>
-#include <sys/prctl.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <filesystem>
-
 #include <fstream>
 #include <iostream>
+
+#include "util/process.h"
 
 namespace rastsim::app {
 
@@ -55,35 +53,6 @@ void write_json(const std::string& path, const nlohmann::json& j) {
   if (!os) throw std::runtime_error(path + ": write failed");
 }
 
-pid_t spawn_self(const std::vector<std::string>& args, const std::string& err_path) {
-  std::vector<std::string> argv_s{"rastsim"};
-  argv_s.insert(argv_s.end(), args.begin(), args.end());
-  const pid_t parent = getpid();
-  const pid_t pid = fork();
-  if (pid < 0) throw std::runtime_error("fork failed");
-  if (pid != 0) return pid;
-  // The child ends with its parent (a killed sweep leaves no simulations running on).
-  prctl(PR_SET_PDEATHSIG, SIGTERM);
-  if (getppid() != parent) _exit(1);
-  const int null_fd = open("/dev/null", O_WRONLY);
-  const int err_fd = open(err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  if (null_fd >= 0) dup2(null_fd, 1);
-  if (err_fd >= 0) dup2(err_fd, 2);
-  std::vector<char*> argv;
-  for (auto& a : argv_s) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  execv("/proc/self/exe", argv.data());
-  _exit(127);
-}
-
-std::string last_line(const std::string& path) {
-  std::ifstream is(path);
-  std::string line, last;
-  while (std::getline(is, line))
-    if (!line.empty()) last = line;
-  return last.empty() ? "(no message)" : last;
-}
-
 nlohmann::json simulate_in_child(const ConfigOptions& o, const std::string& scene) {
   namespace fs = std::filesystem;
   const fs::path dir = fs::temp_directory_path() / ("rastsim-sim-" + std::to_string(getpid()));
@@ -92,10 +61,8 @@ nlohmann::json simulate_in_child(const ConfigOptions& o, const std::string& scen
   std::vector<std::string> args{"simulate", "--quiet", "--scene", scene, "--stats", stats};
   if (!o.config_path.empty()) args.insert(args.end(), {"--config", o.config_path});
   for (const auto& s : o.sets) args.insert(args.end(), {"--set", s});
-  int status = 0;
-  if (waitpid(spawn_self(args, err), &status, 0) < 0) throw std::runtime_error("waitpid failed");
   nlohmann::json j;
-  const bool ok = WIFEXITED(status) && WEXITSTATUS(status) == 0;
+  const bool ok = run_self(args, worker_options(err)).ok();
   const std::string why = ok ? "" : last_line(err);
   if (ok) j = nlohmann::json::parse(std::ifstream(stats));
   fs::remove_all(dir);

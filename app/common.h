@@ -2,8 +2,6 @@
 // Options and helpers shared by every `rastsim` subcommand.
 #pragma once
 
-#include <sys/types.h>
-
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -12,6 +10,7 @@
 #include "config/arch_params.h"
 #include "ref/scene.h"
 #include "scene/scene_io.h"
+#include "sweep/sweep.h"
 
 namespace rastsim::app {
 
@@ -33,13 +32,6 @@ ArchParams resolve_arch(const ConfigOptions& o);
 // Writes JSON to a file (pretty, with a trailing newline); "-" means stdout.
 void write_json(const std::string& path, const nlohmann::json& j);
 
-// Starts this same binary as a child process running `rastsim ARGS...` (args[0] is the
-// subcommand), stdout to /dev/null, stderr to `err_path`. SystemC elaborates one design
-// per process, so commands that need several simulations run them this way. The child
-// gets SIGTERM when its parent dies.
-pid_t spawn_self(const std::vector<std::string>& args, const std::string& err_path);
-// The last non-empty line of a file (a child's error message), or "(no message)".
-std::string last_line(const std::string& path);
 // Runs `rastsim simulate` on `scene` with the same config options in a child process and
 // returns its stats JSON; throws with the child's error line when it fails.
 nlohmann::json simulate_in_child(const ConfigOptions& o, const std::string& scene);
@@ -97,26 +89,12 @@ struct ScanoutOptions {
 };
 void run_scanout_command(const ScanoutOptions& o);
 
-// `rastsim sweep --backend slurm`: where the job array goes and how it is watched.
-struct SweepSlurmOptions {
-  std::string partition, time;           // sbatch --partition, --time ("" = the cluster's default)
-  std::string workdir;                   // per-task files ("" = OUT.slurm next to the CSV)
-  std::vector<std::string> sbatch_args;  // more sbatch options, verbatim
-  double poll_seconds = 5;               // squeue every this often
-};
-
-// `rastsim sweep` as a plain function: base config, scenes, --set arguments, CSV path,
-// simulations run at once, the backend and --resume.
-struct SweepOptions {
+// `rastsim sweep` as a plain function: the sweep's own options (scenes, CSV, jobs, level,
+// backend, --resume: sweep/sweep.h), the base config and the --set arguments (KEY=V1,V2,...
+// sweeps a key, KEY=V fixes one).
+struct SweepOptions : sweep::SweepOptions {
   ConfigOptions base;
-  std::vector<std::string> scenes, set_args;
-  std::string out_path;
-  unsigned jobs = 1;
-  bool area = false;  // add area.cells, area.flip_flops, area.transistors (rastsim area) to each row
-  std::string level = "systemc";   // "systemc" (rastsim simulate) or "cosim" (rastsim cosim: + cycles_rtl, mismatches)
-  bool resume = false;             // keep the rows already in out_path; run only the others
-  std::string backend = "local";   // "local" (child processes) or "slurm" (a job array)
-  SweepSlurmOptions slurm;
+  std::vector<std::string> set_args;
 };
 void run_sweep_command(SweepOptions o);
 

@@ -17,6 +17,8 @@
 #include <string_view>
 #include <unordered_map>
 
+#include "util/process.h"
+
 namespace rastsim {
 
 SignalFileError::SignalFileError(const std::string& file, long long line, const std::string& what)
@@ -476,12 +478,6 @@ class Reader {
 
 }  // namespace
 
-std::string shell_quote(const std::string& s) {
-  std::string o = "'";
-  for (char c : s) o += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return o + "'";
-}
-
 SignalReadInfo read_video_vcd(std::istream& in, const std::string& name, const VideoTiming& expected, const Dac& dac,
                               const SampleSink& sink, const SignalReaderOptions& opts) {
   return Reader(in, name, expected, dac, sink, opts).run();
@@ -496,7 +492,7 @@ SignalReadInfo read_video_signal(const std::string& path, const VideoTiming& exp
     return read_video_vcd(in, path, expected, dac, sink, opts);
   }
   if (!std::ifstream(path)) throw SignalFileError(path, 0, "cannot open for reading");
-  if (std::system("command -v fst2vcd > /dev/null 2>&1") != 0)
+  if (find_program("fst2vcd").empty())
     throw SignalFileError(path, 0, "reading .fst needs fst2vcd (Debian package gtkwave); or record a .vcd");
   std::string tmp = (std::filesystem::temp_directory_path() / "rastsim_signal_XXXXXX").string();
   const int fd = mkstemp(tmp.data());
@@ -506,8 +502,10 @@ SignalReadInfo read_video_signal(const std::string& path, const VideoTiming& exp
     std::string p;
     ~Remove() { std::remove(p.c_str()); }
   } remove_tmp{tmp};
-  const std::string cmd = "fst2vcd -f " + shell_quote(path) + " -o " + shell_quote(tmp) + " > /dev/null 2>&1";
-  if (std::system(cmd.c_str()) != 0) throw SignalFileError(path, 0, "fst2vcd failed: not an FST file?");
+  ProcessOptions quiet;
+  quiet.out = quiet.err = Sink::Null;
+  if (!run_process({"fst2vcd", "-f", path, "-o", tmp}, quiet).ok())
+    throw SignalFileError(path, 0, "fst2vcd failed: not an FST file?");
   std::ifstream in(tmp);
   if (!in) throw SignalFileError(path, 0, "cannot read fst2vcd's output");
   return read_video_vcd(in, path + " (as VCD from fst2vcd)", expected, dac, sink, opts);

@@ -80,8 +80,4 @@ SignalReadInfo read_video_signal(const std::string& path, const VideoTiming& exp
 SignalReadInfo read_video_vcd(std::istream& in, const std::string& name, const VideoTiming& expected,
                               const Dac& dac, const SampleSink& sink, const SignalReaderOptions& opts = {});
 
-// `s` as one word for /bin/sh: single-quoted, each ' written as '\''. For the gtkwave
-// converters (fst2vcd, vcd2fst), which take file names on a shell command line.
-std::string shell_quote(const std::string& s);
-
 }  // namespace rastsim

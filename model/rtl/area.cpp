@@ -1,7 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "rtl/area.h"
 
-#include <sys/wait.h>
 #include <csignal>
 #include <unistd.h>
 
@@ -24,6 +23,8 @@
 
 #include "rtl/rtl_cache.h"
 #include "rtl/rtl_sources.h"
+#include "util/hash.h"
+#include "util/process.h"
 
 namespace fs = std::filesystem;
 
@@ -167,21 +168,17 @@ struct YosysUsage {
 // Runs Yosys on `script` in `dir`, reporting each pass of the top two levels ("16.6.
 // Executing OPT pass") through `progress`; throws with Yosys' last lines on failure.
 YosysUsage run_yosys(const std::string& yosys, const fs::path& dir, const std::string& label,
-               const std::function<void(const std::string&)>& progress) {
-  const std::string cmd = "cd '" + dir.string() + "' && '" + yosys + "' -l yosys.log -s area.ys 2>&1";
-  FILE* pipe = popen(cmd.c_str(), "r");
-  if (!pipe) throw std::runtime_error("cannot start " + yosys);
+                     const std::function<void(const std::string&)>& progress) {
   static const std::regex pass_re(R"(^(\d+(\.\d+)?)\. Executing (\S+) pass)");
   static const std::regex usage_re(R"(CPU: user ([0-9.]+)s system ([0-9.]+)s, MEM: ([0-9.]+) MB peak)");
   YosysUsage usage;
   std::deque<std::string> tail;
   const auto t0 = std::chrono::steady_clock::now();
-  char buf[4096];
-  std::string line;
-  while (std::fgets(buf, sizeof buf, pipe)) {
-    line += buf;
-    if (line.back() != '\n') continue;
-    line.pop_back();
+  ProcessOptions po;
+  po.cwd = dir.string();
+  po.out = Sink::Lines;
+  po.err = Sink::Stdout;
+  po.on_line = [&](const std::string& line) {
     std::smatch m;
     if (progress && std::regex_search(line, m, pass_re)) {
       const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -195,30 +192,30 @@ YosysUsage run_yosys(const std::string& yosys, const fs::path& dir, const std::s
     }
     tail.push_back(line);
     if (tail.size() > 8) tail.pop_front();
-    line.clear();
-  }
-  const int status = pclose(pipe);
+  };
+  const int status = run_process({yosys, "-l", "yosys.log", "-s", "area.ys"}, po).status;
   if (status != 0) {
     std::string msg;
     for (const auto& l : tail)
       if (l.find("ERROR") != std::string::npos) msg = l;
     if (msg.empty() && !tail.empty()) msg = tail.back();
-    // The shell reports a killed child as 128 + signal: SIGKILL is most often the
-    // kernel's out-of-memory killer (rast_top of the wide configs needs several GB).
-    if (WIFEXITED(status) && WEXITSTATUS(status) == 128 + SIGKILL)
+    // SIGKILL is most often the kernel's out-of-memory killer (rast_top of the wide
+    // configs needs several GB).
+    if (exit_code(status) == 128 + SIGKILL)
       msg = "killed (SIGKILL: out of memory? --jobs 1 runs one Yosys process at a time)";
     throw std::runtime_error("yosys failed on " + label + ": " + msg + " (log: " + (dir / "yosys.log").string() + ")");
   }
   return usage;
 }
 
+// The first line of `yosys -V`, "Yosys 0.23 (git sha1 ...)".
 std::string yosys_version(const std::string& yosys) {
-  FILE* pipe = popen(("'" + yosys + "' -V 2>&1").c_str(), "r");
-  if (!pipe) throw std::runtime_error("cannot start " + yosys);
-  char buf[256] = {0};
-  std::string v = std::fgets(buf, sizeof buf, pipe) ? buf : "";
-  pclose(pipe);
-  while (!v.empty() && (v.back() == '\n' || v.back() == '\r')) v.pop_back();
+  ProcessOptions po;
+  po.out = Sink::Capture;
+  po.err = Sink::Stdout;
+  std::string v = run_process({yosys, "-V"}, po).out;
+  v = v.substr(0, v.find('\n'));
+  while (!v.empty() && v.back() == '\r') v.pop_back();
   if (v.rfind("Yosys", 0) != 0) throw std::runtime_error(yosys + " -V did not print a Yosys version: " + v);
   return v;
 }
@@ -304,12 +301,7 @@ std::string find_yosys() {
       throw std::runtime_error(std::string("RASTSIM_YOSYS=") + y + " is not an executable (Yosys: Debian package yosys)");
     return y;
   }
-  const char* path = std::getenv("PATH");
-  std::stringstream ss(path ? path : "");
-  for (std::string d; std::getline(ss, d, ':');) {
-    const fs::path p = fs::path(d.empty() ? "." : d) / "yosys";
-    if (access(p.c_str(), X_OK) == 0) return p.string();
-  }
+  if (std::string p = find_program("yosys"); !p.empty()) return p;
   throw std::runtime_error(
       "yosys not found on PATH: area estimates need Yosys, Debian package `yosys` "
       "(apt-get install -y --no-install-recommends yosys; scripts/setup.sh installs it)");
@@ -439,74 +431,99 @@ struct ModuleRun {
 // the name and the sources and is shared by every config that derives the same module
 // (a FIFO-depth sweep re-synthesises the FIFOs and rast_top's glue only). rast_top itself
 // (not derived: it takes the header) is keyed with the header too.
-AreaReport synth_split(const std::string& yosys, const std::string& yosys_ver, const std::string& params_vh,
-                       const std::string& root, const fs::path& cache_dir, const AreaOptions& o) {
-  const auto t0 = std::chrono::steady_clock::now();
-  std::mutex progress_mutex;
-  const auto say = [&](const std::string& line) {
-    if (!o.progress) return;
-    const std::lock_guard<std::mutex> lock(progress_mutex);
-    o.progress(line);
-  };
-  bool all_hit = true;
-  YosysUsage total_usage;  // summed CPU, the largest process's peak
+class SplitSynthesis {
+ public:
+  SplitSynthesis(const std::string& yosys, const std::string& yosys_ver, const std::string& params_vh,
+                 const std::string& root, const fs::path& cache_dir, const AreaOptions& o)
+      : yosys_(yosys), yosys_ver_(yosys_ver), params_vh_(params_vh), root_(root), cache_dir_(cache_dir), o_(o) {}
 
-  // 1. The derived modules and their submodule instances: from the cache, else by
-  // elaborating (which also writes the RTLIL the modules' runs read).
-  Fnv64 ek = base_key(yosys_ver);
-  ek.add("elaborate");
-  ek.add(kRead);
-  ek.add(kElaborate);
-  ek.add(root);
-  ek.add(params_vh);
-  const fs::path elab_file = cache_dir / (ek.hex() + ".json");
-  std::map<std::string, std::map<std::string, uint64_t>> hierarchy;  // module -> submodule -> instances
-  if (auto j = o.use_cache ? read_cache(elab_file, say) : std::nullopt) {
-    try {
-      hierarchy = j->at("modules").get<decltype(hierarchy)>();
-    } catch (const std::exception&) {
-      hierarchy.clear();
+  AreaReport run() {
+    // 1. The derived modules and their submodule instances: from the cache, else by
+    // elaborating (which also writes the RTLIL the modules' runs read).
+    read_hierarchy();
+    if (hierarchy_.empty()) elaborate();
+    for (const auto& [id, children] : hierarchy_) ids_.push_back(id);
+    // 2. Each module alone: the cached ones first, then one process a missing one.
+    runs_.resize(ids_.size());
+    for (size_t k = 0; k < ids_.size(); ++k)
+      if (!read_module(k)) todo_.push_back(k);
+    if (!todo_.empty()) {
+      elaborate();  // the RTLIL (a cached module list came without it)
+      if (hierarchy_.size() != ids_.size())
+        throw std::runtime_error("yosys: " + root_ + " elaborated into other modules than the cached list");
+      say(root_ + ": " + std::to_string(todo_.size()) + " of " + std::to_string(ids_.size()) +
+          " modules to synthesise, one Yosys process each, " + std::to_string(o_.jobs) + " at a time");
+    }
+    run_jobs(todo_.size(), o_.jobs, [&](size_t t) { synthesise_module(todo_[t]); });
+    // 3. The sums up the hierarchy.
+    return sum();
+  }
+
+ private:
+  void say(const std::string& line) {
+    if (!o_.progress) return;
+    const std::lock_guard<std::mutex> lock(progress_mutex_);
+    o_.progress(line);
+  }
+
+  fs::path hierarchy_file() const {
+    Fnv64 ek = base_key(yosys_ver_);
+    ek.add("elaborate");
+    ek.add(kRead);
+    ek.add(kElaborate);
+    ek.add(root_);
+    ek.add(params_vh_);
+    return cache_dir_ / (ek.hex() + ".json");
+  }
+
+  void read_hierarchy() {
+    if (auto j = o_.use_cache ? read_cache(hierarchy_file(), [&](const std::string& l) { say(l); }) : std::nullopt) {
+      try {
+        hierarchy_ = j->at("modules").get<decltype(hierarchy_)>();
+      } catch (const std::exception&) {
+        hierarchy_.clear();
+      }
     }
   }
-  std::unique_ptr<RunDir> elab;  // the elaborated design, while modules need it
-  const auto elaborate = [&] {
-    if (elab) return;
-    say(root + ": elaborating");
-    elab = std::make_unique<RunDir>(params_vh);
+
+  // Elaborates rast_top once (the RTLIL stays in elab_ while modules need it) and lists
+  // its derived modules with their submodule instances.
+  void elaborate() {
+    if (elab_) return;
+    say(root_ + ": elaborating");
+    elab_ = std::make_unique<RunDir>(params_vh_);
     YosysUsage usage;
-    const nlohmann::json stat = elab->run(yosys, std::string(kRead) + kElaborate, root, root + " (elaborate)", say, usage);
-    total_usage.add(usage);
+    const nlohmann::json stat = elab_->run(yosys_, std::string(kRead) + kElaborate, root_, root_ + " (elaborate)",
+                                           [&](const std::string& l) { say(l); }, usage);
+    total_usage_.add(usage);
     const auto& modules = stat.at("modules");
-    hierarchy.clear();
+    hierarchy_.clear();
     for (const auto& [id, m] : modules.items()) {
-      auto& children = hierarchy[id];
+      auto& children = hierarchy_[id];
       for (const auto& [type, n] : m.at("num_cells_by_type").items())
         if (modules.contains(type)) children[type] += n.get<uint64_t>();
     }
-    if (o.use_cache) write_cache(elab_file, {{"root", root}, {"modules", hierarchy}});
-  };
-  if (hierarchy.empty()) elaborate();
-  std::vector<std::string> ids;
-  for (const auto& [id, children] : hierarchy) ids.push_back(id);
+    if (o_.use_cache) write_cache(hierarchy_file(), {{"root", root_}, {"modules", hierarchy_}});
+  }
 
-  // 2. Each module alone: the cached ones first, then one process a missing one.
-  const auto module_key = [&](const std::string& id) {
-    Fnv64 h = base_key(yosys_ver);
+  fs::path module_file(const std::string& id) const {
+    Fnv64 h = base_key(yosys_ver_);
     h.add("module");
     h.add(kRead);
     h.add(kElaborate);
     h.add(kModule);
     h.add(kSynth);
-    h.add(root);
+    h.add(root_);
     h.add(id);
-    h.add(id.rfind("$paramod", 0) == 0 ? "" : params_vh);
-    return cache_dir / (h.hex() + ".json");
-  };
-  std::vector<ModuleRun> runs(ids.size());
-  std::vector<size_t> todo;
-  for (size_t k = 0; k < ids.size(); ++k) {
-    ModuleRun& r = runs[k];
-    if (auto j = o.use_cache ? read_cache(module_key(ids[k]), say) : std::nullopt) {
+    h.add(id.rfind("$paramod", 0) == 0 ? "" : params_vh_);
+    return cache_dir_ / (h.hex() + ".json");
+  }
+
+  // Module k from the cache; false when it is not there.
+  bool read_module(size_t k) {
+    ModuleRun& r = runs_[k];
+    if (auto j = o_.use_cache ? read_cache(module_file(ids_[k]), [&](const std::string& l) { say(l); })
+                              : std::nullopt) {
       try {
         r.info.own = counts_from(j->at("own"));
         r.info.children = j->at("children").get<std::vector<std::pair<std::string, uint64_t>>>();
@@ -518,80 +535,169 @@ AreaReport synth_split(const std::string& yosys, const std::string& yosys_ver, c
         r = ModuleRun{};
       }
     }
-    if (!r.hit) todo.push_back(k);
+    return r.hit;
   }
-  if (!todo.empty()) {
-    elaborate();  // the RTLIL (a cached module list came without it)
-    if (hierarchy.size() != ids.size())
-      throw std::runtime_error("yosys: " + root + " elaborated into other modules than the cached list");
-    say(root + ": " + std::to_string(todo.size()) + " of " + std::to_string(ids.size()) +
-        " modules to synthesise, one Yosys process each, " + std::to_string(o.jobs) + " at a time");
-  }
-  std::atomic<size_t> done{0};
-  run_jobs(todo.size(), o.jobs, [&](size_t t) {
-    const size_t k = todo[t];
-    const std::string& id = ids[k];
-    ModuleRun& r = runs[k];
-    const std::string label = base_name(id) + " [" + std::to_string(k + 1) + "/" + std::to_string(ids.size()) + "]";
+
+  // Module k alone in its own Yosys process (on a worker thread), the others blackboxes.
+  void synthesise_module(size_t k) {
+    const std::string& id = ids_[k];
+    ModuleRun& r = runs_[k];
+    const std::string label = base_name(id) + " [" + std::to_string(k + 1) + "/" + std::to_string(ids_.size()) + "]";
     std::string others;
-    for (const auto& other : ids)
+    for (const auto& other : ids_)
       if (other != id) others += (others.empty() ? "=" : " =") + other;
     const std::string script =
         replace_all(replace_all(std::string(kModule) + kSynth, "@OTHERS@", others), "@MODULE@", id);
     const auto t1 = std::chrono::steady_clock::now();
-    const fs::path work = elab->dir / ("m" + std::to_string(k));
+    const fs::path work = elab_->dir / ("m" + std::to_string(k));
     fs::create_directories(work);
-    const nlohmann::json stat = elab->run(yosys, script, root, label, say, r.usage, work);
+    const nlohmann::json stat = elab_->run(yosys_, script, root_, label, [&](const std::string& l) { say(l); },
+                                           r.usage, work);
     const auto& modules = stat.at("modules");
     if (!modules.contains(id)) throw std::runtime_error("yosys stat: no module " + id + " after synthesising it alone");
-    r.info = module_from_stat(id, modules.at(id), [&](const std::string& t) { return hierarchy.count(t) > 0; });
+    r.info = module_from_stat(id, modules.at(id), [&](const std::string& t) { return hierarchy_.count(t) > 0; });
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
-    if (o.use_cache)
-      write_cache(module_key(id), {{"module", id},
-                                   {"own", counts_json(r.info.own)},
-                                   {"children", r.info.children},
-                                   {"synth_seconds", r.seconds},
-                                   {"cpu_seconds", r.usage.cpu_seconds},
-                                   {"peak_mb", r.usage.peak_mb}});
+    if (o_.use_cache)
+      write_cache(module_file(id), {{"module", id},
+                                    {"own", counts_json(r.info.own)},
+                                    {"children", r.info.children},
+                                    {"synth_seconds", r.seconds},
+                                    {"cpu_seconds", r.usage.cpu_seconds},
+                                    {"peak_mb", r.usage.peak_mb}});
     std::ostringstream os;
-    os << label << " synthesised (" << ++done << " of " << todo.size() << ", " << static_cast<int>(r.seconds)
+    os << label << " synthesised (" << ++done_ << " of " << todo_.size() << ", " << static_cast<int>(r.seconds)
        << " s, " << static_cast<int>(r.usage.peak_mb) << " MB)";
     say(os.str());
-  });
+  }
 
-  // 3. The sums up the hierarchy.
-  std::map<std::string, ModuleInfo> mods;
-  for (size_t k = 0; k < ids.size(); ++k) {
-    mods[ids[k]] = runs[k].info;
-    all_hit = all_hit && runs[k].hit && !elab;
-    total_usage.add(runs[k].usage);
+  AreaReport sum() {
+    bool all_hit = true;
+    std::map<std::string, ModuleInfo> mods;
+    for (size_t k = 0; k < ids_.size(); ++k) {
+      mods[ids_[k]] = runs_[k].info;
+      all_hit = all_hit && runs_[k].hit && !elab_;
+      total_usage_.add(runs_[k].usage);
+    }
+    AreaReport rep = area_from_modules(mods, root_);
+    rep.modules = ids_.size();
+    rep.from_cache = all_hit;
+    rep.cpu_seconds = total_usage_.cpu_seconds;
+    rep.peak_mb = total_usage_.peak_mb;
+    rep.synth_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count();
+    if (all_hit) {
+      rep.synth_seconds = 0;
+      for (const ModuleRun& r : runs_) rep.synth_seconds += r.seconds;  // as cached: the runs' own times
+    }
+    return rep;
   }
-  AreaReport rep = area_from_modules(mods, root);
-  rep.modules = ids.size();
-  rep.from_cache = all_hit;
-  rep.cpu_seconds = total_usage.cpu_seconds;
-  rep.peak_mb = total_usage.peak_mb;
-  rep.synth_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  if (all_hit) {
-    rep.synth_seconds = 0;
-    for (const ModuleRun& r : runs) rep.synth_seconds += r.seconds;  // as cached: the runs' own times
+
+  const std::string& yosys_;
+  const std::string& yosys_ver_;
+  const std::string& params_vh_;
+  const std::string& root_;
+  const fs::path& cache_dir_;
+  const AreaOptions& o_;
+  const std::chrono::steady_clock::time_point t0_ = std::chrono::steady_clock::now();
+  std::mutex progress_mutex_;
+  YosysUsage total_usage_;  // summed CPU, the largest process's peak
+  std::map<std::string, std::map<std::string, uint64_t>> hierarchy_;  // module -> submodule -> instances
+  std::unique_ptr<RunDir> elab_;  // the elaborated design, while modules need it
+  std::vector<std::string> ids_;
+  std::vector<ModuleRun> runs_;
+  std::vector<size_t> todo_;  // indices of the modules to synthesise
+  std::atomic<size_t> done_{0};
+};
+
+// --top must name an RTL module (a source file's stem).
+void check_top(const std::string& top) {
+  bool known = false;
+  std::string names;
+  for (const auto& s : rtl_sources()) {
+    const std::string stem(s.name.substr(0, s.name.rfind('.')));
+    known |= stem == top;
+    names += (names.empty() ? "" : ", ") + stem;
   }
-  return rep;
+  if (!known) throw std::runtime_error("--top " + top + ": not an RTL module (" + names + ")");
+}
+
+// One synthesis a part: the whole design is rast_top (split into its stages) and
+// rast_engine2d; --top is one part. rast_top is synthesised a module a process
+// (SplitSynthesis, o.split) or whole; rast_engine2d (small) and a stage under rast_top in
+// one process each. rast_engine2d takes no config parameter, so one entry serves every
+// config.
+struct Part {
+  std::string root, stage;
+  bool split;
+};
+
+std::vector<Part> parts_of(const AreaOptions& o) {
+  if (o.top.empty()) return {{"rast_top", "", true}, {"rast_engine2d", "", false}};
+  if (o.top == "rast_top" || o.top == "rast_engine2d") return {{o.top, "", o.top == "rast_top"}};
+  return {{"rast_top", o.top, false}};  // a module under rast_top, with the parameters rast_top derives
+}
+
+// A part in one Yosys process, or from its cache entry (named `key`).
+AreaReport synth_whole_part(const std::string& yosys, const std::string& yosys_ver, const std::string& params_vh,
+                            const Part& part, const fs::path& dir, const AreaOptions& o, std::string& key) {
+  Fnv64 h = base_key(yosys_ver);
+  h.add(kScript);
+  h.add(part.root);
+  h.add(part.stage);
+  h.add(part.split ? "split" : "whole");
+  h.add(part.root == "rast_top" ? params_vh : "");
+  key = h.hex();
+  const fs::path cache = dir / (key + ".json");
+  AreaReport got;
+  bool hit = false;
+  if (auto j = o.use_cache ? read_cache(cache, o.progress) : std::nullopt) {
+    try {
+      got = area_from_json(*j);
+      hit = true;
+    } catch (const std::exception& e) {
+      // An older entry: synthesise again and overwrite it.
+      if (o.progress) o.progress("cache entry " + cache.string() + " unreadable (" + e.what() + "), synthesising");
+    }
+  }
+  if (!hit) {
+    const auto t0 = std::chrono::steady_clock::now();
+    got = synth_run(yosys, params_vh, part.root, part.stage, part.split, o.progress);
+    got.synth_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    got.yosys_version = yosys_ver;
+    got.top = part.stage.empty() ? part.root : part.stage;
+    got.key = key;
+    got.modules = 1;
+    if (o.use_cache) write_cache(cache, area_to_json(got));
+  }
+  got.from_cache = hit;
+  return got;
+}
+
+// rast_top a module a process (SplitSynthesis); `key` names the split run.
+AreaReport synth_split_part(const std::string& yosys, const std::string& yosys_ver, const std::string& params_vh,
+                            const Part& part, const fs::path& dir, const AreaOptions& o, std::string& key) {
+  AreaReport got = SplitSynthesis(yosys, yosys_ver, params_vh, part.root, dir, o).run();
+  Fnv64 h = base_key(yosys_ver);
+  h.add("split");
+  h.add(params_vh);
+  key = h.hex();
+  return got;
+}
+
+// Adds a part's figures to the whole report.
+void add_part(AreaReport& r, const AreaReport& got) {
+  r.from_cache = r.from_cache && got.from_cache;
+  r.synth_seconds += got.synth_seconds;
+  r.cpu_seconds += got.cpu_seconds;
+  r.peak_mb = std::max(r.peak_mb, got.peak_mb);
+  r.modules += got.modules;
+  for (const auto& [name, c] : got.stages) r.stages[name] = c;
+  r.total += got.total;
 }
 
 }  // namespace
 
 AreaReport synthesize_area(const RtlParams& p, const AreaOptions& o) {
-  if (!o.top.empty()) {
-    bool known = false;
-    std::string names;
-    for (const auto& s : rtl_sources()) {
-      const std::string stem(s.name.substr(0, s.name.rfind('.')));
-      known |= stem == o.top;
-      names += (names.empty() ? "" : ", ") + stem;
-    }
-    if (!known) throw std::runtime_error("--top " + o.top + ": not an RTL module (" + names + ")");
-  }
+  if (!o.top.empty()) check_top(o.top);
   if (o.jobs < 1) throw std::runtime_error("area: jobs must be at least 1, not " + std::to_string(o.jobs));
   const std::string yosys = find_yosys();
   AreaReport r;
@@ -600,78 +706,19 @@ AreaReport synthesize_area(const RtlParams& p, const AreaOptions& o) {
   r.yosys_version = yosys_version(yosys);
   // The header's banner names no file, so two configs with the same parameters share a key.
   const std::string params_vh = rtl_params_verilog(p, "rastsim area");
-
-  // One synthesis a part: the whole design is rast_top (split into its stages) and
-  // rast_engine2d; --top is one part. rast_top is synthesised a module a process
-  // (synth_split, o.split) or whole; rast_engine2d (small) and a stage under rast_top in
-  // one process each. rast_engine2d takes no config parameter, so one entry serves every
-  // config.
-  struct Part {
-    std::string root, stage;
-    bool split;
-  };
-  std::vector<Part> parts;
-  if (o.top.empty()) parts = {{"rast_top", "", true}, {"rast_engine2d", "", false}};
-  else if (o.top == "rast_top" || o.top == "rast_engine2d") parts = {{o.top, "", o.top == "rast_top"}};
-  else parts = {{"rast_top", o.top, false}};  // a module under rast_top, with the parameters rast_top derives
-
+  const std::vector<Part> parts = parts_of(o);
   const fs::path dir = o.cache_dir.empty() ? area_cache_dir() : o.cache_dir;
   Fnv64 whole;
-  std::string last_key;
+  std::string key;
   r.from_cache = true;
   r.total.instances = 0;
   for (const Part& part : parts) {
-    AreaReport got;
-    if (part.root == "rast_top" && part.stage.empty() && o.split) {
-      got = synth_split(yosys, r.yosys_version, params_vh, part.root, dir, o);
-      Fnv64 h = base_key(r.yosys_version);
-      h.add("split");
-      h.add(params_vh);
-      last_key = h.hex();
-      whole.add(last_key);
-    } else {
-      Fnv64 h = base_key(r.yosys_version);
-      h.add(kScript);
-      h.add(part.root);
-      h.add(part.stage);
-      h.add(part.split ? "split" : "whole");
-      h.add(part.root == "rast_top" ? params_vh : "");
-      whole.add(h.hex());
-      last_key = h.hex();
-      const fs::path cache = dir / (h.hex() + ".json");
-
-      bool hit = false;
-      if (auto j = o.use_cache ? read_cache(cache, o.progress) : std::nullopt) {
-        try {
-          got = area_from_json(*j);
-          hit = true;
-        } catch (const std::exception& e) {
-          // An older entry: synthesise again and overwrite it.
-          if (o.progress) o.progress("cache entry " + cache.string() + " unreadable (" + e.what() + "), synthesising");
-        }
-      }
-      if (!hit) {
-        const auto t0 = std::chrono::steady_clock::now();
-        got = synth_run(yosys, params_vh, part.root, part.stage, part.split, o.progress);
-        got.synth_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-        got.yosys_version = r.yosys_version;
-        got.top = part.stage.empty() ? part.root : part.stage;
-        got.key = h.hex();
-        got.modules = 1;
-        if (o.use_cache) write_cache(cache, area_to_json(got));
-      }
-      got.from_cache = hit;
-    }
-    r.from_cache = r.from_cache && got.from_cache;
-    r.synth_seconds += got.synth_seconds;
-    r.cpu_seconds += got.cpu_seconds;
-    r.peak_mb = std::max(r.peak_mb, got.peak_mb);
-    r.modules += got.modules;
-    for (const auto& [name, c] : got.stages) r.stages[name] = c;
-    r.total += got.total;
+    const auto synth = part.root == "rast_top" && part.stage.empty() && o.split ? synth_split_part : synth_whole_part;
+    add_part(r, synth(yosys, r.yosys_version, params_vh, part, dir, o, key));
+    whole.add(key);
   }
   r.total.instances = 1;
-  r.key = parts.size() == 1 ? last_key : whole.hex();  // one part: its cache file's name
+  r.key = parts.size() == 1 ? key : whole.hex();  // one part: its cache file's name
   return r;
 }
 

@@ -3,13 +3,11 @@
 
 #include <fcntl.h>
 #include <sys/file.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
-#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -23,6 +21,8 @@
 #include <stdexcept>
 
 #include "rtl/rtl_sources.h"
+#include "util/hash.h"
+#include "util/process.h"
 
 namespace fs = std::filesystem;
 
@@ -45,54 +45,6 @@ void write_file(const fs::path& p, std::string_view text) {
   std::ofstream os(p, std::ios::binary);
   os << text;
   if (!os) throw std::runtime_error(p.string() + ": write failed");
-}
-
-// Runs argv (PATH searched) with stdout and stderr merged into lines for `on_line`;
-// returns the wait status.
-int run_captured(const std::vector<std::string>& argv, const std::function<void(const std::string&)>& on_line) {
-  int fd[2];
-  if (pipe(fd) != 0) throw std::runtime_error("pipe failed");
-  std::cout.flush();
-  std::fflush(nullptr);
-  const pid_t pid = fork();
-  if (pid < 0) throw std::runtime_error("fork failed");
-  if (pid == 0) {
-    close(fd[0]);
-    dup2(fd[1], 1);
-    dup2(fd[1], 2);
-    close(fd[1]);
-    std::vector<char*> av;
-    for (const auto& a : argv) av.push_back(const_cast<char*>(a.c_str()));
-    av.push_back(nullptr);
-    execvp(av[0], av.data());
-    std::fprintf(stderr, "cannot run %s: %s\n", av[0], std::strerror(errno));
-    _exit(127);
-  }
-  close(fd[1]);
-  std::string pending;
-  char buf[4096];
-  for (ssize_t n; (n = read(fd[0], buf, sizeof buf)) != 0;) {
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      break;
-    }
-    pending.append(buf, size_t(n));
-    for (size_t nl; (nl = pending.find('\n')) != std::string::npos; pending.erase(0, nl + 1))
-      on_line(pending.substr(0, nl));
-  }
-  if (!pending.empty()) on_line(pending);
-  close(fd[0]);
-  int status = 0;
-  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-  }
-  return status;
-}
-
-std::string status_text(int status) {
-  if (WIFEXITED(status)) return "exit status " + std::to_string(WEXITSTATUS(status));
-  if (WIFSIGNALED(status)) return std::string("signal ") + std::to_string(WTERMSIG(status)) + " (" +
-                                  strsignal(WTERMSIG(status)) + ")";
-  return "status " + std::to_string(status);
 }
 
 // An exclusive flock held for the object's life; the file stays (removing it would race
@@ -133,6 +85,8 @@ std::string project_cmake(const RtlBuildInfo& b) {
          "rast_verilate_top(rast_runner Vrast_top ${CMAKE_CURRENT_SOURCE_DIR} \"${top}\" \"${waivers}\")\n"
          "rast_verilate_engine2d(rast_runner \"${engine}\")\n"
          "target_include_directories(rast_runner PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})\n"
+         "# The embedded testbench headers (project_path) before the build tree's include paths.\n"
+         "target_include_directories(rast_runner BEFORE PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/include)\n"
          "# As rastsim_verilated (rast_verilate.cmake: -g0 -O3).\n"
          "target_compile_options(rast_runner PRIVATE ${RAST_VERILATED_CXX_OPTIONS})\n"
          "target_link_libraries(rast_runner PRIVATE rastsim_rtl_bench rastsim_scene ZLIB::ZLIB)\n";
@@ -184,112 +138,171 @@ bool find_entry(const fs::path& root, const std::string& key, const std::string&
   return false;
 }
 
-// Builds the entry `key` for `build` in root/<key>.tmp-<pid>, then renames it into place.
-// The caller holds the key's lock.
-RtlCacheEntry build_entry(const fs::path& root, const std::string& key, const std::string& inputs,
-                          const RtlParams& build, const RtlBuildOptions& o,
-                          const std::function<void(const std::string&)>& progress) {
-  const RtlBuildInfo& b = rtl_build_info();
-  // Directories of earlier builds of this key that failed or were killed (the lock says
-  // nobody is building it now).
-  std::error_code ec;
-  for (const auto& d : fs::directory_iterator(root, ec))
-    if (d.path().filename().string().rfind(key + ".tmp-", 0) == 0) fs::remove_all(d.path(), ec);
-  const fs::path tmp = root / (key + ".tmp-" + std::to_string(getpid()));
-  const fs::path src = tmp / "src", bld = tmp / "build";
+// Where an embedded build file goes in the project. The testbench headers are embedded
+// as "key/<name>.h" (those names are hashed into every entry's key) and written to
+// include/rtl/, which is first on the runner's include path: its #include "rtl/<name>.h"
+// compiles these copies, the ones the key was made from, not the source tree's.
+std::string project_path(std::string_view name) {
+  constexpr std::string_view kHeaders = "key/";
+  if (name.substr(0, kHeaders.size()) == kHeaders) return "include/rtl/" + std::string(name.substr(kHeaders.size()));
+  return std::string(name);
+}
+
+// The project's sources in `src`: the embedded RTL and build files, the parameters.
+void write_project(const fs::path& src, const RtlParams& build, const std::string& label, const RtlBuildInfo& b) {
   for (const auto& s : rtl_sources()) write_file(src / "rtl" / std::string(s.name), s.text);
-  for (const auto& s : rtl_build_files())
-    if (s.name.rfind("key/", 0) != 0) write_file(src / std::string(s.name), s.text);
-  write_file(src / "rast_params.vh", rtl_params_verilog(build, o.label.empty() ? "rastsim" : o.label));
+  for (const auto& s : rtl_build_files()) write_file(src / project_path(s.name), s.text);
+  write_file(src / "rast_params.vh", rtl_params_verilog(build, label.empty() ? "rastsim" : label));
   write_file(src / "rast_params.inc", rtl_params_values(build) + "\n");
   write_file(src / "CMakeLists.txt", project_cmake(b));
+}
 
-  std::ofstream log(tmp / "build.log");
-  const auto t0 = std::chrono::steady_clock::now();
-  const auto seconds = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
-  const std::string what = "RTL model " + key + (o.label.empty() ? "" : " for " + o.label);
-  progress("rastsim: building " + what + " (once; cached in " + (root / key).string() + ")\n");
-  std::deque<std::string> tail;
-  nlohmann::json stage_seconds = nlohmann::json::object();  // each stage's wall time (manifest)
-  double stage_start = 0;
-  const auto stage = [&](const std::string& name, const std::vector<std::string>& argv, const std::regex& step) {
-    progress("rtl build: " + name);
-    log << "$";
-    for (const auto& a : argv) log << " " << a;
-    log << "\n";
-    const int status = run_captured(argv, [&](const std::string& line) {
-      log << line << "\n";
-      tail.push_back(line);
-      if (tail.size() > 20) tail.pop_front();
-      std::smatch m;
-      if (std::regex_search(line, m, step)) {
-        // "[3/27] Building CXX object CMakeFiles/x.dir/.../Vrast_top__Slow.cpp.o" -> "[3/27] Vrast_top__Slow.cpp.o"
-        const std::string last = line.substr(line.find_last_of("/ ") + 1);
-        progress("rtl build: " + name + " " + (m[1].matched ? m[0].str() + " " + last : line.substr(0, 80)) + " (" +
-                 std::to_string(int(seconds())) + " s)");
-      }
-    });
-    log.flush();
-    stage_seconds[name] = seconds() - stage_start;
-    stage_start = seconds();
-    if (status == 0) return;
-    // The first line that says what is wrong: Verilator's %Warning-X / %Error (not its
-    // closing "Exiting due to"), a compiler's or CMake's error; else the last line.
-    std::string msg;
-    for (const auto& l : tail)
-      if (msg.empty() && l.find("Exiting due to") == std::string::npos &&
+// cmake's configure step of the project in `src` into `bld`, with this build's compiler.
+std::vector<std::string> configure_argv(const RtlBuildInfo& b, const fs::path& src, const fs::path& bld) {
+  std::vector<std::string> argv = {b.cmake, "-S", src.string(), "-B", bld.string(), "-G", b.generator,
+                                   "-DCMAKE_BUILD_TYPE=" + b.build_type, "-DCMAKE_CXX_COMPILER=" + b.cxx_compiler,
+                                   "-Dverilator_DIR=" + b.verilator_dir};
+  if (!b.make_program.empty()) argv.push_back("-DCMAKE_MAKE_PROGRAM=" + b.make_program);
+  if (!b.cxx_launcher.empty()) argv.push_back("-DCMAKE_CXX_COMPILER_LAUNCHER=" + b.cxx_launcher);
+  return argv;
+}
+
+// The build's stages, each a child process: its command and output go to build.log, its
+// steps ("[3/27] ...") to the progress line, its wall time to stage_seconds(); a failed
+// stage throws with the first line that says what is wrong.
+class BuildStages {
+ public:
+  BuildStages(const fs::path& log_path, std::string key, const std::function<void(const std::string&)>& progress)
+      : log_path_(log_path), log_(log_path), key_(std::move(key)), progress_(progress) {}
+
+  void run(const std::string& name, const std::vector<std::string>& argv, const std::regex& step) {
+    progress_("rtl build: " + name);
+    log_ << "$";
+    for (const auto& a : argv) log_ << " " << a;
+    log_ << "\n";
+    ProcessOptions po;
+    po.out = Sink::Lines;
+    po.err = Sink::Stdout;
+    po.on_line = [&](const std::string& line) { on_line(name, line, step); };
+    const int status = run_process(argv, po).status;
+    log_.flush();
+    stage_seconds_[name] = seconds() - stage_start_;
+    stage_start_ = seconds();
+    if (status != 0)
+      throw std::runtime_error("building RTL model " + key_ + " failed in " + name + " (" + status_text(status) +
+                               "): " + first_error() + " (log: " + log_path_.string() + ")");
+  }
+  double seconds() const { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count(); }
+  const nlohmann::json& stage_seconds() const { return stage_seconds_; }
+  void close() { log_.close(); }
+
+ private:
+  void on_line(const std::string& name, const std::string& line, const std::regex& step) {
+    log_ << line << "\n";
+    tail_.push_back(line);
+    if (tail_.size() > 20) tail_.pop_front();
+    std::smatch m;
+    if (!std::regex_search(line, m, step)) return;
+    // "[3/27] Building CXX object CMakeFiles/x.dir/.../Vrast_top__Slow.cpp.o" -> "[3/27] Vrast_top__Slow.cpp.o"
+    const std::string last = line.substr(line.find_last_of("/ ") + 1);
+    progress_("rtl build: " + name + " " + (m[1].matched ? m[0].str() + " " + last : line.substr(0, 80)) + " (" +
+              std::to_string(int(seconds())) + " s)");
+  }
+
+  // The first line that says what is wrong: Verilator's %Warning-X / %Error (not its
+  // closing "Exiting due to"), a compiler's or CMake's error; else the last line.
+  std::string first_error() const {
+    for (const auto& l : tail_)
+      if (l.find("Exiting due to") == std::string::npos &&
           (l.find("%Warning-") != std::string::npos || l.find("%Error") != std::string::npos ||
            l.find("error") != std::string::npos || l.find("Error") != std::string::npos))
-        msg = l;
-    if (msg.empty() && !tail.empty()) msg = tail.back();
-    throw std::runtime_error("building RTL model " + key + " failed in " + name + " (" + status_text(status) + "): " + msg +
-                             " (log: " + (tmp / "build.log").string() + ")");
-  };
-  std::vector<std::string> configure = {b.cmake, "-S", src.string(), "-B", bld.string(), "-G", b.generator,
-                                        "-DCMAKE_BUILD_TYPE=" + b.build_type, "-DCMAKE_CXX_COMPILER=" + b.cxx_compiler,
-                                        "-Dverilator_DIR=" + b.verilator_dir};
-  if (!b.make_program.empty()) configure.push_back("-DCMAKE_MAKE_PROGRAM=" + b.make_program);
-  if (!b.cxx_launcher.empty()) configure.push_back("-DCMAKE_CXX_COMPILER_LAUNCHER=" + b.cxx_launcher);
-  // Verilator runs in the configure step (verilate()).
-  stage("configure (Verilator)", configure, std::regex("^-- |Verilat"));
-  stage("compile", {b.cmake, "--build", bld.string()}, std::regex(R"(^\[\s*\d+(/\d+|%)\])"));
-  const double secs = seconds();
-  // The runner linked the libraries as they are now: if a rebuild of rastsim changed them
-  // during this build, the entry would not be what its key says.
-  if (compute_build_inputs() != inputs)
-    throw std::runtime_error("rastsim's libraries changed while RTL model " + key +
-                             " was built (a rebuild meanwhile?): run again with the new rastsim");
+        return l;
+    return tail_.empty() ? "" : tail_.back();
+  }
 
-  fs::rename(bld / "rast_runner", tmp / "rast_runner");
-  fs::copy_file(src / "rast_params.vh", tmp / "rast_params.vh");
+  fs::path log_path_;
+  std::ofstream log_;
+  std::string key_;
+  std::function<void(const std::string&)> progress_;
+  std::deque<std::string> tail_;
+  nlohmann::json stage_seconds_ = nlohmann::json::object();  // each stage's wall time (manifest)
+  std::chrono::steady_clock::time_point t0_ = std::chrono::steady_clock::now();
+  double stage_start_ = 0;
+};
+
+// What an entry was built from and how long it took (manifest.json).
+nlohmann::json manifest_json(const std::string& key, const std::string& inputs, const RtlParams& build,
+                             const std::string& label, double secs, const nlohmann::json& stage_seconds) {
+  const RtlBuildInfo& b = rtl_build_info();
   const std::time_t now = std::time(nullptr);
   char when[32];
   std::strftime(when, sizeof when, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
   nlohmann::json params = nlohmann::json::object();
   std::vector<int> values;  // in the export table's order, for rtl_params_from_values
   for (const auto& [k, v] : rtl_params_named(build)) params[k] = v, values.push_back(v);
-  const nlohmann::json manifest = {{"key", key},
-                                   {"inputs", inputs},
-                                   {"values", values},
-                                   {"parameters", params},
-                                   {"built_for", o.label},
-                                   {"build_seconds", secs},
-                                   {"stage_seconds", stage_seconds},
-                                   {"built_at", when},
-                                   {"compiler", b.cxx_compiler_id},
-                                   {"verilator", b.verilator_version}};
-  write_file(tmp / "manifest.json", manifest.dump(2) + "\n");
-  log.close();
-  fs::remove_all(src);
-  fs::remove_all(bld);
-  // An incomplete entry (no runner or manifest) is replaced; a complete one can only come
-  // from a builder that locked a lock file `rtl-cache --clean` removed meanwhile: keep it.
-  if (!complete(root / key)) {
-    fs::remove_all(root / key, ec);
-    fs::rename(tmp, root / key);
+  return {{"key", key},
+          {"inputs", inputs},
+          {"values", values},
+          {"parameters", params},
+          {"built_for", label},
+          {"build_seconds", secs},
+          {"stage_seconds", stage_seconds},
+          {"built_at", when},
+          {"compiler", b.cxx_compiler_id},
+          {"verilator", b.verilator_version}};
+}
+
+// Directories of earlier builds of `key` that failed or were killed (the lock says nobody
+// is building it now).
+void remove_failed_builds(const fs::path& root, const std::string& key) {
+  std::error_code ec;
+  for (const auto& d : fs::directory_iterator(root, ec))
+    if (d.path().filename().string().rfind(key + ".tmp-", 0) == 0) fs::remove_all(d.path(), ec);
+}
+
+// Renames the finished build `tmp` to `entry` at once. An incomplete entry (no runner or
+// manifest) is replaced; a complete one can only come from a builder that locked a lock
+// file `rtl-cache --clean` removed meanwhile: keep it.
+void install_entry(const fs::path& tmp, const fs::path& entry) {
+  std::error_code ec;
+  if (!complete(entry)) {
+    fs::remove_all(entry, ec);
+    fs::rename(tmp, entry);
   } else {
     fs::remove_all(tmp, ec);
   }
+}
+
+// Builds the entry `key` for `build` in root/<key>.tmp-<pid>, then renames it into place.
+// The caller holds the key's lock.
+RtlCacheEntry build_entry(const fs::path& root, const std::string& key, const std::string& inputs,
+                          const RtlParams& build, const RtlBuildOptions& o,
+                          const std::function<void(const std::string&)>& progress) {
+  const RtlBuildInfo& b = rtl_build_info();
+  remove_failed_builds(root, key);
+  const fs::path tmp = root / (key + ".tmp-" + std::to_string(getpid()));
+  const fs::path src = tmp / "src", bld = tmp / "build";
+  write_project(src, build, o.label, b);
+  const std::string what = "RTL model " + key + (o.label.empty() ? "" : " for " + o.label);
+  BuildStages stages(tmp / "build.log", key, progress);
+  progress("rastsim: building " + what + " (once; cached in " + (root / key).string() + ")\n");
+  // Verilator runs in the configure step (verilate()).
+  stages.run("configure (Verilator)", configure_argv(b, src, bld), std::regex("^-- |Verilat"));
+  stages.run("compile", {b.cmake, "--build", bld.string()}, std::regex(R"(^\[\s*\d+(/\d+|%)\])"));
+  const double secs = stages.seconds();
+  // The runner linked the libraries as they are now: if a rebuild of rastsim changed them
+  // during this build, the entry would not be what its key says.
+  if (compute_build_inputs() != inputs)
+    throw std::runtime_error("rastsim's libraries changed while RTL model " + key +
+                             " was built (a rebuild meanwhile?): run again with the new rastsim");
+  fs::rename(bld / "rast_runner", tmp / "rast_runner");
+  fs::copy_file(src / "rast_params.vh", tmp / "rast_params.vh");
+  write_file(tmp / "manifest.json",
+             manifest_json(key, inputs, build, o.label, secs, stages.stage_seconds()).dump(2) + "\n");
+  stages.close();
+  fs::remove_all(src);
+  fs::remove_all(bld);
+  install_entry(tmp, root / key);
   progress("rastsim: built " + what + " in " + std::to_string(int(secs + 0.5)) + " s\n");
   RtlCacheEntry e = read_entry(root / key);
   e.hit = false;
@@ -297,17 +310,6 @@ RtlCacheEntry build_entry(const fs::path& root, const std::string& key, const st
 }
 
 }  // namespace
-
-void Fnv64::add(std::string_view s) {
-  for (unsigned char c : s) h = (h ^ c) * 1099511628211ull;
-  h = (h ^ 0xff) * 1099511628211ull;
-}
-
-std::string Fnv64::hex() const {
-  char buf[17];
-  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
-  return buf;
-}
 
 std::string rastsim_cache_dir(const std::string& sub) {
   if (const char* c = std::getenv("RASTSIM_CACHE"); c && *c) return (fs::path(c) / sub).string();
@@ -410,8 +412,7 @@ size_t clean_rtl_cache(const std::string& dir) {
     if (fd < 0) continue;
     if (flock(fd, LOCK_EX | LOCK_NB) == 0) {
       const std::string key = lock.stem().string();
-      for (const auto& d : fs::directory_iterator(root, ec))
-        if (d.path().filename().string().rfind(key + ".tmp-", 0) == 0) fs::remove_all(d.path(), ec);
+      remove_failed_builds(root, key);
       if (fs::exists(root / key)) removed += fs::remove_all(root / key, ec) > 0;
       fs::remove(lock, ec);
     }
@@ -427,19 +428,8 @@ nlohmann::json run_rtl_runner(const RtlCacheEntry& e, const nlohmann::json& requ
   fs::create_directories(dir);
   const fs::path req = dir / "request.json", res = dir / "result.json";
   write_file(req, request.dump());
-  std::cout.flush();
-  std::fflush(nullptr);
-  const pid_t pid = fork();
-  if (pid < 0) throw std::runtime_error("fork failed");
-  if (pid == 0) {
-    // stdout and stderr stay the caller's: the model's own messages ($display, errors) show.
-    execl(e.runner.c_str(), e.runner.c_str(), req.c_str(), res.c_str(), static_cast<char*>(nullptr));
-    std::fprintf(stderr, "cannot run %s: %s\n", e.runner.c_str(), std::strerror(errno));
-    _exit(127);
-  }
-  int status = 0;
-  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-  }
+  // stdout and stderr stay the caller's: the model's own messages ($display, errors) show.
+  const ProcessResult run = run_process({e.runner, req.string(), res.string()});
   nlohmann::json j;
   std::string problem;
   try {
@@ -449,8 +439,8 @@ nlohmann::json run_rtl_runner(const RtlCacheEntry& e, const nlohmann::json& requ
   }
   std::error_code ec;
   fs::remove_all(dir, ec);
-  if (!problem.empty() || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
-    throw std::runtime_error("the RTL model " + e.runner + " failed (" + status_text(status) + ", " +
+  if (!problem.empty() || !run.ok())
+    throw std::runtime_error("the RTL model " + e.runner + " failed (" + status_text(run.status) + ", " +
                              (problem.empty() ? "answer written" : problem) + ")");
   if (j.contains("error")) throw std::runtime_error(j["error"].get<std::string>());
   return j;

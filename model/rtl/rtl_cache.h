@@ -18,10 +18,11 @@
 //   up to the built maxima), else a build.
 // - Build: under an exclusive flock on <key>.lock (a second process waits, saying so, then
 //   finds the entry), in <key>.tmp-<pid>/: the project (the embedded RTL and its
-//   rast_verilate.cmake, the exported parameter header, the runner's main and a
-//   CMakeLists.txt that links rastsim's exported libraries), cmake configure (Verilator
-//   runs here) and build with the same compiler; then the runner, manifest and log are
-//   kept and the directory renamed to <key> at once, so a reader never sees half an entry.
+//   rast_verilate.cmake, the exported parameter header, the runner's main, the embedded
+//   testbench headers it compiles, and a CMakeLists.txt that links rastsim's exported
+//   libraries), cmake configure (Verilator runs here) and build with the same compiler;
+//   then the runner, manifest and log are kept and the directory renamed to <key> at
+//   once, so a reader never sees half an entry.
 // - An installed rastsim without its build tree cannot build: the error says so.
 #pragma once
 
@@ -39,13 +40,6 @@ namespace rastsim {
 
 // $RASTSIM_CACHE/<sub>, else $XDG_CACHE_HOME/rastsim/<sub>, else ~/.cache/rastsim/<sub>.
 std::string rastsim_cache_dir(const std::string& sub);
-
-// FNV-1a, 64 bits: a cache key, not a security boundary.
-struct Fnv64 {
-  uint64_t h = 1469598103934665603ull;
-  void add(std::string_view s);  // s, then a separator: "ab","c" differs from "a","bc"
-  std::string hex() const;       // 16 hex digits
-};
 
 // What this binary's build tree provides for on-demand builds (generated at configure
 // time by model/rtl/CMakeLists.txt: rtl_build_info.cpp).

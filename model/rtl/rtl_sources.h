@@ -5,8 +5,9 @@
 //   on-demand models (rtl_cache.h);
 // - rtl_build_files(): the rest of an on-demand model's project (rtl_cache.cpp): the lint
 //   waivers ("rtl/lint/<name>.vlt"), the shared Verilator arguments
-//   ("rtl/rast_verilate.cmake"), the runner's main ("runner/rtl_runner_main.cpp"), and,
-//   for the cache key only, the testbench headers the runner compiles ("key/<name>.h").
+//   ("rtl/rast_verilate.cmake"), the runner's main ("runner/rtl_runner_main.cpp"), and
+//   the testbench headers the runner compiles ("key/<name>.h": hashed into the cache key
+//   under that name, compiled from the copy written to the project's include/rtl/).
 #pragma once
 
 #include <string_view>

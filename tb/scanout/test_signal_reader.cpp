@@ -103,19 +103,6 @@ void expect_panel_decoded_exactly(const Panel& p, const Decoded& d) {
   EXPECT_EQ(m, conf);
 }
 
-// The shell reads a quoted name back as the same single word, whatever it holds.
-TEST(SignalReader, ShellQuoteSurvivesTheShell) {
-  for (const std::string name : {"plain.fst", "with space.fst", "it's.fst", "a'b'\"c\" $HOME `x` ;rm.fst", ""}) {
-    SCOPED_TRACE(name);
-    FILE* p = popen(("printf '%s|' " + shell_quote(name)).c_str(), "r");
-    ASSERT_NE(p, nullptr);
-    std::string out;
-    for (int c; (c = std::fgetc(p)) != EOF;) out += char(c);
-    EXPECT_EQ(pclose(p), 0);
-    EXPECT_EQ(out, name + "|");
-  }
-}
-
 TEST(SignalReader, PanelVcdRoundTripBitExact) {
   const Panel p;
   const fs::path f = temp_dir() / "panel.vcd";

@@ -1,24 +1,64 @@
 // SPDX-License-Identifier: Apache-2.0
-// `rastsim sweep` internals shared by its source files: the points of the cross product,
-// the CSV they go into (written a row at a time, read back by --resume) and the two
-// backends that run them (local child processes, a Slurm job array).
+// The sweep engine behind `rastsim sweep`: the cross product of scenes and swept config
+// values (plan.cpp), each point one `rastsim simulate` (or `cosim`) run of this same
+// binary, since SystemC elaborates only once a process; the points run as child
+// processes, a number at a time (local.cpp), or as a Slurm job array (slurm.cpp); one CSV
+// row a point with every swept key and stat, appended as each finishes and read back by
+// --resume (csv.cpp); sweep.cpp joins them (run_sweep).
 #pragma once
 
 #include <csignal>
+#include <filesystem>
 #include <functional>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
-#include "common.h"
+#include "config/config.h"
 
-namespace rastsim::app::sweep {
+namespace rastsim::sweep {
 
 struct Axis {
   std::string key;
   std::vector<std::string> values;
 };
+
+// `--backend slurm`: where the job array goes and how it is watched.
+struct SlurmOptions {
+  std::string partition, time;           // sbatch --partition, --time ("" = the cluster's default)
+  std::string workdir;                   // per-task files ("" = OUT.slurm next to the CSV)
+  std::vector<std::string> sbatch_args;  // more sbatch options, verbatim
+  double poll_seconds = 5;               // squeue every this often
+};
+
+// How a sweep runs: scenes, CSV path, simulations run at once, the level, the backend and
+// --resume (the config comes apart: BaseConfig, axes).
+struct SweepOptions {
+  std::vector<std::string> scenes;
+  std::string out_path;
+  unsigned jobs = 1;
+  bool area = false;  // add area.cells, area.flip_flops, area.transistors (rastsim area) to each row
+  std::string level = "systemc";   // "systemc" (rastsim simulate) or "cosim" (rastsim cosim: + cycles_rtl, mismatches)
+  bool resume = false;             // keep the rows already in out_path; run only the others
+  std::string backend = "local";   // "local" (child processes) or "slurm" (a job array)
+  SlurmOptions slurm;
+};
+
+// The config every point starts from: resolved (the file, then the fixed overrides), and
+// as given, for the points' command lines.
+struct BaseConfig {
+  Config resolved;
+  std::string path;               // --config ("" = none)
+  std::vector<std::string> sets;  // the fixed overrides, KEY=V
+};
+
+// The --set arguments: KEY=V1,V2,... become axes; KEY=V is appended to `fixed`.
+std::vector<Axis> split_axes(const std::vector<std::string>& set_args, std::vector<std::string>& fixed);
+
+// Runs the sweep: every swept value validated first, then the points the CSV lacks (all
+// of them without --resume); throws when a point failed, after writing every row.
+void run_sweep(const SweepOptions& o, const BaseConfig& base, const std::vector<Axis>& axes);
 
 // One configuration point on one scene: a CSV row.
 struct Point {
@@ -30,6 +70,17 @@ struct Point {
   std::string error;                // the run's last error line when status != 0
   nlohmann::json stats;
 };
+
+// Every swept value validated up front, so a typo fails before anything runs.
+void validate_axes(const Config& cfg, const std::vector<Axis>& axes);
+
+// The cross product, scene-major, each point with its config's hash and its `rastsim
+// simulate` (--level cosim: `rastsim cosim`) arguments.
+std::vector<Point> make_points(const std::vector<std::string>& scenes, const std::vector<Axis>& axes,
+                               const BaseConfig& base, const std::string& level);
+
+// A point's resolved config: the base, then its swept values.
+Config point_config(const Point& p, const std::vector<Axis>& axes, const BaseConfig& base);
 
 // "scene=S key=V ..." for progress lines and error reports.
 std::string describe(const Point& p, const std::vector<Axis>& axes);
@@ -90,6 +141,11 @@ class Csv {
 // sweeps' CSVs leaves them out.
 bool is_wall_time_column(const std::string& column);
 
+// `--backend local`: runs the points `todo` (indices into `points`), `jobs` child
+// processes at once, their stats and stderr in `tmp`; returns how many failed.
+size_t run_local(std::vector<Point>& points, const std::vector<size_t>& todo, const std::vector<Axis>& axes,
+                 unsigned jobs, const std::filesystem::path& tmp, const OnDone& on_done);
+
 // `--backend slurm`: the options and the run. Submits the points `todo` (indices into
 // `points`) as Slurm job arrays of at most MaxArraySize tasks, each task this binary
 // running one point's `rastsim simulate`, its stats and exit status written to a per-task
@@ -97,9 +153,9 @@ bool is_wall_time_column(const std::string& column);
 // for each as its file appears; a task that ended without one (cancelled, time limit,
 // node failure) fails with the last line of its Slurm output. Returns how many failed.
 size_t run_slurm(std::vector<Point>& points, const std::vector<size_t>& todo, const std::vector<Axis>& axes,
-                 const SweepSlurmOptions& o, const std::string& out_path, const OnDone& on_done);
+                 const SlurmOptions& o, const std::string& out_path, const OnDone& on_done);
 
 // SIGINT/SIGTERM set this while a sweep waits (the backends stop and say so).
 extern volatile std::sig_atomic_t interrupted;
 
-}  // namespace rastsim::app::sweep
+}  // namespace rastsim::sweep

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// The `rastsim sweep` CSV (sweep.h): written a row at a time so that an interrupted sweep
+// The sweep's CSV (sweep.h): written a row at a time so that an interrupted sweep
 // keeps every finished row, and read back by --resume.
 #include <algorithm>
 #include <cstdio>
@@ -10,9 +10,9 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "sweep.h"
+#include "sweep/sweep.h"
 
-namespace rastsim::app::sweep {
+namespace rastsim::sweep {
 
 namespace {
 
@@ -214,4 +214,4 @@ void Csv::add(const Point& p, size_t i) {
   if (std::fclose(f) != 0 || !ok) throw std::runtime_error(path_ + ": write failed");
 }
 
-}  // namespace rastsim::app::sweep
+}  // namespace rastsim::sweep
