@@ -90,7 +90,7 @@ struct ScanoutRtlParams {
 ScanoutRtlParams scanout_rtl_params_from_config(const Config& cfg);
 
 // The Verilog header of the scan-out: "parameter int Name = value, // comment" lines,
-// the body of the scan-out top's parameter port list (tb/scanout/scanout_cosim_top.sv).
+// the body of the scan-out top's parameter port list (rtl/scanout_cosim_top.sv).
 std::string scanout_rtl_params_verilog(const ScanoutRtlParams& p, const std::string& source);
 
 }  // namespace rastsim
