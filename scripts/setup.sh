@@ -8,20 +8,24 @@ ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 BUILD="${RASTSIM_BUILD_DIR:-$ROOT/build}"
 JOBS="${RASTSIM_JOBS:-$(nproc)}"
 
-# Debian 12 packages the whole project needs (reference model, SystemC model, RTL
-# simulation, tests, benchmarks, plots). Keep in one place.
-RASTSIM_PACKAGES=(
+# Debian 12 packages, kept in one place: what scripts/demo needs to build the tool
+# (RASTSIM_TOOL_ONLY) and run the demo, then what the rest needs (tests, benchmarks,
+# other commands' tools, plots).
+RASTSIM_DEMO_PACKAGES=(
   g++ cmake ninja-build pkg-config
   libsystemc-dev verilator
-  libgtest-dev libbenchmark-dev
   libtomlplusplus-dev libcli11-dev nlohmann-json3-dev libpng-dev zlib1g-dev
   libzstd-dev   # zstd-compressed scenes (model/scene/scene_stream.cpp)
   libdeflate-dev   # its CRC-32 (carry-less multiply) for the framebuffer CRC (model/ref/framebuffer.cpp)
+  libgmp-dev   # GMP's mpq_class: exact area coverage (model/aa, docs/exact-coverage.md)
+  python3-matplotlib   # scripts/plot_sweep, scripts/side_by_side
+)
+RASTSIM_PACKAGES=(
+  "${RASTSIM_DEMO_PACKAGES[@]}"
+  libgtest-dev libbenchmark-dev
   zstd          # the zstd tool: scripts/gen_scenes --compress zst, the CLI test
-  python3-matplotlib
   time      # GNU time (/usr/bin/time -f %M, peak memory): scripts/bench_scale
   gtkwave   # vcd2fst / fst2vcd for FST video signals (rastsim scanout --signal, monitor), and to view waveforms
-  libgmp-dev   # GMP's mpq_class: exact area coverage (model/aa, docs/exact-coverage.md)
   libosmesa6-dev   # OSMesa: Mesa's llvmpipe, headless, the independent renderer of ctest -L mesa (docs/mesa.md)
   yosys     # rastsim area, sweep --area: the RTL synthesised into generic gates (docs/area.md)
   # rastsim sweep --backend slurm, tested for real by scripts/slurm_local (ctest -L slurm) on
@@ -40,9 +44,12 @@ RASTSIM_PACKAGES=(
   clang libclang-rt-14-dev
 )
 
+# install_missing_packages [PACKAGE...]: those of the given packages (default: all of
+# RASTSIM_PACKAGES) that are not installed.
 install_missing_packages() {
-  local missing=()
-  for p in "${RASTSIM_PACKAGES[@]}"; do
+  local wanted=("$@") missing=()
+  [ ${#wanted[@]} -gt 0 ] || wanted=("${RASTSIM_PACKAGES[@]}")
+  for p in "${wanted[@]}"; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
   done
   if [ ${#missing[@]} -eq 0 ]; then
@@ -56,14 +63,23 @@ install_missing_packages() {
   $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
 }
 
-# configure_and_build BUILD_DIR [extra cmake args...] -- [ninja targets...]
+# configure_and_build BUILD_DIR [cmake args...] -- [ninja targets...]: configures a new
+# tree with the args, an existing one again only when a -DNAME=VALUE among them differs
+# from its cache (scripts/test after scripts/demo: RASTSIM_TOOL_ONLY=OFF); then builds.
 configure_and_build() {
   local dir="$1"; shift
   local cmake_args=() targets=()
   while [ $# -gt 0 ] && [ "$1" != "--" ]; do cmake_args+=("$1"); shift; done
   [ $# -gt 0 ] && shift
   targets=("$@")
-  if [ ! -f "$dir/build.ninja" ]; then
+  local configure=0 a name
+  [ -f "$dir/build.ninja" ] || configure=1
+  for a in "${cmake_args[@]}"; do
+    [ $configure -eq 0 ] && [[ "$a" == -D*=* ]] || continue
+    name="${a#-D}"; name="${name%%=*}"; name="${name%%:*}"
+    [ "$(sed -n "s/^${name}:[A-Z]*=//p" "$dir/CMakeCache.txt")" = "${a#*=}" ] || configure=1
+  done
+  if [ $configure -eq 1 ]; then
     cmake -S "$ROOT" -B "$dir" -G Ninja "${cmake_args[@]}"
   fi
   ninja -C "$dir" -j "$JOBS" "${targets[@]}"

@@ -10,7 +10,7 @@
 //   level_r, level_g, level_b                                (reals: volts into the load)
 //   clk | clk_i | pclk | pixel_clk | clk_pixel               (optional, 1 bit)
 // That covers `rastsim scanout --signal` (hsync, vsync, blank, code_*, level_*) and a
-// Verilator trace of rtl/scanout_top.sv or tb/scanout/scanout_cosim_top.sv (hsync_o, vsync_o,
+// Verilator trace of rtl/scanout_top.sv or rtl/scanout_cosim_top.sv (hsync_o, vsync_o,
 // blank_o, dac_*_o, clk_i). Levels come from level_* when present, otherwise from the
 // codes through the DAC given (0 V while BLANK is high).
 //

@@ -106,7 +106,7 @@ bool engine2d_rtl_params_compatible(const Engine2dRtlParams& built, const Engine
                                     std::string* why = nullptr);
 
 // The Verilog header of the scan-out: "parameter int Name = value, // comment" lines,
-// the body of the scan-out top's parameter port list (tb/scanout/scanout_cosim_top.sv).
+// the body of the scan-out top's parameter port list (rtl/scanout_cosim_top.sv).
 std::string scanout_rtl_params_verilog(const ScanoutRtlParams& p, const std::string& source);
 
 }  // namespace rastsim

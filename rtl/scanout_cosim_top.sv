@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 // scanout_cosim_top: scanout_top (rtl/scanout_top.sv) with the parameters of one config,
-// from the header the configure-time exporter writes (<build>/rtl/scanout_<config>/
-// scanout_params.vh, `rastsim export-rtl-scanout`), verilated as Vscanout_<config> into
-// rastsim_verilated (rtl/CMakeLists.txt).
+// from the header `rastsim export-rtl-scanout` writes (scanout_params.vh; the build's
+// configure-time exporter writes <build>/tb/scanout/scanout_<config>/scanout_params.vh and
+// verilates it as Vscanout_<config> for the scan-out tests, tb/scanout/CMakeLists.txt).
 `default_nettype none
 
 module scanout_cosim_top #(
