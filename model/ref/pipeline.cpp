@@ -128,31 +128,16 @@ void add_draw_stats(RenderStats& into, const RenderStats& part) {
 
 struct SceneRenderer::Impl {
   // The SpanEmitter (fine_raster.h) of draw()'s run path: a one-sample triangle whose
-  // fragments PixelShader's stepper gives, written by rop_write_run.
+  // fragments PixelShader::shade_run gives, written by rop_write_run.
   struct RunWriter {
     Impl& m;
     PixelShader& shader;
     RenderStats& s;
     void operator()(int px, int py, uint32_t mask) { span(py, px, px + 1, mask); }
     void span(int py, int x0, int x1, uint32_t) {
-      PlaneStepper& plane = shader.stepper();
-      uint32_t n;
-      if (plane.flat()) {
-        // One fragment for the run, its x moved along: nothing is stepped, and the loop
-        // keeps the fragment in registers while the ROP's stores go out.
-        const Fragment f = plane.at(x0, py);
-        n = rop_write_run(
-            m.fb, py, x0, x1,
-            [f](int x) {
-              Fragment g = f;  // a copy, not f changed in place: a store the loads would wait for
-              g.x = x;
-              return g;
-            },
-            m.st.depth_func, m.st.depth_write);
-      } else {
-        n = rop_write_run(
-            m.fb, py, x0, x1, [&](int x) { return plane.at(x, py); }, m.st.depth_func, m.st.depth_write);
-      }
+      const uint32_t n = shader.shade_run(py, x0, [&](auto&& frag) {
+        return rop_write_run(m.fb, py, x0, x1, frag, m.st.depth_func, m.st.depth_write);
+      });
       s.fragments_shaded += uint64_t(x1 - x0);
       s.fragments_passed += n;
       s.samples_passed += n;
