@@ -124,11 +124,9 @@ class PixelShader {
   [[gnu::always_inline]] decltype(auto) shade_run(int y, int x0, Use&& use) {
     if (plane_.flat()) {
       const Fragment f = plane_.at(x0, y);
-      return use([f](int x) {
-        Fragment g = f;  // a copy, not f changed in place: a store the loads would wait for
-        g.x = x;
-        return g;
-      });
+      // Built field by field, not copied whole and x changed: a copy through memory with x
+      // stored into it stalls the next load of it (store forwarding), a fragment at a time.
+      return use([f](int x) { return Fragment{x, f.y, f.z, f.r, f.g, f.b, f.mask, f.samples}; });
     }
     return use([this, y](int x) { return plane_.at(x, y); });
   }
