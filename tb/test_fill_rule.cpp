@@ -15,6 +15,7 @@
 #include <random>
 #include <string>
 #include <tuple>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -377,6 +378,29 @@ TEST(FillRule, ViewportAndVertexRangeLimits) {
   EXPECT_EQ(outcome("30", "-1.0019531251"), SetupOutcome::CulledOutOfRange);
   ok.out_of_range = OutOfRange::Error;
   EXPECT_THROW(outcome("127", "60"), SceneError);
+}
+
+// The state commands are viewport, clear, clear depth and scissor: apply_state_command
+// applies them and refuses the drawing commands, and state_commands (a walk's handlers
+// for them) takes exactly those four, so a walk without its own primitives and 2D
+// handlers does not build.
+TEST(FillRule, StateCommandsAreTheFourStateTypes) {
+  const auto handlers = state_commands([] { return 1; });
+  using H = decltype(handlers);
+  static_assert(std::is_invocable_v<H, const CmdViewport&> && std::is_invocable_v<H, const CmdClear&> &&
+                std::is_invocable_v<H, const CmdClearDepth&> && std::is_invocable_v<H, const CmdScissor&>);
+  static_assert(!std::is_invocable_v<H, const CmdPrimitives&> && !std::is_invocable_v<H, const CmdDraw2d&>);
+  EXPECT_EQ(visit_command({CmdClearDepth{}, {"hand", 1}}, Overloaded{handlers, [](const CmdPrimitives&) { return 2; },
+                                                                    [](const CmdDraw2d&) { return 3; }}),
+            1);
+  RasterState st = state(64, 64);
+  Framebuffer fb(64, 64);
+  EXPECT_TRUE(apply_state_command({CmdScissor{true, 1, 2, 3, 4}, {"hand", 1}}, st, fb));
+  EXPECT_TRUE(st.scissor_enabled);
+  EXPECT_EQ(st.scissor.x1, 4);
+  EXPECT_EQ(st.scissor.y1, 6);
+  EXPECT_FALSE(apply_state_command({CmdPrimitives{}, {"hand", 2}}, st, fb));
+  EXPECT_FALSE(apply_state_command({CmdDraw2d{}, {"hand", 3}}, st, fb));
 }
 
 std::map<std::pair<int, int>, Fragment> render_fragments(const std::vector<Tri>& tris, const RasterState& st) {

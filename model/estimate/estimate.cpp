@@ -42,28 +42,48 @@ class Walker {
   }
 
   void command(size_t index, const Command& cmd, const EstimateProgress& progress) {
-    if (progress && !std::holds_alternative<CmdPrimitives>(cmd.body)) progress(index, 0, r_);
-    if (const auto* d2 = std::get_if<CmdDraw2d>(&cmd.body)) return draw2d(cmd, *d2);
-    const auto* prims = std::get_if<CmdPrimitives>(&cmd.body);
-    if (!prims) {
-      Framebuffer no_fb;  // clears pass to the ROP; only viewport and scissor matter here
-      apply_state_command(cmd, st_, no_fb);
-      work(StageId::CommandFetch, p_.fetch_header_cycles());
-      const bool color = std::holds_alternative<CmdClear>(cmd.body);
-      const bool clear = color || std::holds_alternative<CmdClearDepth>(cmd.body);
-      if (clear) r_.framebuffer_bytes += fb_pixels_ * (color ? 4 : depth_bytes_);
-      return marker(p_.rop_state_cycles(clear, fb_pixels_), false);
-    }
-    const size_t n = triangle_count(*prims);
+    // `clear_bytes`: bytes a pixel the command writes over the framebuffer (0: no clear).
+    const auto state = [&](uint64_t clear_bytes) {
+      if (progress) progress(index, 0, r_);
+      state_command(cmd, clear_bytes);
+    };
+    visit_command(cmd, Overloaded{
+        [&](const CmdViewport&) { state(0); },
+        [&](const CmdScissor&) { state(0); },
+        [&](const CmdClear&) { state(4); },
+        [&](const CmdClearDepth&) { state(depth_bytes_); },
+        [&](const CmdPrimitives& prims) { primitives(index, cmd, prims, progress); },
+        [&](const CmdDraw2d& d2) {
+          if (progress) progress(index, 0, r_);
+          draw2d(cmd, d2);
+        },
+    });
+  }
+
+ private:
+  // A state command: fetch's header, the marker down the triangle path, and the ROP's
+  // cycles (a clear's over the whole framebuffer), as sc/command_fetch and sc/rop.
+  void state_command(const Command& cmd, uint64_t clear_bytes) {
+    Framebuffer no_fb;  // clears pass to the ROP; only viewport and scissor matter here
+    apply_state_command(cmd, st_, no_fb);
+    work(StageId::CommandFetch, p_.fetch_header_cycles());
+    r_.framebuffer_bytes += fb_pixels_ * clear_bytes;
+    marker(p_.rop_state_cycles(clear_bytes != 0, fb_pixels_), false);
+  }
+
+  // A primitives command's triangles, one transaction each down to setup (a culled one
+  // stops there), then traversal's.
+  void primitives(size_t index, const Command& cmd, const CmdPrimitives& prims, const EstimateProgress& progress) {
+    const size_t n = triangle_count(prims);
     if (n == 0 && progress) progress(index, 0, r_);
     if (n == 0) stage(StageId::CommandFetch).busy += p_.fetch_header_cycles();  // a header, no transaction
     for (size_t k = 0; k < n; ++k) {
       if (progress) progress(index, k, r_);
-      work(StageId::CommandFetch, p_.fetch_triangle_cycles(k == 0, (k == 0 || prims->topology == Topology::List) ? 3 : 1));
+      work(StageId::CommandFetch, p_.fetch_triangle_cycles(k == 0, (k == 0 || prims.topology == Topology::List) ? 3 : 1));
       work(StageId::PrimAssembly, p_.assembly_triangle_cycles());
       ++r_.render.triangles_in;
       SetupTriangle tri;
-      const SetupOutcome outcome = setup_triangle(assemble_triangle(*prims, k), st_, cmd.loc, tri);
+      const SetupOutcome outcome = setup_triangle(assemble_triangle(prims, k), st_, cmd.loc, tri);
       stage(StageId::TriSetup).busy += p_.setup_triangle_cycles();
       if (!count_setup_outcome(outcome, r_.render)) continue;  // culled: no transaction out
       emit(StageId::TriSetup);
@@ -72,7 +92,6 @@ class Walker {
     }
   }
 
- private:
   // A stage spends `cycles` on one transaction and writes it to the next FIFO.
   void work(StageId s, uint64_t cycles) {
     stage(s).busy += cycles;

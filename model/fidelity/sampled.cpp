@@ -11,6 +11,7 @@
 
 #include "fidelity/student_t.h"
 #include "config/timing_params.h"
+#include "ref/pipeline.h"
 #include "ref/prim_assembly.h"
 #include "sc/raster_pipeline.h"
 
@@ -31,9 +32,14 @@ constexpr size_t kFloorUnits = 3;
 // (plan_units).
 constexpr double kSpill = 2.0;
 
+// A primitives command with a triangle: cut into batches; every other command is a unit
+// of its own.
 bool is_triangle_command(const Command& c) {
-  const auto* p = std::get_if<CmdPrimitives>(&c.body);
-  return p && triangle_count(*p) > 0;
+  return visit_command(c, Overloaded{
+      state_commands([] { return false; }),
+      [](const CmdPrimitives& p) { return triangle_count(p) > 0; },
+      [](const CmdDraw2d&) { return false; },
+  });
 }
 
 Busy busy_of(const EstimateResult& r) {
@@ -65,6 +71,119 @@ Command slice(const Command& c, size_t k0, size_t k1) {
   return Command{std::move(out), c.loc};
 }
 
+// The analytic walk's busy totals where command fetch starts triangle k of command cmd
+// (k = 0 for a command without triangles).
+struct Mark {
+  size_t cmd, k;
+  Busy busy;
+};
+
+// A unit's marks [begin, end); whole: one command that is not a triangle batch.
+struct MarkRange {
+  size_t begin, end;
+  bool whole;
+};
+
+// The busy totals at mark i, or at the end of the walk past the last.
+const Busy& busy_at(const std::vector<Mark>& marks, size_t i, const Busy& end_busy) {
+  return i < marks.size() ? marks[i].busy : end_busy;
+}
+
+// Cuts the marks into units: each command that is not a triangle command whole, runs of
+// triangle commands into batches of `batch` triangles, cut where a strip restarts on an
+// even triangle.
+std::vector<MarkRange> cut_units(const Scene& scene, const std::vector<Mark>& marks, size_t batch) {
+  std::vector<MarkRange> ranges;
+  for (size_t i = 0; i < marks.size();) {
+    if (!is_triangle_command(scene.commands[marks[i].cmd])) {
+      ranges.push_back({i, i + 1, true});
+      ++i;
+      continue;
+    }
+    size_t j = i, tris = 0;
+    while (j < marks.size() && is_triangle_command(scene.commands[marks[j].cmd])) {
+      if (tris >= batch && marks[j].k % 2 == 0) break;  // a strip restarts on an even triangle
+      ++tris;
+      ++j;
+    }
+    ranges.push_back({i, j, false});
+    i = j;
+  }
+  return ranges;
+}
+
+// The unit of `range`: its stratum (the stage busiest over it) and x (that stage's busy
+// cycles), and its pieces (a whole command, or runs of triangles of one command each).
+Unit unit_of(const std::vector<Mark>& marks, const MarkRange& range, const Busy& end_busy) {
+  Unit unit;
+  const Busy& b0 = marks[range.begin].busy;
+  const Busy& b1 = busy_at(marks, range.end, end_busy);
+  for (size_t s = 0; s < kStageCount; ++s) {
+    const double w = double(b1[s] - b0[s]);
+    if (w > unit.x || unit.stratum < 0) {
+      unit.x = w;
+      unit.stratum = int(s);
+    }
+  }
+  if (range.whole) {
+    unit.pieces.push_back({marks[range.begin].cmd, 0, 0, true});
+    return unit;
+  }
+  for (size_t m = range.begin; m < range.end; ++m) {
+    if (unit.pieces.empty() || unit.pieces.back().command != marks[m].cmd)
+      unit.pieces.push_back({marks[m].cmd, marks[m].k, marks[m].k, false});
+    unit.pieces.back().k1 = marks[m].k + 1;
+    ++unit.triangles;
+  }
+  return unit;
+}
+
+// Certain: other commands, the first batch after one (or the first of all: pipeline
+// fill, a clear's ROP time), the last unit (drain, resolve pass). A command's time (a
+// clear's or 2D draw's ROP cycles) can outlast the batch after it: command fetch runs
+// ahead while the FIFOs fill. Batches after it are certain until every stage has had
+// kSpill times the command's busiest stage's cycles of work since it (analytic walk),
+// so the spill is measured, not scaled up by a sampled batch.
+void mark_certain_around_commands(std::vector<Unit>& units, const std::vector<MarkRange>& ranges,
+                                  const std::vector<Mark>& marks, const Busy& end_busy) {
+  Busy spill_from{};
+  double spill = 0;
+  for (size_t u = 0; u < units.size(); ++u) {
+    Unit& unit = units[u];
+    const bool whole = ranges[u].whole;
+    const Busy& b0 = marks[ranges[u].begin].busy;
+    unit.certain = whole || u == 0 || ranges[u - 1].whole || u + 1 == ranges.size();
+    double since = 0;  // the busiest stage's cycles since the spilling command
+    for (size_t s = 0; s < kStageCount; ++s) since = std::max(since, double(b0[s] - spill_from[s]));
+    if (whole) {
+      if (kSpill * unit.x >= kSpill * spill - since) {  // outlasts the previous command's spill
+        spill_from = busy_at(marks, ranges[u].end, end_busy);
+        spill = unit.x;
+      }
+    } else if (spill > 0) {
+      if (since < kSpill * spill) unit.certain = true;
+      else spill = 0;
+    }
+  }
+}
+
+// Certain head: until every FIFO could have filled (`fill` triangles, one an entry at
+// least), command fetch runs ahead of the bottleneck and a batch's measured cycles are
+// short. Strata too small to sample are simulated whole.
+void mark_certain_head_and_small_strata(std::vector<Unit>& units, uint64_t fill) {
+  uint64_t seen = 0;
+  for (Unit& u : units) {
+    if (seen >= fill) break;
+    u.certain = true;
+    seen += u.triangles;
+  }
+  std::map<int, size_t> count;
+  for (const Unit& u : units)
+    if (!u.certain) ++count[u.stratum];
+  for (Unit& u : units)
+    if (!u.certain && count[u.stratum] < kMinStratumUnits) u.certain = true;
+}
+
 }  // namespace
 
 uint64_t triangle_path_entries(const TimingParams& p) {
@@ -75,10 +194,6 @@ uint64_t triangle_path_entries(const TimingParams& p) {
 }
 
 UnitPlan plan_units(const Scene& scene, const ArchParams& arch, size_t batch) {
-  struct Mark {
-    size_t cmd, k;
-    Busy busy;
-  };
   std::vector<Mark> marks;
   UnitPlan plan;
   plan.analytic = estimate_scene(scene, arch, [&](size_t c, size_t k, const EstimateResult& r) {
@@ -93,89 +208,13 @@ UnitPlan plan_units(const Scene& scene, const ArchParams& arch, size_t batch) {
   batch += batch % 2;
   plan.batch = batch;
 
-  // Cut the marks into units: [begin, end) ranges of marks.
-  std::vector<std::pair<size_t, size_t>> ranges;
-  std::vector<bool> whole;
-  for (size_t i = 0; i < marks.size();) {
-    const Command& c = scene.commands[marks[i].cmd];
-    if (!is_triangle_command(c)) {
-      ranges.emplace_back(i, i + 1);
-      whole.push_back(true);
-      ++i;
-      continue;
-    }
-    size_t j = i, tris = 0;
-    while (j < marks.size() && is_triangle_command(scene.commands[marks[j].cmd])) {
-      if (tris >= batch && marks[j].k % 2 == 0) break;  // a strip restarts on an even triangle
-      ++tris;
-      ++j;
-    }
-    ranges.emplace_back(i, j);
-    whole.push_back(false);
-    i = j;
-  }
-
+  const std::vector<MarkRange> ranges = cut_units(scene, marks, batch);
   const Busy end_busy = busy_of(plan.analytic);
-  // A command's time (a clear's or 2D draw's ROP cycles) can outlast the batch after it:
-  // command fetch runs ahead while the FIFOs fill. Batches after it are certain until
-  // every stage has had kSpill times the command's busiest stage's cycles of work since
-  // it (analytic walk), so the spill is measured, not scaled up by a sampled batch.
-  Busy spill_from{};
-  double spill = 0;
-  for (size_t u = 0; u < ranges.size(); ++u) {
-    const auto [b, e] = ranges[u];
-    Unit unit;
-    const Busy& b0 = marks[b].busy;
-    const Busy& b1 = e < marks.size() ? marks[e].busy : end_busy;
-    for (size_t s = 0; s < kStageCount; ++s) {
-      const double w = double(b1[s] - b0[s]);
-      if (w > unit.x || unit.stratum < 0) {
-        unit.x = w;
-        unit.stratum = int(s);
-      }
-    }
-    if (whole[u]) {
-      unit.pieces.push_back({marks[b].cmd, 0, 0, true});
-    } else {
-      for (size_t m = b; m < e; ++m) {
-        if (unit.pieces.empty() || unit.pieces.back().command != marks[m].cmd)
-          unit.pieces.push_back({marks[m].cmd, marks[m].k, marks[m].k, false});
-        unit.pieces.back().k1 = marks[m].k + 1;
-        ++unit.triangles;
-      }
-    }
-    // Certain: other commands, the first batch after one (or the first of all: pipeline
-    // fill, a clear's ROP time), the last unit (drain, resolve pass).
-    unit.certain = whole[u] || u == 0 || whole[u - 1] || u + 1 == ranges.size();
-    double since = 0;  // the busiest stage's cycles since the spilling command
-    for (size_t s = 0; s < kStageCount; ++s) since = std::max(since, double(b0[s] - spill_from[s]));
-    if (whole[u]) {
-      if (kSpill * unit.x >= kSpill * spill - since) {  // outlasts the previous command's spill
-        spill_from = b1;
-        spill = unit.x;
-      }
-    } else if (spill > 0) {
-      if (since < kSpill * spill) unit.certain = true;
-      else spill = 0;
-    }
-    plan.units.push_back(std::move(unit));
-  }
-  // Certain head: until every FIFO could have filled (one triangle an entry at least),
-  // command fetch runs ahead of the bottleneck and a batch's measured cycles are short.
+  for (const MarkRange& range : ranges) plan.units.push_back(unit_of(marks, range, end_busy));
+  mark_certain_around_commands(plan.units, ranges, marks, end_busy);
   plan.head_triangles = fill;
   plan.warm_triangles = size_t(fill);
-  uint64_t seen = 0;
-  for (Unit& u : plan.units) {
-    if (seen >= fill) break;
-    u.certain = true;
-    seen += u.triangles;
-  }
-  // Strata too small to sample are simulated whole.
-  std::map<int, size_t> count;
-  for (const Unit& u : plan.units)
-    if (!u.certain) ++count[u.stratum];
-  for (Unit& u : plan.units)
-    if (!u.certain && count[u.stratum] < kMinStratumUnits) u.certain = true;
+  mark_certain_head_and_small_strata(plan.units, fill);
   return plan;
 }
 
@@ -268,25 +307,30 @@ SubScene sub_scene(const Scene& scene, const UnitPlan& plan, const std::vector<b
   return out;
 }
 
-SampledResult extrapolate(const UnitPlan& plan, const std::vector<bool>& chosen, const std::vector<double>& y,
-                          double confidence) {
-  SampledResult r;
-  r.confidence = confidence;
-  r.analytic = plan.analytic;
-  r.units_total = plan.units.size();
-  r.batch_triangles = plan.batch;
-  struct Stratum {
-    size_t N = 0, n = 0;
-    double X = 0, sx = 0, sy = 0;
-    std::vector<size_t> sample;
-  };
+namespace {
+
+struct Stratum {
+  size_t N = 0, n = 0;
+  double X = 0, sx = 0, sy = 0;
+  std::vector<size_t> sample;
+};
+
+// The units sorted for the estimator: certain units' cycles summed, uncertain ones into
+// their strata, and the certain batches' y/x (not the first or last unit nor one right
+// after a command, whose cycles carry the fill, drain or a command's time): the spread
+// of the ratio that a small sample can miss (two sampled batches with equal ratios by
+// chance). Counts units in r.
+struct UnitTally {
   std::map<int, Stratum> strata;
-  // The certain batches' y/x (not the first or last unit nor one right after a command,
-  // whose cycles carry the fill, drain or a command's time): the spread of the ratio
-  // that a small sample can miss (two sampled batches with equal ratios by chance).
   std::map<int, std::vector<double>> certain_ratios;
   std::vector<double> all_ratios;
-  double certain = 0, x_all = 0, x_sim = 0;
+  double certain = 0;
+};
+
+UnitTally tally_units(const UnitPlan& plan, const std::vector<bool>& chosen, const std::vector<double>& y,
+                      SampledResult& r) {
+  UnitTally t;
+  double x_all = 0, x_sim = 0;
   for (size_t u = 0; u < plan.units.size(); ++u) {
     const Unit& unit = plan.units[u];
     x_all += unit.x;
@@ -296,15 +340,15 @@ SampledResult extrapolate(const UnitPlan& plan, const std::vector<bool>& chosen,
     }
     if (unit.certain) {
       ++r.units_certain;
-      certain += y[u];
+      t.certain += y[u];
       const bool batch = !unit.pieces.empty() && !unit.pieces.front().whole;
       if (batch && unit.x > 0 && u > 0 && u + 1 < plan.units.size() && !plan.units[u - 1].pieces.front().whole) {
-        certain_ratios[unit.stratum].push_back(y[u] / unit.x);
-        all_ratios.push_back(y[u] / unit.x);
+        t.certain_ratios[unit.stratum].push_back(y[u] / unit.x);
+        t.all_ratios.push_back(y[u] / unit.x);
       }
       continue;
     }
-    Stratum& s = strata[unit.stratum];
+    Stratum& s = t.strata[unit.stratum];
     ++s.N;
     s.X += unit.x;
     if (!chosen[u]) continue;
@@ -314,8 +358,41 @@ SampledResult extrapolate(const UnitPlan& plan, const std::vector<bool>& chosen,
     s.sample.push_back(u);
   }
   r.work_fraction_simulated = x_all > 0 ? x_sim / x_all : 1;
-  double total = certain, var = 0, df_den = 0;
-  for (auto& [h, s] : strata) {
+  return t;
+}
+
+// Variance floor: the certain batches' ratio spread `rs` (this stratum's if it has
+// kFloorUnits of them, else all strata's), at the stratum's mean unit size: a residual
+// y - R x of a batch of mean size, were its ratio as spread as the certain batches'.
+// Raises s2 to it (with its degrees of freedom) and adds the raise to r.variance_floor.
+void apply_variance_floor(const Stratum& s, const std::vector<double>& rs, double& s2, double& df, SampledResult& r) {
+  if (rs.size() < kFloorUnits) return;
+  double m = 0, q = 0;
+  for (double v : rs) m += v;
+  m /= double(rs.size());
+  for (double v : rs) q += (v - m) * (v - m);
+  // The ratio's variance times the stratum's mean x squared.
+  const double xbar = s.X / double(s.N);
+  const double floor = q / double(rs.size() - 1) * xbar * xbar;
+  if (floor > s2) {
+    r.variance_floor += double(s.N) * double(s.N) * (1 - double(s.n) / double(s.N)) * (floor - s2) / double(s.n);
+    s2 = floor;
+    df = double(rs.size() - 1);
+  }
+}
+
+}  // namespace
+
+SampledResult extrapolate(const UnitPlan& plan, const std::vector<bool>& chosen, const std::vector<double>& y,
+                          double confidence) {
+  SampledResult r;
+  r.confidence = confidence;
+  r.analytic = plan.analytic;
+  r.units_total = plan.units.size();
+  r.batch_triangles = plan.batch;
+  const UnitTally tally = tally_units(plan, chosen, y, r);
+  double total = tally.certain, var = 0, df_den = 0;
+  for (const auto& [h, s] : tally.strata) {
     if (s.n == 0) throw std::logic_error("extrapolate: a stratum without a sampled unit");
     ++r.strata;
     // Ratio estimator on the analytic work; with no analytic work, plain expansion.
@@ -329,25 +406,10 @@ SampledResult extrapolate(const UnitPlan& plan, const std::vector<bool>& chosen,
       ss += e * e;
     }
     double s2 = ss / double(s.n - 1), df = double(s.n - 1);
-    // Variance floor: the certain batches' ratio spread (this stratum's if it has
-    // kFloorUnits of them, else all strata's), at this stratum's mean unit size.
     if (ratio) {
-      const std::vector<double>& rs = certain_ratios[h].size() >= kFloorUnits ? certain_ratios[h] : all_ratios;
-      if (rs.size() >= kFloorUnits) {
-        double m = 0, q = 0;
-        for (double v : rs) m += v;
-        m /= double(rs.size());
-        for (double v : rs) q += (v - m) * (v - m);
-        // The ratio's variance times the stratum's mean x squared: a residual y - R x
-        // of a batch of mean size, were its ratio as spread as the certain batches'.
-        const double xbar = s.X / double(s.N);
-        const double floor = q / double(rs.size() - 1) * xbar * xbar;
-        if (floor > s2) {
-          r.variance_floor += double(s.N) * double(s.N) * (1 - double(s.n) / double(s.N)) * (floor - s2) / double(s.n);
-          s2 = floor;
-          df = double(rs.size() - 1);
-        }
-      }
+      const auto own = tally.certain_ratios.find(h);
+      const bool enough = own != tally.certain_ratios.end() && own->second.size() >= kFloorUnits;
+      apply_variance_floor(s, enough ? own->second : tally.all_ratios, s2, df, r);
     }
     const double v = double(s.N) * double(s.N) * (1 - double(s.n) / double(s.N)) * s2 / double(s.n);
     var += v;

@@ -114,8 +114,22 @@ class PixelShader {
   // True when shade() emits exactly one fragment a pixel, at(px, py): one sample, plane
   // equations, PlaneStepper active (the pipeline then shades and writes runs).
   bool stepped() const { return stepped_; }
-  // The stepper of stepped() (covered centres only).
-  PlaneStepper& stepper() { return plane_; }
+  // A stepped() shader's fragments of a run of covered pixels x0, x0 + 1, ... of row y:
+  // returns use(frag), frag(x) the fragment of pixel (x, y), to be called for x0, x0 + 1,
+  // ... in turn. With every attribute flat, frag is the run's first fragment with its x
+  // moved along (nothing is stepped, and the loop keeps the fragment in registers);
+  // else PlaneStepper steps along the run. The reference's run path hands frag to the
+  // ROP (rop_write_run), the SystemC interpolator stores the fragments: one fast path.
+  template <class Use>
+  [[gnu::always_inline]] decltype(auto) shade_run(int y, int x0, Use&& use) {
+    if (plane_.flat()) {
+      const Fragment f = plane_.at(x0, y);
+      // Built field by field, not copied whole and x changed: a copy through memory with x
+      // stored into it stalls the next load of it (store forwarding), a fragment at a time.
+      return use([f](int x) { return Fragment{x, f.y, f.z, f.r, f.g, f.b, f.mask, f.samples}; });
+    }
+    return use([this, y](int x) { return plane_.at(x, y); });
+  }
 
  private:
   const SetupTriangle& t_;

@@ -32,41 +32,46 @@ bool count_setup_outcome(SetupOutcome o, RenderStats& stats) {
   return false;
 }
 
+namespace {
+void apply_viewport(const CmdViewport& c, const SourceLoc& loc, RasterState& st) {
+  const int64_t max_extent = max_viewport_extent(st.coord_format);
+  if (c.width < 1 || c.height < 1 || c.width > st.fb_width || c.height > st.fb_height)
+    throw SceneError(loc.str() + ": viewport " + std::to_string(c.width) + "x" + std::to_string(c.height) +
+                     " does not fit the " + std::to_string(st.fb_width) + "x" + std::to_string(st.fb_height) +
+                     " framebuffer (display.width x display.height)");
+  if (c.width > max_extent || c.height > max_extent)
+    throw SceneError(loc.str() + ": viewport " + std::to_string(c.width) + "x" + std::to_string(c.height) +
+                     " does not fit raster.coord_format " + st.coord_format.name() + " (largest " +
+                     std::to_string(max_extent) + " px)");
+  st.viewport_width = c.width;
+  st.viewport_height = c.height;
+}
+}  // namespace
+
 bool apply_state_command(const Command& cmd, RasterState& st, Framebuffer& fb) {
-  return std::visit(
-      [&](const auto& c) -> bool {
-        using C = std::decay_t<decltype(c)>;
-        if constexpr (std::is_same_v<C, CmdViewport>) {
-          const int64_t max_extent = max_viewport_extent(st.coord_format);
-          if (c.width < 1 || c.height < 1 || c.width > st.fb_width || c.height > st.fb_height)
-            throw SceneError(cmd.loc.str() + ": viewport " + std::to_string(c.width) + "x" +
-                             std::to_string(c.height) + " does not fit the " + std::to_string(st.fb_width) +
-                             "x" + std::to_string(st.fb_height) +
-                             " framebuffer (display.width x display.height)");
-          if (c.width > max_extent || c.height > max_extent)
-            throw SceneError(cmd.loc.str() + ": viewport " + std::to_string(c.width) + "x" +
-                             std::to_string(c.height) + " does not fit raster.coord_format " +
-                             st.coord_format.name() + " (largest " + std::to_string(max_extent) + " px)");
-          st.viewport_width = c.width;
-          st.viewport_height = c.height;
-          return true;
-        } else if constexpr (std::is_same_v<C, CmdClear>) {
-          fb.clear_color(c.r, c.g, c.b);
-          return true;
-        } else if constexpr (std::is_same_v<C, CmdClearDepth>) {
-          const auto z = quantize_unorm(c.z, st.depth_bits);
-          if (!z) throw SceneError(cmd.loc.str() + ": clear depth must be in [0, 1]");
-          fb.clear_depth(*z);
-          return true;
-        } else if constexpr (std::is_same_v<C, CmdScissor>) {
-          st.scissor_enabled = c.enabled;
-          st.scissor = {c.x, c.y, c.x + c.width, c.y + c.height};
-          return true;
-        } else {
-          return false;
-        }
+  return visit_command(cmd, Overloaded{
+      [&](const CmdViewport& c) {
+        apply_viewport(c, cmd.loc, st);
+        return true;
       },
-      cmd.body);
+      [&](const CmdClear& c) {
+        fb.clear_color(c.r, c.g, c.b);
+        return true;
+      },
+      [&](const CmdClearDepth& c) {
+        const auto z = quantize_unorm(c.z, st.depth_bits);
+        if (!z) throw SceneError(cmd.loc.str() + ": clear depth must be in [0, 1]");
+        fb.clear_depth(*z);
+        return true;
+      },
+      [&](const CmdScissor& c) {
+        st.scissor_enabled = c.enabled;
+        st.scissor = {c.x, c.y, c.x + c.width, c.y + c.height};
+        return true;
+      },
+      [](const CmdPrimitives&) { return false; },  // drawing, not state
+      [](const CmdDraw2d&) { return false; },
+  });
 }
 
 void count_multisample_footprint(const RasterState& st, RenderStats& stats) {
@@ -123,31 +128,16 @@ void add_draw_stats(RenderStats& into, const RenderStats& part) {
 
 struct SceneRenderer::Impl {
   // The SpanEmitter (fine_raster.h) of draw()'s run path: a one-sample triangle whose
-  // fragments PixelShader's stepper gives, written by rop_write_run.
+  // fragments PixelShader::shade_run gives, written by rop_write_run.
   struct RunWriter {
     Impl& m;
     PixelShader& shader;
     RenderStats& s;
     void operator()(int px, int py, uint32_t mask) { span(py, px, px + 1, mask); }
     void span(int py, int x0, int x1, uint32_t) {
-      PlaneStepper& plane = shader.stepper();
-      uint32_t n;
-      if (plane.flat()) {
-        // One fragment for the run, its x moved along: nothing is stepped, and the loop
-        // keeps the fragment in registers while the ROP's stores go out.
-        const Fragment f = plane.at(x0, py);
-        n = rop_write_run(
-            m.fb, py, x0, x1,
-            [f](int x) {
-              Fragment g = f;  // a copy, not f changed in place: a store the loads would wait for
-              g.x = x;
-              return g;
-            },
-            m.st.depth_func, m.st.depth_write);
-      } else {
-        n = rop_write_run(
-            m.fb, py, x0, x1, [&](int x) { return plane.at(x, py); }, m.st.depth_func, m.st.depth_write);
-      }
+      const uint32_t n = shader.shade_run(py, x0, [&](auto&& frag) {
+        return rop_write_run(m.fb, py, x0, x1, frag, m.st.depth_func, m.st.depth_write);
+      });
       s.fragments_shaded += uint64_t(x1 - x0);
       s.fragments_passed += n;
       s.samples_passed += n;
@@ -188,6 +178,7 @@ struct SceneRenderer::Impl {
     if (threads > 1) bins.resize(size_t(grid.count()));
   }
   void run(const Command& cmd);
+  void draw_triangles(const Command& cmd, const CmdPrimitives& prims);
   void run_parallel(std::span<const Command> commands);
   void draw_primitives(std::span<const Command> commands);
   void draw_chunk(size_t first, size_t n);
@@ -238,23 +229,27 @@ void SceneRenderer::run(std::span<const Command> commands) {
 }
 
 void SceneRenderer::Impl::run(const Command& cmd) {
-  Impl& m = *this;
-  RenderStats& stats = m.stats;
-  if (apply_state_command(cmd, m.st, m.fb)) return;
-  if (const auto* d2 = std::get_if<CmdDraw2d>(&cmd.body)) {
-    check_2d_sample_count(cmd, m.st);
-    draw_2d(*d2, cmd.loc, m.st, m.fb, stats.draw2d);
-    return;
-  }
-  const auto& prims = std::get<CmdPrimitives>(cmd.body);
+  const auto state = [&] { apply_state_command(cmd, st, fb); };
+  visit_command(cmd, Overloaded{
+      state_commands(state),
+      [&](const CmdPrimitives& prims) { draw_triangles(cmd, prims); },
+      [&](const CmdDraw2d& d2) {
+        check_2d_sample_count(cmd, st);
+        draw_2d(d2, cmd.loc, st, fb, stats.draw2d);
+      },
+  });
+}
+
+// One primitives command's triangles on this thread, in order.
+void SceneRenderer::Impl::draw_triangles(const Command& cmd, const CmdPrimitives& prims) {
   const size_t n = triangle_count(prims);
   for (size_t k = 0; k < n; ++k) {
     ++stats.triangles_in;
     SetupTriangle tri;
-    if (!count_setup_outcome(setup_triangle(assemble_triangle(prims, k), m.st, cmd.loc, tri), stats)) continue;
-    m.pixels.clear();
+    if (!count_setup_outcome(setup_triangle(assemble_triangle(prims, k), st, cmd.loc, tri), stats)) continue;
+    pixels.clear();
     draw(tri, tri, stats);
-    if (m.check) m.check->add_triangle(tri, m.F, m.pixels, stats.coverage);
+    if (check) check->add_triangle(tri, F, pixels, stats.coverage);
   }
 }
 

@@ -54,6 +54,22 @@ struct RenderStats {
 // naming the command's file:line for a viewport that does not fit.
 bool apply_state_command(const Command& cmd, RasterState& st, Framebuffer& fb);
 
+// The state commands' handlers of a walk that treats them alike (visit_command,
+// ref/scene.h): each of viewport, clear, clear depth and scissor returns state(). Named
+// one a type here, so a walk written
+//   visit_command(cmd, Overloaded{state_commands(state), [&](const CmdPrimitives& p) {...},
+//                                 [&](const CmdDraw2d& d) {...}});
+// still stops the build when a command type is added and not handled.
+template <class F>
+auto state_commands(F state) {
+  return Overloaded{
+      [state](const CmdViewport&) { return state(); },
+      [state](const CmdClear&) { return state(); },
+      [state](const CmdClearDepth&) { return state(); },
+      [state](const CmdScissor&) { return state(); },
+  };
+}
+
 // Counts one triangle-setup outcome in the triangle stats (shared with the timed model);
 // returns true when the triangle goes on to traversal.
 bool count_setup_outcome(SetupOutcome o, RenderStats& stats);

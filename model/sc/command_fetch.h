@@ -56,15 +56,12 @@ class CommandFetch : public Stage {
       : Stage(name, ctx, kId), source_(std::move(source)), st_(arch), p_(p), out_(out), out_2d_(out_2d) {
     set_stack_size(kStackBytes);  // a streamed source's parser runs on this thread
   }
-  // Commands fetched so far (all of their transactions written).
-  uint64_t commands_fetched() const { return fetched_; }
 
  private:
   static constexpr size_t kStackBytes = size_t(1) << 20;
   void body() override;
   void fetch(const CommandPtr& cmd);
   CommandSource source_;
-  uint64_t fetched_ = 0;
   RasterState st_;     // the state 2D commands are drawn with
   Framebuffer no_fb_;  // fetch owns no pixels: clears pass through to the ROP
   const TimingParams& p_;

@@ -24,20 +24,10 @@ void Interpolate::body() {
     // Per batch, not per fragment: the stepped plane equations with no sink are the
     // common case and store fragments only, a run at a time.
     if (shader.stepped() && !ctx_.on_fragment) {
-      PlaneStepper& plane = shader.stepper();
-      for (const PixelRun& r : batch.runs) {
-        if (plane.flat()) {
-          // Every fragment of the run is the first with its x moved along (as the
-          // reference's RunWriter): nothing is stepped.
-          const Fragment f = plane.at(r.x0, r.y);
-          for (int x = r.x0; x < r.x1; ++x, ++out) {
-            *out = f;
-            out->x = x;
-          }
-        } else {
-          for (int x = r.x0; x < r.x1; ++x) *out++ = plane.at(x, r.y);
-        }
-      }
+      for (const PixelRun& r : batch.runs)
+        shader.shade_run(r.y, r.x0, [&](auto&& frag) {
+          for (int x = r.x0; x < r.x1; ++x) *out++ = frag(x);
+        });
     } else {
       const bool dda = tri.interp_method != InterpMethod::Plane;
       for (const PixelRun& r : batch.runs) {

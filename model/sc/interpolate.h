@@ -10,7 +10,7 @@
 // - Every fragment leaving here goes to the fragment sink, in order: the same stream
 //   (ref/pipeline.h: fragment_trace_line) as the reference model's.
 // - A one-sample triangle shaded by plane equations goes run by run through
-//   PlaneStepper, as the reference's run path does (ref/pipeline.cpp, RunWriter): a
+//   PixelShader::shade_run, the reference's run path (ref/pipeline.cpp, RunWriter): a
 //   flat-shaded run is one fragment with its x moved along.
 #pragma once
 

@@ -3,6 +3,7 @@
 
 #include "ref/pipeline.h"
 #include "ref/rop.h"
+#include "sc/model_error.h"
 
 namespace rastsim::sc {
 
@@ -15,32 +16,47 @@ Rop::Rop(SimContext& ctx, const RasterState& arch, const TimingParams& p,
   fb_.clear_depth(static_cast<uint32_t>((uint64_t{1} << st_.depth_bits) - 1));
 }
 
+// A command down the triangle path: a 2D command's marker, the end-of-frame marker or a
+// state command (sc/rop.h for the cycles and bytes of each).
+void Rop::command(const CommandPtr& cmd) {
+  const uint64_t fb_pixels = uint64_t(fb_.width) * uint64_t(fb_.height);
+  if (ctx_.is_end_of_frame(cmd)) {  // the multisample resolve pass
+    fb_ = fb_.resolve();
+    ctx_.resolve_cycles = p_.resolve_cycles(fb_pixels, st_.samples);
+    ctx_.framebuffer_bytes += ctx_.render.resolve_bytes;
+    attribute_to_no_tile();
+    busy(ctx_.resolve_cycles);
+    return;
+  }
+  // `clear_bytes`: bytes a pixel the command writes over the whole buffer (0: no clear).
+  const auto state = [&](uint64_t clear_bytes) {
+    apply_state_command(*cmd, st_, fb_);
+    ctx_.framebuffer_bytes += fb_pixels * clear_bytes;
+    attribute_to_no_tile();
+    busy(p_.rop_state_cycles(clear_bytes != 0, fb_pixels));
+  };
+  visit_command(*cmd, Overloaded{
+      [&](const CmdViewport&) { state(0); },
+      [&](const CmdScissor&) { state(0); },
+      [&](const CmdClear&) { state(4); },
+      [&](const CmdClearDepth&) { state(depth_bytes_); },
+      [&](const CmdPrimitives&) {
+        throw ModelError("ROP: a primitives command as a state item (fetch sends its triangles)");
+      },
+      [&](const CmdDraw2d&) {
+        write(grant_2d_, PortGrant{cmd});
+        read(done_2d_, false);  // the same transaction: the marker's, starved while the engine works
+        attribute_to_no_tile();
+        busy(TimingParams::rop_draw2d_marker_cycles());
+      },
+  });
+}
+
 void Rop::body() {
   for (;;) {
     const FragmentItem in = read(in_);
-    if (in.state && std::holds_alternative<CmdDraw2d>(in.state->body)) {
-      write(grant_2d_, PortGrant{in.state});
-      read(done_2d_, false);  // the same transaction: the marker's, starved while the engine works
-      attribute_to_no_tile();
-      busy(TimingParams::rop_draw2d_marker_cycles());
-      continue;
-    }
-    const uint64_t fb_pixels = uint64_t(fb_.width) * uint64_t(fb_.height);
-    if (in.state && ctx_.is_end_of_frame(in.state)) {  // the multisample resolve pass
-      fb_ = fb_.resolve();
-      ctx_.resolve_cycles = p_.resolve_cycles(fb_pixels, st_.samples);
-      ctx_.framebuffer_bytes += ctx_.render.resolve_bytes;
-      attribute_to_no_tile();
-      busy(ctx_.resolve_cycles);
-      continue;
-    }
     if (in.state) {
-      apply_state_command(*in.state, st_, fb_);
-      const bool color = std::holds_alternative<CmdClear>(in.state->body);
-      const bool clear = color || std::holds_alternative<CmdClearDepth>(in.state->body);
-      if (clear) ctx_.framebuffer_bytes += fb_pixels * (color ? 4 : depth_bytes_);
-      attribute_to_no_tile();
-      busy(p_.rop_state_cycles(clear, fb_pixels));
+      command(in.state);
       continue;
     }
     const FragmentBatch& batch = *in.work;

@@ -38,6 +38,7 @@ class Rop : public Stage {
 
  private:
   void body() override;
+  void command(const CommandPtr& cmd);
   RasterState st_;
   Framebuffer fb_;
   uint64_t depth_bytes_;  // bytes of one depth value: ceil(raster.depth_bits / 8)

@@ -244,14 +244,14 @@ uint8_t to_rgb8(double c, double shade) {
   return static_cast<uint8_t>(std::clamp(std::floor(c * shade * 255.0 + 0.5), 0.0, 255.0));
 }
 
-// Places the parsed mesh and emits its commands (see the file comment for the maths).
-Scene place(ObjParser& obj, const std::string& name, const ObjPlacement& pl) {
-  for (ObjVertex& v : obj.vertices) v.p = to_y_up(v.p, pl.up);  // in place: no second copy
-  const auto& verts = obj.vertices;
-  std::vector<bool> used(verts.size(), false);
-  for (const ObjFace& f : obj.faces)
-    for (size_t i : f.v) used[i] = true;
+// The mesh's bounding sphere: about its bounding box centre, over the vertices faces use.
+struct BoundingSphere {
+  Vec3 centre;
+  double radius;
+};
 
+BoundingSphere bounding_sphere(const std::vector<ObjVertex>& verts, const std::vector<bool>& used,
+                               const std::string& name) {
   // Bounding box centre; halves first so that two huge finite bounds cannot overflow.
   Vec3 lo, hi;
   lo.fill(HUGE_VAL);
@@ -275,13 +275,17 @@ Scene place(ObjParser& obj, const std::string& name, const ObjPlacement& pl) {
     radius = std::max(radius, d);
   }
   if (radius == 0) radius = 1;  // a single point: every face is degenerate, keep it finite
+  return {centre, radius};
+}
 
+// View-space position (unit sphere) of every used vertex: about the sphere's centre,
+// rotated about y (yaw) then x (pitch).
+std::vector<Vec3> view_positions(const std::vector<ObjVertex>& verts, const std::vector<bool>& used,
+                                 const BoundingSphere& sphere, const ObjPlacement& pl) {
+  const Vec3& centre = sphere.centre;
+  const double radius = sphere.radius;
   const double yaw = pl.yaw_deg * std::numbers::pi / 180, pitch = pl.pitch_deg * std::numbers::pi / 180;
   const double cy = std::cos(yaw), sy = std::sin(yaw), cp = std::cos(pitch), sp = std::sin(pitch);
-  const double px_per_radius = pl.fill * std::min(pl.viewport_width, pl.viewport_height) / 2.0;
-  const double mid_x = pl.viewport_width / 2.0, mid_y = pl.viewport_height / 2.0;
-
-  // View-space position (unit sphere) of every used vertex.
   std::vector<Vec3> view(verts.size());
   for (size_t i = 0; i < verts.size(); ++i) {
     if (!used[i]) continue;
@@ -290,6 +294,57 @@ Scene place(ObjParser& obj, const std::string& name, const ObjPlacement& pl) {
     const double x1 = x * cy + z * sy, z1 = -x * sy + z * cy;  // about y: +z turns toward +x
     view[i] = {x1, y * cp - z1 * sp, y * sp + z1 * cp};        // about x: +y turns toward +z
   }
+  return view;
+}
+
+// The headlight shade of a face: kAmbient + (1 - kAmbient) max(0, n_z). Newell's
+// normal: the polygon's area vector, exact for triangles and well defined for
+// non-planar polygons; its z is toward the viewer.
+double face_shade(const ObjFace& f, const std::vector<Vec3>& view) {
+  Vec3 n{};
+  for (size_t k = 0; k < f.v.size(); ++k) {
+    const Vec3& a = view[f.v[k]];
+    const Vec3& b = view[f.v[(k + 1) % f.v.size()]];
+    n[0] += (a[1] - b[1]) * (a[2] + b[2]);
+    n[1] += (a[2] - b[2]) * (a[0] + b[0]);
+    n[2] += (a[0] - b[0]) * (a[1] + b[1]);
+  }
+  const double len = std::hypot(n[0], n[1], n[2]);
+  const double nz = len > 0 ? n[2] / len : 0.0;
+  return kAmbient + (1 - kAmbient) * std::max(0.0, nz);
+}
+
+// A face's corners on screen: orthographic, the unit sphere spanning `fill` of the
+// smaller viewport side, y down, depth 0 (near) .. 1 (far) over the sphere, shaded.
+std::vector<SceneVertex> face_corners(const ObjFace& f, const std::vector<Vec3>& view,
+                                      const std::vector<ObjVertex>& verts, const ObjPlacement& pl) {
+  const double px_per_radius = pl.fill * std::min(pl.viewport_width, pl.viewport_height) / 2.0;
+  const double mid_x = pl.viewport_width / 2.0, mid_y = pl.viewport_height / 2.0;
+  const double shade = face_shade(f, view);
+  std::vector<SceneVertex> corner;
+  for (size_t i : f.v) {
+    const Vec3& q = view[i];
+    const Rgb rgb = verts[i].rgb.value_or(f.kd.value_or(Rgb{1.0, 1.0, 1.0}));
+    SceneVertex sv;
+    sv.x = Q64::from_double(mid_x + px_per_radius * q[0]);
+    sv.y = Q64::from_double(mid_y - px_per_radius * q[1]);  // object +y is up on screen
+    sv.z = std::clamp(0.5 - 0.5 * q[2], 0.0, 1.0);           // larger view z is nearer
+    sv.r = to_rgb8(rgb[0], shade);
+    sv.g = to_rgb8(rgb[1], shade);
+    sv.b = to_rgb8(rgb[2], shade);
+    corner.push_back(sv);
+  }
+  return corner;
+}
+
+// Places the parsed mesh and emits its commands (see the file comment for the maths).
+Scene place(ObjParser& obj, const std::string& name, const ObjPlacement& pl) {
+  for (ObjVertex& v : obj.vertices) v.p = to_y_up(v.p, pl.up);  // in place: no second copy
+  const auto& verts = obj.vertices;
+  std::vector<bool> used(verts.size(), false);
+  for (const ObjFace& f : obj.faces)
+    for (size_t i : f.v) used[i] = true;
+  const std::vector<Vec3> view = view_positions(verts, used, bounding_sphere(verts, used, name), pl);
 
   Scene scene;
   scene.source = name;
@@ -298,33 +353,7 @@ Scene place(ObjParser& obj, const std::string& name, const ObjPlacement& pl) {
   scene.commands.push_back({CmdClearDepth{1.0}, first});
   int faces_in_command = 0;  // faces in the List command being filled (0: start a new one)
   for (const ObjFace& f : obj.faces) {
-    // Newell's normal: the polygon's area vector, exact for triangles and well defined
-    // for non-planar polygons; its z is toward the viewer.
-    Vec3 n{};
-    for (size_t k = 0; k < f.v.size(); ++k) {
-      const Vec3& a = view[f.v[k]];
-      const Vec3& b = view[f.v[(k + 1) % f.v.size()]];
-      n[0] += (a[1] - b[1]) * (a[2] + b[2]);
-      n[1] += (a[2] - b[2]) * (a[0] + b[0]);
-      n[2] += (a[0] - b[0]) * (a[1] + b[1]);
-    }
-    const double len = std::hypot(n[0], n[1], n[2]);
-    const double nz = len > 0 ? n[2] / len : 0.0;
-    const double shade = kAmbient + (1 - kAmbient) * std::max(0.0, nz);
-
-    std::vector<SceneVertex> corner;
-    for (size_t i : f.v) {
-      const Vec3& q = view[i];
-      const Rgb rgb = verts[i].rgb.value_or(f.kd.value_or(Rgb{1.0, 1.0, 1.0}));
-      SceneVertex sv;
-      sv.x = Q64::from_double(mid_x + px_per_radius * q[0]);
-      sv.y = Q64::from_double(mid_y - px_per_radius * q[1]);  // object +y is up on screen
-      sv.z = std::clamp(0.5 - 0.5 * q[2], 0.0, 1.0);           // larger view z is nearer
-      sv.r = to_rgb8(rgb[0], shade);
-      sv.g = to_rgb8(rgb[1], shade);
-      sv.b = to_rgb8(rgb[2], shade);
-      corner.push_back(sv);
-    }
+    const std::vector<SceneVertex> corner = face_corners(f, view, verts, pl);
     // A new List command every faces_per_command faces, named by its first face's line;
     // the triangles and their order are the same whatever the grouping.
     if (faces_in_command == 0) scene.commands.push_back({CmdPrimitives{Topology::List, {}}, SourceLoc{name, f.line}});

@@ -190,12 +190,18 @@ Draw2dWork draw2d_ops(const CmdDraw2d& cmd, const SourceLoc& loc, const RasterSt
 }
 
 uint64_t draw2d_vertex_count(const CmdDraw2d& cmd) {
-  if (std::holds_alternative<Draw2dPoint>(cmd.shape)) return 1;
-  if (const auto* l = std::get_if<Draw2dLines>(&cmd.shape)) return l->vertices.size();
-  if (const auto* p = std::get_if<Draw2dPolygon>(&cmd.shape)) return p->vertices.size();
-  // A string's bytes travel 8 to a vertex-sized word (two 32-bit coordinates).
-  if (const auto* t = std::get_if<Draw2dText>(&cmd.shape)) return (t->str.size() + 7) / 8;
-  return 0;
+  constexpr uint64_t kInHeader = 0;  // a shape whose integers travel in the command header
+  return std::visit(Overloaded{
+      [](const Draw2dPoint&) { return uint64_t{1}; },
+      [](const Draw2dLines& l) { return uint64_t(l.vertices.size()); },
+      [](const Draw2dCircle&) { return kInHeader; },
+      [](const Draw2dRect&) { return kInHeader; },
+      [](const Draw2dPolygon& p) { return uint64_t(p.vertices.size()); },
+      [](const Draw2dBlit&) { return kInHeader; },
+      [](const Draw2dArc&) { return kInHeader; },
+      // A string's bytes travel 8 to a vertex-sized word (two 32-bit coordinates).
+      [](const Draw2dText& t) { return uint64_t((t.str.size() + 7) / 8); },
+  }, cmd.shape);
 }
 
 uint64_t execute_op2d(Framebuffer& fb, const Draw2dWork& work, const Op2d& op) {

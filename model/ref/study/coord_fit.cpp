@@ -23,10 +23,14 @@ template <class OnTri>
 void for_each_triangle(const Scene& scene, RasterState st, OnTri&& on_tri) {
   Framebuffer scratch(1, 1);  // clears land here; only the state matters
   for (const Command& cmd : scene.commands) {
-    if (apply_state_command(cmd, st, scratch)) continue;
-    const auto* prims = std::get_if<CmdPrimitives>(&cmd.body);
-    if (!prims) continue;  // 2D commands: no triangle vertices
-    for (size_t k = 0; k < triangle_count(*prims); ++k) on_tri(st, assemble_triangle(*prims, k), cmd.loc);
+    const auto state = [&] { apply_state_command(cmd, st, scratch); };
+    visit_command(cmd, Overloaded{
+        state_commands(state),
+        [&](const CmdPrimitives& prims) {
+          for (size_t k = 0; k < triangle_count(prims); ++k) on_tri(st, assemble_triangle(prims, k), cmd.loc);
+        },
+        [](const CmdDraw2d&) {},  // no triangle vertices
+    });
   }
 }
 
@@ -58,22 +62,33 @@ RenderSignature render_signature(const Scene& scene, const RasterState& arch) {
 
 Scene snap_scene_to_integer_pixels(const Scene& scene) {
   Scene out = scene;
-  for (Command& cmd : out.commands) {
-    auto* prims = std::get_if<CmdPrimitives>(&cmd.body);
-    if (!prims) continue;
-    for (SceneVertex& v : prims->vertices) {
+  const auto snap = [](CmdPrimitives& prims) {
+    for (SceneVertex& v : prims.vertices) {
       if (v.x.saturated() || v.y.saturated()) continue;  // stays out of range for every format
       v.x.q = shift_right_round(v.x.q, Q64::kFracBits, Rounding::NearestEven) << Q64::kFracBits;
       v.y.q = shift_right_round(v.y.q, Q64::kFracBits, Rounding::NearestEven) << Q64::kFracBits;
     }
-  }
+  };
+  for (Command& cmd : out.commands)  // std::visit, not visit_command: the command changes in place
+    std::visit(Overloaded{
+        state_commands([] {}),
+        snap,
+        [](const CmdDraw2d&) {},  // 2D drawing keeps its coordinates
+    }, cmd.body);
   return out;
 }
 
 int int_bits_for_viewports(const Scene& scene, const RasterState& arch) {
   int64_t need = std::max(arch.viewport_width, arch.viewport_height);
   for (const Command& cmd : scene.commands)
-    if (const auto* vp = std::get_if<CmdViewport>(&cmd.body)) need = std::max<int64_t>(need, std::max(vp->width, vp->height));
+    visit_command(cmd, Overloaded{
+        [&](const CmdViewport& vp) { need = std::max<int64_t>(need, std::max(vp.width, vp.height)); },
+        [](const CmdClear&) {},
+        [](const CmdClearDepth&) {},
+        [](const CmdScissor&) {},
+        [](const CmdPrimitives&) {},
+        [](const CmdDraw2d&) {},
+    });
   for (int i = 0; i < kMaxFormatBits; ++i)
     if (max_viewport_extent(widest_with(i)) >= need) return i;
   throw SceneError(scene.source + ": a viewport side of " + std::to_string(need) + " px fits no coordinate format");
@@ -138,11 +153,9 @@ bool is_closed_mesh(const Scene& scene) {
   using Pt = std::pair<i128, i128>;
   std::map<std::pair<Pt, Pt>, std::pair<int, int>> edges;
   size_t triangles = 0;
-  for (const Command& cmd : scene.commands) {
-    const auto* prims = std::get_if<CmdPrimitives>(&cmd.body);
-    if (!prims) continue;
-    for (size_t k = 0; k < triangle_count(*prims); ++k) {
-      const auto v = assemble_triangle(*prims, k);
+  const auto add_edges = [&](const CmdPrimitives& prims) {
+    for (size_t k = 0; k < triangle_count(prims); ++k) {
+      const auto v = assemble_triangle(prims, k);
       ++triangles;
       for (int i = 0; i < 3; ++i) {
         Pt p{v[i].x.q, v[i].y.q}, q{v[(i + 1) % 3].x.q, v[(i + 1) % 3].y.q};
@@ -152,7 +165,13 @@ bool is_closed_mesh(const Scene& scene) {
         e.second += dir;
       }
     }
-  }
+  };
+  for (const Command& cmd : scene.commands)
+    visit_command(cmd, Overloaded{
+        state_commands([] {}),
+        add_edges,
+        [](const CmdDraw2d&) {},  // the triangles' mesh only
+    });
   if (triangles == 0) return false;
   for (const auto& [key, e] : edges)
     if (e.first != 2 || e.second != 0) return false;
