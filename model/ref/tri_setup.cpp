@@ -48,11 +48,8 @@ int64_t last_pixel_at_or_before(int64_t raw, int64_t origin, int frac_bits) {
   return origin + static_cast<int64_t>(shift_right_round(t, frac_bits, Rounding::Floor));
 }
 
-}  // namespace
-
-SetupOutcome setup_triangle(const std::array<SceneVertex, 3>& v, const RasterState& st,
-                            const SourceLoc& loc, SetupTriangle& t) {
-  const FixedFormat& fmt = st.coord_format;
+// The raster state a set-up triangle carries to traversal and interpolation.
+void take_raster_state(const RasterState& st, SetupTriangle& t) {
   t.origin_x = st.origin_x();
   t.origin_y = st.origin_y();
   t.interp_method = st.interp_method;
@@ -61,9 +58,17 @@ SetupOutcome setup_triangle(const std::array<SceneVertex, 3>& v, const RasterSta
   t.depth_bits = st.depth_bits;
   t.samples = st.samples;
   t.aa_mode = st.aa_mode;
-  t.edges64 = edges_fit_int64(fmt);
+  t.edges64 = edges_fit_int64(st.coord_format);
   const int64_t attr_max = int64_t((uint64_t{1} << std::max(8, st.depth_bits)) - 1);
   t.w64_limit = INT64_MAX / (3 * attr_max);
+}
+
+}  // namespace
+
+SetupOutcome setup_triangle(const std::array<SceneVertex, 3>& v, const RasterState& st,
+                            const SourceLoc& loc, SetupTriangle& t) {
+  const FixedFormat& fmt = st.coord_format;
+  take_raster_state(st, t);
   for (int i = 0; i < 3; ++i) {
     const auto sx = snap_coord(v[i].x, t.origin_x, fmt);
     const auto sy = snap_coord(v[i].y, t.origin_y, fmt);

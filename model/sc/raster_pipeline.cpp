@@ -157,6 +157,84 @@ SimResult simulate_stream(const std::string& path, const ArchParams& arch, const
   return simulate_commands(source, arch, opts);
 }
 
+namespace {
+
+// The optional recorders of a run (timeline, spans, tile heat, VCD), attached to the
+// stages and FIFOs before the simulation starts.
+struct Recorders {
+  Timeline timeline;
+  std::vector<std::vector<Span>> spans = std::vector<std::vector<Span>>(kStageCount);
+  std::vector<TileHeat> heat;
+  sc_core::sc_trace_file* vcd = nullptr;
+
+  void attach(RasterPipeline& top, const SimOptions& opts, const RasterState& arch, bool tracing) {
+    if (!opts.timeline_path.empty()) {
+      for (Stage* s : top.stages()) s->set_timeline(&timeline.add_stage(s->basename()));
+      top.for_each_fifo([&](auto& f) { f.set_timeline(&timeline.add_fifo(f.basename(), f.depth())); });
+    }
+    if (opts.spans)
+      for (size_t k = 0; k < spans.size(); ++k) top.stages()[k]->set_spans(&spans[k]);
+    if (opts.heatmap) {
+      heat.reserve(kStageCount);  // the stages keep pointers into it
+      for (const StageInfo& info : kStages)
+        if (info.tile_heat)
+          top.stage(info.id).set_heat(
+              &heat.emplace_back(std::string(info.name), arch.fb_width, arch.fb_height, arch.tile_size));
+    }
+    if (tracing) {
+      vcd = sc_core::sc_create_vcd_trace_file(strip_suffix(opts.vcd_path, ".vcd").c_str());
+      vcd->set_time_unit(1, sc_core::SC_NS);  // 1 ns = 1 cycle
+      for (Stage* s : top.stages()) sc_core::sc_trace(vcd, s->state_signal(), std::string(s->basename()) + ".state");
+      top.for_each_fifo(
+          [&](auto& f) { sc_core::sc_trace(vcd, f.occupancy(), std::string(f.basename()) + ".occupancy"); });
+    }
+  }
+};
+
+// The run's options into the context the stages share (which stays where it is: stages
+// compare commands against its end-of-frame marker's address).
+void configure(SimContext& ctx, const SimOptions& opts, const RasterState& arch) {
+  ctx.tracing = !opts.vcd_path.empty();
+  ctx.lockstep = ctx.tracing || !opts.timeline_path.empty() || opts.lockstep;
+  ctx.stall_seed = opts.stall_seed;
+  ctx.stall_probability = opts.stall_probability;
+  ctx.on_fragment = opts.on_fragment;
+  ctx.on_fetch = opts.on_fetch;
+  count_multisample_footprint(arch, ctx.render);
+}
+
+// The run ends with the last stage's last step: the latest stage time (in lock-step,
+// where SystemC time followed the stages, also SystemC's; sc/stage.h).
+uint64_t end_cycle(RasterPipeline& top, const SimContext& ctx) {
+  uint64_t end = 0;
+  for (Stage* s : top.stages()) end = std::max(end, s->now());
+  if (ctx.lockstep && end != ctx.to_cycles(sc_core::sc_time_stamp()))
+    throw ModelError("simulate: the stages end at cycle " + std::to_string(end) + " but SystemC at cycle " +
+                     std::to_string(ctx.to_cycles(sc_core::sc_time_stamp())));
+  return end;
+}
+
+// Every stage's and FIFO's figures at cycle r.cycles, and the lower bound they give.
+void collect_stages(RasterPipeline& top, const TimingParams& p, Recorders& rec, SimResult& r) {
+  for (const StageInfo& info : kStages) {
+    Stage& s = top.stage(info.id);
+    s.finish(r.cycles);
+    const StageStats& st = s.stats();
+    r.stages.push_back({s.basename(), st.busy, st.stalled, st.starved, st.transactions_in, st.transactions_out,
+                        std::move(rec.spans[stage_index(info.id)]), st.transactions()});
+    // A stage with work starts no earlier than its fill (TimingParams::stage_fill_cycles).
+    if (st.busy > 0) r.cycles_lower_bound = std::max(r.cycles_lower_bound, p.stage_fill_cycles(info.id) + st.busy);
+  }
+  top.for_each_fifo([&](auto& f) {
+    r.fifos.push_back({f.basename(), f.depth(), f.writes(), f.reads()});
+    if (f.writes() != f.reads())
+      throw ModelError(std::string(f.name()) + ": " + std::to_string(f.writes() - f.reads()) +
+                       " transactions left behind (pipeline deadlock)");
+  });
+}
+
+}  // namespace
+
 SimResult simulate_commands(CommandSource source, const ArchParams& params, const SimOptions& opts) {
   const auto t0 = std::chrono::steady_clock::now();
   const RasterState& arch = params.raster;
@@ -166,76 +244,25 @@ SimResult simulate_commands(CommandSource source, const ArchParams& params, cons
   sc_core::sc_report_handler::set_actions(sc_core::SC_INFO, sc_core::SC_DO_NOTHING);
 
   SimContext ctx;
-  ctx.tracing = !opts.vcd_path.empty();
-  ctx.lockstep = ctx.tracing || !opts.timeline_path.empty() || opts.lockstep;
-  ctx.stall_seed = opts.stall_seed;
-  ctx.stall_probability = opts.stall_probability;
-  ctx.on_fragment = opts.on_fragment;
-  ctx.on_fetch = opts.on_fetch;
-  count_multisample_footprint(arch, ctx.render);
+  configure(ctx, opts, arch);
   // Built once and kept: SystemC does not support tearing a design down.
   static RasterPipeline* top = nullptr;
   if (top) throw std::logic_error("simulate_scene: SystemC elaborates only once per process");
   top = new RasterPipeline("pipeline", ctx, std::move(source), arch, p);
-
-  // Optional recorders, attached before the simulation starts.
-  Timeline timeline;
-  if (!opts.timeline_path.empty()) {
-    for (Stage* s : top->stages()) s->set_timeline(&timeline.add_stage(s->basename()));
-    top->for_each_fifo([&](auto& f) { f.set_timeline(&timeline.add_fifo(f.basename(), f.depth())); });
-  }
-  std::vector<std::vector<Span>> spans(top->stages().size());
-  if (opts.spans)
-    for (size_t k = 0; k < spans.size(); ++k) top->stages()[k]->set_spans(&spans[k]);
-  std::vector<TileHeat> heat;
-  if (opts.heatmap) {
-    heat.reserve(kStageCount);  // the stages keep pointers into it
-    for (const StageInfo& info : kStages)
-      if (info.tile_heat)
-        top->stage(info.id).set_heat(&heat.emplace_back(std::string(info.name), arch.fb_width, arch.fb_height, arch.tile_size));
-  }
-
-  sc_core::sc_trace_file* tf = nullptr;
-  if (ctx.tracing) {
-    tf = sc_core::sc_create_vcd_trace_file(strip_suffix(opts.vcd_path, ".vcd").c_str());
-    tf->set_time_unit(1, sc_core::SC_NS);  // 1 ns = 1 cycle
-    for (Stage* s : top->stages()) sc_core::sc_trace(tf, s->state_signal(), std::string(s->basename()) + ".state");
-    top->for_each_fifo([&](auto& f) { sc_core::sc_trace(tf, f.occupancy(), std::string(f.basename()) + ".occupancy"); });
-  }
+  Recorders rec;
+  rec.attach(*top, opts, arch, ctx.tracing);
 
   sc_core::sc_start();
-  if (tf) sc_core::sc_close_vcd_trace_file(tf);
+  if (rec.vcd) sc_core::sc_close_vcd_trace_file(rec.vcd);
   ctx.rethrow_failure();  // SceneError for bad input, ModelError for a fault of the model
-  // The run ends with the last stage's last step: the latest stage time (in lock-step,
-  // where SystemC time followed the stages, also SystemC's; sc/stage.h).
-  uint64_t end = 0;
-  for (Stage* s : top->stages()) end = std::max(end, s->now());
-  if (ctx.lockstep && end != ctx.to_cycles(sc_core::sc_time_stamp()))
-    throw ModelError("simulate: the stages end at cycle " + std::to_string(end) + " but SystemC at cycle " +
-                     std::to_string(ctx.to_cycles(sc_core::sc_time_stamp())));
 
   SimResult r;
   r.core_mhz = p.core_mhz;
-  r.cycles = end;
-  for (const StageInfo& info : kStages) {
-    Stage* s = &top->stage(info.id);
-    const size_t index = stage_index(info.id);
-    s->finish(end);
-    const StageStats& st = s->stats();
-    r.stages.push_back({s->basename(), st.busy, st.stalled, st.starved, st.transactions_in, st.transactions_out,
-                        std::move(spans[index]), st.transactions()});
-    // A stage with work starts no earlier than its fill (TimingParams::stage_fill_cycles).
-    if (st.busy > 0) r.cycles_lower_bound = std::max(r.cycles_lower_bound, p.stage_fill_cycles(info.id) + st.busy);
-  }
+  r.cycles = end_cycle(*top, ctx);
+  collect_stages(*top, p, rec, r);
   if (!opts.timeline_path.empty())
-    r.timeline = timeline.write_trace_json(opts.timeline_path, r.cycles, opts.timeline_max_events);
-  r.heat = std::move(heat);
-  top->for_each_fifo([&](auto& f) {
-    r.fifos.push_back({f.basename(), f.depth(), f.writes(), f.reads()});
-    if (f.writes() != f.reads())
-      throw ModelError(std::string(f.name()) + ": " + std::to_string(f.writes() - f.reads()) +
-                             " transactions left behind (pipeline deadlock)");
-  });
+    r.timeline = rec.timeline.write_trace_json(opts.timeline_path, r.cycles, opts.timeline_max_events);
+  r.heat = std::move(rec.heat);
   top->coarse_raster.finish_coverage();
   r.render = ctx.render;
   r.rop_accesses = ctx.rop_accesses;
