@@ -29,16 +29,23 @@ set(RAST_VERILATOR_ARGS -Wall -O3 --x-assign fast --x-initial fast)
 # - -O3 (the default RelWithDebInfo is -O2): 1.06-1.14x faster models (desktop and
 #   d3d11, scripts/bench_rtl; docs/results.md "RTL simulation speed", round 3).
 set(RAST_VERILATED_CXX_OPTIONS -Wno-unused-parameter -g0 -O3)
+# ... except the code Verilator marks slow (its *__Slow.cpp and *__Syms.cpp: constructors,
+# the initial settle and the trace set-up, run once a simulation), at -O0: a third of the
+# models' compile CPU at -O3 (283 of 624 s in a full build), and Vrast_desktop__Trace__0__Slow.cpp
+# alone 16.1 s at -O3, 4.8 s at -O0. verilate(... OPT_SLOW) puts it after the target's -O3.
+set(RAST_VERILATED_SLOW_OPTIONS -O0)
 
 # rast_top built with the parameter header INC_DIR/rast_params.vh into TARGET as class PREFIX
 # (further arguments: more Verilator arguments, e.g. -DRAST_DIVIDER_STEPS).
 function(rast_verilate_top target prefix inc_dir sources waivers)
   verilate(${target} SOURCES ${waivers} ${sources} PREFIX ${prefix} TOP_MODULE rast_top TRACE_FST
+    OPT_SLOW ${RAST_VERILATED_SLOW_OPTIONS}
     VERILATOR_ARGS -I${inc_dir} ${RAST_VERILATOR_ARGS} ${ARGN})
 endfunction()
 
 # The 2D engine (no config parameter: its timing keys are run-time inputs) as Vrast_engine2d.
 function(rast_verilate_engine2d target sources)
   verilate(${target} SOURCES ${sources} PREFIX Vrast_engine2d TOP_MODULE rast_engine2d TRACE_FST
+    OPT_SLOW ${RAST_VERILATED_SLOW_OPTIONS}
     VERILATOR_ARGS ${RAST_VERILATOR_ARGS})
 endfunction()

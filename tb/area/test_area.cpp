@@ -16,8 +16,10 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "common.h"
+#include "util/process.h"
 #include "rtl/area.h"
 
 namespace rastsim {
@@ -46,16 +48,19 @@ app::ConfigOptions small_config(int lanes) {
   return c;
 }
 
-// Runs `rastsim ARGS` through the shell; returns the exit status, stdout+stderr in `out`.
-int run_cli(const std::string& args, std::string& out, const std::string& env = "") {
-  const fs::path log = temp_path("cli.log");
-  const int rc = std::system((env + " " + RASTSIM_BINARY + " " + args + " > " + log.string() + " 2>&1").c_str());
-  std::ifstream is(log);
-  std::stringstream ss;
-  ss << is.rdbuf();
-  out = ss.str();
-  fs::remove(log);
-  return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
+// Runs `rastsim ARGS` (argv, no shell) with `env` (NAME=VALUE, through env(1)) added to
+// its environment; returns the exit status, stdout+stderr in `out`.
+int run_cli(const std::vector<std::string>& args, std::string& out, const std::vector<std::string>& env = {}) {
+  std::vector<std::string> argv{"env"};
+  argv.insert(argv.end(), env.begin(), env.end());
+  argv.push_back(RASTSIM_BINARY);
+  argv.insert(argv.end(), args.begin(), args.end());
+  ProcessOptions o;
+  o.out = Sink::Capture;
+  o.err = Sink::Stdout;
+  const ProcessResult r = run_process(argv, o);
+  out = r.out;
+  return WIFEXITED(r.status) ? WEXITSTATUS(r.status) : -1;
 }
 
 // A hand-made `stat -json` of top { 2 AND, 1 DFF, 3 x leaf, 1 x mid { 1 XOR, 1 x leaf } },
@@ -197,26 +202,26 @@ TEST(Area, SplitEqualsOneProcessWithinTolerance) {
 
 TEST(AreaCli, HelpBadConfigMissingYosys) {
   std::string out;
-  EXPECT_EQ(run_cli("area --help", out), 0);
+  EXPECT_EQ(run_cli({"area", "--help"}, out), 0);
   EXPECT_NE(out.find("--stats"), std::string::npos);
   EXPECT_NE(out.find("--top"), std::string::npos);
   EXPECT_NE(out.find("--one-process"), std::string::npos);
   EXPECT_NE(out.find("--jobs"), std::string::npos);
 
-  EXPECT_NE(run_cli("area --config /nonexistent/config.toml", out), 0);
+  EXPECT_NE(run_cli({"area", "--config", "/nonexistent/config.toml"}, out), 0);
   EXPECT_NE(out.find("/nonexistent/config.toml"), std::string::npos) << out;
 
   const fs::path bad = temp_path("bad.toml");
   std::ofstream(bad) << "[raster]\nno_such_key = 1\n";
-  EXPECT_EQ(run_cli("area --config " + bad.string(), out), 1);
+  EXPECT_EQ(run_cli({"area", "--config", bad.string()}, out), 1);
   EXPECT_NE(out.find("no_such_key"), std::string::npos) << out;
   fs::remove(bad);
 
   // No yosys on PATH: the error names the Debian package.
-  EXPECT_EQ(run_cli("area --top rast_fine_raster", out, "env PATH=/nonexistent RASTSIM_YOSYS="), 1);
+  EXPECT_EQ(run_cli({"area", "--top", "rast_fine_raster"}, out, {"PATH=/nonexistent", "RASTSIM_YOSYS="}), 1);
   EXPECT_NE(out.find("package `yosys`"), std::string::npos) << out;
 
-  EXPECT_EQ(run_cli("area --top no_such_module", out), 1);
+  EXPECT_EQ(run_cli({"area", "--top", "no_such_module"}, out), 1);
   EXPECT_NE(out.find("not an RTL module"), std::string::npos) << out;
 }
 

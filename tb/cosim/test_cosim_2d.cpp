@@ -7,15 +7,17 @@
 // cycle count within 2 % of the RTL's (--max-error 0.02).
 #include <gtest/gtest.h>
 
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <random>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "common/random_2d_trace.h"
+#include "util/process.h"
 
 namespace {
 
@@ -25,19 +27,21 @@ nlohmann::json cosim(const std::string& trace, const std::string& name, const st
   std::filesystem::create_directories(dir);
   const auto trace_path = dir / (name + ".trace"), stats_path = dir / (name + ".json");
   std::ofstream(trace_path) << trace;
-  const std::string cmd = std::string(RASTSIM_BINARY) + " cosim --config " + RASTSIM_SOURCE_DIR +
-                          "/configs/default.toml --scene " + trace_path.string() + " --stats " +
-                          stats_path.string() + " --max-error 0.02" + sets + " 2>&1";
-  std::string out;
-  FILE* p = popen(cmd.c_str(), "r");
-  char buf[512];
-  while (p && fgets(buf, sizeof buf, p)) out += buf;
-  const int rc = p ? pclose(p) : -1;
-  EXPECT_EQ(rc, 0) << cmd << "\n" << out << "\ntrace kept at " << trace_path;
+  std::vector<std::string> argv{RASTSIM_BINARY, "cosim", "--config", std::string(RASTSIM_SOURCE_DIR) + "/configs/default.toml",
+                                "--scene", trace_path.string(), "--stats", stats_path.string(), "--max-error", "0.02"};
+  std::istringstream words(sets);  // " --set K=V ..." (no value holds a space)
+  for (std::string w; words >> w;) argv.push_back(w);
+  rastsim::ProcessOptions o;
+  o.out = rastsim::Sink::Capture;
+  o.err = rastsim::Sink::Stdout;
+  const rastsim::ProcessResult r = rastsim::run_process(argv, o);
+  std::string cmd;
+  for (const std::string& a : argv) cmd += a + " ";
+  EXPECT_TRUE(r.ok()) << cmd << "\n" << r.out << "\ntrace kept at " << trace_path;
   nlohmann::json j;
   std::ifstream in(stats_path);
   if (in) in >> j;
-  if (rc == 0) std::filesystem::remove_all(dir);
+  if (r.ok()) std::filesystem::remove_all(dir);
   return j;
 }
 

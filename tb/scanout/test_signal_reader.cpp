@@ -21,6 +21,7 @@
 #include "scanout_test_util.h"
 #include "display/signal_reader.h"
 #include "scene/scene_io.h"
+#include "util/process.h"
 #include "config/raster_state_config.h"
 
 namespace rastsim {
@@ -338,14 +339,14 @@ TEST(SignalReader, RtlStyleTraceWithClockDecodesBitExact) {
 }
 
 TEST(SignalReader, FstThroughFst2vcd) {
-  if (std::system("command -v fst2vcd > /dev/null 2>&1 && command -v vcd2fst > /dev/null 2>&1") != 0)
+  if (rastsim::find_program("fst2vcd").empty() || rastsim::find_program("vcd2fst").empty())
     GTEST_SKIP() << "fst2vcd/vcd2fst (Debian package gtkwave) not installed";
   const Panel p;
   const fs::path dir = temp_dir();
   p.write_vcd(dir / "panel.vcd", 2);
-  const std::string cmd = "vcd2fst '" + (dir / "panel.vcd").string() + "' '" + (dir / "panel.fst").string() +
-                          "' > /dev/null 2>&1";
-  ASSERT_EQ(std::system(cmd.c_str()), 0);
+  rastsim::ProcessOptions quiet;
+  quiet.out = quiet.err = rastsim::Sink::Null;
+  ASSERT_TRUE(rastsim::run_process({"vcd2fst", (dir / "panel.vcd").string(), (dir / "panel.fst").string()}, quiet).ok());
   const Decoded d = decode_file(p, dir / "panel.fst");
   EXPECT_EQ(d.info.samples, 2 * 160 * 136);
   expect_panel_decoded_exactly(p, d);
