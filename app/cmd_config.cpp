@@ -54,18 +54,12 @@ void register_config(CLI::App& app) {
       return;
     }
     const Config cfg = load_config(opts);
-    std::string section;
-    for (const auto& d : config_schema()) {
-      const std::string sec = d.key.substr(0, d.key.find('.'));
-      const std::string name = d.key.substr(d.key.find('.') + 1);
-      if (as_toml) {
-        if (sec != section) std::cout << (section.empty() ? "" : "\n") << "[" << sec << "]\n";
-        std::cout << name << " = " << to_string(cfg.get(d.key)) << "\n";
-      } else {
-        std::cout << d.key << " = " << to_string(cfg.get(d.key)) << "  # " << cfg.origin(d.key) << "\n";
-      }
-      section = sec;
+    if (as_toml) {
+      std::cout << config_toml(cfg);
+      return;
     }
+    for (const ParamDef* d : schema_by_section())
+      std::cout << d->key << " = " << to_string(cfg.get(d->key)) << "  # " << cfg.origin(d->key) << "\n";
   });
 }
 

@@ -5,7 +5,6 @@
 #include <stdexcept>
 
 #include "sweep/sweep.h"
-#include "util/hash.h"
 
 namespace rastsim::sweep {
 
@@ -82,12 +81,6 @@ std::string describe(const Point& p, const std::vector<Axis>& axes) {
   std::string s = "scene=" + p.scene;
   for (size_t i = 0; i < axes.size(); ++i) s += " " + axes[i].key + "=" + p.values[i];
   return s;
-}
-
-std::string config_hash(const Config& cfg) {
-  uint64_t h = kFnv64OffsetBasis;
-  for (const auto& [k, v] : cfg.values()) h = fnv1a64(k + "=" + to_string(v) + "\n", h);
-  return hex64(h);
 }
 
 }  // namespace rastsim::sweep

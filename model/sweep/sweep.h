@@ -64,7 +64,8 @@ void run_sweep(const SweepOptions& o, const BaseConfig& base, const std::vector<
 struct Point {
   std::string scene;
   std::vector<std::string> values;  // one per axis, as given on the command line
-  std::string config_hash;          // of the whole resolved config (config_hash())
+  std::string config_hash;          // of the whole resolved config (config_hash(), config.h): two
+                                    // points with the same scene and hash run the same simulation
   std::vector<std::string> args;    // `rastsim simulate ...` without --stats
   int status = -1;                  // exit status; -1 = not run
   std::string error;                // the run's last error line when status != 0
@@ -84,10 +85,6 @@ Config point_config(const Point& p, const std::vector<Axis>& axes, const BaseCon
 
 // "scene=S key=V ..." for progress lines and error reports.
 std::string describe(const Point& p, const std::vector<Axis>& axes);
-
-// A fingerprint (16 hex digits, FNV-1a 64) of every key and value of a resolved config:
-// two points with the same scene and hash run the same simulation.
-std::string config_hash(const Config& cfg);
 
 // Called with a point's index as soon as its run has finished (status, error and stats set).
 using OnDone = std::function<void(size_t)>;
