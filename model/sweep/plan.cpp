@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // A sweep's points (sweep.h): the swept keys from the --set arguments, the cross product
 // of scenes and values, each point's resolved config and its fingerprint.
+#include <algorithm>
 #include <sstream>
 #include <stdexcept>
 
@@ -34,6 +35,19 @@ std::vector<Axis> split_axes(const std::vector<std::string>& set_args, std::vect
     axes.push_back(std::move(a));
   }
   return axes;
+}
+
+std::vector<FixedSet> fixed_sets(const std::vector<std::string>& sets, const std::vector<Axis>& axes) {
+  std::vector<FixedSet> fixed;
+  for (const auto& s : sets) {
+    const auto eq = s.find('=');
+    const std::string key = s.substr(0, eq), value = eq == std::string::npos ? "" : s.substr(eq + 1);
+    if (std::any_of(axes.begin(), axes.end(), [&](const Axis& a) { return a.key == key; })) continue;
+    const auto it = std::find_if(fixed.begin(), fixed.end(), [&](const FixedSet& f) { return f.key == key; });
+    if (it == fixed.end()) fixed.push_back({key, value});
+    else it->value = value;
+  }
+  return fixed;
 }
 
 void validate_axes(const Config& cfg, const std::vector<Axis>& axes) {
