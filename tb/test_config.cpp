@@ -128,7 +128,7 @@ TEST(ConfigToml, ShippedConfigsRoundTripUnderRandomOverrides) {
 TEST(ConfigToml, StringsWithQuotesAndBackslashesReadBack) {
   // A String key holds any text as far as TOML is concerned: the writer must escape it.
   // raster.coord_format's rule refuses these, so the check goes through the writer alone.
-  for (const std::string s : {std::string("a\"b"), std::string("c:\\dir\\x"), std::string("tab\there")}) {
+  for (const std::string& s : {std::string("a\"b"), std::string("c:\\dir\\x"), std::string("tab\there")}) {
     const std::string toml = "[x]\nv = " + to_string(ParamValue(s)) + "\n";
     Config cfg;
     try {
@@ -179,7 +179,7 @@ TEST(ConfigKeys, TyposSuggestTheClosestKey) {
 }
 
 TEST(ConfigKeys, NoSuggestionWithoutACloseKey) {
-  for (const std::string key : {"raster.nope", "raster.xyzzy_frobnicate", "foo.bar", "raster.tile_sz_max"}) {
+  for (const char* key : {"raster.nope", "raster.xyzzy_frobnicate", "foo.bar", "raster.tile_sz_max"}) {
     SCOPED_TRACE(key);
     const std::string e = unknown_key_error(key);
     EXPECT_EQ(e.find("did you mean"), std::string::npos) << e;

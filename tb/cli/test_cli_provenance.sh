@@ -124,7 +124,7 @@ assert all(r["rastsim_version"] == sys.argv[2] for r in rows), rows
 PY
   "$BIN" "${SW[@]}" --out "$TMP/sw.csv" --resume 2>"$TMP/sw.err" && grep -q "2 of 2 rows already" "$TMP/sw.err" && pass ||
     fail "sweep --resume with the same fixed --set"
-  expect_error "resume with another fixed --set" "needs a CSV of this sweep's columns.*raster.depth_func, rastsim_version" -- \
+  expect_error "resume with another fixed --set" "needs a CSV of this sweep's columns \(.*status, rastsim_version\), it has \(.*status, raster.depth_func" -- \
     "$BIN" sweep --config "$CFG" --scene "$SCENE" --set raster.tile_size=8,16 --out "$TMP/sw.csv" --resume
 else
   fail "sweep with fixed --set"
