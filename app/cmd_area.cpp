@@ -65,6 +65,7 @@ void run_area_command(const AreaCommandOptions& o) {
   if (!o.stats_path.empty()) {
     nlohmann::json j = area_to_json(r);
     j["config"] = cfg.source_name();
+    j["provenance"] = provenance(o.config, cfg, "");
     write_json(o.stats_path, j);
   }
 }

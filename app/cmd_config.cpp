@@ -1,10 +1,13 @@
 // SPDX-License-Identifier: Apache-2.0
 // `rastsim config`: print the schema (--doc), the stage and FIFO table (--stages) or the
-// resolved configuration.
+// resolved configuration, as TOML too, or the one a stats JSON recorded (--from-stats).
+#include <fstream>
 #include <iostream>
 
 #include "common.h"
 #include "timing/stage_table.h"
+#include "util/hash.h"
+#include "util/version.h"
 
 namespace rastsim::app {
 
@@ -30,6 +33,43 @@ nlohmann::json stage_table_json(const TimingParams& t) {
   return {{"stages", stages}, {"fifos", fifos}};
 }
 
+// --from-stats FILE: the resolved config a stats JSON's provenance recorded, read back
+// through this build's schema (a key it does not know fails here, naming the file), then
+// the --set overrides. The recorded text must match its recorded hash; a build whose
+// schema resolves it to another text (keys added since, or other defaults) says so.
+Config config_from_stats(const std::string& path, const std::vector<std::string>& sets) {
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(std::ifstream(path));
+  } catch (const nlohmann::json::exception& e) {
+    throw std::runtime_error(path + ": not a JSON file: " + e.what());
+  }
+  const nlohmann::json* p = j.is_object() && j.contains("provenance") ? &j["provenance"] : nullptr;
+  if (!p || !p->is_object() || !p->contains("config_toml") || !(*p)["config_toml"].is_string() ||
+      !p->contains("config_hash"))
+    throw std::runtime_error(path + ": no provenance.config_toml and config_hash (the stats JSON of a rastsim "
+                             "command records them)");
+  const std::string text = (*p)["config_toml"];
+  if (hex64(fnv1a64(text)) != (*p)["config_hash"])
+    throw std::runtime_error(path + ": provenance.config_toml does not match its config_hash (edited?)");
+  Config cfg;
+  cfg.load_toml(text, path + " provenance.config_toml");
+  cfg.validate();
+  if (config_toml(cfg) != text)
+    std::cerr << "config: " << path << " was written by rastsim " << p->value("rastsim_version", "?")
+              << ", whose keys or defaults differ from this rastsim's (" << rastsim_version()
+              << "): printing the recorded config as this rastsim resolves it\n";
+  for (const auto& s : sets) cfg.apply_override(s);
+  cfg.validate();
+  return cfg;
+}
+
+// The resolved config, `key = value  # origin`, grouped by section.
+void print_with_origins(const Config& cfg) {
+  for (const ParamDef* d : schema_by_section())
+    std::cout << d->key << " = " << to_string(cfg.get(d->key)) << "  # " << cfg.origin(d->key) << "\n";
+}
+
 }  // namespace
 
 void register_config(CLI::App& app) {
@@ -38,9 +78,16 @@ void register_config(CLI::App& app) {
   static bool doc = false;
   static bool as_toml = false;
   static bool stages = false;
+  static std::string from_stats;
   add_config_options(cmd, opts);
   cmd->add_flag("--doc", doc, "Print every key: default, unit, allowed values, description");
-  cmd->add_flag("--toml", as_toml, "Print the resolved configuration as TOML (default: key = value  # origin)");
+  cmd->add_flag("--toml", as_toml,
+                "Print the resolved configuration as canonical TOML, which --config reads back to the same "
+                "config (default: key = value  # origin)");
+  cmd->add_option("--from-stats", from_stats,
+                  "Print, as --toml, the resolved config recorded in a stats JSON's provenance (then any --set): "
+                  "`--config` of it reproduces that run's config")
+      ->check(CLI::ExistingFile);
   cmd->add_flag("--stages", stages,
                 "Print the pipeline's stages and FIFOs (model/timing/stage_table.h) as JSON, with this config's "
                 "fill cycles and FIFO entries");
@@ -53,19 +100,14 @@ void register_config(CLI::App& app) {
       std::cout << stage_table_json(resolve_arch(opts).timing).dump(2) << "\n";
       return;
     }
-    const Config cfg = load_config(opts);
-    std::string section;
-    for (const auto& d : config_schema()) {
-      const std::string sec = d.key.substr(0, d.key.find('.'));
-      const std::string name = d.key.substr(d.key.find('.') + 1);
-      if (as_toml) {
-        if (sec != section) std::cout << (section.empty() ? "" : "\n") << "[" << sec << "]\n";
-        std::cout << name << " = " << to_string(cfg.get(d.key)) << "\n";
-      } else {
-        std::cout << d.key << " = " << to_string(cfg.get(d.key)) << "  # " << cfg.origin(d.key) << "\n";
-      }
-      section = sec;
+    if (!from_stats.empty()) {
+      if (!opts.config_path.empty()) throw std::runtime_error("config: --from-stats and --config exclude each other");
+      std::cout << config_toml(config_from_stats(from_stats, opts.sets));
+      return;
     }
+    const Config cfg = load_config(opts);
+    if (as_toml) std::cout << config_toml(cfg);
+    else print_with_origins(cfg);
   });
 }
 

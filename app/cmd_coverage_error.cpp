@@ -37,6 +37,7 @@ void run_coverage_error_command(const CoverageErrorOptions& o) {
   nlohmann::json j;
   j["config"] = arch.config.source_name();
   j["scene"] = o.scene_path;
+  j["provenance"] = provenance(o.config, arch.config, o.scene_path);
   j["pixels_clipped"] = r.pixels_clipped;
   j["wall_seconds"] = r.wall_seconds;
   for (const CoverageErrorStats& s : r.per_samples)

@@ -17,6 +17,7 @@ void run_estimate_command(const EstimateOptions& o) {
   nlohmann::json j = r.to_json();
   j["config"] = arch.config.source_name();
   j["scene"] = o.scene_path;
+  j["provenance"] = provenance(o.config, arch.config, o.scene_path);
   if (!o.stats_path.empty()) write_json(o.stats_path, j);
   if (!o.quiet) {
     size_t busiest = 0;

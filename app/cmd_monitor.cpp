@@ -36,6 +36,7 @@ void run_monitor_command(const MonitorOptions& o) {
             {"sample_clock", info.clock.empty() ? "expected pixel clock" : info.clock},
             {"sample_clock_hz", info.sample_clock_hz}, {"timescale", info.timescale},
             {"levels_from", info.levels_from}, {"variables", info.variables}, {"configured", timing_json(t)}});
+  j["provenance"] = provenance(o.config, cfg, "");
   if (!o.stats_path.empty()) write_json(o.stats_path, j);
   if (!o.quiet) {
     const std::string mode = describe_timing(t).substr(0, describe_timing(t).find(':'));

@@ -28,8 +28,8 @@ void register_sweep(CLI::App& app) {
       ->allow_extra_args(false);
   cmd->add_option("--out,-o", o.out_path,
                   "CSV to write: scene, each swept key, level (--level, +area with --area), config_hash, "
-                  "status, then every stat; each row is appended as its run finishes, and at the end the rows "
-                  "are put in sweep order")
+                  "status, each fixed --set key, rastsim_version, then every stat; each row is appended as its "
+                  "run finishes, and at the end the rows are put in sweep order")
       ->required();
   cmd->add_flag("--resume", o.resume,
                 "Keep the rows already in --out whose scene, level (--level and --area) and config_hash (a "

@@ -8,9 +8,47 @@
 #include <fstream>
 #include <iostream>
 
+#include "util/hash.h"
 #include "util/process.h"
+#include "util/version.h"
 
 namespace rastsim::app {
+
+namespace {
+
+std::vector<std::string>& command_line() {
+  static std::vector<std::string> argv;
+  return argv;
+}
+
+// FNV-1a 64 of a file's bytes, read a MiB at a time: scenes reach hundreds of MB.
+std::string file_hash(const std::string& path) {
+  std::ifstream is(path, std::ios::binary);
+  if (!is) throw std::runtime_error(path + ": cannot open to hash it");
+  std::vector<char> block(size_t{1} << 20);
+  uint64_t h = kFnv64OffsetBasis;
+  while (is.read(block.data(), std::streamsize(block.size())) || is.gcount() > 0)
+    h = fnv1a64({block.data(), size_t(is.gcount())}, h);
+  if (is.bad()) throw std::runtime_error(path + ": read failed while hashing it");
+  return hex64(h);
+}
+
+}  // namespace
+
+void record_command_line(int argc, const char* const* argv) { command_line().assign(argv, argv + argc); }
+
+nlohmann::json provenance(const ConfigOptions& o, const Config& resolved, const std::string& scene_path) {
+  const auto path_or_null = [](const std::string& p) { return p.empty() ? nlohmann::json() : nlohmann::json(p); };
+  return {{"rastsim_version", rastsim_version()},
+          {"argv", command_line()},
+          {"cwd", std::filesystem::current_path().string()},
+          {"config_path", path_or_null(o.config_path)},
+          {"sets", o.sets},
+          {"config_toml", config_toml(resolved)},
+          {"config_hash", config_hash(resolved)},
+          {"scene_path", path_or_null(scene_path)},
+          {"scene_hash", scene_path.empty() ? nlohmann::json() : nlohmann::json(file_hash(scene_path))}};
+}
 
 void add_scene_option(CLI::App* cmd, std::string& scene_path) {
   cmd->add_option("--scene,-s", scene_path,

@@ -29,6 +29,15 @@ Config load_config(const ConfigOptions& o);
 // place a command turns its config into what the model reads.
 ArchParams resolve_arch(const ConfigOptions& o);
 
+// The command line of this process, recorded by main() for the provenance of its outputs.
+void record_command_line(int argc, const char* const* argv);
+
+// What produced a stats JSON, its "provenance" object (docs/provenance.md): rastsim's
+// version, the command line and working directory, the config file and every --set in
+// order, the resolved config as canonical TOML (config_toml) and its config_hash, the
+// scene file and the FNV-1a 64 hash of its bytes as stored (null without a scene).
+nlohmann::json provenance(const ConfigOptions& o, const Config& resolved, const std::string& scene_path);
+
 // Writes JSON to a file (pretty, with a trailing newline); "-" means stdout.
 void write_json(const std::string& path, const nlohmann::json& j);
 

@@ -3,6 +3,7 @@
 #include <iostream>
 
 #include "common.h"
+#include "util/version.h"
 
 int main(int argc, char** argv) {
   CLI::App app{
@@ -12,6 +13,9 @@ int main(int argc, char** argv) {
       "scan-out through video timing and a DAC (scanout, monitor). Every command takes --config FILE\n"
       "and --set section.key=value; see `rastsim COMMAND --help` and `rastsim config --doc`."};
   app.require_subcommand(1);
+  app.set_version_flag("--version", std::string("rastsim ") + rastsim::rastsim_version(),
+                       "Print the version (git describe of the sources at build time) and exit");
+  rastsim::app::record_command_line(argc, argv);
   app.set_help_all_flag("--help-all", "Help for every command");
   rastsim::app::register_config(app);
   rastsim::app::register_render(app);

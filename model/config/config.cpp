@@ -1,19 +1,44 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "config/config.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <fstream>
+#include <sstream>
 #include <toml++/toml.h>
 
 #include "ref/fixed_point.h"
+#include "util/hash.h"
 
 namespace rastsim {
+
+namespace {
+
+// A TOML basic string: quotes, backslashes and control characters escaped.
+std::string toml_quoted(const std::string& s) {
+  std::string q = "\"";
+  for (const char c : s) {
+    if (c == '"' || c == '\\') {
+      q += '\\', q += c;
+    } else if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\u%04x", static_cast<unsigned>(static_cast<unsigned char>(c)));
+      q += buf;
+    } else {
+      q += c;
+    }
+  }
+  return q + "\"";
+}
+
+}  // namespace
 
 std::string to_string(const ParamValue& v) {
   return std::visit(
       [](const auto& x) -> std::string {
         using X = std::decay_t<decltype(x)>;
-        if constexpr (std::is_same_v<X, std::string>) return "\"" + x + "\"";
+        if constexpr (std::is_same_v<X, std::string>) return toml_quoted(x);
         else if constexpr (std::is_same_v<X, bool>) return x ? "true" : "false";
         else if constexpr (std::is_same_v<X, double>) {
           // The shortest text that reads back as the same double ("0.9", "30", "1e-05"):
@@ -47,6 +72,7 @@ void Config::set_checked(const ParamDef& d, ParamValue v, const std::string& ori
     case ParamType::Float: {
       const double x = std::get<double>(v);
       if (!std::isfinite(x) || (d.min <= d.max && (x < d.min || x > d.max))) bad();
+      if (x == 0) v = 0.0;  // -0 is 0: TOML reads "-0" as the integer 0, and one config has one text
       break;
     }
     case ParamType::Enum: {
@@ -76,14 +102,45 @@ const char* type_name(ParamType t) {
   return "?";
 }
 
-std::string unknown_key_message(const std::string& key) {
-  std::string msg = "unknown key '" + key + "'";
-  // Suggest keys of the same name in another section, or of the same section.
+std::string short_name(const std::string& key) {
   const auto dot = key.find('.');
-  const std::string name = dot == std::string::npos ? key : key.substr(dot + 1);
-  for (const auto& d : config_schema()) {
-    if (d.key.substr(d.key.find('.') + 1) == name) return msg + " (did you mean '" + d.key + "'?)";
-  }
+  return dot == std::string::npos ? key : key.substr(dot + 1);
+}
+
+// Optimal string alignment distance: an insertion, a deletion, a substitution or a swap of
+// two neighbouring characters (the usual typos) costs 1 each.
+size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<std::vector<size_t>> d(a.size() + 1, std::vector<size_t>(b.size() + 1));
+  for (size_t i = 0; i <= a.size(); ++i) d[i][0] = i;
+  for (size_t j = 0; j <= b.size(); ++j) d[0][j] = j;
+  for (size_t i = 1; i <= a.size(); ++i)
+    for (size_t j = 1; j <= b.size(); ++j) {
+      d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + (a[i - 1] != b[j - 1])});
+      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1]) d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
+    }
+  return d[a.size()][b.size()];
+}
+
+// The key a mistyped `key` most likely meant, or null: the closest schema key within 2
+// edits and a third of the typed length (at least 1), comparing the whole key (a typo
+// anywhere, the section's name too) and then the name alone (a key of another section,
+// with or without a typo). Ties go to the whole key, then to declaration order.
+const ParamDef* closest_key(const std::string& key) {
+  const ParamDef* best = nullptr;
+  size_t best_distance = SIZE_MAX;
+  const auto consider = [&](const ParamDef& d, const std::string& typed, const std::string& known) {
+    const size_t limit = std::min<size_t>(2, std::max<size_t>(1, typed.size() / 3));
+    const size_t n = edit_distance(typed, known);
+    if (n <= limit && n < best_distance) best = &d, best_distance = n;
+  };
+  for (const auto& d : config_schema()) consider(d, key, d.key);
+  for (const auto& d : config_schema()) consider(d, short_name(key), short_name(d.key));
+  return best;
+}
+
+std::string unknown_key_message(const std::string& key) {
+  const std::string msg = "unknown key '" + key + "'";
+  if (const ParamDef* d = closest_key(key)) return msg + " (did you mean '" + d->key + "'?)";
   return msg + " (`rastsim config --doc` lists every key)";
 }
 
@@ -134,9 +191,17 @@ void Config::apply_override(const std::string& assignment) {
 }
 
 void Config::load_file(const std::string& path) {
+  std::ifstream is(path, std::ios::binary);
+  if (!is) throw ConfigError(path + ": cannot open");
+  std::ostringstream text;
+  text << is.rdbuf();
+  load_toml(text.str(), path);
+}
+
+void Config::load_toml(std::string_view text, const std::string& path) {
   toml::table tbl;
   try {
-    tbl = toml::parse_file(path);
+    tbl = toml::parse(text, path);
   } catch (const toml::parse_error& e) {
     const auto& src = e.source();
     throw ConfigError(path + ":" + std::to_string(src.begin.line) + ": " + std::string(e.description()));
@@ -196,6 +261,19 @@ const std::string& Config::get_string(const std::string& key) const {
   return std::get<std::string>(get(key));
 }
 const std::string& Config::origin(const std::string& key) const { return origins_.at(key); }
+
+std::string config_toml(const Config& cfg) {
+  std::string text, section;
+  for (const ParamDef* d : schema_by_section()) {
+    const std::string sec = d->key.substr(0, d->key.find('.'));
+    if (sec != section) text += (section.empty() ? "[" : "\n[") + sec + "]\n";
+    section = sec;
+    text += short_name(d->key) + " = " + to_string(cfg.get(d->key)) + "\n";
+  }
+  return text;
+}
+
+std::string config_hash(const Config& cfg) { return hex64(fnv1a64(config_toml(cfg))); }
 
 void validate_traversal(const Config& cfg);  // config_schema_traversal.cpp
 void validate_aa(const Config& cfg);         // config_schema_aa.cpp

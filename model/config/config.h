@@ -11,6 +11,7 @@
 #include <map>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <variant>
 #include <vector>
 
@@ -43,6 +44,12 @@ struct ParamDef {
 const std::vector<ParamDef>& config_schema();
 const ParamDef* find_param(const std::string& key);
 
+// The schema grouped by section: the sections in the order of their first key, the keys
+// of a section in declaration order (a group's file may add keys to an earlier section,
+// as config_schema_scanout.cpp does to [display]). The order of `rastsim config`, its
+// --doc and the canonical TOML, where a [section] may appear only once.
+const std::vector<const ParamDef*>& schema_by_section();
+
 // Human-readable schema (for `rastsim config --doc`).
 std::string config_doc();
 
@@ -52,6 +59,8 @@ class Config {
 
   // Loads a TOML file over the current values. Throws ConfigError "file:line: ...".
   void load_file(const std::string& path);
+  // Loads TOML text over the current values; `source` names it in errors ("source:line").
+  void load_toml(std::string_view text, const std::string& source);
   // Applies "section.key=value" (value parsed by the key's type). Throws ConfigError.
   void apply_override(const std::string& assignment);
   // Sets one key from a string value (as --set would); `origin` goes in errors.
@@ -79,6 +88,18 @@ class Config {
   std::string source_ = "defaults";
 };
 
+// A value as TOML writes it: strings quoted and escaped, floats in the shortest form that
+// reads back as the same double.
 std::string to_string(const ParamValue& v);
+
+// The canonical TOML text of a resolved config: every key of the schema, each [section]
+// once (schema_by_section()), `name = value` as to_string() writes it. Config::load_toml
+// of it gives the same value for every key. `rastsim config --toml` prints it; the stats'
+// provenance records it.
+std::string config_toml(const Config& cfg);
+
+// The fingerprint of a resolved config: FNV-1a 64 (util/hash.h) of config_toml(), 16
+// lower-case hex digits. Equal configs have equal hashes (the sweep CSV's row key).
+std::string config_hash(const Config& cfg);
 
 }  // namespace rastsim

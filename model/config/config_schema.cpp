@@ -2,6 +2,7 @@
 // The configuration schema: every key rastsim reads, declared once.
 // The keys of display and raster setup are here; each further group of keys is in its
 // own config_schema_*.cpp (config_schema.h).
+#include <algorithm>
 #include <sstream>
 
 #include "config/config.h"
@@ -103,19 +104,35 @@ std::string ParamDef::allowed() const {
   return os.str();
 }
 
+const std::vector<const ParamDef*>& schema_by_section() {
+  static const std::vector<const ParamDef*> ordered = [] {
+    std::vector<std::string> sections;  // in the order of their first key
+    for (const auto& d : config_schema()) {
+      const std::string sec = d.key.substr(0, d.key.find('.'));
+      if (std::find(sections.begin(), sections.end(), sec) == sections.end()) sections.push_back(sec);
+    }
+    std::vector<const ParamDef*> keys;
+    for (const auto& sec : sections)
+      for (const auto& d : config_schema())
+        if (d.key.substr(0, d.key.find('.')) == sec) keys.push_back(&d);
+    return keys;
+  }();
+  return ordered;
+}
+
 std::string config_doc() {
   std::ostringstream os;
   os << "# rastsim configuration keys (TOML: [section] key = value; CLI: --set section.key=value)\n";
   std::string section;
-  for (const auto& d : config_schema()) {
-    const std::string sec = d.key.substr(0, d.key.find('.'));
+  for (const ParamDef* d : schema_by_section()) {
+    const std::string sec = d->key.substr(0, d->key.find('.'));
     if (sec != section) {
       os << "\n[" << sec << "]\n";
       section = sec;
     }
-    os << "  " << d.key << " = " << to_string(d.default_value);
-    if (!d.unit.empty()) os << "  (" << d.unit << ")";
-    os << "\n      " << d.description << "\n      allowed: " << d.allowed();
+    os << "  " << d->key << " = " << to_string(d->default_value);
+    if (!d->unit.empty()) os << "  (" << d->unit << ")";
+    os << "\n      " << d->description << "\n      allowed: " << d->allowed();
     os << "\n";
   }
   return os.str();

@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "sweep/sweep.h"
+#include "util/version.h"
 
 namespace rastsim::sweep {
 
@@ -55,10 +56,24 @@ std::vector<std::vector<std::string>> read_csv(const std::string& path) {
   return records;
 }
 
-// "stages": {"rop": {"busy": 3}} -> "stages.rop.busy" = 3.
-void flatten(const nlohmann::json& j, const std::string& prefix, std::map<std::string, std::string>& out) {
+// The stats' provenance object (app/common.h): not columns, the leading columns hold it.
+constexpr const char* kProvenance = "provenance";
+
+// The version of the binary that ran a point, from its stats' provenance (a Slurm task
+// runs the binary found at its path when it starts); this binary's for a point that
+// failed before writing stats.
+std::string run_version(const nlohmann::json& stats) {
+  const nlohmann::json::json_pointer at("/" + std::string(kProvenance) + "/rastsim_version");
+  if (stats.is_object() && stats.contains(at) && stats[at].is_string()) return stats[at];
+  return rastsim_version();
+}
+
+// "stages": {"rop": {"busy": 3}} -> "stages.rop.busy" = 3; the top-level key `skip` left out.
+void flatten(const nlohmann::json& j, const std::string& prefix, std::map<std::string, std::string>& out,
+             const std::string& skip = "") {
   for (const auto& [k, v] : j.items()) {
     const std::string key = prefix.empty() ? k : prefix + "." + k;
+    if (prefix.empty() && k == skip) continue;
     if (v.is_object()) flatten(v, key, out);
     else out[key] = csv_value(v);
   }
@@ -88,33 +103,37 @@ bool is_wall_time_column(const std::string& c) {
 
 std::string row_level(const std::string& level, bool area) { return area ? level + "+area" : level; }
 
-Csv::Csv(std::string path, const std::vector<Axis>& axes, std::string level)
-    : path_(std::move(path)), axes_(axes), level_(std::move(level)) {}
+Csv::Csv(std::string path, const std::vector<Axis>& axes, std::vector<FixedSet> fixed, std::string level)
+    : path_(std::move(path)), axes_(axes), fixed_(std::move(fixed)), level_(std::move(level)) {}
 
-std::vector<std::string> Csv::fixed_columns() const {
+std::vector<std::string> Csv::leading_columns() const {
   std::vector<std::string> cols{"scene"};
   for (const auto& a : axes_) cols.push_back(a.key);
   cols.insert(cols.end(), {"level", "config_hash", "status"});
+  for (const auto& f : fixed_) cols.push_back(f.key);
+  cols.push_back("rastsim_version");
   return cols;
 }
 
 Csv::Cells Csv::cells_of(const Point& p) const {
   Cells c;
-  if (p.status == 0) flatten(p.stats, "", c);
+  if (p.status == 0) flatten(p.stats, "", c, kProvenance);
   for (auto it = c.begin(); it != c.end();) it = it->second.empty() ? c.erase(it) : std::next(it);
   c["scene"] = p.scene;
   for (size_t i = 0; i < axes_.size(); ++i) c[axes_[i].key] = p.values[i];
   c["level"] = level_;
   c["config_hash"] = p.config_hash;
   c["status"] = p.status == 0 ? "ok" : p.error;
+  for (const auto& f : fixed_) c[f.key] = f.value;
+  c["rastsim_version"] = run_version(p.stats);
   return c;
 }
 
 void Csv::merge_columns(const Cells& row) {
-  const auto fixed = fixed_columns();
+  const auto leading = leading_columns();
   std::vector<std::string> keys;
   for (const auto& [k, v] : row)
-    if (!v.empty() && std::find(fixed.begin(), fixed.end(), k) == fixed.end()) keys.push_back(k);
+    if (!v.empty() && std::find(leading.begin(), leading.end(), k) == leading.end()) keys.push_back(k);
   std::sort(keys.begin(), keys.end(), path_less);
   for (const auto& k : keys)
     if (std::find(stat_columns_.begin(), stat_columns_.end(), k) == stat_columns_.end()) stat_columns_.push_back(k);
@@ -124,12 +143,12 @@ size_t Csv::resume(std::vector<Point>& points) {
   if (!std::filesystem::exists(path_)) return 0;
   const auto records = read_csv(path_);
   if (records.empty()) return 0;
-  const auto fixed = fixed_columns();
+  const auto leading = leading_columns();
   const auto& header = records[0];
-  if (header.size() < fixed.size() || !std::equal(fixed.begin(), fixed.end(), header.begin())) {
+  if (header.size() < leading.size() || !std::equal(leading.begin(), leading.end(), header.begin())) {
     std::string want, got;
-    for (const auto& c : fixed) want += (want.empty() ? "" : ", ") + c;
-    for (size_t i = 0; i < std::min(header.size(), fixed.size()); ++i) got += (got.empty() ? "" : ", ") + header[i];
+    for (const auto& c : leading) want += (want.empty() ? "" : ", ") + c;
+    for (size_t i = 0; i < std::min(header.size(), leading.size()); ++i) got += (got.empty() ? "" : ", ") + header[i];
     throw std::runtime_error(path_ + ": --resume needs a CSV of this sweep's columns (" + want + "), it has (" + got +
                              "); write to another --out or drop --resume");
   }
@@ -142,7 +161,7 @@ size_t Csv::resume(std::vector<Point>& points) {
     if (rec.size() != header.size()) continue;  // cut short (cannot happen unless edited)
     Cells c;
     for (size_t i = 0; i < rec.size(); ++i)
-      if (!rec[i].empty() || i < fixed.size()) c[header[i]] = rec[i];
+      if (!rec[i].empty() || i < leading.size()) c[header[i]] = rec[i];
     if (c["status"] != "ok") continue;  // a failed row runs again
     const std::string key = row_key(c["scene"], c["level"], c["config_hash"]);
     if (!seen.insert(key).second) continue;  // a row twice (cannot happen unless edited)
@@ -165,7 +184,7 @@ size_t Csv::resume(std::vector<Point>& points) {
 
 std::string Csv::line_of(const Cells& row) const {
   std::string line;
-  for (const auto& c : fixed_columns()) line += (line.empty() ? "" : ",") + csv_field(row.at(c));
+  for (const auto& c : leading_columns()) line += (line.empty() ? "" : ",") + csv_field(row.at(c));
   for (const auto& c : stat_columns_) {
     const auto it = row.find(c);
     line += "," + (it == row.end() ? std::string() : csv_field(it->second));
@@ -184,7 +203,7 @@ void Csv::rewrite() {
     std::ofstream os(tmp, std::ios::trunc);
     if (!os) throw std::runtime_error(path_ + ": cannot open " + tmp + " for writing");
     std::string header;
-    for (const auto& c : fixed_columns()) header += (header.empty() ? "" : ",") + csv_field(c);
+    for (const auto& c : leading_columns()) header += (header.empty() ? "" : ",") + csv_field(c);
     for (const auto& c : stat_columns_) header += "," + csv_field(c);
     os << header << "\n";
     for (const Cells* r : rows) os << line_of(*r);

@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: Apache-2.0
 // A sweep's points (sweep.h): the swept keys from the --set arguments, the cross product
 // of scenes and values, each point's resolved config and its fingerprint.
+#include <algorithm>
 #include <sstream>
 #include <stdexcept>
 
 #include "sweep/sweep.h"
-#include "util/hash.h"
 
 namespace rastsim::sweep {
 
@@ -35,6 +35,19 @@ std::vector<Axis> split_axes(const std::vector<std::string>& set_args, std::vect
     axes.push_back(std::move(a));
   }
   return axes;
+}
+
+std::vector<FixedSet> fixed_sets(const std::vector<std::string>& sets, const std::vector<Axis>& axes) {
+  std::vector<FixedSet> fixed;
+  for (const auto& s : sets) {
+    const auto eq = s.find('=');
+    const std::string key = s.substr(0, eq), value = eq == std::string::npos ? "" : s.substr(eq + 1);
+    if (std::any_of(axes.begin(), axes.end(), [&](const Axis& a) { return a.key == key; })) continue;
+    const auto it = std::find_if(fixed.begin(), fixed.end(), [&](const FixedSet& f) { return f.key == key; });
+    if (it == fixed.end()) fixed.push_back({key, value});
+    else it->value = value;
+  }
+  return fixed;
 }
 
 void validate_axes(const Config& cfg, const std::vector<Axis>& axes) {
@@ -82,12 +95,6 @@ std::string describe(const Point& p, const std::vector<Axis>& axes) {
   std::string s = "scene=" + p.scene;
   for (size_t i = 0; i < axes.size(); ++i) s += " " + axes[i].key + "=" + p.values[i];
   return s;
-}
-
-std::string config_hash(const Config& cfg) {
-  uint64_t h = kFnv64OffsetBasis;
-  for (const auto& [k, v] : cfg.values()) h = fnv1a64(k + "=" + to_string(v) + "\n", h);
-  return hex64(h);
 }
 
 }  // namespace rastsim::sweep

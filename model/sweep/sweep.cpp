@@ -82,7 +82,7 @@ void run_sweep(const SweepOptions& o, const BaseConfig& base, const std::vector<
     throw std::runtime_error("--backend " + o.backend + ": expected local or slurm");
   validate_axes(base.resolved, axes);
   std::vector<Point> points = make_points(o.scenes, axes, base, o.level);
-  Csv csv(o.out_path, axes, row_level(o.level, o.area));
+  Csv csv(o.out_path, axes, fixed_sets(base.sets, axes), row_level(o.level, o.area));
   if (o.resume) {
     const size_t found = csv.resume(points);
     std::cerr << "sweep: --resume: " << found << " of " << points.size() << " rows already in " << o.out_path << "\n";

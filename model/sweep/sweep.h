@@ -56,6 +56,15 @@ struct BaseConfig {
 // The --set arguments: KEY=V1,V2,... become axes; KEY=V is appended to `fixed`.
 std::vector<Axis> split_axes(const std::vector<std::string>& set_args, std::vector<std::string>& fixed);
 
+// A fixed --set of a sweep as a CSV column: the key and the value of every row.
+struct FixedSet {
+  std::string key, value;
+};
+// The fixed overrides (KEY=V, in order) as columns: each key once, in the order of its first
+// --set, with its last value (the one the config keeps); a key that is also swept is left
+// to its axis (the swept value is applied last).
+std::vector<FixedSet> fixed_sets(const std::vector<std::string>& sets, const std::vector<Axis>& axes);
+
 // Runs the sweep: every swept value validated first, then the points the CSV lacks (all
 // of them without --resume); throws when a point failed, after writing every row.
 void run_sweep(const SweepOptions& o, const BaseConfig& base, const std::vector<Axis>& axes);
@@ -64,7 +73,8 @@ void run_sweep(const SweepOptions& o, const BaseConfig& base, const std::vector<
 struct Point {
   std::string scene;
   std::vector<std::string> values;  // one per axis, as given on the command line
-  std::string config_hash;          // of the whole resolved config (config_hash())
+  std::string config_hash;          // of the whole resolved config (config_hash(), config.h): two
+                                    // points with the same scene and hash run the same simulation
   std::vector<std::string> args;    // `rastsim simulate ...` without --stats
   int status = -1;                  // exit status; -1 = not run
   std::string error;                // the run's last error line when status != 0
@@ -85,10 +95,6 @@ Config point_config(const Point& p, const std::vector<Axis>& axes, const BaseCon
 // "scene=S key=V ..." for progress lines and error reports.
 std::string describe(const Point& p, const std::vector<Axis>& axes);
 
-// A fingerprint (16 hex digits, FNV-1a 64) of every key and value of a resolved config:
-// two points with the same scene and hash run the same simulation.
-std::string config_hash(const Config& cfg);
-
 // Called with a point's index as soon as its run has finished (status, error and stats set).
 using OnDone = std::function<void(size_t)>;
 
@@ -98,21 +104,26 @@ using OnDone = std::function<void(size_t)>;
 // point of this sweep and runs again.
 std::string row_level(const std::string& level, bool area);
 
-// The output CSV. Columns: scene, each swept key, level, config_hash, status, then every stat a
-// successful row reported (its JSON flattened, "stages.rop.busy"; an empty value counts as
-// absent), in the order first seen going down the rows, each row's own in key order
-// (dotted part by part, as the JSON lists them), so the columns depend only on the rows. The row key is (scene as
-// given to --scene, level, config_hash). The file is always a complete CSV of every finished
-// row: each new row is appended and flushed; a row with a stat the header lacks rewrites
-// the file (to a temporary, then renamed); write_all() puts the rows in point order.
+// The output CSV. Columns: scene, each swept key, level, config_hash, status, each fixed
+// --set key (fixed_sets()), rastsim_version (of the binary that ran the row, from its
+// stats' provenance), then every stat a successful row reported (its JSON flattened,
+// "stages.rop.busy", its provenance left out: the columns before hold it; an empty value
+// counts as absent), in the order first seen going down the rows, each row's own in key
+// order (dotted part by part, as the JSON lists them), so the columns depend only on the
+// rows. The row key is (scene as given to --scene, level, config_hash). The file is always
+// a complete CSV of every finished row: each new row is appended and flushed; a row with a
+// stat the header lacks rewrites the file (to a temporary, then renamed); write_all() puts
+// the rows in point order.
 class Csv {
  public:
-  // `level`: row_level() of this sweep, written in every row it adds.
-  Csv(std::string path, const std::vector<Axis>& axes, std::string level);
+  // `fixed`: the sweep's fixed_sets(); `level`: row_level() of this sweep, written in
+  // every row it adds.
+  Csv(std::string path, const std::vector<Axis>& axes, std::vector<FixedSet> fixed, std::string level);
   // --resume: reads the existing file (if any) and marks the points whose key has an
   // "ok" row there as done (status 0); failed rows are run again. Rows of the file that
   // belong to no point of this sweep are kept after the sweep's own. Returns how many
-  // points were found. Throws when the file's leading columns are not this sweep's.
+  // points were found. Throws when the file's leading columns (up to rastsim_version:
+  // other swept or fixed keys) are not this sweep's.
   size_t resume(std::vector<Point>& points);
   // Writes the file anew: the header and every row known, in point order, then the kept
   // foreign rows (at the start, the resumed rows; at the end, all of them).
@@ -125,11 +136,12 @@ class Csv {
   Cells cells_of(const Point& p) const;
   std::string line_of(const Cells& row) const;
   void rewrite();  // header and the rows in written_ order, then foreign_
-  std::vector<std::string> fixed_columns() const;
+  std::vector<std::string> leading_columns() const;  // every column before the stats
   void merge_columns(const Cells& row);
 
   std::string path_;
   std::vector<Axis> axes_;
+  std::vector<FixedSet> fixed_;
   std::string level_;
   std::vector<std::string> stat_columns_;
   std::map<size_t, Cells> rows_;          // by point index

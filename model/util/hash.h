@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
-// FNV-1a, 64 bits (Fowler/Noll/Vo): the fingerprints of a resolved config (the sweep CSV's
-// config_hash) and the keys of the on-disk caches (RTL models, area runs). Fingerprints
-// and cache keys, not a security boundary.
+// FNV-1a, 64 bits (Fowler/Noll/Vo): the fingerprints of a resolved config (config_hash, of
+// the sweep CSV and the stats' provenance) and of a scene file, and the keys of the on-disk
+// caches (RTL models, area runs). Fingerprints and cache keys, not a security boundary.
 #pragma once
 
 #include <cstdint>
