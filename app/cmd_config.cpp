@@ -45,7 +45,7 @@ void register_config(CLI::App& app) {
   cmd->add_flag("--stages", stages,
                 "Print the pipeline's stages and FIFOs (model/timing/stage_table.h) as JSON, with this config's "
                 "fill cycles and FIFO entries");
-  add_quiet_flag(cmd, quiet, "anything: only check the configuration (exit status 0 when it is valid)");
+  add_quiet_flag(cmd, quiet, "anything: only check the configuration, exit status 0 when it is valid");
   cmd->callback([] {
     if (quiet) {
       (void)resolve_arch(opts);  // every check a run makes of it

@@ -115,7 +115,7 @@ void register_fit(CLI::App& app) {
   cmd->add_flag("--precision", o.precision,
                 "Also measure F = 0..16 at the fitted integer bits: pixels different from F = 16, cracks of a closed "
                 "mesh, edge width (docs/stability.md)");
-  add_quiet_flag(cmd, o.quiet, "the report (--format-only still prints the format)");
+  add_quiet_flag(cmd, o.quiet, "the report; --format-only still prints the format");
   cmd->callback([] { run_fit_command(o); });
 }
 

@@ -74,7 +74,7 @@ void register_monitor(CLI::App& app) {
   cmd->add_option("--clock", o.clock,
                   "Clock variable to sample on (default: one named clk, clk_i, pclk, pixel_clk or clk_pixel if "
                   "present); 'none' samples at the config's pixel clock");
-  add_quiet_flag(cmd, o.quiet, "the summary and notes (errors still print)");
+  add_quiet_flag(cmd, o.quiet, "the summary and notes");
   cmd->callback([] { run_monitor_command(o); });
 }
 

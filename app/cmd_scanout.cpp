@@ -187,7 +187,7 @@ void add_scanout_options(CLI::App* cmd, ScanoutOptions& o) {
                 "Take the raster finish time from the SystemC pipeline on this scene and config (a "
                 "`rastsim simulate` child process), then run the timed scan-out as with --raster-cycles")
       ->excludes(cycles_opt);
-  add_quiet_flag(cmd, o.quiet, "the summary (the monitor's errors still print)");
+  add_quiet_flag(cmd, o.quiet, "the summary");
 }
 
 }  // namespace
@@ -240,7 +240,7 @@ void register_scanout(CLI::App& app) {
   static bool quiet = false;  // the header is the output: nothing else is printed
   add_config_options(exp, eopts);
   exp->add_option("-o,--output", vh_path, "Verilog header to write ('-' for stdout)")->required();
-  add_quiet_flag(exp, quiet, "anything but the header (it prints nothing else)");
+  add_quiet_flag(exp, quiet, "anything but the header");
   exp->callback([] {
     const Config cfg = load_config(eopts);
     const std::string text = scanout_rtl_params_verilog(scanout_rtl_params(ArchParams::resolve(cfg), DisplayParams::resolve(cfg)), cfg.source_name());

@@ -95,7 +95,7 @@ void register_sweep(CLI::App& app) {
                   "Slurm backend: seconds between squeue polls while waiting for the array")
       ->check(CLI::Range(0.1, 3600.0))
       ->capture_default_str();
-  add_quiet_flag(cmd, o.quiet, "progress, resume or per-point lines (each row's status is in the CSV)");
+  add_quiet_flag(cmd, o.quiet, "progress, resume or per-point lines; each row's status is in the CSV");
   cmd->callback([] { run_sweep_command(o); });
 }
 
