@@ -53,15 +53,14 @@ void run_area_command(const AreaCommandOptions& o) {
   const bool tty = isatty(2);
   const AreaReport r = synthesize_area(p, ao);
   if (!o.quiet && tty) std::cerr << "\r\033[K" << std::flush;
-  if (!o.quiet) {
-    std::cout << "area: " << cfg.source_name() << ", " << (r.top.empty() ? "rast_top + rast_engine2d" : r.top) << ", "
-              << r.yosys_version << ", "
-              << (r.from_cache ? "from the cache (" + r.key + ")"
-                               : "synthesised in " + std::to_string(static_cast<int>(r.synth_seconds + 0.5)) + " s")
-              << " (" << r.modules << " Yosys processes, " << static_cast<int>(r.cpu_seconds + 0.5) << " CPU s, peak "
-              << static_cast<int>(r.peak_mb + 0.5) << " MB a process)\n";
-    print_table(std::cout, r);
-  }
+  std::ostream& out = summary_stream(o.stats_path, o.quiet);
+  out << "area: " << cfg.source_name() << ", " << (r.top.empty() ? "rast_top + rast_engine2d" : r.top) << ", "
+      << r.yosys_version << ", "
+      << (r.from_cache ? "from the cache (" + r.key + ")"
+                       : "synthesised in " + std::to_string(static_cast<int>(r.synth_seconds + 0.5)) + " s")
+      << " (" << r.modules << " Yosys processes, " << static_cast<int>(r.cpu_seconds + 0.5) << " CPU s, peak "
+      << static_cast<int>(r.peak_mb + 0.5) << " MB a process)\n";
+  print_table(out, r);
   if (!o.stats_path.empty()) {
     nlohmann::json j = area_to_json(r);
     j["config"] = cfg.source_name();
@@ -83,11 +82,11 @@ void register_area(CLI::App& app) {
   cmd->add_flag("--one-process", o.one_process,
                 "Synthesise rast_top's whole hierarchy in one Yosys process (default: one process a module, its "
                 "submodules as blackboxes, summed; one process needs several GB on the wide configs)");
-  cmd->add_option("--jobs,-j", o.jobs, "Yosys processes at once when rast_top is split a module a process")
+  cmd->add_option("--jobs,-j", o.jobs, "Yosys child processes at once when rast_top is split a module a process")
       ->check(CLI::Range(1, 64))
       ->capture_default_str();
   cmd->add_flag("--no-cache", o.no_cache, "Synthesise even when the cache holds this parameter set (and do not store)");
-  cmd->add_flag("--quiet,-q", o.quiet, "Print neither progress nor the table");
+  add_quiet_flag(cmd, o.quiet, "progress or the table");
   cmd->footer(
       "Relative area: generic gates with Yosys' CMOS transistor estimate, no cell library, no wires "
       "(docs/area.md). Needs Yosys (Debian package yosys). Results are cached per RTL parameter set and "

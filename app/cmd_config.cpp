@@ -79,6 +79,7 @@ void register_config(CLI::App& app) {
   static bool as_toml = false;
   static bool stages = false;
   static std::string from_stats;
+  static bool quiet = false;
   add_config_options(cmd, opts);
   cmd->add_flag("--doc", doc, "Print every key: default, unit, allowed values, description");
   cmd->add_flag("--toml", as_toml,
@@ -91,7 +92,12 @@ void register_config(CLI::App& app) {
   cmd->add_flag("--stages", stages,
                 "Print the pipeline's stages and FIFOs (model/timing/stage_table.h) as JSON, with this config's "
                 "fill cycles and FIFO entries");
+  add_quiet_flag(cmd, quiet, "anything: only check the configuration, exit status 0 when it is valid");
   cmd->callback([] {
+    if (quiet) {
+      (void)resolve_arch(opts);  // every check a run makes of it
+      return;
+    }
     if (doc) {
       std::cout << config_doc();
       return;

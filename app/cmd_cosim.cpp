@@ -22,36 +22,39 @@ namespace {
 // `rastsim rtl-cache`: the on-demand RTL models (model/rtl/rtl_cache.h), listed or removed.
 void register_rtl_cache(CLI::App& app) {
   auto* cmd = app.add_subcommand("rtl-cache", "List (or --clean) the RTL models `cosim` built on demand");
-  static bool clean = false;
+  static bool clean = false, quiet = false;
   cmd->add_flag("--clean", clean,
                 "Remove every entry (a model another process is building is left alone); the next cosim of such a "
                 "config builds it again");
+  add_quiet_flag(cmd, quiet, "the listing or the count removed");
   cmd->callback([] {
     const std::string dir = rastsim_cache_dir("rtl");
+    std::ostream& out = summary_stream("", quiet);
     if (clean) {
-      std::cout << "rtl-cache: removed " << clean_rtl_cache() << " entries from " << dir << "\n";
+      out << "rtl-cache: removed " << clean_rtl_cache() << " entries from " << dir << "\n";
       return;
     }
     const auto entries = rtl_cache_entries();
-    std::cout << "rtl-cache: " << entries.size() << " entries in " << dir << "\n";
+    out << "rtl-cache: " << entries.size() << " entries in " << dir << "\n";
     for (const RtlCacheEntry& e : entries)
-      std::cout << e.key << "  built in " << int(e.build_seconds + 0.5) << " s  for " << e.built_for << "\n";
+      out << e.key << "  built in " << int(e.build_seconds + 0.5) << " s  for " << e.built_for << "\n";
   });
 }
 
 // Per stage (docs/microarchitecture.md "Stage statistics"): both sides' busy, stalled and
-// starved cycles into the stats and a table on stdout; --trace-diff's CSVs.
-void report_stages(const std::vector<cosim::StageAgreement>& a, const std::string& trace_dir, nlohmann::json& j) {
+// starved cycles into the stats and a table on `out`; --trace-diff's CSVs.
+void report_stages(const std::vector<cosim::StageAgreement>& a, const std::string& trace_dir, nlohmann::json& j,
+                   std::ostream& out) {
   // Merged into stages.<name> (with --simulate-stats the SystemC model's own keys are there).
   j["stages"].update(cosim::stages_json(a), /*merge_objects=*/true);
-  std::cout << "cosim: stage           busy model / RTL   error   stalled model / RTL   starved model / RTL\n";
+  out << "cosim: stage           busy model / RTL   error   stalled model / RTL   starved model / RTL\n";
   for (const cosim::StageAgreement& s : a) {
     char line[200];
     std::snprintf(line, sizeof line, "cosim: %-14s %10llu / %-10llu %6.2f %% %9llu / %-9llu %9llu / %llu\n",
                   s.name.c_str(), (unsigned long long)s.model.busy, (unsigned long long)s.rtl.busy,
                   s.busy_error * 100, (unsigned long long)s.model.stalled, (unsigned long long)s.rtl.stalled,
                   (unsigned long long)s.model.starved, (unsigned long long)s.rtl.starved);
-    std::cout << line;
+    out << line;
   }
   if (const cosim::StageAgreement* w = cosim::worst_stage(a)) {
     j["stage_worst_busy_error"] = w->busy_error;
@@ -60,7 +63,7 @@ void report_stages(const std::vector<cosim::StageAgreement>& a, const std::strin
   if (trace_dir.empty()) return;
   const cosim::TraceDiff d = cosim::write_trace_diff(trace_dir, a);
   j["trace_diff"] = {{"rows_model", d.rows_model}, {"rows_rtl", d.rows_rtl}, {"first", d.first}, {"earliest", d.earliest}};
-  std::cout << "cosim: trace-diff " << trace_dir << "/model.csv (" << d.rows_model << " rows), " << trace_dir
+  out << "cosim: trace-diff " << trace_dir << "/model.csv (" << d.rows_model << " rows), " << trace_dir
             << "/rtl.csv (" << d.rows_rtl << " rows): "
             << (d.differs ? "first difference: " + d.first + "; earliest: " + d.earliest : std::string("identical"))
             << "\n";
@@ -71,42 +74,42 @@ struct CosimCommand {
   ConfigOptions config;
   std::string scene_path, stats_path, trace_diff_dir;
   cosim::CosimOptions run;
-  bool no_model = false, build_only = false, simulate_stats = false;
+  bool no_model = false, build_only = false, simulate_stats = false, quiet = false;
   double max_error = -1;
 };
 
 // --rtl-build-only: the config's model, shipped or built into the cache.
-void build_rtl_model(const ArchParams& arch, const cosim::CosimOptions& co) {
+void build_rtl_model(const ArchParams& arch, const cosim::CosimOptions& co, std::ostream& out) {
   const cosim::RtlModelChoice m = cosim::prepare_rtl_model(arch, co);
-  std::cout << "cosim: RTL model " << m.name
+  out << "cosim: RTL model " << m.name
             << (m.dir.empty() ? " (shipped)" : (m.cache_hit ? " (in the cache: " : " (built: ") + m.dir + ")") << "\n";
 }
 
-// The RTL run's summary lines on stdout; the stress seed whenever a stress was on.
-void print_rtl_run(const cosim::CosimResult& r, const cosim::CosimOptions& co) {
+// The RTL run's summary lines; the stress seed whenever a stress was on.
+void print_rtl_run(const cosim::CosimResult& r, const cosim::CosimOptions& co, std::ostream& out) {
   if (!r.rtl_model_dir.empty())
-    std::cout << "cosim: on-demand RTL model " << r.rtl_model_dir
+    out << "cosim: on-demand RTL model " << r.rtl_model_dir
               << (r.rtl_cache_hit ? " (cache hit)" : " (built in " + std::to_string(r.rtl_build_seconds) + " s)")
               << "\n";
-  std::cout << "cosim: RTL model " << r.rtl_config << ", " << r.triangles << " triangles, " << r.cycles_rtl
+  out << "cosim: RTL model " << r.rtl_config << ", " << r.triangles << " triangles, " << r.cycles_rtl
             << " cycles (" << r.wall_seconds << " s wall), " << r.fragments_compared << " fragments compared, "
             << r.mismatches << " mismatches";
-  if (r.commands_2d) std::cout << ", " << r.commands_2d << " 2D commands (" << r.pixels_2d << " pixels)";
-  std::cout << ", crc32 " << crc32_hex(r.crc_rtl)
+  if (r.commands_2d) out << ", " << r.commands_2d << " 2D commands (" << r.pixels_2d << " pixels)";
+  out << ", crc32 " << crc32_hex(r.crc_rtl)
             << (r.crc_rtl == r.crc_ref ? " (= reference)" : " (reference " + crc32_hex(r.crc_ref) + ")");
   if (co.backpressure > 0 || co.valid_gaps > 0) {
-    std::cout << " (backpressure " << co.backpressure;
-    if (co.valid_gaps > 0) std::cout << ", valid gaps " << co.valid_gaps;
-    std::cout << ", seed " << co.stress_seed << ")";
+    out << " (backpressure " << co.backpressure;
+    if (co.valid_gaps > 0) out << ", valid gaps " << co.valid_gaps;
+    out << ", seed " << co.stress_seed << ")";
   }
-  std::cout << "\n";
-  if (!r.first_mismatch.empty()) std::cout << "cosim: first mismatch: " << r.first_mismatch << "\n";
+  out << "\n";
+  if (!r.first_mismatch.empty()) out << "cosim: first mismatch: " << r.first_mismatch << "\n";
 }
 
 // The SystemC model on the same scene: its cycles and error into `j` (with
 // --simulate-stats its whole stats under simulate's names), the per-stage comparison.
 void compare_with_model(const Scene& scene, const ArchParams& arch, const CosimCommand& c, const cosim::CosimResult& r,
-                        nlohmann::json& j) {
+                        nlohmann::json& j, std::ostream& out) {
   sc::SimOptions so;
   so.spans = !c.trace_diff_dir.empty();
   const sc::SimResult m = sc::simulate_scene(scene, arch, so);
@@ -122,17 +125,19 @@ void compare_with_model(const Scene& scene, const ArchParams& arch, const CosimC
     s.update(j);
     j = s;
   }
-  std::cout << "cosim: cycles_rtl " << r.cycles_rtl << ", cycles_model " << m.cycles << ", error "
+  out << "cosim: cycles_rtl " << r.cycles_rtl << ", cycles_model " << m.cycles << ", error "
             << std::round(err * 10000) / 100 << " %\n";
-  report_stages(cosim::compare_stages(cosim::stage_records(m.stages), r.stages), c.trace_diff_dir, j);
+  report_stages(cosim::compare_stages(cosim::stage_records(m.stages), r.stages), c.trace_diff_dir, j, out);
 }
 
 // One `rastsim cosim` run: the RTL against the reference, then (unless --no-model) the
 // SystemC model; the stats, and the failures --max-error and a mismatch make.
 void run_cosim_command(CosimCommand& c) {
   const ArchParams arch = resolve_arch(c.config);
+  std::ostream& out = summary_stream(c.stats_path, c.quiet);
+  if (c.quiet) c.run.progress = [](const std::string&) {};  // an on-demand build's progress lines too
   if (c.build_only) {
-    build_rtl_model(arch, c.run);
+    build_rtl_model(arch, c.run, out);
     return;
   }
   if (c.scene_path.empty()) throw std::runtime_error("cosim: --scene is required (unless --rtl-build-only)");
@@ -147,8 +152,8 @@ void run_cosim_command(CosimCommand& c) {
   j["config"] = arch.config.source_name();
   j["scene"] = c.scene_path;
   j["provenance"] = provenance(c.config, arch.config, c.scene_path);
-  print_rtl_run(r, c.run);
-  if (!c.no_model) compare_with_model(scene, arch, c, r, j);
+  print_rtl_run(r, c.run, out);
+  if (!c.no_model) compare_with_model(scene, arch, c, r, j, out);
   if (!c.stats_path.empty()) write_json(c.stats_path, j);
   if (!c.no_model && c.max_error >= 0 && std::abs(j["cycle_error"].get<double>()) > c.max_error)
     throw std::runtime_error("cycle error of the SystemC model exceeds " + std::to_string(c.max_error));
@@ -167,7 +172,9 @@ void add_rtl_run_options(CLI::App* cmd, cosim::CosimOptions& co) {
                   "(in_valid_i) back in a cycle (random, seeded by --seed; changes cycles_rtl)")
       ->check(CLI::Range(0.0, 1.0));
   cmd->add_option("--seed", co.stress_seed,
-                  "Seed of the random backpressure and valid gaps (printed; the same seed replays the run)");
+                  "Seed of every random choice of the run: the backpressure and valid gaps (printed; the same seed "
+                  "replays the run)")
+      ->capture_default_str();
   cmd->add_option("--rtl-model", co.rtl_model,
                   "Run this verilated model: a shipped config's name (default, d3d11, embedded, desktop) or "
                   "default_circuit, the default config with rast_divider as the circuit Yosys synthesises instead "
@@ -198,6 +205,7 @@ void register_cosim(CLI::App& app) {
                 "With --stats: the SystemC model's whole stats (as `simulate --stats`: cycles, stages.*, ...) with "
                 "cycles_rtl, mismatches, cycle_error and the RTL model's keys beside them (a `sweep --level cosim` "
                 "row)");
+  add_quiet_flag(cmd, c.quiet, "the RTL run's summary, the cycle comparison or the stage table");
   cmd->add_option("--trace-diff", c.trace_diff_dir,
                   "Write DIR/model.csv and DIR/rtl.csv: every stage's transactions (stage,transaction,start_cycle,"
                   "end_cycle) on both sides in the same row order, and print the first whose timing differs");

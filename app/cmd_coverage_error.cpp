@@ -47,13 +47,20 @@ void run_coverage_error_command(const CoverageErrorOptions& o) {
                                                {"coverage_error_rms", s.rms()},
                                                {"coverage_error_max", s.error_max}};
   if (!o.stats_path.empty()) write_json(o.stats_path, j);
-  if (o.quiet || o.stats_path == "-") return;
-  std::printf("coverage error of %s (%llu pixels clipped exactly, %.2f s)\n", o.scene_path.c_str(),
-              static_cast<unsigned long long>(r.pixels_clipped), r.wall_seconds);
-  std::printf("%7s %10s %11s %8s %8s %8s\n", "samples", "triangles", "edge_pixels", "mean", "rms", "max");
-  for (const CoverageErrorStats& s : r.per_samples)
-    std::printf("%7d %10llu %11llu %8.4f %8.4f %8.4f\n", s.samples, static_cast<unsigned long long>(s.triangles),
-                static_cast<unsigned long long>(s.edge_pixels), s.mean(), s.rms(), s.error_max);
+  std::ostream& out = summary_stream(o.stats_path, o.quiet);
+  char line[160];
+  std::snprintf(line, sizeof line, " (%llu pixels clipped exactly, %.2f s)\n",
+                static_cast<unsigned long long>(r.pixels_clipped), r.wall_seconds);
+  out << "coverage error of " << o.scene_path << line;
+  std::snprintf(line, sizeof line, "%7s %10s %11s %8s %8s %8s\n", "samples", "triangles", "edge_pixels", "mean", "rms",
+                "max");
+  out << line;
+  for (const CoverageErrorStats& s : r.per_samples) {
+    std::snprintf(line, sizeof line, "%7d %10llu %11llu %8.4f %8.4f %8.4f\n", s.samples,
+                  static_cast<unsigned long long>(s.triangles), static_cast<unsigned long long>(s.edge_pixels),
+                  s.mean(), s.rms(), s.error_max);
+    out << line;
+  }
 }
 
 }  // namespace
@@ -71,10 +78,10 @@ void register_coverage_error(CLI::App& app) {
       ->delimiter(',')
       ->capture_default_str();
   cmd->add_option("--stats", o.stats_path,
-                  "Write the figures as JSON ('-' for stdout, then no table): samples.<N>.edge_pixels, "
+                  "Write the figures as JSON ('-' for stdout, the table then on stderr): samples.<N>.edge_pixels, "
                   "coverage_error_mean, coverage_error_rms, coverage_error_max, triangles; pixels_clipped, "
                   "wall_seconds");
-  cmd->add_flag("--quiet,-q", o.quiet, "Do not print the table");
+  add_quiet_flag(cmd, o.quiet, "the table");
   cmd->callback([] { run_coverage_error_command(o); });
 }
 

@@ -6,6 +6,7 @@
 
 #include "common.h"
 #include "estimate/estimate.h"
+#include "report/stats_json.h"
 #include "scene/scene_io.h"
 
 namespace rastsim::app {
@@ -19,16 +20,14 @@ void run_estimate_command(const EstimateOptions& o) {
   j["scene"] = o.scene_path;
   j["provenance"] = provenance(o.config, arch.config, o.scene_path);
   if (!o.stats_path.empty()) write_json(o.stats_path, j);
-  if (!o.quiet) {
-    size_t busiest = 0;
-    for (size_t s = 0; s < r.stages.size(); ++s)
-      if (r.stages[s].busy > r.stages[busiest].busy) busiest = s;
-    std::cout << "estimate: " << r.cycles_estimate << " cycles (lower bound " << r.cycles_lower_bound
-              << ", upper bound " << r.cycles_upper_bound << ", busiest stage " << kStages[busiest].name << " "
-              << r.stages[busiest].busy << "), " << r.render.triangles_in << " triangles, "
-              << r.render.traversal.tiles_visited << " tiles, " << r.render.traversal.fragments << " fragments, "
-              << r.wall_seconds << " s wall\n";
-  }
+  size_t busiest = 0;
+  for (size_t s = 0; s < r.stages.size(); ++s)
+    if (r.stages[s].busy > r.stages[busiest].busy) busiest = s;
+  summary_stream(o.stats_path, o.quiet)
+      << "estimate: " << r.cycles_estimate << " cycles (lower bound " << r.cycles_lower_bound << ", upper bound "
+      << r.cycles_upper_bound << ", busiest stage " << kStages[busiest].name << " " << r.stages[busiest].busy << "), "
+      << triangles_summary(r.render) << ", " << r.render.traversal.tiles_visited << " tiles, "
+      << r.render.traversal.fragments << " fragments, " << r.wall_seconds << " s wall\n";
 }
 
 void register_estimate(CLI::App& app) {
@@ -40,7 +39,7 @@ void register_estimate(CLI::App& app) {
   cmd->add_option("--stats", o.stats_path,
                   "Write the stats as JSON ('-' for stdout): cycles_lower_bound, cycles_upper_bound, "
                   "cycles_estimate, wall_seconds, stages.<stage>.busy, and the geometry counters");
-  cmd->add_flag("--quiet,-q", o.quiet, "Do not print the summary line");
+  add_quiet_flag(cmd, o.quiet, "the summary line");
   cmd->callback([] { run_estimate_command(o); });
 }
 

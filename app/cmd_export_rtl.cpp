@@ -13,8 +13,10 @@ void register_export_rtl(CLI::App& app) {
   auto* cmd = app.add_subcommand("export-rtl", "Write the RTL parameter header (rast_params.vh) of a config");
   static ConfigOptions opts;
   static std::string out_path = "-";
+  static bool quiet = false;  // the header is the output: nothing else is printed
   add_config_options(cmd, opts);
   cmd->add_option("-o,--output", out_path, "Header to write ('-' for stdout)");
+  add_quiet_flag(cmd, quiet, "anything but the header");
   cmd->callback([] {
     const Config cfg = load_config(opts);
     const std::string text = rtl_params_verilog(rtl_params(ArchParams::resolve(cfg)), cfg.source_name());

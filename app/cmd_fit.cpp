@@ -17,7 +17,7 @@ namespace {
 struct FitOptions {
   ConfigOptions config;
   std::string scene_path, stats_path;
-  bool format_only = false, precision = false;
+  bool format_only = false, precision = false, quiet = false;
 };
 
 nlohmann::json widths_json(const DatapathWidths& w) {
@@ -25,7 +25,53 @@ nlohmann::json widths_json(const DatapathWidths& w) {
           {"color_num", w.color_num}, {"depth_num", w.depth_num}};
 }
 
+// The fit as the report prints it (not with --format-only).
+void print_fit(std::ostream& out, const FitOptions& o, const Config& cfg, const CoordFit& fit) {
+  const DatapathWidths& w = fit.widths;
+  out << "fit: " << o.scene_path << " (" << cfg.source_name() << ")\n"
+      << "  integer bits " << fit.widest.int_bits << ": viewport needs " << fit.int_bits_viewport
+      << ", vertices need " << fit.int_bits_vertices << "\n"
+      << "  reference " << fit.widest.name() << " (I + F = " << kMaxFormatBits << "): crc32 "
+      << crc32_hex(fit.reference.color_crc32) << ", " << fit.reference.fragments << " fragments (crc32 "
+      << crc32_hex(fit.reference.fragments_crc32) << ")\n"
+      << "  raster.coord_format = \"" << fit.format.name() << "\": identical framebuffer and fragment stream";
+  if (fit.format.frac_bits > 1) out << "; " << FixedFormat{fit.format.int_bits, fit.format.frac_bits - 1}.name() << " differs";
+  out << "\n";
+  if (fit.format.frac_bits == 1)
+    out << (fit.exact_at_zero_frac ? "  exact at 0 fraction bits: integer vertices render identically (F = 1 is the "
+                                     "smallest format, pixel centres sit at +0.5)\n"
+                                   : "  not exact at 0 fraction bits: integer vertices render differently\n");
+  out << "  weaker identities, fewest F with the same coverage: "
+      << FixedFormat{fit.format.int_bits, fit.coverage_frac_bits}.name() << ", with the same colour buffer: "
+      << FixedFormat{fit.format.int_bits, fit.color_frac_bits}.name() << " (depth and colour see every vertex LSB)\n";
+  out << "  widths (bits): vertex " << w.coord << ", edge a/b " << w.coef << ", edge c/E " << w.edge << ", area "
+      << w.area << " unsigned, colour numerator " << w.color_num << " unsigned, depth numerator " << w.depth_num
+      << " unsigned (docs/fixed-point.md)\n";
+}
+
+// --precision: the table on `out` (a Markdown table, docs/stability.md) and as JSON.
+nlohmann::json precision_table(const Scene& scene, const RasterState& arch, const CoordFit& fit, std::ostream& out) {
+  const auto rows = measure_precision(scene, arch, fit.widest.int_bits, 16);
+  nlohmann::json pj = nlohmann::json::array();
+  out << "\n| F | format | pixels != F=16 | cracks | edge width |\n|---|---|---|---|---|\n";
+  for (const PrecisionRow& r : rows) {
+    nlohmann::json rj = {{"frac_bits", r.frac_bits}, {"format", r.format.name()}, {"edge_width", r.edge_width}};
+    if (r.ok) {
+      rj["pixels_different"] = r.pixels_different;
+      if (r.cracks) rj["cracks"] = *r.cracks;
+    } else {
+      rj["error"] = r.error;
+    }
+    pj.push_back(rj);
+    out << "| " << r.frac_bits << " | " << (r.frac_bits == 0 ? "integer vertices in " : "") << r.format.name()
+        << " | " << (r.ok ? std::to_string(r.pixels_different) : "render fails") << " | "
+        << (r.cracks ? std::to_string(*r.cracks) : "n/a") << " | " << r.edge_width << " |\n";
+  }
+  return pj;
+}
+
 void run_fit_command(const FitOptions& o) {
+  check_one_stdout({{"--stats", o.stats_path}, {"--format-only", o.format_only ? "-" : ""}});
   const ArchParams params = resolve_arch(o.config);
   const RasterState& arch = params.raster;
   const Scene scene = load_scene(o.scene_path, params.placement);
@@ -46,54 +92,11 @@ void run_fit_command(const FitOptions& o) {
   j["coverage_format"] = FixedFormat{fit.format.int_bits, fit.coverage_frac_bits}.name();
   j["color_format"] = FixedFormat{fit.format.int_bits, fit.color_frac_bits}.name();
   j["renders"] = fit.trials.size() + 1;
-  if (o.format_only) {
-    std::cout << fit.format.name() << "\n";
-  } else {
-    const DatapathWidths& w = fit.widths;
-    std::cout << "fit: " << o.scene_path << " (" << params.config.source_name() << ")\n"
-              << "  integer bits " << fit.widest.int_bits << ": viewport needs " << fit.int_bits_viewport
-              << ", vertices need " << fit.int_bits_vertices << "\n"
-              << "  reference " << fit.widest.name() << " (I + F = " << kMaxFormatBits << "): crc32 "
-              << crc32_hex(fit.reference.color_crc32) << ", " << fit.reference.fragments << " fragments (crc32 "
-              << crc32_hex(fit.reference.fragments_crc32) << ")\n"
-              << "  raster.coord_format = \"" << fit.format.name() << "\": identical framebuffer and fragment stream";
-    if (fit.format.frac_bits > 1)
-      std::cout << "; " << FixedFormat{fit.format.int_bits, fit.format.frac_bits - 1}.name() << " differs";
-    std::cout << "\n";
-    if (fit.format.frac_bits == 1)
-      std::cout << (fit.exact_at_zero_frac
-                        ? "  exact at 0 fraction bits: integer vertices render identically (F = 1 is the smallest "
-                          "format, pixel centres sit at +0.5)\n"
-                        : "  not exact at 0 fraction bits: integer vertices render differently\n");
-    std::cout << "  weaker identities, fewest F with the same coverage: "
-              << FixedFormat{fit.format.int_bits, fit.coverage_frac_bits}.name() << ", with the same colour buffer: "
-              << FixedFormat{fit.format.int_bits, fit.color_frac_bits}.name() << " (depth and colour see every vertex LSB)\n";
-    std::cout << "  widths (bits): vertex " << w.coord << ", edge a/b " << w.coef << ", edge c/E " << w.edge
-              << ", area " << w.area << " unsigned, colour numerator " << w.color_num
-              << " unsigned, depth numerator " << w.depth_num << " unsigned (docs/fixed-point.md)\n";
-  }
-  if (o.precision) {
-    const auto rows = measure_precision(scene, arch, fit.widest.int_bits, 16);
-    nlohmann::json pj = nlohmann::json::array();
-    if (!o.format_only) {
-      std::cout << "\n| F | format | pixels != F=16 | cracks | edge width |\n|---|---|---|---|---|\n";
-    }
-    for (const PrecisionRow& r : rows) {
-      nlohmann::json rj = {{"frac_bits", r.frac_bits}, {"format", r.format.name()}, {"edge_width", r.edge_width}};
-      if (r.ok) {
-        rj["pixels_different"] = r.pixels_different;
-        if (r.cracks) rj["cracks"] = *r.cracks;
-      } else {
-        rj["error"] = r.error;
-      }
-      pj.push_back(rj);
-      if (!o.format_only)
-        std::cout << "| " << r.frac_bits << " | " << (r.frac_bits == 0 ? "integer vertices in " : "")
-                  << r.format.name() << " | " << (r.ok ? std::to_string(r.pixels_different) : "render fails")
-                  << " | " << (r.cracks ? std::to_string(*r.cracks) : "n/a") << " | " << r.edge_width << " |\n";
-    }
-    j["precision"] = pj;
-  }
+  // --format-only's one line is the command's product (for $(...)); the report is text.
+  std::ostream& out = summary_stream(o.stats_path, o.quiet || o.format_only);
+  if (o.format_only) std::cout << fit.format.name() << "\n";
+  print_fit(out, o, params.config, fit);
+  if (o.precision) j["precision"] = precision_table(scene, arch, fit, out);
   if (!o.stats_path.empty()) write_json(o.stats_path, j);
 }
 
@@ -113,6 +116,7 @@ void register_fit(CLI::App& app) {
   cmd->add_flag("--precision", o.precision,
                 "Also measure F = 0..16 at the fitted integer bits: pixels different from F = 16, cracks of a closed "
                 "mesh, edge width (docs/stability.md)");
+  add_quiet_flag(cmd, o.quiet, "the report; --format-only still prints the format");
   cmd->callback([] { run_fit_command(o); });
 }
 

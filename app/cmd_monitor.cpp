@@ -38,22 +38,19 @@ void run_monitor_command(const MonitorOptions& o) {
             {"levels_from", info.levels_from}, {"variables", info.variables}, {"configured", timing_json(t)}});
   j["provenance"] = provenance(o.config, cfg, "");
   if (!o.stats_path.empty()) write_json(o.stats_path, j);
-  if (!o.quiet) {
-    const std::string mode = describe_timing(t).substr(0, describe_timing(t).find(':'));
-    char buf[512];
-    std::snprintf(buf, sizeof buf,
-                  "monitor: %s, configured line %.3f kHz, frame %.2f Hz; measured %dx%d total, hsync %d px, "
-                  "vsync %d lines -> line %.3f kHz, frame %.2f Hz; decoded %d frame%s from %lld samples of %s\n",
-                  mode.c_str(), t.line_rate_hz() / 1e3, t.frame_rate_hz(), m.h_total, m.v_total, m.h_sync, m.v_sync,
-                  r.line_rate_hz / 1e3, r.frame_rate_hz, r.frames_decoded, r.frames_decoded == 1 ? "" : "s",
-                  info.samples, o.signal_path.c_str());
-    if (r.locked) std::cout << buf;
-    else
-      std::cout << "monitor: " << mode << ": no complete frame in " << info.samples << " samples of " << o.signal_path
-                << "\n";
-    for (const auto& n : info.notes) std::cout << "monitor: note: " << n << "\n";
-  }
-  std::cout.flush();  // the summary first, then the monitor's messages
+  std::ostream& out = summary_stream(o.stats_path, o.quiet);
+  const std::string mode = describe_timing(t).substr(0, describe_timing(t).find(':'));
+  char buf[512];
+  std::snprintf(buf, sizeof buf,
+                "monitor: %s, configured line %.3f kHz, frame %.2f Hz; measured %dx%d total, hsync %d px, "
+                "vsync %d lines -> line %.3f kHz, frame %.2f Hz; decoded %d frame%s from %lld samples of ",
+                mode.c_str(), t.line_rate_hz() / 1e3, t.frame_rate_hz(), m.h_total, m.v_total, m.h_sync, m.v_sync,
+                r.line_rate_hz / 1e3, r.frame_rate_hz, r.frames_decoded, r.frames_decoded == 1 ? "" : "s",
+                info.samples);
+  if (r.locked) out << buf << o.signal_path << "\n";
+  else out << "monitor: " << mode << ": no complete frame in " << info.samples << " samples of " << o.signal_path << "\n";
+  for (const auto& n : info.notes) out << "monitor: note: " << n << "\n";
+  out.flush();  // the summary first, then the monitor's messages
   for (const auto& e : errors) std::cerr << "monitor: " << e << "\n";
   if (!r.locked && r.frames_decoded == 0)
     std::cerr << "monitor: a frame lies between two vsync leading edges: record at least two frames "
@@ -78,7 +75,7 @@ void register_monitor(CLI::App& app) {
   cmd->add_option("--clock", o.clock,
                   "Clock variable to sample on (default: one named clk, clk_i, pclk, pixel_clk or clk_pixel if "
                   "present); 'none' samples at the config's pixel clock");
-  cmd->add_flag("--quiet,-q", o.quiet, "Print only errors");
+  add_quiet_flag(cmd, o.quiet, "the summary and notes");
   cmd->callback([] { run_monitor_command(o); });
 }
 

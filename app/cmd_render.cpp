@@ -54,17 +54,15 @@ void run_render_command(const RenderOptions& o) {
   j["scene"] = o.scene_path;
   j["provenance"] = provenance(o.config, params.config, o.scene_path);
   if (!o.stats_path.empty()) write_json(o.stats_path, j);
-  if (!o.quiet) {
-    std::cout << "render: " << stats.triangles_in << " triangles (" << stats.triangles_culled << " culled), "
-              << stats.traversal.tiles_visited << " tiles (" << stats.traversal.tiles_rejected << " rejected, "
-              << stats.traversal.tiles_accepted << " accepted, " << stats.traversal.tiles_partial
-              << " partial), " << stats.traversal.pixel_tests << " pixel tests, " << stats.traversal.fragments
-              << " fragments, ";
-    if (stats.samples > 1)
-      std::cout << stats.samples << " samples (" << (stats.aa_mode == AaMode::Ssaa ? "ssaa" : "msaa") << ", "
-                << stats.traversal.samples_covered << " covered), ";
-    std::cout << "crc32 " << crc32_hex(stats.framebuffer_crc32) << ", " << stats.wall_seconds << " s\n";
-  }
+  std::ostream& out = summary_stream(o.stats_path, o.quiet);
+  out << "render: " << triangles_summary(stats) << ", " << stats.traversal.tiles_visited << " tiles ("
+      << stats.traversal.tiles_rejected << " rejected, " << stats.traversal.tiles_accepted << " accepted, "
+      << stats.traversal.tiles_partial << " partial), " << stats.traversal.pixel_tests << " pixel tests, "
+      << stats.traversal.fragments << " fragments, ";
+  if (stats.samples > 1)
+    out << stats.samples << " samples (" << (stats.aa_mode == AaMode::Ssaa ? "ssaa" : "msaa") << ", "
+        << stats.traversal.samples_covered << " covered), ";
+  out << "crc32 " << crc32_hex(stats.framebuffer_crc32) << ", " << stats.wall_seconds << " s\n";
 }
 
 void register_render(CLI::App& app) {
@@ -77,12 +75,12 @@ void register_render(CLI::App& app) {
   cmd->add_option("--fragments", o.frag_path,
                   "Write every fragment leaving interpolation, one 'x y z r g b' line each, in pipeline order");
   cmd->add_option("--threads", o.threads,
-                  "Rasterize on N threads (default: every core): triangles are binned to screen regions drawn "
+                  "Rasterize on N threads of this process (default: every core): triangles are binned to screen regions drawn "
                   "in parallel, each pixel's fragments in scene order, so the image, CRC and stats equal "
                   "--threads 1's; the trace is parsed on a thread of its own, ahead of the drawing. "
                   "--fragments (pipeline order) and raster.traversal = scanline draw on one thread")
       ->check(CLI::Range(1, 1024));
-  cmd->add_flag("--quiet,-q", o.quiet, "Do not print the summary line");
+  add_quiet_flag(cmd, o.quiet, "the summary line");
   cmd->callback([] { run_render_command(o); });
 }
 

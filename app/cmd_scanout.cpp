@@ -146,7 +146,8 @@ nlohmann::json scanout_stats(const ScanoutOptions& o, const Config& cfg, const V
   return j;
 }
 
-void print_summary(const VideoTiming& t, const MonitorResult& r, const DecodeCheck& d, const nlohmann::json& deadline) {
+void print_summary(std::ostream& out, const VideoTiming& t, const MonitorResult& r, const DecodeCheck& d,
+                   const nlohmann::json& deadline) {
   const VideoTiming& m = r.measured;
   char buf[512];
   std::snprintf(buf, sizeof buf,
@@ -156,9 +157,9 @@ void print_summary(const VideoTiming& t, const MonitorResult& r, const DecodeChe
                 t.frame_rate_hz(), m.h_total, m.v_total, m.h_sync, m.v_sync, r.line_rate_hz / 1e3,
                 r.frame_rate_hz, d.same ? "equals" : "differs from",
                 d.same ? "" : (" (" + std::to_string(d.mismatched) + " pixels, max error " + std::to_string(d.max_err) + ")").c_str());
-  std::cout << buf;
+  out << buf;
   if (!deadline.is_null())
-    std::cout << "scanout: raster finishes at " << deadline["frame_time_cycles"] << " cycles, deadline "
+    out << "scanout: raster finishes at " << deadline["frame_time_cycles"] << " cycles, deadline "
               << deadline["deadline_cycles"] << " cycles (" << deadline["buffering"].get<std::string>()
               << " buffering): " << (deadline["frame_deadline_met"].get<bool>() ? "met" : "MISSED") << ", "
               << deadline["underrun_lines"] << " underrun lines\n";
@@ -187,7 +188,7 @@ void add_scanout_options(CLI::App* cmd, ScanoutOptions& o) {
                 "Take the raster finish time from the SystemC pipeline on this scene and config (a "
                 "`rastsim simulate` child process), then run the timed scan-out as with --raster-cycles")
       ->excludes(cycles_opt);
-  cmd->add_flag("--quiet,-q", o.quiet, "Print only monitor errors");
+  add_quiet_flag(cmd, o.quiet, "the summary");
 }
 
 }  // namespace
@@ -219,8 +220,9 @@ void run_scanout_command(const ScanoutOptions& o) {
 
   const DecodeCheck d = compare_decoded(r, fb, t);
   if (!o.stats_path.empty()) write_json(o.stats_path, scanout_stats(o, arch.config, t, dac, r, d, rstats.framebuffer_crc32, deadline));
-  if (!o.quiet) print_summary(t, r, d, deadline);
-  std::cout.flush();  // the summary first, then the monitor's messages
+  std::ostream& out = summary_stream(o.stats_path, o.quiet);
+  print_summary(out, t, r, d, deadline);
+  out.flush();  // the summary first, then the monitor's messages
   for (const auto& e : r.errors) std::cerr << "scanout: monitor: " << e << "\n";
   if (!r.ok()) throw std::runtime_error("virtual monitor: " + std::to_string(r.errors.size()) + " timing errors (above)");
 }
@@ -236,8 +238,10 @@ void register_scanout(CLI::App& app) {
                                  "Write the scan-out RTL's parameters (Verilog parameter list) from a config");
   static ConfigOptions eopts;
   static std::string vh_path;
+  static bool quiet = false;  // the header is the output: nothing else is printed
   add_config_options(exp, eopts);
   exp->add_option("-o,--output", vh_path, "Verilog header to write ('-' for stdout)")->required();
+  add_quiet_flag(exp, quiet, "anything but the header");
   exp->callback([] {
     const Config cfg = load_config(eopts);
     const std::string text = scanout_rtl_params_verilog(scanout_rtl_params(ArchParams::resolve(cfg), DisplayParams::resolve(cfg)), cfg.source_name());

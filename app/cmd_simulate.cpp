@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+#include <sstream>
 
 #include "common.h"
 #include "estimate/estimate.h"
@@ -75,16 +76,16 @@ double parse_tolerance(const std::string& text) {
   return v / 100;
 }
 
-void print_level(const nlohmann::json& j) {
-  std::cout << "simulate: " << j["cycles"].get<uint64_t>() << " cycles (" << j["fidelity_level"].get<std::string>()
-            << " level";
+void print_level(const nlohmann::json& j, std::ostream& out) {
+  out << "simulate: " << j["cycles"].get<uint64_t>() << " cycles (" << j["fidelity_level"].get<std::string>()
+      << " level";
   if (j.contains("cycles_ci_low"))
-    std::cout << ", " << j["confidence"].get<double>() * 100 << " % interval [" << j["cycles_ci_low"].get<double>()
-              << ", " << j["cycles_ci_high"].get<double>() << "], " << j["units_simulated"] << " of "
-              << j["units_total"] << " units simulated";
-  if (j.contains("cycles_error_bound")) std::cout << ", error bound " << j["cycles_error_bound"].get<double>() * 100 << " %";
-  std::cout << "), " << j["wall_seconds"].get<double>() << " s wall\n";
-  if (j.contains("fidelity_reason")) std::cout << "  " << j["fidelity_reason"].get<std::string>() << "\n";
+    out << ", " << j["confidence"].get<double>() * 100 << " % interval [" << j["cycles_ci_low"].get<double>() << ", "
+        << j["cycles_ci_high"].get<double>() << "], " << j["units_simulated"] << " of " << j["units_total"]
+        << " units simulated";
+  if (j.contains("cycles_error_bound")) out << ", error bound " << j["cycles_error_bound"].get<double>() * 100 << " %";
+  out << "), " << j["wall_seconds"].get<double>() << " s wall\n";
+  if (j.contains("fidelity_reason")) out << "  " << j["fidelity_reason"].get<std::string>() << "\n";
 }
 
 // --heatmap-stage: "all" or a stage whose busy cycles are attributed to tiles.
@@ -101,17 +102,17 @@ void run_level_mode(const SimulateOptions& o, const ArchParams& arch) {
   for (const std::string* p : {&o.out_path, &o.vcd_path, &o.timeline_path, &o.heatmap_path,
                                &o.heatmap_data_path, &o.frag_path})
     if (!p->empty())
-      throw std::runtime_error(std::string(o.sample != 0 ? "--sample" : "--tolerance") +
+      throw std::runtime_error(std::string(o.sample ? "--sample" : "--tolerance") +
                                " makes no image, VCD, timeline, heatmap or fragment stream: drop " + *p);
   check_writable(o.stats_path);
   const Scene scene = load_scene(o.scene_path, arch.placement);
   nlohmann::json j;
-  if (o.sample != 0) {
-    j = fidelity::simulate_sampled(scene, arch, o.sample, o.sample_seed).to_json();
+  if (o.sample) {
+    j = fidelity::simulate_sampled(scene, arch, *o.sample, o.seed).to_json();
   } else {
     bool full = false;
     std::string reason;
-    j = fidelity::choose_level(scene, arch, tol, o.sample_seed, full, reason);
+    j = fidelity::choose_level(scene, arch, tol, o.seed, full, reason);
     if (full) {
       const sc::SimResult r = sc::simulate_scene(scene, arch);
       j = {{"fidelity_level", "systemc"}, {"cycles", r.cycles},  {"cycles_error_bound", 0.0},
@@ -123,13 +124,13 @@ void run_level_mode(const SimulateOptions& o, const ArchParams& arch) {
   j["scene"] = o.scene_path;
   j["provenance"] = provenance(o.config, arch.config, o.scene_path);
   if (!o.stats_path.empty()) write_json(o.stats_path, j);
-  if (!o.quiet) print_level(j);
+  print_level(j, summary_stream(o.stats_path, o.quiet));
 }
 
 // The recorders and test hooks of a full run, from the options.
 sc::SimOptions sim_options(const SimulateOptions& o, std::ofstream& frag_os) {
   sc::SimOptions sim;
-  sim.stall_seed = o.stall_seed;
+  sim.stall_seed = o.seed;
   sim.stall_probability = o.stall_probability;
   if (!o.frag_path.empty()) {
     frag_os.open(o.frag_path);
@@ -147,10 +148,14 @@ sc::SimOptions sim_options(const SimulateOptions& o, std::ofstream& frag_os) {
 
 void run_simulate_command(const SimulateOptions& o) {
   const ArchParams arch = resolve_arch(o.config);
-  if (o.sample != 0 && !o.tolerance.empty()) throw std::runtime_error("--sample and --tolerance exclude each other");
-  if (o.sample != 0 && !(o.sample > 0 && o.sample <= 1))
-    throw std::runtime_error("--sample: the fraction must be in (0, 1], got " + std::to_string(o.sample));
-  if (o.sample != 0 || !o.tolerance.empty()) return run_level_mode(o, arch);
+  if (o.sample && !o.tolerance.empty()) throw std::runtime_error("--sample and --tolerance exclude each other");
+  if (o.sample && !(*o.sample > 0 && *o.sample <= 1)) {
+    std::ostringstream got;
+    got << *o.sample;
+    throw std::runtime_error("--sample: the fraction F must be in (0, 1], got " + got.str());
+  }
+  check_one_stdout({{"--stats", o.stats_path}, {"--heatmap-data", o.heatmap_data_path}});
+  if (o.sample || !o.tolerance.empty()) return run_level_mode(o, arch);
   std::ofstream frag_os;
   const sc::SimOptions sim = sim_options(o, frag_os);
   for (const std::string* p : {&o.out_path, &o.stats_path, &o.timeline_path, &o.heatmap_path, &o.heatmap_data_path})
@@ -184,16 +189,15 @@ void run_simulate_command(const SimulateOptions& o) {
     j["frame_deadline_error"] = e.what();
   }
   if (!o.stats_path.empty()) write_json(o.stats_path, j);
-  if (!o.quiet) {
-    const sc::StageReport* bottleneck = &r.stages.front();
-    for (const auto& s : r.stages)
-      if (s.busy > bottleneck->busy) bottleneck = &s;
-    std::cout << "simulate: " << r.cycles << " cycles (lower bound " << r.cycles_lower_bound << ", busiest stage "
-              << bottleneck->name << " " << bottleneck->busy << "), " << r.render.triangles_in << " triangles, "
-              << r.render.traversal.tiles_visited << " tiles, " << r.render.traversal.fragments
-              << " fragments, crc32 " << crc32_hex(r.render.framebuffer_crc32) << ", " << r.sim_wall_seconds << " s wall, "
-              << j["simulated_cycles_per_second"].get<double>() << " cycles/s\n";
-  }
+  const sc::StageReport* bottleneck = &r.stages.front();
+  for (const auto& s : r.stages)
+    if (s.busy > bottleneck->busy) bottleneck = &s;
+  summary_stream(o.stats_path, o.quiet)
+      << "simulate: " << r.cycles << " cycles (lower bound " << r.cycles_lower_bound << ", busiest stage "
+      << bottleneck->name << " " << bottleneck->busy << "), " << triangles_summary(r.render) << ", "
+      << r.render.traversal.tiles_visited << " tiles, " << r.render.traversal.fragments << " fragments, crc32 "
+      << crc32_hex(r.render.framebuffer_crc32) << ", " << r.sim_wall_seconds << " s wall, "
+      << j["simulated_cycles_per_second"].get<double>() << " cycles/s\n";
 }
 
 void register_simulate(CLI::App& app) {
@@ -222,21 +226,26 @@ void register_simulate(CLI::App& app) {
                   "Write the per-tile busy cycles of every attributed stage as JSON ('-' for stdout)");
   cmd->add_option("--fragments", o.frag_path,
                   "Write every fragment leaving interpolation, one 'x y z r g b' line each (as `render`)");
-  cmd->add_option("--stall-seed", o.stall_seed, "Seed of the random stall injection (testing)");
   cmd->add_option("--stall-probability", o.stall_probability,
                   "Probability that a FIFO write is delayed by 1..8 extra cycles (testing; 0 = off)")
       ->check(CLI::Range(0.0, 1.0));
-  cmd->add_option("--sample", o.sample,
-                  "Sampled level: simulate a stratified random fraction F (0 < F <= 1) of the triangle batches and "
-                  "extrapolate cycles with a 95 % interval (stats cycles, cycles_ci_low, cycles_ci_high; no image, "
-                  "-o is an error; docs/fidelity.md)");
-  cmd->add_option("--sample-seed", o.sample_seed, "Seed of --sample's (and --tolerance's) random choice of batches")
-      ->default_val(1);
+  cmd->add_option_function<double>(
+      "--sample", [](double f) { o.sample = f; },
+      "Sampled level: simulate a stratified random fraction F (0 < F <= 1) of the triangle batches and "
+      "extrapolate cycles with a 95 % interval (stats cycles, cycles_ci_low, cycles_ci_high; no image, "
+      "-o is an error; docs/fidelity.md)")
+      ->type_name("F");
+  cmd->add_option("--seed", o.seed,
+                  "Seed of every random choice of the run: --stall-probability's stalls, --sample's and "
+                  "--tolerance's batches (the same seed replays the run)")
+      ->capture_default_str();
+  for (const char* old_name : {"--stall-seed", "--sample-seed"})  // the names before --seed, still read
+    cmd->add_option(old_name, o.seed, "Old name of --seed")->group("");
   cmd->add_option("--tolerance", o.tolerance,
                   "Answer with the cheapest level whose bound or 95 % interval is within P of the cycles, e.g. 2%: "
                   "analytic, else sampled, else the full SystemC run (stats fidelity_level, cycles, "
                   "cycles_error_bound, fidelity_reason; no image; docs/fidelity.md)");
-  cmd->add_flag("--quiet,-q", o.quiet, "Do not print the summary line");
+  add_quiet_flag(cmd, o.quiet, "the summary line");
   cmd->callback([] { run_simulate_command(o); });
 }
 

@@ -3,14 +3,40 @@
 // cross product of scenes and swept config values, each point one `rastsim simulate` run
 // of this same binary, one CSV row a point, --resume running only the points the CSV lacks.
 #include <algorithm>
+#include <iostream>
+#include <stdexcept>
 #include <thread>
 
 #include "common.h"
 
 namespace rastsim::app {
 
+namespace {
+
+// -q: the sweep engine's progress, resume and per-point lines (all on stderr) dropped
+// while it runs; the error a failed sweep ends with still prints (main.cpp).
+class StderrMuted {
+ public:
+  explicit StderrMuted(bool on) : saved_(on ? std::cerr.rdbuf(nullptr) : nullptr), on_(on) {}
+  ~StderrMuted() {
+    if (!on_) return;
+    std::cerr.rdbuf(saved_);
+    std::cerr.clear();
+  }
+  StderrMuted(const StderrMuted&) = delete;
+  StderrMuted& operator=(const StderrMuted&) = delete;
+
+ private:
+  std::streambuf* saved_;
+  bool on_;
+};
+
+}  // namespace
+
 void run_sweep_command(SweepOptions o) {
+  if (o.out_path.empty()) throw std::runtime_error("sweep: --output CSV is required");
   const std::vector<sweep::Axis> axes = sweep::split_axes(o.set_args, o.base.sets);
+  const StderrMuted muted(o.quiet);
   sweep::run_sweep(o, {load_config(o.base), o.base.config_path, o.base.sets}, axes);
 }
 
@@ -26,13 +52,13 @@ void register_sweep(CLI::App& app) {
                   "KEY=V fixes one")
       ->type_name("KEY=VALUES")
       ->allow_extra_args(false);
-  cmd->add_option("--out,-o", o.out_path,
-                  "CSV to write: scene, each swept key, level (--level, +area with --area), config_hash, "
+  cmd->add_option("-o,--output", o.out_path,
+                  "CSV to write (required): scene, each swept key, level (--level, +area with --area), config_hash, "
                   "status, each fixed --set key, rastsim_version, then every stat; each row is appended as its "
-                  "run finishes, and at the end the rows are put in sweep order")
-      ->required();
+                  "run finishes, and at the end the rows are put in sweep order");
+  cmd->add_option("--out", o.out_path, "Old name of --output")->group("");
   cmd->add_flag("--resume", o.resume,
-                "Keep the rows already in --out whose scene, level (--level and --area) and config_hash (a "
+                "Keep the rows already in --output whose scene, level (--level and --area) and config_hash (a "
                 "hash of the whole resolved config) are points of this sweep and whose status is ok; run only "
                 "the others (failed rows, and rows of another level, run again)");
   cmd->add_flag("--area", o.area,
@@ -44,11 +70,12 @@ void register_sweep(CLI::App& app) {
                   "shipped RTL model fits is built into the RTL cache first, once (docs/rtl.md)")
       ->check(CLI::IsMember({"systemc", "cosim"}))
       ->capture_default_str();
-  cmd->add_option("--jobs,-j", o.jobs, "Local backend: simulations run at once (default: the number of cores)")
+  cmd->add_option("--jobs,-j", o.jobs,
+                  "Local backend: simulations run at once, each a child process (default: the number of cores)")
       ->check(CLI::Range(1u, 1024u));
   cmd->add_option("--backend", o.backend,
                   "local: child processes on this machine; slurm: one Slurm job array (sbatch --array), a task "
-                  "a point, then the rows gathered into --out (the binary, scenes, config and --slurm-workdir "
+                  "a point, then the rows gathered into --output (the binary, scenes, config and --slurm-workdir "
                   "must be at the same paths on the compute nodes)")
       ->check(CLI::IsMember({"local", "slurm"}))
       ->capture_default_str();
@@ -58,7 +85,7 @@ void register_sweep(CLI::App& app) {
                   "partition's)");
   cmd->add_option("--slurm-workdir", o.slurm.workdir,
                   "Slurm backend: where the job script and each task's stats, exit status and output go, in a "
-                  "subdirectory per sweep removed when every task succeeded (default: OUT.slurm beside --out; "
+                  "subdirectory per sweep removed when every task succeeded (default: OUT.slurm beside --output; "
                   "must be shared with the compute nodes)");
   cmd->add_option("--slurm-arg", o.slurm.sbatch_args,
                   "Slurm backend: one more sbatch option, verbatim (repeatable), e.g. --slurm-arg=--mem=2G "
@@ -68,6 +95,7 @@ void register_sweep(CLI::App& app) {
                   "Slurm backend: seconds between squeue polls while waiting for the array")
       ->check(CLI::Range(0.1, 3600.0))
       ->capture_default_str();
+  add_quiet_flag(cmd, o.quiet, "progress, resume or per-point lines; each row's status is in the CSV");
   cmd->callback([] { run_sweep_command(o); });
 }
 

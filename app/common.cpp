@@ -91,6 +91,26 @@ void write_json(const std::string& path, const nlohmann::json& j) {
   if (!os) throw std::runtime_error(path + ": write failed");
 }
 
+std::ostream& summary_stream(const std::string& stats_path, bool quiet) {
+  static std::ostream nowhere(nullptr);  // no buffer: every write is dropped
+  if (quiet) return nowhere;
+  return stats_path == "-" ? std::cerr : std::cout;
+}
+
+void add_quiet_flag(CLI::App* cmd, bool& quiet, const std::string& what) {
+  cmd->add_flag("--quiet,-q", quiet, "Do not print " + what + " (errors still print; every output named is written)");
+}
+
+void check_one_stdout(const std::vector<std::pair<std::string, std::string>>& option_paths) {
+  std::string first;
+  for (const auto& [option, path] : option_paths) {
+    if (path != "-") continue;
+    if (!first.empty())
+      throw std::runtime_error(first + " and " + option + " both write to stdout: at most one output can go there");
+    first = option;
+  }
+}
+
 nlohmann::json simulate_in_child(const ConfigOptions& o, const std::string& scene) {
   namespace fs = std::filesystem;
   const fs::path dir = fs::temp_directory_path() / ("rastsim-sim-" + std::to_string(getpid()));

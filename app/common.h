@@ -4,7 +4,10 @@
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
+#include <optional>
+#include <ostream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "config/arch_params.h"
@@ -41,6 +44,18 @@ nlohmann::json provenance(const ConfigOptions& o, const Config& resolved, const 
 // Writes JSON to a file (pretty, with a trailing newline); "-" means stdout.
 void write_json(const std::string& path, const nlohmann::json& j);
 
+// Where a command's human text (summary, tables, notes) goes: stdout, or stderr when
+// `--stats -` puts the JSON on stdout (stdout then carries only JSON), or nowhere with
+// -q/--quiet. Errors and warnings go to std::cerr, never here.
+std::ostream& summary_stream(const std::string& stats_path, bool quiet);
+
+// -q/--quiet, spelled and described alike on every command; `what` is what it drops.
+void add_quiet_flag(CLI::App* cmd, bool& quiet, const std::string& what);
+
+// Throws when more than one {option, path} has the path "-": two outputs cannot share
+// stdout (a script could not tell them apart).
+void check_one_stdout(const std::vector<std::pair<std::string, std::string>>& option_paths);
+
 // Runs `rastsim simulate` on `scene` with the same config options in a child process and
 // returns its stats JSON; throws with the child's error line when it fails.
 nlohmann::json simulate_in_child(const ConfigOptions& o, const std::string& scene);
@@ -62,10 +77,9 @@ struct SimulateOptions {
   uint64_t timeline_max_events = 0;  // above it the timeline is quantized (0: sc::SimOptions's)
   std::string heatmap_path, heatmap_data_path;  // PNG and per-tile JSON ("" = none)
   std::string heatmap_stage = "all";        // a tile_heat stage (timing/stage_table.h) or all
-  uint64_t stall_seed = 0;
   double stall_probability = 0;  // 0 = off
-  double sample = 0;             // --sample F: the sampled level (0 = off; docs/fidelity.md)
-  uint64_t sample_seed = 1;      // --sample-seed
+  std::optional<double> sample;  // --sample F in (0, 1]: the sampled level (docs/fidelity.md)
+  uint64_t seed = 1;             // --seed: the stall injection's and --sample/--tolerance's random choices
   std::string tolerance;         // --tolerance P%: the cheapest level within P ("" = off)
   bool quiet = false;
 };
@@ -104,6 +118,7 @@ void run_scanout_command(const ScanoutOptions& o);
 struct SweepOptions : sweep::SweepOptions {
   ConfigOptions base;
   std::vector<std::string> set_args;
+  bool quiet = false;  // -q: the engine's progress lines dropped
 };
 void run_sweep_command(SweepOptions o);
 

@@ -4,6 +4,7 @@
 #include "ref/traverse.h"
 
 #include <cstdio>
+#include <utility>
 
 namespace rastsim {
 
@@ -11,6 +12,24 @@ std::string crc32_hex(uint32_t crc) {
   char hex[9];
   std::snprintf(hex, sizeof hex, "%08x", crc);
   return hex;
+}
+
+std::string triangles_summary(const RenderStats& s) {
+  // Triangle setup's outcomes other than "accepted" (ref/tri_setup.h), one counter each.
+  const std::pair<uint64_t, const char*> reasons[] = {{s.triangles_facing_culled, "culled by facing"},
+                                                      {s.triangles_zero_area, "zero area"},
+                                                      {s.triangles_out_of_range, "out of range"},
+                                                      {s.triangles_outside_clip, "outside the clip"}};
+  uint64_t not_drawn = 0;
+  std::string why;
+  for (const auto& [n, reason] : reasons) {
+    if (n == 0) continue;
+    not_drawn += n;
+    why += (why.empty() ? "" : ", ") + std::to_string(n) + " " + reason;
+  }
+  const std::string total = std::to_string(s.triangles_in) + " triangles";
+  if (not_drawn == 0) return total + (s.triangles_in ? " (all drawn)" : "");
+  return total + " (" + std::to_string(not_drawn) + " not drawn: " + why + ")";
 }
 
 nlohmann::json to_json(const RenderStats& s) {

@@ -15,6 +15,11 @@ namespace rastsim {
 // A CRC-32 as the text output prints it: 8 lower-case hex digits ("0a1b2c3d").
 std::string crc32_hex(uint32_t crc);
 
+// The triangles of a run for a summary line: "N triangles (all drawn)", or with every
+// nonzero reason triangle setup dropped one for (count_setup_outcome), e.g.
+// "69666 triangles (57916 not drawn: 34213 out of range, 23703 outside the clip)".
+std::string triangles_summary(const RenderStats& s);
+
 // Every stat under its public name; framebuffer_crc32 as crc32_hex.
 nlohmann::json to_json(const RenderStats& s);
 
