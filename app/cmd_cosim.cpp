@@ -130,7 +130,7 @@ void compare_with_model(const Scene& scene, const ArchParams& arch, const CosimC
 // One `rastsim cosim` run: the RTL against the reference, then (unless --no-model) the
 // SystemC model; the stats, and the failures --max-error and a mismatch make.
 void run_cosim_command(CosimCommand& c) {
-  const ArchParams arch = resolve_arch(c.config);
+  const ArchParams arch = resolve_arch(c.config, c.scene_path);
   if (c.build_only) {
     build_rtl_model(arch, c.run);
     return;

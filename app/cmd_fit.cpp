@@ -26,7 +26,7 @@ nlohmann::json widths_json(const DatapathWidths& w) {
 }
 
 void run_fit_command(const FitOptions& o) {
-  const ArchParams params = resolve_arch(o.config);
+  const ArchParams params = resolve_arch(o.config, o.scene_path);
   const RasterState& arch = params.raster;
   const Scene scene = load_scene(o.scene_path, params.placement);
   const CoordFit fit = fit_coord_format(scene, arch);

@@ -28,6 +28,9 @@ Config load_config(const ConfigOptions& o);
 // load_config, resolved into the run's typed parameters (config/arch_params.h): the one
 // place a command turns its config into what the model reads.
 ArchParams resolve_arch(const ConfigOptions& o);
+// resolve_arch for a run of one scene (scene/scene_params.h): an OBJ mesh draws with
+// scene.obj_depth_func.
+ArchParams resolve_arch(const ConfigOptions& o, const std::string& scene_path);
 
 // Writes JSON to a file (pretty, with a trailing newline); "-" means stdout.
 void write_json(const std::string& path, const nlohmann::json& j);
