@@ -133,7 +133,7 @@ void compare_with_model(const Scene& scene, const ArchParams& arch, const CosimC
 // One `rastsim cosim` run: the RTL against the reference, then (unless --no-model) the
 // SystemC model; the stats, and the failures --max-error and a mismatch make.
 void run_cosim_command(CosimCommand& c) {
-  const ArchParams arch = resolve_arch(c.config);
+  const ArchParams arch = resolve_arch(c.config, c.scene_path);
   std::ostream& out = summary_stream(c.stats_path, c.quiet);
   if (c.quiet) c.run.progress = [](const std::string&) {};  // an on-demand build's progress lines too
   if (c.build_only) {

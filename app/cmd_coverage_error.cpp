@@ -22,7 +22,7 @@ struct CoverageErrorOptions {
 };
 
 void run_coverage_error_command(const CoverageErrorOptions& o) {
-  const ArchParams arch = resolve_arch(o.config);
+  const ArchParams arch = resolve_arch(o.config, o.scene_path);
   for (int s : o.samples) {  // each count through the config's own checks (e.g. scanline)
     ConfigOptions with = o.config;
     with.sets.push_back("raster.samples=" + std::to_string(s));

@@ -12,7 +12,7 @@
 namespace rastsim::app {
 
 void run_estimate_command(const EstimateOptions& o) {
-  const ArchParams arch = resolve_arch(o.config);
+  const ArchParams arch = resolve_arch(o.config, o.scene_path);
   const Scene scene = load_scene(o.scene_path, arch.placement);
   const EstimateResult r = estimate_scene(scene, arch);
   nlohmann::json j = r.to_json();

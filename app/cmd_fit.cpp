@@ -72,7 +72,7 @@ nlohmann::json precision_table(const Scene& scene, const RasterState& arch, cons
 
 void run_fit_command(const FitOptions& o) {
   check_one_stdout({{"--stats", o.stats_path}, {"--format-only", o.format_only ? "-" : ""}});
-  const ArchParams params = resolve_arch(o.config);
+  const ArchParams params = resolve_arch(o.config, o.scene_path);
   const RasterState& arch = params.raster;
   const Scene scene = load_scene(o.scene_path, params.placement);
   const CoordFit fit = fit_coord_format(scene, arch);

@@ -18,7 +18,7 @@ constexpr size_t kSceneBatchCommands = 4096;  // commands parsed ahead of the pi
 }  // namespace
 
 void run_render_command(const RenderOptions& o) {
-  const ArchParams params = resolve_arch(o.config);
+  const ArchParams params = resolve_arch(o.config, o.scene_path);
   const RasterState& arch = params.raster;
   RenderStats stats;
   std::ofstream frag_os;

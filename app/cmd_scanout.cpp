@@ -194,7 +194,7 @@ void add_scanout_options(CLI::App* cmd, ScanoutOptions& o) {
 }  // namespace
 
 void run_scanout_command(const ScanoutOptions& o) {
-  const ArchParams arch = resolve_arch(o.config);
+  const ArchParams arch = resolve_arch(o.config, o.scene_path);
   const DisplayParams display = DisplayParams::resolve(arch.config);  // faults in the timing keys stop here
   const VideoTiming& t = display.video;
   const Dac dac(display.dac);

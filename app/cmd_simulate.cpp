@@ -147,7 +147,7 @@ sc::SimOptions sim_options(const SimulateOptions& o, std::ofstream& frag_os) {
 }  // namespace
 
 void run_simulate_command(const SimulateOptions& o) {
-  const ArchParams arch = resolve_arch(o.config);
+  const ArchParams arch = resolve_arch(o.config, o.scene_path);
   if (o.sample && !o.tolerance.empty()) throw std::runtime_error("--sample and --tolerance exclude each other");
   if (o.sample && !(*o.sample > 0 && *o.sample <= 1)) {
     std::ostringstream got;

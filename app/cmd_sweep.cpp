@@ -49,7 +49,7 @@ void register_sweep(CLI::App& app) {
   cmd->add_option("--scene,-s", o.scenes, "Scene (repeatable): a trace or an OBJ")->required()->check(CLI::ExistingFile);
   cmd->add_option("--set", o.set_args,
                   "KEY=V1,V2,... sweeps a key over values (repeatable; the sweep is the cross product); "
-                  "KEY=V fixes one")
+                  "KEY=V fixes one; each key once, each value once")
       ->type_name("KEY=VALUES")
       ->allow_extra_args(false);
   cmd->add_option("-o,--output", o.out_path,

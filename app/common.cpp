@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "common.h"
 #include "scene/scene_io.h"
+#include "scene/scene_params.h"
 
 #include <unistd.h>
 
@@ -79,6 +80,9 @@ Config load_config(const ConfigOptions& o) {
 }
 
 ArchParams resolve_arch(const ConfigOptions& o) { return ArchParams::resolve(load_config(o)); }
+ArchParams resolve_arch(const ConfigOptions& o, const std::string& scene_path) {
+  return resolve_for_scene(load_config(o), scene_path);
+}
 
 void write_json(const std::string& path, const nlohmann::json& j) {
   if (path == "-") {

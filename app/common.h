@@ -31,6 +31,9 @@ Config load_config(const ConfigOptions& o);
 // load_config, resolved into the run's typed parameters (config/arch_params.h): the one
 // place a command turns its config into what the model reads.
 ArchParams resolve_arch(const ConfigOptions& o);
+// resolve_arch for a run of one scene (scene/scene_params.h): an OBJ mesh draws with
+// scene.obj_depth_func.
+ArchParams resolve_arch(const ConfigOptions& o, const std::string& scene_path);
 
 // The command line of this process, recorded by main() for the provenance of its outputs.
 void record_command_line(int argc, const char* const* argv);

@@ -4,7 +4,30 @@
 // Y-up; glmark2's horse and cat, Z-up) can be shown upright from any side.
 #include "config/config_schema.h"
 
+#include <algorithm>
+#include <stdexcept>
+
 namespace rastsim {
+
+namespace {
+
+// scene.obj_depth_func: the depth test an OBJ mesh draws with. A mesh is a closed
+// surface seen from outside, so without a depth test its back faces overwrite the front
+// ones wherever they are drawn later; "less" (clear depth 1, the reader's depth 0 near ..
+// 1 far) hides them whatever the config's raster.depth_func, which traces keep. "config"
+// takes raster.depth_func as it is. The names are raster.depth_func's, read from the
+// schema being built (it is declared before the scene keys), so the two lists are one.
+ParamDef obj_depth_func_param(const std::vector<ParamDef>& s) {
+  const auto raster = std::find_if(s.begin(), s.end(), [](const ParamDef& d) { return d.key == "raster.depth_func"; });
+  if (raster == s.end()) throw std::logic_error("scene.obj_depth_func: raster.depth_func must be declared first");
+  std::vector<std::string> names{"config"};
+  names.insert(names.end(), raster->choices.begin(), raster->choices.end());
+  return {"scene.obj_depth_func", ParamType::Enum, std::string("less"), "", 1, 0, names,
+          "OBJ placement: the depth test a mesh draws with, in place of raster.depth_func (config: "
+          "raster.depth_func's own; traces always take raster.depth_func)"};
+}
+
+}  // namespace
 
 void add_scene_params(std::vector<ParamDef>& s) {
   using T = ParamType;
@@ -29,6 +52,7 @@ void add_scene_params(std::vector<ParamDef>& s) {
   s.push_back({"scene.obj_faces_per_command", T::Int, int64_t{1}, "faces", 1, 1 << 30, {},
                "OBJ reading: faces sent in one List command (1: each face its own command; "
                "larger: batched as in one draw call), same triangles in the same order"});
+  s.push_back(obj_depth_func_param(s));
 }
 
 }  // namespace rastsim

@@ -16,6 +16,13 @@ E pick(const std::string& v, std::initializer_list<std::pair<const char*, E>> ta
 }
 }  // namespace
 
+DepthFunc depth_func_from_name(const std::string& name) {
+  return pick<DepthFunc>(name, {{"never", DepthFunc::Never}, {"less", DepthFunc::Less},
+                                {"lequal", DepthFunc::LEqual}, {"equal", DepthFunc::Equal},
+                                {"greater", DepthFunc::Greater}, {"gequal", DepthFunc::GEqual},
+                                {"notequal", DepthFunc::NotEqual}, {"always", DepthFunc::Always}});
+}
+
 RasterState raster_state_from_config(const Config& cfg) {
   cfg.validate();
   RasterState s;
@@ -29,11 +36,7 @@ RasterState raster_state_from_config(const Config& cfg) {
   s.cull = pick<CullMode>(cfg.get_string("raster.cull"),
                           {{"none", CullMode::None}, {"back", CullMode::Back}, {"front", CullMode::Front}});
   s.front_ccw = cfg.get_string("raster.front_face") == "ccw";
-  s.depth_func = pick<DepthFunc>(cfg.get_string("raster.depth_func"),
-                                 {{"never", DepthFunc::Never}, {"less", DepthFunc::Less},
-                                  {"lequal", DepthFunc::LEqual}, {"equal", DepthFunc::Equal},
-                                  {"greater", DepthFunc::Greater}, {"gequal", DepthFunc::GEqual},
-                                  {"notequal", DepthFunc::NotEqual}, {"always", DepthFunc::Always}});
+  s.depth_func = depth_func_from_name(cfg.get_string("raster.depth_func"));
   s.depth_bits = static_cast<int>(cfg.get_int("raster.depth_bits"));
   s.depth_write = cfg.get_bool("raster.depth_write");
   s.out_of_range = cfg.get_string("raster.out_of_range") == "cull" ? OutOfRange::Cull : OutOfRange::Error;

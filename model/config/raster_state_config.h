@@ -10,4 +10,8 @@ namespace rastsim {
 // Builds the architecture part from a validated config; viewport = display size.
 RasterState raster_state_from_config(const Config& cfg);
 
+// A raster.depth_func name ("less", ...) as the state's DepthFunc; throws ConfigError on
+// any other name (a validated config holds only these).
+DepthFunc depth_func_from_name(const std::string& name);
+
 }  // namespace rastsim

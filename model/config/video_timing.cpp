@@ -32,6 +32,27 @@ const char* const kExplicitKeys[] = {
     "display.pixel_clock_mhz",
 };
 
+// The scan-out shows the framebuffer pixel for pixel: display.width x display.height must
+// be the active area. Smaller leaves part of the screen without pixels; larger would show
+// only its top-left corner, a crop nobody asked for. Either is a config error naming both
+// sizes and, when one exists, the preset of the framebuffer's size.
+void check_framebuffer_is_active_area(const Config& cfg, const VideoTiming& t) {
+  const int64_t fw = cfg.get_int("display.width"), fh = cfg.get_int("display.height");
+  if (fw == t.h_active && fh == t.v_active) return;
+  const std::string where = cfg.origin(cfg.origin("display.width") != "default" ? "display.width" : "display.timing");
+  const std::string fb = "framebuffer display.width x display.height = " + std::to_string(fw) + "x" + std::to_string(fh);
+  const std::string mode = "the active area " + std::to_string(t.h_active) + "x" + std::to_string(t.v_active) +
+                           " of display.timing = " + cfg.get_string("display.timing");
+  if (fw < t.h_active || fh < t.v_active)
+    throw ConfigError(where + ": " + fb + " is smaller than " + mode +
+                      ": the scan-out would have no pixels for part of the screen");
+  std::string fix = "a custom timing (display.timing = \"custom\") of that size";
+  for (const auto& p : timing_presets())
+    if (p.h_active == fw && p.v_active == fh) fix = "display.timing = \"" + p.name + "\"";
+  throw ConfigError(where + ": " + fb + " is larger than " + mode + ": the scan-out would show only its top-left " +
+                    std::to_string(t.h_active) + "x" + std::to_string(t.v_active) + "; use " + fix);
+}
+
 }  // namespace
 
 std::vector<std::string> VideoTiming::problems() const {
@@ -70,13 +91,7 @@ VideoTiming video_timing_from_config(const Config& cfg) {
       throw ConfigError("display.timing = custom: " + probs.front() +
                         " (keys display.h_* / display.v_*; the porches and sync must add up to the total)");
   }
-  const int64_t fw = cfg.get_int("display.width"), fh = cfg.get_int("display.height");
-  if (fw < t.h_active || fh < t.v_active)
-    throw ConfigError(cfg.origin(cfg.origin("display.width") != "default" ? "display.width" : "display.timing") +
-                      ": framebuffer display.width x display.height = " +
-                      std::to_string(fw) + "x" + std::to_string(fh) + " is smaller than the active area " +
-                      std::to_string(t.h_active) + "x" + std::to_string(t.v_active) + " of display.timing = " +
-                      name + ": the scan-out would have no pixels for part of the screen");
+  check_framebuffer_is_active_area(cfg, t);
   return t;
 }
 

@@ -43,7 +43,7 @@ const VideoTiming* find_timing_preset(const std::string& name);
 // The timing the config selects: the preset, or the explicit display.h_* / display.v_*
 // keys when display.timing = custom. Throws ConfigError naming the keys when the
 // porches do not add up to the total, when explicit keys are set beside a preset, or
-// when the framebuffer (display.width x display.height) is smaller than the active area.
+// when the framebuffer (display.width x display.height) is not the active area (both named).
 VideoTiming video_timing_from_config(const Config& cfg);
 
 // One line a preset: "vga640x480@60: 640x480, 800x525 total, 25.175 MHz -> 31.469 kHz,

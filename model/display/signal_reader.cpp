@@ -21,8 +21,27 @@
 
 namespace rastsim {
 
+namespace {
+
+// `what` as it may reach a terminal: the bytes of a random or binary file (control bytes,
+// non-ASCII, an escape sequence) as \xNN, and cut after kMaxShown bytes, so a message
+// quoting a token of such a file is plain text of a line.
+std::string printable(std::string_view what) {
+  constexpr size_t kMaxShown = 300;
+  static const char* const hex = "0123456789abcdef";
+  std::string out;
+  for (size_t i = 0; i < what.size() && i < kMaxShown; ++i) {
+    const auto c = static_cast<unsigned char>(what[i]);
+    if (c >= 0x20 && c < 0x7f) out += static_cast<char>(c);
+    else out += std::string("\\x") + hex[c >> 4] + hex[c & 15];
+  }
+  return what.size() > kMaxShown ? out + "..." : out;
+}
+
+}  // namespace
+
 SignalFileError::SignalFileError(const std::string& file, long long line, const std::string& what)
-    : std::runtime_error(file + (line > 0 ? ":" + std::to_string(line) : std::string()) + ": " + what),
+    : std::runtime_error(file + (line > 0 ? ":" + std::to_string(line) : std::string()) + ": " + printable(what)),
       file_(file), line_(line) {}
 
 namespace {
@@ -486,6 +505,12 @@ SignalReadInfo read_video_vcd(std::istream& in, const std::string& name, const V
 SignalReadInfo read_video_signal(const std::string& path, const VideoTiming& expected, const Dac& dac,
                                  const SampleSink& sink, const SignalReaderOptions& opts) {
   const bool fst = path.size() > 4 && lower(path.substr(path.size() - 4)) == ".fst";
+  // A recording is a file of a known length: a device or pipe (/dev/zero, /dev/urandom)
+  // may never end, and the reader would hold its "line" in memory until none is left.
+  std::error_code ec;
+  if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec))
+    throw SignalFileError(path, 0, "not a regular file (a device, pipe or directory): the monitor reads a recorded "
+                                   ".vcd or .fst file");
   if (!fst) {
     std::ifstream in(path);
     if (!in) throw SignalFileError(path, 0, "cannot open for reading");

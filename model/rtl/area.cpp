@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <atomic>
 #include <chrono>
 #include <cstdio>
@@ -17,6 +18,7 @@
 #include <mutex>
 #include <optional>
 #include <regex>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 #include <thread>
@@ -608,16 +610,92 @@ class SplitSynthesis {
   std::atomic<size_t> done_{0};
 };
 
-// --top must name an RTL module (a source file's stem).
-void check_top(const std::string& top) {
-  bool known = false;
-  std::string names;
+// An RTL source without its comments (line and block), for the instance scan below.
+std::string without_comments(std::string_view text) {
+  std::string out;
+  for (size_t i = 0; i < text.size(); ++i) {
+    const bool line = text.compare(i, 2, "//") == 0, block = text.compare(i, 2, "/*") == 0;
+    if (!line && !block) {
+      out += text[i];
+      continue;
+    }
+    const size_t end = line ? text.find('\n', i) : text.find("*/", i + 2);
+    if (end == std::string_view::npos) break;
+    i = line ? end - 1 : end + 1;  // a line comment keeps its newline
+  }
+  return out;
+}
+
+// The instantiations in `text` (comments removed) of the modules in `modules`: (module,
+// its parameter overrides "#(...)" with the blanks dropped, "" without any), one a site.
+std::vector<std::pair<std::string, std::string>> instance_sites(const std::string& text,
+                                                                const std::set<std::string>& modules) {
+  static const std::regex site(R"(\b([a-z_][a-z0-9_]*)\s*(#\s*\()?)");
+  static const std::regex instance_name(R"(^\s*[a-z_][a-z0-9_]*\s*\()");  // "u_fifo (": an instance
+  std::vector<std::pair<std::string, std::string>> out;
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), site); it != std::sregex_iterator(); ++it) {
+    if (!modules.count((*it)[1].str())) continue;
+    size_t pos = size_t(it->position(0) + it->length(0));
+    std::string params;
+    if ((*it)[2].matched)  // the balanced parentheses of the parameter list
+      for (int depth = 1; pos < text.size() && depth > 0; ++pos) {
+        depth += text[pos] == '(' ? 1 : text[pos] == ')' ? -1 : 0;
+        if (depth > 0 && !std::isspace(static_cast<unsigned char>(text[pos]))) params += text[pos];
+      }
+    if (std::regex_search(text.begin() + std::ptrdiff_t(pos), text.end(), instance_name,
+                          std::regex_constants::match_continuous))
+      out.emplace_back((*it)[1].str(), params);
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<std::string> area_reportable_tops() {
+  // The instance graph of the embedded sources (one module a file, named by its stem).
+  std::map<std::string, std::string> code;  // module -> source without comments
+  std::set<std::string> modules;
   for (const auto& s : rtl_sources()) {
     const std::string stem(s.name.substr(0, s.name.rfind('.')));
-    known |= stem == top;
-    names += (names.empty() ? "" : ", ") + stem;
+    code[stem] = without_comments(s.text);
+    modules.insert(stem);
   }
-  if (!known) throw std::runtime_error("--top " + top + ": not an RTL module (" + names + ")");
+  std::map<std::string, std::set<std::string>> sets;  // module -> parameter texts of its sites under rast_top
+  std::vector<std::string> todo{"rast_top"}, out{"rast_top", "rast_engine2d"};
+  std::set<std::string> seen{"rast_top"};
+  while (!todo.empty()) {
+    const std::string parent = todo.back();
+    todo.pop_back();
+    for (const auto& [module, params] : instance_sites(code[parent], modules)) {
+      sets[module].insert(params);
+      if (seen.insert(module).second) todo.push_back(module);
+    }
+  }
+  // A module that every site instantiates with the same parameter text is one module in
+  // Yosys' elaboration; several texts are several ("$paramod...\rast_fifo"), which one
+  // report of one module cannot hold (the default report sums them in its row).
+  for (const auto& [module, texts] : sets)
+    if (texts.size() == 1) out.push_back(module);
+  return out;
+}
+
+namespace {
+
+// --top must name a module the report can hold (area_reportable_tops), checked before
+// Yosys runs; the error lists the choices.
+void check_top(const std::string& top) {
+  const std::vector<std::string> tops = area_reportable_tops();
+  if (std::find(tops.begin(), tops.end(), top) != tops.end()) return;
+  std::string names;
+  for (const auto& t : tops) names += (names.empty() ? "" : ", ") + t;
+  bool is_module = false;
+  for (const auto& s : rtl_sources()) is_module |= s.name.substr(0, s.name.rfind('.')) == top;
+  throw std::runtime_error("--top " + top + ": " +
+                           (is_module ? "rast_top instantiates it with several parameter sets or not at all, and "
+                                        "a report of one module holds one (the default report sums its instances "
+                                        "in its row)"
+                                      : "not an RTL module") +
+                           "; --top takes " + names);
 }
 
 // One synthesis a part: the whole design is rast_top (split into its stages) and

@@ -27,6 +27,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "rtl/rtl_params.h"
 
@@ -75,6 +76,12 @@ std::string area_cache_dir();
 
 // The Yosys on PATH ("yosys" or $RASTSIM_YOSYS); throws naming the Debian package when absent.
 std::string find_yosys();
+
+// The modules AreaOptions::top can name, from the embedded sources alone (no Yosys):
+// rast_top, rast_engine2d, and each module under rast_top whose every instantiation
+// carries the same parameter overrides (one module once elaborated). A module
+// instantiated with several parameter sets (rast_fifo, rast_hold) is not among them.
+std::vector<std::string> area_reportable_tops();
 
 // Synthesises (or reads from the cache) the area of the RTL built with `p`. Throws
 // std::runtime_error with Yosys' error line when synthesis fails.

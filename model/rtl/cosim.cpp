@@ -34,9 +34,9 @@ int shipped_model(const RtlParams& wanted, const CosimOptions& opts) {
         names += (names.empty() ? "" : ", ") + std::string(reg[i].name);
         continue;
       }
-      if (!rtl_params_compatible(reg[i].params, wanted))
-        throw std::runtime_error("--rtl-model " + opts.rtl_model +
-                                 ": that model was built with other parameters than this config needs");
+      std::string why;  // the first differing parameter, its config key and both values
+      if (!rtl_params_compatible(reg[i].params, wanted, &why))
+        throw std::runtime_error("--rtl-model " + opts.rtl_model + ": this config does not fit that model: " + why);
       return static_cast<int>(i);
     }
     throw std::runtime_error("--rtl-model " + opts.rtl_model + ": no such verilated model (there are: " + names + ")");

@@ -214,7 +214,9 @@ bool rtl_params_compatible(const RtlParams& built, const RtlParams& wanted, std:
     const bool run_time_max = f.member == &RtlParams::tile_log2_max || f.member == &RtlParams::max_samples;
     const bool ok = run_time_max ? (w <= b && w >= 1) : (w == b);
     if (!ok) {
-      if (why) *why = std::string(f.name) + " is " + std::to_string(w) + ", the RTL was built with " + std::to_string(b);
+      if (why)
+        *why = std::string(f.name) + " (" + f.comment + ") is " + std::to_string(w) + ", the RTL was built with " +
+               (run_time_max ? "a maximum of " : "") + std::to_string(b);
       return false;
     }
   }

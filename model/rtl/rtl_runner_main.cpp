@@ -19,6 +19,7 @@
 #include "rtl/cosim_driver.h"
 #include "rtl/cosim_setup.h"
 #include "scene/scene_io.h"
+#include "scene/scene_params.h"
 
 int main(int argc, char** argv) {
   using namespace rastsim;
@@ -36,7 +37,7 @@ int main(int argc, char** argv) {
     std::ifstream is(argv[1]);
     if (!is) throw std::runtime_error(std::string(argv[1]) + ": cannot read the request");
     const RunnerRequest q = read_runner_request(nlohmann::json::parse(is));
-    const ArchParams arch = ArchParams::resolve(q.config);  // this process's entry: the config resolved once
+    const ArchParams arch = resolve_for_scene(q.config, q.scene);  // this process's entry: the config resolved once
     const RtlParams wanted = cosim_wanted_params(arch, q.options);
     std::string why;
     if (!rtl_params_compatible(built, wanted, &why))

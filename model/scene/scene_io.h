@@ -64,6 +64,9 @@ class SceneAhead {
   std::unique_ptr<Impl> impl_;
 };
 
+// True when `path` names an OBJ mesh: extension .obj after any .gz / .zst, any case.
+bool is_obj_name(const std::string& path);
+
 // By extension, after any .gz / .zst: .obj -> load_obj, anything else -> load_trace.
 // Every loader reads plain, gzip and zstd files alike (scene_stream.h).
 Scene load_scene(const std::string& path, const ObjPlacement& placement);

@@ -504,14 +504,14 @@ class TraceParser {
   TextStyle font_;  // `font 1`: scale 1, regular, fixed spacing, transparent
 };
 
+}  // namespace
+
 // The parser follows the name without its compression suffix: a.obj.gz is an OBJ.
 bool is_obj_name(const std::string& path) {
   std::string ext = std::filesystem::path(scene_stream::strip_compression_suffix(path)).extension().string();
   for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   return ext == ".obj";
 }
-
-}  // namespace
 
 Scene parse_trace(const std::string& text, const std::string& name) {
   TraceParser p(name);

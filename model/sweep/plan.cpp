@@ -22,9 +22,30 @@ Axis parse_axis(const std::string& arg) {
   return a;
 }
 
+// A sweep's --set arguments name each key once and each value of a key once: a key given
+// twice (fixed then swept, or fixed twice) has no one meaning for the points, and a
+// repeated value would run the same point twice under one CSV key.
+void check_set_args(const std::vector<std::string>& set_args) {
+  std::vector<std::pair<std::string, std::string>> seen;  // key, the --set that gave it
+  for (const auto& s : set_args) {
+    const Axis a = parse_axis(s);
+    for (size_t i = 0; i < a.values.size(); ++i)
+      for (size_t j = 0; j < i; ++j)
+        if (a.values[i] == a.values[j])
+          throw std::runtime_error("--set " + s + ": value " + a.values[i] + " of " + a.key +
+                                   " is given twice (each point runs once)");
+    for (const auto& [key, arg] : seen)
+      if (key == a.key)
+        throw std::runtime_error("--set " + s + ": " + a.key + " is already set by --set " + arg +
+                                 " (give each key once: one value fixes it, several sweep it)");
+    seen.emplace_back(a.key, s);
+  }
+}
+
 }  // namespace
 
 std::vector<Axis> split_axes(const std::vector<std::string>& set_args, std::vector<std::string>& fixed) {
+  check_set_args(set_args);
   std::vector<Axis> axes;
   for (const auto& s : set_args) {
     Axis a = parse_axis(s);

@@ -218,6 +218,23 @@ TEST(ScanoutFault, FramebufferSmallerThanActiveRejectedByConfig) {
   }
 }
 
+// A 640x480 framebuffer on the 128x128 panel would be cropped: an error naming both sizes
+// and the preset of the framebuffer's size.
+TEST(ScanoutFault, FramebufferLargerThanActiveRejectedByConfig) {
+  Config cfg;
+  cfg.set_from_string("display.width", "640", "test.toml:2");  // timing stays the 128x128 panel
+  cfg.set_from_string("display.height", "480", "test.toml:3");
+  try {
+    video_timing_from_config(cfg);
+    FAIL() << "expected ConfigError";
+  } catch (const ConfigError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("test.toml:2: framebuffer display.width x display.height = 640x480 is larger than the active "
+                     "area 128x128 of display.timing = panel"), std::string::npos) << m;
+    EXPECT_NE(m.find("vga640x480@60"), std::string::npos) << m;
+  }
+}
+
 TEST(ScanoutFault, FramebufferSmallerThanActiveCaughtByMonitor) {
   const VideoTiming vga = *find_timing_preset("vga640x480@60");
   const MonitorResult r = decode(vga, vga, Dac(default_dac_config()), pattern(128, 128));
@@ -280,13 +297,16 @@ TEST(ScanoutConfig, CustomTimingFromKeys) {
   cfg.set_from_string("display.v_total_lines", "98", "test");  // 90 + 2 + 2 + 4
   cfg.set_from_string("display.h_sync_polarity", "positive", "test");
   cfg.set_from_string("display.pixel_clock_mhz", "1.0", "test");
+  cfg.set_from_string("display.width", "100", "test");  // the framebuffer is the active area
+  cfg.set_from_string("display.height", "90", "test");
   const VideoTiming t = video_timing_from_config(cfg);
   EXPECT_EQ(t.h_active, 100);
   EXPECT_EQ(t.v_total, 98);
   EXPECT_TRUE(t.h_sync_positive);
   EXPECT_FALSE(t.v_sync_positive);
   EXPECT_NEAR(t.line_rate_hz(), 1e6 / 132, 1e-9);
-  // A framebuffer larger than the active area is cropped: the decode is its corner.
+  // The scan-out model given a larger framebuffer reads its top-left corner (a config
+  // refuses that pairing: FramebufferLargerThanActiveRejectedByConfig).
   const Dac dac(default_dac_config());
   const Framebuffer fb = pattern(128, 128);
   const MonitorResult r = decode(t, t, dac, fb);
