@@ -29,7 +29,8 @@ Config load_config(const ConfigOptions& o);
 // place a command turns its config into what the model reads.
 ArchParams resolve_arch(const ConfigOptions& o);
 
-// Writes JSON to a file (pretty, with a trailing newline); "-" means stdout.
+// Writes JSON to a file (pretty, with a trailing newline), whole or not at all
+// (util/atomic_file.h); "-" means stdout.
 void write_json(const std::string& path, const nlohmann::json& j);
 
 // Runs `rastsim simulate` on `scene` with the same config options in a child process and
