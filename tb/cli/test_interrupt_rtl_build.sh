@@ -38,7 +38,7 @@ kill -INT $pid
 wait $pid
 rc=$?
 [ $rc = 130 ] && pass || fail "interrupted build: exit status $rc, expected 130: $(tail -3 "$TMP/build.err")"
-for _ in $(seq 50); do [ -z "$(build_processes)" ] && break; sleep 0.1; done
+for _ in $(seq 10); do [ -z "$(build_processes)" ] && break; sleep 0.1; done
 left="$(build_processes)"
 if [ -z "$left" ]; then pass; else
   fail "the build's processes run on: $(for p in $left; do tr '\0' ' ' <"/proc/$p/cmdline" 2>/dev/null | cut -c1-80; echo; done)"
