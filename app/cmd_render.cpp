@@ -10,6 +10,7 @@
 #include "scene/scene_io.h"
 #include "image/image_io.h"
 #include "config/raster_state_config.h"
+#include "util/atomic_file.h"
 
 namespace rastsim::app {
 
@@ -20,13 +21,14 @@ constexpr size_t kSceneBatchCommands = 4096;  // commands parsed ahead of the pi
 void run_render_command(const RenderOptions& o) {
   const ArchParams params = resolve_arch(o.config, o.scene_path);
   const RasterState& arch = params.raster;
+  for (const std::string* p : {&o.out_path, &o.stats_path}) check_writable(*p);  // before the run, creating nothing
+  if (!o.out_path.empty()) check_image_path(o.out_path);
   RenderStats stats;
-  std::ofstream frag_os;
+  std::unique_ptr<AtomicFile> frag_file;  // renamed into place only when the run succeeds
   FragmentSink sink;
   if (!o.frag_path.empty()) {
-    frag_os.open(o.frag_path);
-    if (!frag_os) throw std::runtime_error(o.frag_path + ": cannot open for writing");
-    sink = [&](const Fragment& f) { frag_os << fragment_trace_line(f) << '\n'; };
+    frag_file = std::make_unique<AtomicFile>(o.frag_path);
+    sink = [os = &frag_file->stream()](const Fragment& f) { *os << fragment_trace_line(f) << '\n'; };
   }
   // The scene streamed in bounded batches (scene_io.h): memory does not grow with the file.
   const int threads = o.threads > 0 ? o.threads : int(std::max(1u, std::thread::hardware_concurrency()));
@@ -54,6 +56,7 @@ void run_render_command(const RenderOptions& o) {
   j["scene"] = o.scene_path;
   j["provenance"] = provenance(o.config, params.config, o.scene_path);
   if (!o.stats_path.empty()) write_json(o.stats_path, j);
+  if (frag_file) frag_file->commit();
   std::ostream& out = summary_stream(o.stats_path, o.quiet);
   out << "render: " << triangles_summary(stats) << ", " << stats.traversal.tiles_visited << " tiles ("
       << stats.traversal.tiles_rejected << " rejected, " << stats.traversal.tiles_accepted << " accepted, "

@@ -18,6 +18,7 @@
 #include "scene/scene_io.h"
 #include "image/image_io.h"
 #include "config/raster_state_config.h"
+#include "util/atomic_file.h"
 #include "util/process.h"
 #include "video_json.h"
 
@@ -50,23 +51,26 @@ nlohmann::json measured_json(const MonitorResult& r) {
 
 namespace {
 
-// Writes the video signal to .vcd, or to .fst through gtkwave's vcd2fst.
+// Writes the video signal to .vcd, or to .fst through gtkwave's vcd2fst (from a VCD at a
+// temporary name); either appears only when complete (util/atomic_file.h).
 struct SignalFile {
-  std::string path, vcd_path;
+  std::string path;
+  std::unique_ptr<PendingFile> scratch_vcd;  // .fst: the VCD vcd2fst reads, never kept
   std::unique_ptr<VideoVcdWriter> w;
   SignalFile(const std::string& p, const VideoTiming& t, int bits, long long first, long long count) : path(p) {
     const bool fst = p.size() > 4 && p.substr(p.size() - 4) == ".fst";
-    vcd_path = fst ? p + ".tmp.vcd" : p;
-    w = std::make_unique<VideoVcdWriter>(vcd_path, t.pixel_clock_hz, bits, first, count);
+    if (fst) scratch_vcd = std::make_unique<PendingFile>(p + ".vcd");
+    w = std::make_unique<VideoVcdWriter>(fst ? scratch_vcd->path() : p, t.pixel_clock_hz, bits, first, count);
   }
   void close() {
     w->close();
-    if (vcd_path == path) return;
+    if (!scratch_vcd) return;
     ProcessOptions po;
     po.out = Sink::Null;
-    const bool ok = run_process({"vcd2fst", vcd_path, path}, po).ok();
-    std::remove(vcd_path.c_str());
-    if (!ok) throw std::runtime_error(path + ": vcd2fst failed (install gtkwave, or write .vcd)");
+    PendingFile fst(path);
+    if (!run_process({"vcd2fst", scratch_vcd->path(), fst.path()}, po).ok())
+      throw std::runtime_error(path + ": vcd2fst failed (install gtkwave, or write .vcd)");
+    fst.commit();
   }
 };
 
@@ -249,9 +253,9 @@ void register_scanout(CLI::App& app) {
       std::cout << text;
       return;
     }
-    std::ofstream os(vh_path);
-    os << text;
-    if (!os) throw std::runtime_error(vh_path + ": cannot write");
+    AtomicFile f(vh_path);
+    f.stream() << text;
+    f.commit();
   });
 }
 

@@ -22,17 +22,11 @@
 #include "scene/scene_io.h"
 #include "image/heatmap.h"
 #include "image/image_io.h"
+#include "util/atomic_file.h"
 
 namespace rastsim::app {
 
 namespace {
-
-// Fails before a long simulation, not after it, when an output cannot be written.
-void check_writable(const std::string& path) {
-  if (path.empty() || path == "-") return;
-  std::ofstream os(path, std::ios::app);
-  if (!os) throw std::runtime_error(path + ": cannot open for writing");
-}
 
 // --heatmap-data: every attributed stage's busy cycles per tile, and its cycles of no tile.
 nlohmann::json heat_json(const sc::SimResult& r, const std::string& shown) {
@@ -127,15 +121,15 @@ void run_level_mode(const SimulateOptions& o, const ArchParams& arch) {
   print_level(j, summary_stream(o.stats_path, o.quiet));
 }
 
-// The recorders and test hooks of a full run, from the options.
-sc::SimOptions sim_options(const SimulateOptions& o, std::ofstream& frag_os) {
+// The recorders and test hooks of a full run, from the options. The fragment stream goes
+// to a temporary renamed into place only when the whole run succeeded (util/atomic_file.h).
+sc::SimOptions sim_options(const SimulateOptions& o, std::unique_ptr<AtomicFile>& frag_file) {
   sc::SimOptions sim;
   sim.stall_seed = o.seed;
   sim.stall_probability = o.stall_probability;
   if (!o.frag_path.empty()) {
-    frag_os.open(o.frag_path);
-    if (!frag_os) throw std::runtime_error(o.frag_path + ": cannot open for writing");
-    sim.on_fragment = [&frag_os](const Fragment& f) { frag_os << fragment_trace_line(f) << '\n'; };
+    frag_file = std::make_unique<AtomicFile>(o.frag_path);
+    sim.on_fragment = [os = &frag_file->stream()](const Fragment& f) { *os << fragment_trace_line(f) << '\n'; };
   }
   sim.vcd_path = o.vcd_path;
   sim.timeline_path = o.timeline_path;
@@ -156,10 +150,13 @@ void run_simulate_command(const SimulateOptions& o) {
   }
   check_one_stdout({{"--stats", o.stats_path}, {"--heatmap-data", o.heatmap_data_path}});
   if (o.sample || !o.tolerance.empty()) return run_level_mode(o, arch);
-  std::ofstream frag_os;
-  const sc::SimOptions sim = sim_options(o, frag_os);
+  std::unique_ptr<AtomicFile> frag_file;
+  const sc::SimOptions sim = sim_options(o, frag_file);
+  // Fails before a long simulation, not after it, when an output cannot be written.
   for (const std::string* p : {&o.out_path, &o.stats_path, &o.timeline_path, &o.heatmap_path, &o.heatmap_data_path})
     check_writable(*p);
+  for (const std::string* p : {&o.out_path, &o.heatmap_path})
+    if (!p->empty()) check_image_path(*p);
   // The scene streamed in bounded batches while the simulation runs (memory does not grow
   // with the file); --sample and --tolerance above still load it whole.
   const sc::SimResult r = sc::simulate_stream(o.scene_path, arch, sim);
@@ -189,6 +186,7 @@ void run_simulate_command(const SimulateOptions& o) {
     j["frame_deadline_error"] = e.what();
   }
   if (!o.stats_path.empty()) write_json(o.stats_path, j);
+  if (frag_file) frag_file->commit();
   const sc::StageReport* bottleneck = &r.stages.front();
   for (const auto& s : r.stages)
     if (s.busy > bottleneck->busy) bottleneck = &s;

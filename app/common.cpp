@@ -10,6 +10,7 @@
 #include <iostream>
 
 #include "util/hash.h"
+#include "util/atomic_file.h"
 #include "util/process.h"
 #include "util/version.h"
 
@@ -89,10 +90,9 @@ void write_json(const std::string& path, const nlohmann::json& j) {
     std::cout << j.dump(2) << "\n";
     return;
   }
-  std::ofstream os(path);
-  if (!os) throw std::runtime_error(path + ": cannot open for writing");
-  os << j.dump(2) << "\n";
-  if (!os) throw std::runtime_error(path + ": write failed");
+  AtomicFile f(path);
+  f.stream() << j.dump(2) << "\n";
+  f.commit();
 }
 
 std::ostream& summary_stream(const std::string& stats_path, bool quiet) {
@@ -116,10 +116,8 @@ void check_one_stdout(const std::vector<std::pair<std::string, std::string>>& op
 }
 
 nlohmann::json simulate_in_child(const ConfigOptions& o, const std::string& scene) {
-  namespace fs = std::filesystem;
-  const fs::path dir = fs::temp_directory_path() / ("rastsim-sim-" + std::to_string(getpid()));
-  fs::create_directories(dir);
-  const std::string stats = (dir / "stats.json").string(), err = (dir / "stderr").string();
+  const TempDir dir("rastsim-sim");
+  const std::string stats = dir.file("stats.json"), err = dir.file("stderr");
   std::vector<std::string> args{"simulate", "--quiet", "--scene", scene, "--stats", stats};
   if (!o.config_path.empty()) args.insert(args.end(), {"--config", o.config_path});
   for (const auto& s : o.sets) args.insert(args.end(), {"--set", s});
@@ -127,7 +125,6 @@ nlohmann::json simulate_in_child(const ConfigOptions& o, const std::string& scen
   const bool ok = run_self(args, worker_options(err)).ok();
   const std::string why = ok ? "" : last_line(err);
   if (ok) j = nlohmann::json::parse(std::ifstream(stats));
-  fs::remove_all(dir);
   if (!ok) throw std::runtime_error("timed raster run failed: " + why);
   return j;
 }

@@ -44,7 +44,8 @@ void record_command_line(int argc, const char* const* argv);
 // scene file and the FNV-1a 64 hash of its bytes as stored (null without a scene).
 nlohmann::json provenance(const ConfigOptions& o, const Config& resolved, const std::string& scene_path);
 
-// Writes JSON to a file (pretty, with a trailing newline); "-" means stdout.
+// Writes JSON to a file (pretty, with a trailing newline), whole or not at all
+// (util/atomic_file.h); "-" means stdout.
 void write_json(const std::string& path, const nlohmann::json& j);
 
 // Where a command's human text (summary, tables, notes) goes: stdout, or stderr when

@@ -4,6 +4,7 @@
 
 #include "common.h"
 #include "util/version.h"
+#include "util/interrupt.h"
 
 int main(int argc, char** argv) {
   CLI::App app{
@@ -26,10 +27,14 @@ int main(int argc, char** argv) {
   rastsim::app::register_scanout(app), rastsim::app::register_monitor(app);
   rastsim::app::register_fit(app);
   rastsim::app::register_coverage_error(app);
+  rastsim::install_interrupt_handler();  // Ctrl-C: children stopped, temporaries removed
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
+  } catch (const rastsim::Interrupted& e) {
+    std::cerr << "rastsim: " << e.what() << "\n";
+    return 128 + e.signal();
   } catch (const std::exception& e) {
     // Every input error (config, scene, I/O) arrives here as one line naming its source.
     std::cerr << "rastsim: error: " << e.what() << "\n";

@@ -42,9 +42,8 @@ void Scanout::run(int frames, const SampleSink& sink) const {
 
 VideoVcdWriter::VideoVcdWriter(const std::string& path, double pixel_clock_hz, int bits, long long first_sample,
                                long long max_samples)
-    : os_(path), path_(path), ps_per_sample_(1e12 / pixel_clock_hz), bits_(bits), first_(first_sample),
+    : file_(path), os_(file_.stream()), ps_per_sample_(1e12 / pixel_clock_hz), bits_(bits), first_(first_sample),
       max_(max_samples) {
-  if (!os_) throw std::runtime_error(path + ": cannot open for writing");
   os_ << "$date rastsim scanout $end\n$version rastsim $end\n$timescale 1ps $end\n"
       << "$scope module video $end\n"
       << "$var wire 1 h hsync $end\n$var wire 1 v vsync $end\n$var wire 1 k blank $end\n"
@@ -87,8 +86,7 @@ void VideoVcdWriter::push(const VideoSample& s) {
 void VideoVcdWriter::close() {
   const long long end = (max_ >= 0 ? std::min(n_, first_ + max_) : n_) - first_;
   os_ << '#' << std::llround(std::max(end, 0LL) * ps_per_sample_) << '\n';
-  os_.close();
-  if (!os_) throw std::runtime_error(path_ + ": write failed");
+  file_.commit();
 }
 
 }  // namespace rastsim

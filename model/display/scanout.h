@@ -20,6 +20,7 @@
 #include "display/dac.h"
 #include "ref/framebuffer.h"
 #include "config/video_timing.h"
+#include "util/atomic_file.h"
 
 namespace rastsim {
 
@@ -56,17 +57,20 @@ class Scanout {
 // Writes a video signal as VCD: hsync, vsync, blank, the codes and the levels (real
 // variables, volts), one timestamp a pixel clock (timescale 1 ps, rounded). Only changes
 // are written. Samples outside [first_sample, first_sample + max_samples) are skipped.
+// The file appears at close() (a temporary until then, util/atomic_file.h): a writer
+// destroyed unclosed, by an error, leaves none.
 class VideoVcdWriter {
  public:
   VideoVcdWriter(const std::string& path, double pixel_clock_hz, int bits, long long first_sample = 0,
                  long long max_samples = -1);
   void push(const VideoSample& s);
-  // Flushes and checks the stream; throws std::runtime_error naming the file.
+  // Flushes and checks the stream, then renames it into place; throws std::runtime_error
+  // naming the file.
   void close();
 
  private:
-  std::ofstream os_;
-  std::string path_;
+  AtomicFile file_;
+  std::ofstream& os_;
   double ps_per_sample_;
   int bits_;
   long long n_ = 0, first_, max_;

@@ -10,6 +10,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include "util/atomic_file.h"
+
 namespace rastsim {
 
 namespace {
@@ -22,30 +24,32 @@ struct FileCloser {
 };
 }  // namespace
 
-void write_image(const Framebuffer& fb, const std::string& path) {
-  if (ends_with(path, ".ppm")) {
-    std::ofstream os(path, std::ios::binary);
-    if (!os) throw std::runtime_error(path + ": cannot open for writing");
-    os << "P6\n" << fb.width << " " << fb.height << "\n255\n";
-    // Row by row from the tiles (Framebuffer::read_row): no second full copy.
-    std::vector<uint8_t> rgba(size_t(fb.width) * 4), rgb(size_t(fb.width) * 3);
-    for (int y = 0; y < fb.height; ++y) {
-      fb.read_row(y, rgba.data());
-      for (size_t x = 0; x < size_t(fb.width); ++x) std::copy_n(&rgba[x * 4], 3, &rgb[x * 3]);
-      os.write(reinterpret_cast<const char*>(rgb.data()), std::streamsize(rgb.size()));
-    }
-    if (!os) throw std::runtime_error(path + ": write failed");
-    return;
+namespace {
+
+void write_ppm(const Framebuffer& fb, const std::string& path, const std::string& target) {
+  std::ofstream os(path, std::ios::binary);
+  if (!os) throw std::runtime_error(target + ": cannot open for writing");
+  os << "P6\n" << fb.width << " " << fb.height << "\n255\n";
+  // Row by row from the tiles (Framebuffer::read_row): no second full copy.
+  std::vector<uint8_t> rgba(size_t(fb.width) * 4), rgb(size_t(fb.width) * 3);
+  for (int y = 0; y < fb.height; ++y) {
+    fb.read_row(y, rgba.data());
+    for (size_t x = 0; x < size_t(fb.width); ++x) std::copy_n(&rgba[x * 4], 3, &rgb[x * 3]);
+    os.write(reinterpret_cast<const char*>(rgb.data()), std::streamsize(rgb.size()));
   }
-  if (!ends_with(path, ".png")) throw std::runtime_error(path + ": output must end in .png or .ppm");
+  os.close();
+  if (!os) throw std::runtime_error(target + ": write failed");
+}
+
+void write_png(const Framebuffer& fb, const std::string& path, const std::string& target) {
   std::unique_ptr<FILE, FileCloser> f(std::fopen(path.c_str(), "wb"));
-  if (!f) throw std::runtime_error(path + ": cannot open for writing");
+  if (!f) throw std::runtime_error(target + ": cannot open for writing");
   png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
   png_infop info = png ? png_create_info_struct(png) : nullptr;
-  if (!png || !info) throw std::runtime_error(path + ": libpng init failed");
+  if (!png || !info) throw std::runtime_error(target + ": libpng init failed");
   if (setjmp(png_jmpbuf(png))) {
     png_destroy_write_struct(&png, &info);
-    throw std::runtime_error(path + ": PNG write failed");
+    throw std::runtime_error(target + ": PNG write failed");
   }
   png_init_io(png, f.get());
   png_set_IHDR(png, info, fb.width, fb.height, 8, PNG_COLOR_TYPE_RGBA, PNG_INTERLACE_NONE,
@@ -58,6 +62,21 @@ void write_image(const Framebuffer& fb, const std::string& path) {
   }
   png_write_end(png, nullptr);
   png_destroy_write_struct(&png, &info);
+  if (std::fclose(f.release()) != 0) throw std::runtime_error(target + ": write failed");
+}
+
+}  // namespace
+
+void check_image_path(const std::string& path) {
+  if (!ends_with(path, ".ppm") && !ends_with(path, ".png"))
+    throw std::runtime_error(path + ": output must end in .png or .ppm");
+}
+
+void write_image(const Framebuffer& fb, const std::string& path) {
+  check_image_path(path);
+  const bool ppm = ends_with(path, ".ppm");
+  // At a temporary beside the file, renamed once whole (util/atomic_file.h).
+  write_atomically(path, [&](const std::string& tmp) { ppm ? write_ppm(fb, tmp, path) : write_png(fb, tmp, path); });
 }
 
 Framebuffer read_image(const std::string& path) {

@@ -9,6 +9,7 @@
 #include "rtl/cosim_setup.h"
 #include "report/stats_json.h"
 #include "rtl/rtl_cache.h"
+#include "util/atomic_file.h"
 
 namespace rastsim::cosim {
 
@@ -122,7 +123,9 @@ RtlModelChoice prepare_rtl_model(const ArchParams& arch, const CosimOptions& opt
   return {"cache:" + e.key, e.dir, e.hit, e.hit ? 0 : e.build_seconds};
 }
 
-CosimResult run_cosim(const Scene& scene, const ArchParams& arch, const CosimOptions& opts) {
+namespace {
+
+CosimResult run_rtl(const Scene& scene, const ArchParams& arch, const CosimOptions& opts) {
   const RtlParams wanted = cosim_wanted_params(arch, opts);
   if (const int i = shipped_model(wanted, opts); i >= 0) {
     const RegistryEntry& m = rtl_registry()[size_t(i)];
@@ -146,6 +149,22 @@ CosimResult run_cosim(const Scene& scene, const ArchParams& arch, const CosimOpt
   r.rtl_model_dir = e.dir;
   r.rtl_cache_hit = e.hit;
   r.rtl_build_seconds = e.hit ? 0 : e.build_seconds;
+  return r;
+}
+
+}  // namespace
+
+CosimResult run_cosim(const Scene& scene, const ArchParams& arch, const CosimOptions& opts) {
+  // Verilator writes the waveform at a temporary name, renamed into place once the run
+  // has completed (util/atomic_file.h).
+  std::unique_ptr<PendingFile> fst;
+  CosimOptions o = opts;
+  if (!o.fst_path.empty()) {
+    fst = std::make_unique<PendingFile>(o.fst_path);
+    o.fst_path = fst->path();
+  }
+  CosimResult r = run_rtl(scene, arch, o);
+  if (fst) fst->commit();
   return r;
 }
 

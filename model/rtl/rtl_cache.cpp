@@ -21,7 +21,9 @@
 #include <stdexcept>
 
 #include "rtl/rtl_sources.h"
+#include "util/atomic_file.h"
 #include "util/hash.h"
+#include "util/interrupt.h"
 #include "util/process.h"
 
 namespace fs = std::filesystem;
@@ -273,14 +275,11 @@ void install_entry(const fs::path& tmp, const fs::path& entry) {
   }
 }
 
-// Builds the entry `key` for `build` in root/<key>.tmp-<pid>, then renames it into place.
-// The caller holds the key's lock.
-RtlCacheEntry build_entry(const fs::path& root, const std::string& key, const std::string& inputs,
-                          const RtlParams& build, const RtlBuildOptions& o,
-                          const std::function<void(const std::string&)>& progress) {
+// Builds the entry `key` for `build` in `tmp`, then renames it into place.
+RtlCacheEntry build_in(const fs::path& tmp, const fs::path& root, const std::string& key, const std::string& inputs,
+                       const RtlParams& build, const RtlBuildOptions& o,
+                       const std::function<void(const std::string&)>& progress) {
   const RtlBuildInfo& b = rtl_build_info();
-  remove_failed_builds(root, key);
-  const fs::path tmp = root / (key + ".tmp-" + std::to_string(getpid()));
   const fs::path src = tmp / "src", bld = tmp / "build";
   write_project(src, build, o.label, b);
   const std::string what = "RTL model " + key + (o.label.empty() ? "" : " for " + o.label);
@@ -307,6 +306,27 @@ RtlCacheEntry build_entry(const fs::path& root, const std::string& key, const st
   RtlCacheEntry e = read_entry(root / key);
   e.hit = false;
   return e;
+}
+
+// Builds the entry `key` for `build` in root/<key>.tmp-<pid>, then renames it into place;
+// a failed build leaves its folder for its log (the next build of the key removes it).
+// The caller holds the key's lock. SIGINT or SIGTERM stop the compilers (util/process.h),
+// remove the folder, say that nothing was cached, and pass the Interrupted on.
+RtlCacheEntry build_entry(const fs::path& root, const std::string& key, const std::string& inputs,
+                          const RtlParams& build, const RtlBuildOptions& o,
+                          const std::function<void(const std::string&)>& progress) {
+  remove_failed_builds(root, key);
+  const fs::path tmp = root / (key + ".tmp-" + std::to_string(getpid()));
+  const InterruptScope scope;
+  try {
+    return build_in(tmp, root, key, inputs, build, o, progress);
+  } catch (const Interrupted& e) {
+    std::error_code ec;
+    fs::remove_all(tmp, ec);
+    progress("rastsim: " + std::string(e.what()) + " while building RTL model " + key +
+             ": its compilers are stopped, nothing was cached (the next run that needs it builds it again)\n");
+    throw;
+  }
 }
 
 }  // namespace
@@ -422,11 +442,8 @@ size_t clean_rtl_cache(const std::string& dir) {
 }
 
 nlohmann::json run_rtl_runner(const RtlCacheEntry& e, const nlohmann::json& request) {
-  static int serial = 0;
-  const fs::path dir =
-      fs::temp_directory_path() / ("rastsim-rtl-" + std::to_string(getpid()) + "-" + std::to_string(serial++));
-  fs::create_directories(dir);
-  const fs::path req = dir / "request.json", res = dir / "result.json";
+  const TempDir dir("rastsim-rtl");
+  const fs::path req = dir.file("request.json"), res = dir.file("result.json");
   write_file(req, request.dump());
   // stdout and stderr stay the caller's: the model's own messages ($display, errors) show.
   const ProcessResult run = run_process({e.runner, req.string(), res.string()});
@@ -437,8 +454,6 @@ nlohmann::json run_rtl_runner(const RtlCacheEntry& e, const nlohmann::json& requ
   } catch (const std::exception&) {
     problem = "no answer";
   }
-  std::error_code ec;
-  fs::remove_all(dir, ec);
   if (!problem.empty() || !run.ok())
     throw std::runtime_error("the RTL model " + e.runner + " failed (" + status_text(run.status) + ", " +
                              (problem.empty() ? "answer written" : problem) + ")");

@@ -6,6 +6,8 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "util/atomic_file.h"
+
 namespace rastsim::cosim {
 
 std::vector<StageAgreement> compare_stages(const std::vector<StageRecord>& model, const std::vector<StageRecord>& rtl) {
@@ -46,14 +48,14 @@ std::string row(const std::string& stage, size_t k, const StageSpan& s) {
 }
 
 void write_csv(const std::filesystem::path& path, const std::vector<StageAgreement>& a, bool model, uint64_t& rows) {
-  std::ofstream f(path);
-  if (!f) throw std::runtime_error(path.string() + ": cannot write");
+  AtomicFile file(path.string());  // whole or not at all (util/atomic_file.h)
+  std::ofstream& f = file.stream();
   f << "stage,transaction,start_cycle,end_cycle\n";
   for (const StageAgreement& s : a) {
     const std::vector<StageSpan>& spans = model ? s.model.spans : s.rtl.spans;
     for (size_t k = 0; k < spans.size(); ++k, ++rows) f << row(s.name, k, spans[k]) << "\n";
   }
-  if (!f) throw std::runtime_error(path.string() + ": write failed");
+  file.commit();
 }
 
 }  // namespace

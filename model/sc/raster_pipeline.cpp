@@ -11,6 +11,7 @@
 #include "sc/model_error.h"
 #include "sc/rop.h"
 #include "scene/scene_io.h"
+#include "util/atomic_file.h"
 
 namespace rastsim::sc {
 
@@ -160,12 +161,15 @@ SimResult simulate_stream(const std::string& path, const ArchParams& arch, const
 namespace {
 
 // The optional recorders of a run (timeline, spans, tile heat, VCD), attached to the
-// stages and FIFOs before the simulation starts.
+// stages and FIFOs before the simulation starts. The VCD is written at a temporary name
+// (util/atomic_file.h), renamed into place by commit() after a successful run, removed
+// otherwise.
 struct Recorders {
   Timeline timeline;
   std::vector<std::vector<Span>> spans = std::vector<std::vector<Span>>(kStageCount);
   std::vector<TileHeat> heat;
   sc_core::sc_trace_file* vcd = nullptr;
+  std::unique_ptr<PendingFile> vcd_file;
 
   void attach(RasterPipeline& top, const SimOptions& opts, const RasterState& arch, bool tracing) {
     if (!opts.timeline_path.empty()) {
@@ -182,7 +186,9 @@ struct Recorders {
               &heat.emplace_back(std::string(info.name), arch.fb_width, arch.fb_height, arch.tile_size));
     }
     if (tracing) {
-      vcd = sc_core::sc_create_vcd_trace_file(strip_suffix(opts.vcd_path, ".vcd").c_str());
+      // SystemC appends ".vcd" to the name it is given.
+      vcd_file = std::make_unique<PendingFile>(strip_suffix(opts.vcd_path, ".vcd") + ".vcd");
+      vcd = sc_core::sc_create_vcd_trace_file(strip_suffix(vcd_file->path(), ".vcd").c_str());
       vcd->set_time_unit(1, sc_core::SC_NS);  // 1 ns = 1 cycle
       for (Stage* s : top.stages()) sc_core::sc_trace(vcd, s->state_signal(), std::string(s->basename()) + ".state");
       top.for_each_fifo(
@@ -272,6 +278,7 @@ SimResult simulate_commands(CommandSource source, const ArchParams& params, cons
   r.render.framebuffer_crc32 = r.fb.color_crc32();
   r.sim_wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   r.render.wall_seconds = r.sim_wall_seconds;
+  if (rec.vcd_file) rec.vcd_file->commit();
   return r;
 }
 

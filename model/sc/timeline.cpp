@@ -6,6 +6,8 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "util/atomic_file.h"
+
 namespace rastsim::sc {
 
 namespace {
@@ -111,8 +113,8 @@ TimelineWriteStats Timeline::write_trace_json(const std::string& path, uint64_t 
     r *= 2;
   }
 
-  std::ofstream os(path, std::ios::binary);
-  if (!os) throw std::runtime_error(path + ": cannot open for writing");
+  AtomicFile file(path);  // whole or not at all (util/atomic_file.h)
+  std::ofstream& os = file.stream();
   TimelineWriteStats st;
   st.resolution_cycles = r;
   // ts and dur are in cycles. The format's unit is the microsecond, so 1 us in the
@@ -161,8 +163,7 @@ TimelineWriteStats Timeline::write_trace_json(const std::string& path, uint64_t 
   }
   os << "\n]}\n";
   st.bytes = uint64_t(os.tellp());
-  os.close();
-  if (!os) throw std::runtime_error(path + ": write failed");
+  file.commit();
   return st;
 }
 

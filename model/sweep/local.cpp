@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // `rastsim sweep --backend local` (sweep.h): the points as child processes of this same
-// binary, a number at a time, with a progress bar on a terminal.
+// binary, a number at a time, with a progress bar on a terminal; stopped, children and
+// all, by SIGINT or SIGTERM (util/interrupt.h).
 #include <unistd.h>
 
 #include <algorithm>
@@ -36,12 +37,24 @@ class Progress {
   bool tty_;
 };
 
+// The points' processes still running, stopped when the sweep stops early: an
+// interruption (util/interrupt.h: wait_any_process throws) or an error.
+class Running : public std::map<pid_t, size_t> {
+ public:
+  Running() = default;
+  Running(const Running&) = delete;
+  Running& operator=(const Running&) = delete;
+  ~Running() {
+    for (const auto& entry : *this) stop_process(entry.first);
+  }
+};
+
 }  // namespace
 
 size_t run_local(std::vector<Point>& points, const std::vector<size_t>& todo, const std::vector<Axis>& axes,
                  unsigned jobs, const std::filesystem::path& tmp, const OnDone& on_done) {
   Progress progress(todo.size());
-  std::map<pid_t, size_t> running;
+  Running running;
   const auto file = [&](size_t i, const char* ext) { return (tmp / (std::to_string(i) + ext)).string(); };
   size_t next = 0, done = 0, failed = 0;
   while (done < todo.size()) {

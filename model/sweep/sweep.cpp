@@ -3,6 +3,7 @@
 // figures a sweep needs, and the backend that runs the points.
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <iostream>
 #include <set>
@@ -11,6 +12,9 @@
 #include "rtl/area.h"
 #include "rtl/cosim.h"
 #include "sweep/sweep.h"
+#include "util/atomic_file.h"
+#include "util/interrupt.h"
+#include "util/process.h"
 
 namespace rastsim::sweep {
 
@@ -68,16 +72,28 @@ void prepare_rtl_models(const std::vector<Point>& points, const std::vector<size
 size_t run_points(const SweepOptions& o, std::vector<Point>& points, const std::vector<size_t>& todo,
                   const std::vector<Axis>& axes, const OnDone& on_done) {
   if (o.backend == "slurm") return run_slurm(points, todo, axes, o.slurm, o.out_path, on_done);
-  const auto tmp = std::filesystem::temp_directory_path() / ("rastsim-sweep-" + std::to_string(getpid()));
-  std::filesystem::create_directories(tmp);
-  const size_t failed = run_local(points, todo, axes, o.jobs, tmp, on_done);
-  std::filesystem::remove_all(tmp);
-  return failed;
+  const TempDir tmp("rastsim-sweep");  // the points' stats and error files
+  return run_local(points, todo, axes, o.jobs, tmp.path(), on_done);
+}
+
+// What an interrupted sweep kept (the rows of the points that finished: the CSV gets each
+// as it finishes) and the command line that runs the rest.
+std::string interrupted_message(const Interrupted& e, const SweepOptions& o, const std::vector<Point>& points) {
+  size_t finished = 0;
+  for (const Point& p : points) finished += p.status != -1;
+  std::vector<std::string> argv = this_command_line();
+  if (std::find(argv.begin(), argv.end(), "--resume") == argv.end()) argv.push_back("--resume");
+  return "sweep: " + std::string(e.what()) + ": " + std::to_string(finished) + " of " + std::to_string(points.size()) +
+         " rows finished and kept in " + o.out_path + "; the running points were stopped and their files removed. " +
+         "Run the other " + std::to_string(points.size() - finished) + " with:\n  " + shell_command(argv) + "\n";
 }
 
 }  // namespace
 
 void run_sweep(const SweepOptions& o, const BaseConfig& base, const std::vector<Axis>& axes) {
+  // SIGINT and SIGTERM unwind instead of ending the process (util/interrupt.h): the points
+  // running are stopped, the temporary folder removed, and the message says what was kept.
+  const InterruptScope scope;
   if (o.backend != "local" && o.backend != "slurm")
     throw std::runtime_error("--backend " + o.backend + ": expected local or slurm");
   validate_axes(base.resolved, axes);
@@ -91,13 +107,19 @@ void run_sweep(const SweepOptions& o, const BaseConfig& base, const std::vector<
   std::vector<size_t> todo;
   for (size_t i = 0; i < points.size(); ++i)
     if (points[i].status != 0) todo.push_back(i);
-  if (o.level == "cosim") prepare_rtl_models(points, todo, axes, base);
   AreaColumns area;
   const OnDone on_done = [&](size_t i) {
     if (o.area && points[i].status == 0) area.add(points[i], axes, base);
     csv.add(points[i], i);
   };
-  const size_t failed = run_points(o, points, todo, axes, on_done);
+  size_t failed = 0;
+  try {
+    if (o.level == "cosim") prepare_rtl_models(points, todo, axes, base);
+    failed = run_points(o, points, todo, axes, on_done);
+  } catch (const Interrupted& e) {
+    std::cerr << (isatty(2) ? "\n" : "") << interrupted_message(e, o, points);
+    throw;
+  }
   csv.write_all(points);
   std::cerr << "sweep: wrote " << points.size() << " rows to " << o.out_path
             << (todo.size() < points.size() ? " (" + std::to_string(points.size() - todo.size()) + " resumed)" : "")

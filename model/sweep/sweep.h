@@ -154,7 +154,9 @@ class Csv {
 bool is_wall_time_column(const std::string& column);
 
 // `--backend local`: runs the points `todo` (indices into `points`), `jobs` child
-// processes at once, their stats and stderr in `tmp`; returns how many failed.
+// processes at once, their stats and stderr in `tmp`; returns how many failed. On SIGINT
+// or SIGTERM (util/interrupt.h) the running ones are stopped and Interrupted is thrown:
+// the points that finished keep their status (on_done has been called for each).
 size_t run_local(std::vector<Point>& points, const std::vector<size_t>& todo, const std::vector<Axis>& axes,
                  unsigned jobs, const std::filesystem::path& tmp, const OnDone& on_done);
 

@@ -19,6 +19,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "util/interrupt.h"
+
 namespace rastsim {
 
 namespace {
@@ -95,7 +97,36 @@ struct Launch {
   _exit(127);
 }
 
-[[noreturn]] void exec_in_child(const Launch& l, const std::vector<char*>& argv, pid_t parent) {
+// The signals interrupt.h handles, blocked in the parent from before the fork until the
+// child's process group is registered (a signal in between would miss the child), and in
+// the child until their handlers are back to the default.
+class BlockInterrupts {
+ public:
+  BlockInterrupts() {
+    sigset_t s;
+    sigemptyset(&s);
+    for (int sig : kInterruptSignals) sigaddset(&s, sig);
+    pthread_sigmask(SIG_BLOCK, &s, &old_);
+  }
+  ~BlockInterrupts() { pthread_sigmask(SIG_SETMASK, &old_, nullptr); }
+  BlockInterrupts(const BlockInterrupts&) = delete;
+  BlockInterrupts& operator=(const BlockInterrupts&) = delete;
+  const sigset_t& old() const { return old_; }
+
+ private:
+  sigset_t old_;
+};
+
+// After fork, in the child (async-signal-safe calls only): a process group of its own,
+// whose every process interrupt.h's handler stops, and this process's handlers undone.
+void detach_child(const sigset_t& mask) {
+  setpgid(0, 0);
+  default_interrupt_actions();
+  sigprocmask(SIG_SETMASK, &mask, nullptr);
+}
+
+[[noreturn]] void exec_in_child(const Launch& l, const std::vector<char*>& argv, pid_t parent, const sigset_t& mask) {
+  detach_child(mask);
   if (l.die_with_parent) {
     prctl(PR_SET_PDEATHSIG, SIGTERM);
     if (getppid() != parent) _exit(1);  // it died before the line above
@@ -117,10 +148,14 @@ pid_t launch(const Launch& l) {
   for (const auto& a : l.argv) argv.push_back(const_cast<char*>(a.c_str()));
   argv.push_back(nullptr);
   const pid_t parent = getpid();
+  throw_if_interrupted();  // no new child once interrupted
   flush_output();
+  const BlockInterrupts blocked;
   const pid_t pid = fork();
   if (pid < 0) throw std::runtime_error("fork failed: " + errno_text());
-  if (pid == 0) exec_in_child(l, argv, parent);
+  if (pid == 0) exec_in_child(l, argv, parent, blocked.old());
+  setpgid(pid, pid);  // as the child does: whichever runs first
+  register_child_group(pid);
   return pid;
 }
 
@@ -268,11 +303,12 @@ ProcessResult run_launch(const Launch& l, const ProcessOptions& o) {
   Streams s = open_streams(o, true);
   ProcessResult r;
   const pid_t pid = start(l, s);
+  const InterruptScope scope;  // a signal stops the child (interrupt.h), then wait_process throws
   try {
     pump(s, o, r);
   } catch (...) {
     s.feed.reset(), s.read_out.reset(), s.read_err.reset();  // the child sees EOF or EPIPE and ends
-    wait_process(pid);
+    stop_process(pid);
     throw;
   }
   r.status = wait_process(pid);
@@ -312,18 +348,33 @@ ProcessOptions worker_options(const std::string& err_path) {
 }
 
 int wait_process(pid_t pid) {
+  const InterruptScope scope;
   int status = 0;
   while (waitpid(pid, &status, 0) < 0)
     if (errno != EINTR) throw std::runtime_error("waitpid failed: " + errno_text());
+  unregister_child_group(pid);
+  throw_if_interrupted();
   return status;
 }
 
 std::pair<pid_t, int> wait_any_process() {
+  const InterruptScope scope;
   int status = 0;
   pid_t pid;
   while ((pid = waitpid(-1, &status, 0)) < 0)
     if (errno != EINTR) throw std::runtime_error("waitpid failed: " + errno_text());
+  unregister_child_group(pid);
+  throw_if_interrupted();
   return {pid, status};
+}
+
+void stop_process(pid_t pid) noexcept {
+  kill(-pid, SIGTERM);
+  kill(pid, SIGTERM);  // in case it had not yet made its own group
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  unregister_child_group(pid);
 }
 
 int exit_code(int status) { return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status); }
@@ -337,9 +388,22 @@ std::string status_text(int status) {
 
 ForkedResult run_forked(const std::function<std::string()>& fn) {
   auto [r, w] = make_pipe();
+  throw_if_interrupted();
   flush_output();
-  const pid_t pid = fork();
-  if (pid < 0) throw std::runtime_error("fork failed: " + errno_text());
+  pid_t pid;
+  {
+    const BlockInterrupts blocked;
+    pid = fork();
+    if (pid < 0) throw std::runtime_error("fork failed: " + errno_text());
+    if (pid == 0) {
+      setpgid(0, 0);
+      reset_interrupt_handling_in_child();  // the parent's files and children are not its own
+      sigprocmask(SIG_SETMASK, &blocked.old(), nullptr);
+    } else {
+      setpgid(pid, pid);
+      register_child_group(pid);
+    }
+  }
   if (pid == 0) {
     r.reset();
     std::string out;
@@ -361,7 +425,13 @@ ForkedResult run_forked(const std::function<std::string()>& fn) {
   ProcessOptions o;
   o.out = Sink::Capture;
   ProcessResult res;
-  pump(s, o, res);
+  const InterruptScope scope;
+  try {
+    pump(s, o, res);
+  } catch (...) {
+    stop_process(pid);
+    throw;
+  }
   return {wait_process(pid), std::move(res.out)};
 }
 
@@ -392,6 +462,23 @@ std::string shell_quote(const std::string& s) {
   std::string q = "'";
   for (char c : s) q += (c == '\'') ? std::string("'\\''") : std::string(1, c);
   return q + "'";
+}
+
+std::string shell_command(const std::vector<std::string>& argv) {
+  std::string line;
+  for (const std::string& a : argv) {
+    const bool plain = !a.empty() && a.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                                         "0123456789_./=:,+-@%") == std::string::npos;
+    line += (line.empty() ? "" : " ") + (plain ? a : shell_quote(a));
+  }
+  return line;
+}
+
+std::vector<std::string> this_command_line() {
+  std::ifstream is("/proc/self/cmdline", std::ios::binary);
+  std::vector<std::string> argv;
+  for (std::string a; std::getline(is, a, '\0');) argv.push_back(a);
+  return argv;
 }
 
 }  // namespace rastsim

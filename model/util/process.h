@@ -12,6 +12,9 @@
 //   and it comes before the child's.
 // - Descriptors are opened close-on-exec: a child started from one thread does not hold
 //   another thread's pipe open (area.cpp runs Yosys from two threads at once).
+// - Each child leads a process group of its own, registered with interrupt.h: on SIGINT or
+//   SIGTERM the whole group (a compiler under `cmake --build`) gets SIGTERM, and the waits
+//   below throw Interrupted once the child has ended; no child starts after a signal.
 #pragma once
 
 #include <sys/types.h>
@@ -71,10 +74,15 @@ pid_t start_self(const std::vector<std::string>& args, const ProcessOptions& o =
 // `err_path`, SIGTERM when this process dies (a killed sweep leaves none running on).
 ProcessOptions worker_options(const std::string& err_path);
 
-// The wait status of the child `pid` (started here), once it has ended.
+// The wait status of the child `pid` (started here), once it has ended. Throws
+// Interrupted (interrupt.h) when a signal came meanwhile.
 int wait_process(pid_t pid);
-// Any child that ends: its pid and wait status. Throws when there is none.
+// Any child that ends: its pid and wait status. Throws when there is none, and Interrupted
+// (the child reaped, its status lost) when a signal came meanwhile.
 std::pair<pid_t, int> wait_any_process();
+// Ends the child `pid`: SIGTERM to its process group, then reaped (one reaped already is
+// passed over). For cleanup: never throws.
+void stop_process(pid_t pid) noexcept;
 
 // A wait status as a shell's $?: the exit status, or 128 + the signal that ended it.
 int exit_code(int status);
@@ -100,5 +108,11 @@ std::string last_line(const std::string& path);
 // written to a file for a shell to run later (the Slurm backend's job script); nothing
 // here runs a shell.
 std::string shell_quote(const std::string& s);
+// A command line to show a user (one to copy and run): the words separated by spaces,
+// each shell_quote()d only when it holds a character a shell would read specially.
+std::string shell_command(const std::vector<std::string>& argv);
+
+// This process's own argv, as it was started (/proc/self/cmdline).
+std::vector<std::string> this_command_line();
 
 }  // namespace rastsim
