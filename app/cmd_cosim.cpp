@@ -146,6 +146,7 @@ void run_cosim_command(CosimCommand& c) {
   nlohmann::json j = r.to_json(c.run);
   j["config"] = arch.config.source_name();
   j["scene"] = c.scene_path;
+  add_obj_ignored(j, c.scene_path);
   print_rtl_run(r, c.run);
   if (!c.no_model) compare_with_model(scene, arch, c, r, j);
   if (!c.stats_path.empty()) write_json(c.stats_path, j);

@@ -6,6 +6,7 @@
 
 #include "common.h"
 #include "estimate/estimate.h"
+#include "report/stats_json.h"
 #include "scene/scene_io.h"
 
 namespace rastsim::app {
@@ -17,6 +18,7 @@ void run_estimate_command(const EstimateOptions& o) {
   nlohmann::json j = r.to_json();
   j["config"] = arch.config.source_name();
   j["scene"] = o.scene_path;
+  add_obj_ignored(j, o.scene_path);
   if (!o.stats_path.empty()) write_json(o.stats_path, j);
   if (!o.quiet) {
     size_t busiest = 0;

@@ -52,6 +52,7 @@ void run_render_command(const RenderOptions& o) {
   nlohmann::json j = to_json(stats);
   j["config"] = params.config.source_name();
   j["scene"] = o.scene_path;
+  add_obj_ignored(j, o.scene_path);
   if (!o.stats_path.empty()) write_json(o.stats_path, j);
   if (!o.quiet) {
     std::cout << "render: " << stats.triangles_in << " triangles (" << stats.triangles_culled << " culled), "

@@ -142,6 +142,7 @@ nlohmann::json scanout_stats(const ScanoutOptions& o, const Config& cfg, const V
                {"lut", cfg.get_string("dac.lut")}}},
       {"framebuffer_crc32", crc32_hex(crc)}});
   if (!deadline.is_null()) j["deadline"] = deadline;
+  add_obj_ignored(j, o.scene_path);
   return j;
 }
 

@@ -121,6 +121,7 @@ void run_level_mode(const SimulateOptions& o, const ArchParams& arch) {
   }
   j["config"] = arch.config.source_name();
   j["scene"] = o.scene_path;
+  add_obj_ignored(j, o.scene_path);
   if (!o.stats_path.empty()) write_json(o.stats_path, j);
   if (!o.quiet) print_level(j);
 }
@@ -162,6 +163,7 @@ void run_simulate_command(const SimulateOptions& o) {
   j["fidelity_level"] = "systemc";
   j["config"] = arch.config.source_name();
   j["scene"] = o.scene_path;
+  add_obj_ignored(j, o.scene_path);
   if (!o.timeline_path.empty())
     j["timeline"] = {{"events", r.timeline.events},
                      {"bytes", r.timeline.bytes},

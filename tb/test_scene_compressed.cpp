@@ -149,6 +149,23 @@ TEST_F(CompressedScene, ObjAndItsMaterialLibraryRenderLikeThePlainFiles) {
   }
 }
 
+// A UTF-8 byte-order mark after decompression is read past by the whole-file and the
+// streamed reader, in traces and OBJ meshes alike.
+TEST_F(CompressedScene, ByteOrderMarkAfterDecompression) {
+  const std::string bom = "\xEF\xBB\xBF", trace = "clear 1 2 3\ntri 0 0 8 0 0 8\n";
+  const std::string obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  const RenderStats want_trace = scene_test::render_default(parse_trace(trace, "t.trace"));
+  const RenderStats want_obj = scene_test::render_default(parse_obj(obj, "t.obj", placement(), "."));
+  for (const Codec& c : kCodecs) {
+    const std::string t = put("bom.trace" + std::string(c.suffix), c.compress(bom + trace));
+    expect_same_render(t, want_trace, 2);
+    size_t streamed = 0;
+    stream_scene(t, placement(), 1, [&](std::vector<Command>& b) { streamed += b.size(); });
+    EXPECT_EQ(streamed, 2u);
+    expect_same_render(put("bom.obj" + std::string(c.suffix), c.compress(bom + obj)), want_obj, 3);
+  }
+}
+
 // Any chunk size gives the same bytes: the reader's state carries across calls.
 TEST_F(CompressedScene, ChunkedReadsReassembleTheText) {
   const std::string text = file_text(fs::path(RASTSIM_SOURCE_DIR) / "traces/torus.trace");
