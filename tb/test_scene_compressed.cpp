@@ -139,6 +139,7 @@ TEST_F(CompressedScene, ObjAndItsMaterialLibraryRenderLikeThePlainFiles) {
   const Scene plain = load_obj((data / "cube.obj").string(), placement());
   const RenderStats want = scene_test::render_default(plain);
   ASSERT_NE(obj.find("mtllib cube.mtl\n"), std::string::npos);
+  put("blue.png", file_text(data / "blue.png"));  // cube.mtl's map_Kd must exist
   for (const Codec& c : kCodecs) {
     put("cube.mtl", mtl);
     expect_same_render(put(std::string("cube.obj") + c.suffix, c.compress(obj)), want, plain.commands.size());
@@ -276,7 +277,7 @@ TEST_F(CompressedScene, DecompressionBombIsStoppedAtTheLimit) {
 // hold compressed data (so a file truncated to nothing is not an empty scene), and a
 // compressed file with a plain name is still decompressed.
 TEST_F(CompressedScene, TheContentDecidesAndACompressedNameMustHoldCompressedData) {
-  const std::string text = "viewport 8 8\nclear 1 2 3\n";
+  const std::string text = "viewport 8 8\nclear 1 2 3\ntri 0 0 4 0 0 4\n";
   for (const char* name : {"plain.trace.gz", "plain.trace.zst", "PLAIN.TRACE.GZ", "empty.trace.gz"}) {
     const std::string p = put(name, std::string(name).starts_with("empty") ? "" : text);
     EXPECT_TRUE(SceneFails([&] { load_scene(p, placement()); }, p + ":", "is not gzip or zstd data")) << name;
