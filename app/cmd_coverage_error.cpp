@@ -8,6 +8,7 @@
 #include "aa/coverage_error.h"
 #include "common.h"
 #include "config/raster_state_config.h"
+#include "report/stats_json.h"
 #include "scene/scene_io.h"
 
 namespace rastsim::app {
@@ -38,6 +39,7 @@ void run_coverage_error_command(const CoverageErrorOptions& o) {
   j["config"] = arch.config.source_name();
   j["scene"] = o.scene_path;
   j["provenance"] = provenance(o.config, arch.config, o.scene_path);
+  add_obj_ignored(j, o.scene_path);
   j["pixels_clipped"] = r.pixels_clipped;
   j["wall_seconds"] = r.wall_seconds;
   for (const CoverageErrorStats& s : r.per_samples)

@@ -147,6 +147,7 @@ nlohmann::json scanout_stats(const ScanoutOptions& o, const Config& cfg, const V
       {"framebuffer_crc32", crc32_hex(crc)}});
   if (!deadline.is_null()) j["deadline"] = deadline;
   j["provenance"] = provenance(o.config, cfg, o.scene_path);
+  add_obj_ignored(j, o.scene_path);
   return j;
 }
 

@@ -139,6 +139,7 @@ TEST_F(CompressedScene, ObjAndItsMaterialLibraryRenderLikeThePlainFiles) {
   const Scene plain = load_obj((data / "cube.obj").string(), placement());
   const RenderStats want = scene_test::render_default(plain);
   ASSERT_NE(obj.find("mtllib cube.mtl\n"), std::string::npos);
+  put("blue.png", file_text(data / "blue.png"));  // cube.mtl's map_Kd must exist
   for (const Codec& c : kCodecs) {
     put("cube.mtl", mtl);
     expect_same_render(put(std::string("cube.obj") + c.suffix, c.compress(obj)), want, plain.commands.size());
@@ -146,6 +147,23 @@ TEST_F(CompressedScene, ObjAndItsMaterialLibraryRenderLikeThePlainFiles) {
     obj2.replace(obj2.find("mtllib cube.mtl\n"), 16, std::string("mtllib m.mtl") + c.suffix + "\n");
     put(std::string("m.mtl") + c.suffix, c.compress(mtl));
     expect_same_render(put(std::string("CUBE2.OBJ") + c.suffix, c.compress(obj2)), want, plain.commands.size());
+  }
+}
+
+// A UTF-8 byte-order mark after decompression is read past by the whole-file and the
+// streamed reader, in traces and OBJ meshes alike.
+TEST_F(CompressedScene, ByteOrderMarkAfterDecompression) {
+  const std::string bom = "\xEF\xBB\xBF", trace = "clear 1 2 3\ntri 0 0 8 0 0 8\n";
+  const std::string obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  const RenderStats want_trace = scene_test::render_default(parse_trace(trace, "t.trace"));
+  const RenderStats want_obj = scene_test::render_default(parse_obj(obj, "t.obj", placement(), "."));
+  for (const Codec& c : kCodecs) {
+    const std::string t = put("bom.trace" + std::string(c.suffix), c.compress(bom + trace));
+    expect_same_render(t, want_trace, 2);
+    size_t streamed = 0;
+    stream_scene(t, placement(), 1, [&](std::vector<Command>& b) { streamed += b.size(); });
+    EXPECT_EQ(streamed, 2u);
+    expect_same_render(put("bom.obj" + std::string(c.suffix), c.compress(bom + obj)), want_obj, 3);
   }
 }
 
@@ -259,7 +277,7 @@ TEST_F(CompressedScene, DecompressionBombIsStoppedAtTheLimit) {
 // hold compressed data (so a file truncated to nothing is not an empty scene), and a
 // compressed file with a plain name is still decompressed.
 TEST_F(CompressedScene, TheContentDecidesAndACompressedNameMustHoldCompressedData) {
-  const std::string text = "viewport 8 8\nclear 1 2 3\n";
+  const std::string text = "viewport 8 8\nclear 1 2 3\ntri 0 0 4 0 0 4\n";
   for (const char* name : {"plain.trace.gz", "plain.trace.zst", "PLAIN.TRACE.GZ", "empty.trace.gz"}) {
     const std::string p = put(name, std::string(name).starts_with("empty") ? "" : text);
     EXPECT_TRUE(SceneFails([&] { load_scene(p, placement()); }, p + ":", "is not gzip or zstd data")) << name;

@@ -267,7 +267,7 @@ TEST(SceneObj, BadPlacement) {
 
 TEST(SceneObj, DegenerateMeshesStayFinite) {
   // All corners on one point: R = 0 is treated as 1; everything lands on the centre.
-  const Scene s = parse("v 3 3 3\nf 1 1 1\n", flat());
+  const Scene s = parse("v 3 3 3\nv 3 3 3\nv 3 3 3\nf 1 2 3\n", flat());
   EXPECT_EQ(face(s, 0).vertices[0].x.q, Q64::from_int(50).q);
   EXPECT_EQ(face(s, 0).vertices[0].z, 0.5);
   // Extreme but finite coordinates are placed, not overflowed.

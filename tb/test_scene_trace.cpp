@@ -62,9 +62,10 @@ TEST(SceneTrace, StateCommands) {
       "clear 1 2 3\n"
       "cleardepth 0.5\n"
       "scissor 4 5 6 7\n"
-      "scissor off\n");
+      "scissor off\n"
+      "tri 0 0 1 0 0 1\n");  // a trace must draw something
   EXPECT_EQ(s.source, "t.trace");
-  ASSERT_EQ(s.commands.size(), 5u);
+  ASSERT_EQ(s.commands.size(), 6u);
   EXPECT_EQ(body<CmdViewport>(s, 0).width, 100);
   EXPECT_EQ(body<CmdViewport>(s, 0).height, 64);
   const auto& c = body<CmdClear>(s, 1);
@@ -83,6 +84,34 @@ TEST(SceneTrace, StateCommands) {
     EXPECT_EQ(s.commands[i].loc.file, "t.trace");
     EXPECT_EQ(s.commands[i].loc.line, i + 1);
   }
+}
+
+// A trace that draws nothing (empty, only state, a truncated or wrong file) is an error
+// naming the file, from the whole-file and the streamed reader alike.
+TEST(SceneTrace, TraceWithoutDrawIsAnError) {
+  for (const char* text : {"", "# nothing\n\n", "viewport 10 10\nclear 0 0 0\ncolor 1 2 3\ndepth 0.5\n"}) {
+    SCOPED_TRACE(text);
+    EXPECT_TRUE(SceneFails([&] { parse(text); }, "t.trace:", "no draw command (tri, strip, fan"));
+  }
+  EXPECT_NO_THROW(parse("point 1 1\n"));  // a 2D draw is a draw
+  const auto path = std::filesystem::temp_directory_path() / ("rastsim_empty_" + std::to_string(::getpid()) + ".trace");
+  std::ofstream(path.string()) << "viewport 10 10\nclear 0 0 0\n";
+  size_t consumed = 0;
+  try {
+    stream_trace(path.string(), 1, [&](std::vector<Command>& b) { consumed += b.size(); });
+    ADD_FAILURE() << "no error";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind(path.string() + ": no draw command", 0), 0u) << e.what();
+  }
+  EXPECT_EQ(consumed, 2u);  // the state commands went by first, as a parse error's batches do
+  std::filesystem::remove(path);
+}
+
+TEST(SceneTrace, ByteOrderMarkIsAccepted) {
+  const Scene s = parse("\xEF\xBB\xBF" "clear 1 2 3\ntri 0 0 1 0 0 1\n");
+  ASSERT_EQ(s.commands.size(), 2u);
+  EXPECT_EQ(body<CmdClear>(s, 0).r, 1);
+  EXPECT_TRUE(SceneFails([] { parse("clear 1 2 3\n\xEF\xBB\xBF" "tri 0 0 1 0 0 1\n"); }, "t.trace:2:", "unknown command"));
 }
 
 TEST(SceneTrace, FlatTriUsesCurrentColourAndDepth) {
@@ -209,13 +238,11 @@ TEST(SceneTrace, FanAndColourInsideIt) {
 }
 
 TEST(SceneTrace, CommentsBlankLinesTabsAndCrlf) {
-  const Scene s = parse("# header\r\n\r\n\tclear\t1 2 3# trailing\r\n   \r\n#tri 1\r\nviewport 8 8\r\n");
-  ASSERT_EQ(s.commands.size(), 2u);
+  const Scene s = parse("# header\r\n\r\n\tclear\t1 2 3# trailing\r\n   \r\n#tri 1\r\nviewport 8 8\r\npoint 1 1\r\n");
+  ASSERT_EQ(s.commands.size(), 3u);
   EXPECT_EQ(s.commands[0].loc.line, 3);
   EXPECT_EQ(s.commands[1].loc.line, 6);
   EXPECT_EQ(body<CmdClear>(s, 0).b, 3);
-  EXPECT_TRUE(parse("").commands.empty());
-  EXPECT_TRUE(parse("# only a comment").commands.empty());
 }
 
 TEST(SceneTrace, ExactErrorMessage) {
@@ -326,8 +353,8 @@ TEST(SceneTrace, LoadSceneDispatchesOnExtension) {
   std::filesystem::create_directories(dir);
   const std::string obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
   for (const char* n : {"m.obj", "m.OBJ", "m.Obj"}) std::ofstream(dir / n) << obj;
-  std::ofstream(dir / "m.trace") << "clear 1 2 3\n";
-  std::ofstream(dir / "obj") << "clear 1 2 3\n";  // no extension: a trace
+  std::ofstream(dir / "m.trace") << "clear 1 2 3\ntri 0 0 1 0 0 1\n";
+  std::ofstream(dir / "obj") << "clear 1 2 3\ntri 0 0 1 0 0 1\n";  // no extension: a trace
   for (const char* n : {"m.obj", "m.OBJ", "m.Obj"}) {
     SCOPED_TRACE(n);
     const Scene s = load_scene((dir / n).string(), obj_placement_from_config(Config{}));
@@ -336,7 +363,7 @@ TEST(SceneTrace, LoadSceneDispatchesOnExtension) {
   }
   for (const char* n : {"m.trace", "obj"}) {
     const Scene s = load_scene((dir / n).string(), obj_placement_from_config(Config{}));
-    ASSERT_EQ(s.commands.size(), 1u);
+    ASSERT_EQ(s.commands.size(), 2u);
     EXPECT_EQ(body<CmdClear>(s, 0).r, 1);
     EXPECT_EQ(s.source, (dir / n).string());
   }

@@ -53,6 +53,11 @@ void add_scene_params(std::vector<ParamDef>& s) {
                "OBJ reading: faces sent in one List command (1: each face its own command; "
                "larger: batched as in one draw call), same triangles in the same order"});
   s.push_back(obj_depth_func_param(s));
+  // Points and lines with depth need the clip-space front end; until then the reader
+  // refuses them at every level (render, simulate, cosim, estimate read one loader).
+  s.push_back({"scene.obj_lines_points", T::Enum, std::string("error"), "", 1, 0, {"error", "skip"},
+               "OBJ reading: 'l' (polyline) and 'p' (point) statements, which are not drawn yet "
+               "(error: stop at the first with its file:line; skip: leave them out, counted in obj_ignored)"});
 }
 
 }  // namespace rastsim

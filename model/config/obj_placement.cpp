@@ -28,6 +28,8 @@ ObjPlacement obj_placement_from_config(const Config& cfg) {
   p.pitch_deg = cfg.get_float("scene.obj_pitch_deg");
   p.fill = cfg.get_float("scene.obj_fill");
   p.faces_per_command = static_cast<int>(cfg.get_int("scene.obj_faces_per_command"));
+  p.coord_format = FixedFormat::parse(cfg.get_string("raster.coord_format"));
+  p.lines_points = cfg.get_string("scene.obj_lines_points") == "skip" ? ObjLinesPoints::Skip : ObjLinesPoints::Error;
   return p;
 }
 

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "config/config.h"
+#include "ref/fixed_point.h"
 
 namespace rastsim {
 
@@ -18,6 +19,10 @@ enum class ObjUp { PosY, PosZ, NegY, NegZ, PosX, NegX };
 
 // "y", "z", "-y", "-z", "x", "-x" (the config's spelling); nullopt for anything else.
 std::optional<ObjUp> parse_obj_up(const std::string& name);
+
+// What the reader does with OBJ `l` (polyline) and `p` (point) statements
+// (scene.obj_lines_points): stop at the first with its file:line, or skip and count them.
+enum class ObjLinesPoints { Error, Skip };
 
 // Where an OBJ mesh lands on screen: a camera looking at the mesh's bounding sphere.
 // Every value comes from the config (obj_placement_from_config); none has a default here.
@@ -29,10 +34,14 @@ struct ObjPlacement {
   // Faces sent in one List command (scene.obj_faces_per_command): 1, each face its own
   // command as a naive driver would send it; more, as a draw call would batch them.
   int faces_per_command = 0;
+  // raster.coord_format: polygon faces are triangulated on their corners snapped to it,
+  // exactly as setup snaps them (docs/trace-format.md, "Polygon faces").
+  FixedFormat coord_format{};
+  ObjLinesPoints lines_points = ObjLinesPoints::Error;  // scene.obj_lines_points
   uint8_t clear_r = 0, clear_g = 0, clear_b = 0;
 };
 
-// From a validated config: the display size and the scene.obj_* keys.
+// From a validated config: the display size, raster.coord_format and the scene.obj_* keys.
 ObjPlacement obj_placement_from_config(const Config& cfg);
 
 }  // namespace rastsim

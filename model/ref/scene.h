@@ -8,6 +8,7 @@
 
 #include <array>
 #include <cstdint>
+#include <map>
 #include <stdexcept>
 #include <string>
 #include <variant>
@@ -107,9 +108,14 @@ decltype(auto) visit_command(const Command& c, V&& visitor) {
   return std::visit(std::forward<V>(visitor), c.body);
 }
 
+// Statements a reader read but does not draw or use yet, by keyword, e.g. an OBJ's
+// {"vn": 34834, "s": 1} (docs/trace-format.md, "OBJ subset").
+using StatementCounts = std::map<std::string, uint64_t>;
+
 struct Scene {
   std::string source;                 // file name
   std::vector<Command> commands;
+  StatementCounts obj_ignored;        // an OBJ's (and its MTL files') unused statements
 };
 
 }  // namespace rastsim

@@ -2,6 +2,7 @@
 #include "report/stats_json.h"
 
 #include "ref/traverse.h"
+#include "scene/scene_io.h"
 
 #include <cstdio>
 #include <utility>
@@ -78,6 +79,10 @@ nlohmann::json to_json(const RenderStats& s) {
     j["overlaps"] = s.coverage.overlaps;
   }
   return j;
+}
+
+void add_obj_ignored(nlohmann::json& j, const std::string& scene_path) {
+  if (const auto counts = obj_ignored_counts(scene_path)) j["obj_ignored"] = nlohmann::json(*counts);
 }
 
 }  // namespace rastsim

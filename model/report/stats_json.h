@@ -23,4 +23,8 @@ std::string triangles_summary(const RenderStats& s);
 // Every stat under its public name; framebuffer_crc32 as crc32_hex.
 nlohmann::json to_json(const RenderStats& s);
 
+// For an OBJ scene, sets j["obj_ignored"] to what its reader read but did not use
+// (statement -> count, {} when nothing; scene_io.h obj_ignored_counts); a trace adds no key.
+void add_obj_ignored(nlohmann::json& j, const std::string& scene_path);
+
 }  // namespace rastsim

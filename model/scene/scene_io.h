@@ -64,8 +64,13 @@ class SceneAhead {
   std::unique_ptr<Impl> impl_;
 };
 
-// True when `path` names an OBJ mesh: extension .obj after any .gz / .zst, any case.
-bool is_obj_name(const std::string& path);
+// What an OBJ scene reads but does not use (Scene::obj_ignored, statement -> count),
+// read again from the file without placing it; nullopt for a trace. load_obj also
+// prints these counts once per file on stderr ("bunny.obj: ignored: vn 34834, s 1").
+std::optional<StatementCounts> obj_ignored_counts(const std::string& path);
+
+// True when `path` names an OBJ mesh: the name, without any .gz / .zst, ends in .obj (any case).
+bool is_obj_path(const std::string& path);
 
 // By extension, after any .gz / .zst: .obj -> load_obj, anything else -> load_trace.
 // Every loader reads plain, gzip and zstd files alike (scene_stream.h).

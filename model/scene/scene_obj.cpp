@@ -1,29 +1,35 @@
 // SPDX-License-Identifier: Apache-2.0
 // OBJ loader: a Wavefront OBJ subset placed on screen by ObjPlacement (docs/trace-format.md).
 //
-// - Parse: `v x y z [w] [r g b]`, `vt`/`vn` (counted so face indices can be checked,
-//   otherwise ignored), `f` in the forms i, i/t, i//n, i/t/n with negative (relative)
-//   indices, `mtllib`/`usemtl` with `newmtl`/`Kd` from the MTL; o, g, s and the other
-//   non-polygon statements are ignored.
+// - Parse: `v x y z [w] [r g b]`, `f` in the forms i, i/t, i//n, i/t/n with negative
+//   (relative) indices and distinct corners, `mtllib`/`usemtl` with `newmtl`/`Kd` from
+//   the MTL. What is read but not used (vt, vn, o, g, s, the MTL's other statements and
+//   texture maps, whose files must exist) is counted in Scene::obj_ignored; `l` and `p`
+//   stop the reader unless scene.obj_lines_points = skip, which counts them too.
 // - Place: turn the mesh's up axis (scene.obj_up) to +y, centre the bounding box of the
 //   vertices faces use, rotate about y (yaw) then x (pitch), project orthographically so the bounding sphere spans `fill` of the
 //   smaller viewport side, y down on screen, depth 0 (near) .. 1 (far) over the sphere.
 // - Shade: colour (vertex colour, else material Kd, else white) times a headlight
 //   Lambert term 0.25 + 0.75 * max(0, n_z) of the face's view-space normal.
-// - Emit: CmdClear, CmdClearDepth 1, then one List command per face (polygons fanned
-//   from their first vertex), each named by the face's line; or, with
-//   scene.obj_faces_per_command N > 1, one List command per N faces, named by the first.
+// - Triangulate (face_triangulate.h) on the corners snapped to raster.coord_format: a
+//   convex outline is fanned from its first corner, a concave one ear-clipped; a face
+//   crossing itself in its own plane is an error.
+// - Emit: CmdClear, CmdClearDepth 1, then one List command per face, each named by the
+//   face's line; or, with scene.obj_faces_per_command N > 1, one List command per N
+//   faces, named by the first.
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <filesystem>
 #include <functional>
+#include <iostream>
 #include <map>
 #include <numbers>
 #include <optional>
 #include <string_view>
 
 #include "ref/scene.h"
+#include "scene/face_triangulate.h"
 #include "scene/scene_text.h"
 #include "scene/scene_io.h"
 
@@ -52,12 +58,18 @@ struct ObjFace {
   std::optional<Rgb> kd;   // material in force at the face
 };
 
-// Statements that carry nothing a flat-shaded triangle rasteriser uses.
+// Statements that carry nothing a flat-shaded triangle rasteriser uses: counted.
 bool ignored_statement(std::string_view kw) {
   static constexpr std::string_view kIgnored[] = {
-      "o", "g", "s", "vp", "l", "p", "mg", "lod", "usemap", "maplib",
+      "o", "g", "s", "vp", "mg", "lod", "usemap", "maplib",
       "shadow_obj", "trace_obj", "bevel", "c_interp", "d_interp", "ctech", "stech"};
   return std::find(std::begin(kIgnored), std::end(kIgnored), kw) != std::end(kIgnored);
+}
+
+// MTL statements naming a texture file (the last token; options such as -s u v w may
+// precede it).
+bool texture_map_statement(std::string_view kw) {
+  return kw.substr(0, 4) == "map_" || kw == "bump" || kw == "disp" || kw == "decal" || kw == "refl";
 }
 
 // Material names may hold spaces (some exporters write them): the rest of the line.
@@ -69,7 +81,8 @@ std::string rest_of_line(const Tokens& t) {
 
 class ObjParser {
  public:
-  ObjParser(const std::string& name, const std::string& base_dir) : name_(name), base_dir_(base_dir) {}
+  ObjParser(const std::string& name, const std::string& base_dir, ObjLinesPoints lines_points)
+      : name_(name), base_dir_(base_dir), lines_points_(lines_points) {}
 
   void line(int n, const Tokens& t) {
     line_ = n;
@@ -80,12 +93,14 @@ class ObjParser {
     if (kw == "f") return face(t);
     if (kw == "mtllib") return mtllib(t);
     if (kw == "usemtl") return usemtl(t);
-    if (ignored_statement(kw)) return;
-    fail("unknown OBJ statement " + quote(kw));
+    if (kw == "l" || kw == "p") return line_or_point(kw);
+    if (!ignored_statement(kw)) fail("unknown OBJ statement " + quote(kw));
+    ++ignored[std::string(kw)];
   }
 
   std::vector<ObjVertex> vertices;
   std::vector<ObjFace> faces;
+  StatementCounts ignored;  // statement -> count, the MTL files' included
 
  private:
   [[noreturn]] void fail(const std::string& what) const { scene_text::fail(name_, line_, what); }
@@ -114,6 +129,18 @@ class ObjParser {
     vertices.push_back(v);
   }
 
+  // 3D points and lines need depth through the clip-space front end, which the pipeline
+  // does not have yet: refused at every level, or skipped and counted on request.
+  void line_or_point(std::string_view kw) {
+    if (lines_points_ == ObjLinesPoints::Skip) {
+      ++ignored[std::string(kw)];
+      return;
+    }
+    fail(std::string(kw == "l" ? "'l' (polyline)" : "'p' (point)") +
+         " statements are not drawn yet: 3D lines and points come with the clip-space front end "
+         "(docs/trace-format.md, \"OBJ subset\"); remove them or set scene.obj_lines_points = \"skip\"");
+  }
+
   // vt / vn: only their count matters (faces may index them); the numbers are checked.
   void counted(const Tokens& t, size_t lo, size_t hi, size_t& count) {
     const size_t n = t.size() - 1;
@@ -122,6 +149,7 @@ class ObjParser {
            (lo == hi ? "" : " to " + std::to_string(hi)) + " numbers, got " + std::to_string(n));
     for (size_t i = 1; i <= n; ++i) number(t[i], "'" + std::string(t[0]) + "' component");
     ++count;
+    ++ignored[std::string(t[0])];
   }
 
   // A 1-based (or negative, relative to the end so far) index into `count` elements.
@@ -156,7 +184,12 @@ class ObjParser {
       const bool bad_tex = parts == 2 && part[1].empty();
       if (part[0].empty() || bad_tex || (parts == 3 && part[2].empty()))
         fail(label + quote(t[k]) + " is not of the form i, i/t, i//n or i/t/n");
-      f.v.push_back(index(part[0], vertices.size(), label + "index"));
+      const size_t v = index(part[0], vertices.size(), label + "index");
+      for (size_t j = 0; j < f.v.size(); ++j)
+        if (f.v[j] == v)
+          fail(label + quote(t[k]) + " is vertex " + std::to_string(v + 1) + " again (face vertex " +
+               std::to_string(j + 1) + "): a face's corners must be distinct");
+      f.v.push_back(v);
       if (parts >= 2 && !part[1].empty()) index(part[1], vt_count_, label + "texture index");
       if (parts == 3) index(part[2], vn_count_, label + "normal index");
     }
@@ -178,12 +211,15 @@ class ObjParser {
   }
 
   // MTL: `newmtl NAME` starts a material, `Kd r [g b]` sets its diffuse colour; every
-  // other statement (Ka, Ks, Ns, d, illum, map_*, PBR extensions) is ignored. A material
-  // without Kd is white; a later `newmtl` of the same name replaces the earlier one.
+  // other statement (Ka, Ks, Ns, d, illum, map_*, PBR extensions) is counted as ignored,
+  // and a texture map's file must exist beside the MTL. A material without Kd is white;
+  // a later `newmtl` of the same name replaces the earlier one.
   void parse_mtl(const std::string& text, const std::string& path) {
     std::string current;
     scene_text::for_each_line(text, path, [&](int n, const Tokens& t) {
       auto mtl_fail = [&](const std::string& what) { scene_text::fail(path, n, what); };
+      if (t[0] != "newmtl" && t[0] != "Kd") ++ignored[std::string(t[0])];
+      if (texture_map_statement(t[0])) check_map_file(t, path, mtl_fail);
       if (t[0] == "newmtl") {
         if (t.size() < 2) mtl_fail("'newmtl' needs a material name");
         current = rest_of_line(t);
@@ -206,6 +242,18 @@ class ObjParser {
     });
   }
 
+  // A texture map's file (the last token), relative to the MTL's directory.
+  template <class Fail>
+  static void check_map_file(const Tokens& t, const std::string& mtl_path, const Fail& mtl_fail) {
+    if (t.size() < 2) mtl_fail("'" + std::string(t[0]) + "' needs a file name");
+    const std::filesystem::path file =
+        std::filesystem::path(mtl_path).parent_path() / std::filesystem::path(std::string(t.back()));
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(file, ec))
+      mtl_fail("'" + std::string(t[0]) + "' names " + quote(t.back()) + ", which does not exist (looked for " +
+               quote(file.string()) + ")");
+  }
+
   void usemtl(const Tokens& t) {
     if (t.size() < 2) fail("'usemtl' needs a material name");
     const auto it = materials_.find(rest_of_line(t));
@@ -215,6 +263,7 @@ class ObjParser {
 
   const std::string& name_;
   const std::string& base_dir_;
+  ObjLinesPoints lines_points_;
   int line_ = 0;
   size_t vt_count_ = 0, vn_count_ = 0;
   std::map<std::string, Rgb> materials_;
@@ -337,6 +386,43 @@ std::vector<SceneVertex> face_corners(const ObjFace& f, const std::vector<Vec3>&
   return corner;
 }
 
+// What a face's crossing edges are, for its error: corners are numbered from 1, edge k
+// runs from corner k to corner k + 1 (the last back to corner 1).
+std::string crossing_text(std::pair<size_t, size_t> e, size_t n) {
+  auto edge = [&](size_t k) { return std::to_string(k + 1) + "-" + std::to_string((k + 1) % n + 1); };
+  if (e.first == e.second) return "corners " + edge(e.first) + " are at one position";
+  return "edges " + edge(e.first) + " and " + edge(e.second) +
+         ((e.second == (e.first + 1) % n) ? " fold back onto each other" : " cross or touch");
+}
+
+// The triangles of a face as corner indices, in its winding (docs/trace-format.md,
+// "Polygon faces"). A face crossing itself in its own plane is an error whatever the
+// view; the triangulation itself is on the corners snapped as setup snaps them, relative
+// to the viewport centre, so that the triangles cover exactly the snapped outline.
+std::vector<FaceTriangle> face_triangles(const ObjFace& f, const std::vector<SceneVertex>& corner,
+                                         const std::vector<ObjVertex>& verts, const ObjPlacement& pl,
+                                         const std::string& name) {
+  if (corner.size() == 3) return fan_triangles(3);
+  std::vector<std::array<double, 3>> face;
+  for (size_t i : f.v) face.push_back(verts[i].p);
+  if (const auto e = face_crossing_in_plane(face))
+    scene_text::fail(name, f.line, "the face crosses itself: " + crossing_text(*e, face.size()) +
+                                       " (split it into simple polygons)");
+  std::vector<ScreenPoint> outline;
+  for (const SceneVertex& c : corner) {
+    const auto x = snap_coord(c.x, pl.viewport_width / 2, pl.coord_format);
+    const auto y = snap_coord(c.y, pl.viewport_height / 2, pl.coord_format);
+    if (!x || !y) return fan_triangles(corner.size());  // outside the format: setup reports or culls it
+    outline.push_back({*x, *y});
+  }
+  FaceTriangulation t = triangulate_outline(outline);
+  // An outline that crosses although the face does not is the view's doing (nearly
+  // edge-on, corners within a coordinate LSB of an edge): fanned, a sliver that wide at
+  // most, so that every view of a good mesh draws.
+  if (t.shape == OutlineShape::Crossing) return fan_triangles(corner.size());
+  return std::move(t.triangles);
+}
+
 // Places the parsed mesh and emits its commands (see the file comment for the maths).
 Scene place(ObjParser& obj, const std::string& name, const ObjPlacement& pl) {
   for (ObjVertex& v : obj.vertices) v.p = to_y_up(v.p, pl.up);  // in place: no second copy
@@ -348,6 +434,7 @@ Scene place(ObjParser& obj, const std::string& name, const ObjPlacement& pl) {
 
   Scene scene;
   scene.source = name;
+  scene.obj_ignored = std::move(obj.ignored);
   const SourceLoc first{name, obj.faces.front().line};
   scene.commands.push_back({CmdClear{pl.clear_r, pl.clear_g, pl.clear_b}, first});
   scene.commands.push_back({CmdClearDepth{1.0}, first});
@@ -358,14 +445,18 @@ Scene place(ObjParser& obj, const std::string& name, const ObjPlacement& pl) {
     // the triangles and their order are the same whatever the grouping.
     if (faces_in_command == 0) scene.commands.push_back({CmdPrimitives{Topology::List, {}}, SourceLoc{name, f.line}});
     auto& p = std::get<CmdPrimitives>(scene.commands.back().body);
-    for (size_t k = 1; k + 1 < corner.size(); ++k) {  // fan from the first corner
-      p.vertices.push_back(corner[0]);
-      p.vertices.push_back(corner[k]);
-      p.vertices.push_back(corner[k + 1]);
-    }
+    for (const FaceTriangle& t : face_triangles(f, corner, verts, pl, name))
+      for (uint32_t k : t) p.vertices.push_back(corner[k]);
     if (++faces_in_command == pl.faces_per_command) faces_in_command = 0;
   }
   return scene;
+}
+
+// "vn 34834, vt 12, s 1": the counts in keyword order.
+std::string counts_text(const StatementCounts& c) {
+  std::string s;
+  for (const auto& [kw, n] : c) s += (s.empty() ? "" : ", ") + kw + " " + std::to_string(n);
+  return s;
 }
 
 }  // namespace
@@ -374,18 +465,36 @@ Scene parse_obj(const std::string& text, const std::string& name, const ObjPlace
                 const std::string& base_dir) {
   const ObjPlacement& pl = placement;
   if (pl.viewport_width < 1 || pl.viewport_height < 1 || !std::isfinite(pl.fill) || pl.fill <= 0 ||
-      !std::isfinite(pl.yaw_deg) || !std::isfinite(pl.pitch_deg) || pl.faces_per_command < 1)
+      !std::isfinite(pl.yaw_deg) || !std::isfinite(pl.pitch_deg) || pl.faces_per_command < 1 ||
+      pl.coord_format.frac_bits < 1 || pl.coord_format.int_bits + pl.coord_format.frac_bits > kMaxFormatBits)
     throw SceneError(name + ": OBJ placement needs a positive viewport, a positive finite fill, "
-                            "finite yaw and pitch and at least one face a command");
-  ObjParser obj(name, base_dir);
+                            "finite yaw and pitch, at least one face a command and a coordinate format");
+  ObjParser obj(name, base_dir, pl.lines_points);
   const int lines = scene_text::for_each_line(text, name, [&](int n, const Tokens& t) { obj.line(n, t); });
   if (obj.faces.empty()) scene_text::fail(name, std::max(lines, 1), "no faces (an OBJ scene needs at least one 'f')");
   return place(obj, name, pl);
 }
 
-Scene load_obj(const std::string& path, const ObjPlacement& placement) {
+namespace {
+std::string dir_of(const std::string& path) {
   const std::string dir = std::filesystem::path(path).parent_path().string();
-  return parse_obj(scene_text::read_file(path), path, placement, dir.empty() ? "." : dir);
+  return dir.empty() ? "." : dir;
+}
+}  // namespace
+
+Scene load_obj(const std::string& path, const ObjPlacement& placement) {
+  Scene scene = parse_obj(scene_text::read_file(path), path, placement, dir_of(path));
+  // Once per file read: what the scene leaves out is never silent.
+  if (!scene.obj_ignored.empty()) std::cerr << path << ": ignored: " << counts_text(scene.obj_ignored) << "\n";
+  return scene;
+}
+
+std::optional<StatementCounts> obj_ignored_counts(const std::string& path) {
+  if (!is_obj_path(path)) return std::nullopt;
+  const std::string dir = dir_of(path);
+  ObjParser obj(path, dir, ObjLinesPoints::Skip);
+  scene_text::for_each_line(scene_text::read_file(path), path, [&](int n, const Tokens& t) { obj.line(n, t); });
+  return std::move(obj.ignored);
 }
 
 }  // namespace rastsim

@@ -10,7 +10,7 @@
 
 namespace rastsim {
 
-// ArchParams::resolve(cfg), then, when `scene_path` is an OBJ mesh (is_obj_name) and
+// ArchParams::resolve(cfg), then, when `scene_path` is an OBJ mesh (is_obj_path) and
 // scene.obj_depth_func is not "config", the raster state's depth test is
 // scene.obj_depth_func (default "less": a mesh hides its back faces). A trace keeps
 // raster.depth_func. The config itself is left as written.

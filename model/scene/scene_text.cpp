@@ -75,6 +75,12 @@ void one_line(std::string_view s, int line, const std::string& name, Tokens& tok
   if (!tokens.empty()) fn(line, tokens);
 }
 
+// A UTF-8 byte-order mark, which some editors write at the start of a text file (the
+// TOML reader accepts it too): skipped there, never taken as a token.
+constexpr std::string_view kUtf8Bom = "\xEF\xBB\xBF";
+
+size_t after_bom(std::string_view text) { return text.substr(0, kUtf8Bom.size()) == kUtf8Bom ? kUtf8Bom.size() : 0; }
+
 // The complete lines of `text` from `pos`; returns where the unfinished last line starts.
 size_t complete_lines(std::string_view text, size_t pos, int& line, const std::string& name, Tokens& tokens,
                       const LineFn& fn) {
@@ -93,7 +99,7 @@ size_t complete_lines(std::string_view text, size_t pos, int& line, const std::s
 int for_each_line(std::string_view text, const std::string& name, const LineFn& fn) {
   int line = 0;
   Tokens tokens;
-  const size_t rest = complete_lines(text, 0, line, name, tokens, fn);
+  const size_t rest = complete_lines(text, after_bom(text), line, name, tokens, fn);
   if (rest < text.size()) {
     if (line == std::numeric_limits<int>::max()) fail(name, line, "too many lines");
     one_line(text.substr(rest), ++line, name, tokens, fn);
@@ -105,6 +111,7 @@ int for_each_line(scene_stream::Reader& in, const std::string& name, const LineF
   constexpr size_t kChunk = size_t{1} << 20;
   std::string buf;  // an unfinished line carried over, then the next chunk
   int line = 0;
+  bool bom_checked = false;
   Tokens tokens;
   for (;;) {
     const size_t kept = buf.size();
@@ -112,6 +119,11 @@ int for_each_line(scene_stream::Reader& in, const std::string& name, const LineF
     const size_t got = in.read(buf.data() + kept, kChunk);
     buf.resize(kept + got);
     if (got == 0) break;
+    if (!bom_checked) {  // the mark can only start the file; a shorter start may still be one
+      if (buf.size() < kUtf8Bom.size() && kUtf8Bom.substr(0, buf.size()) == buf) continue;
+      buf.erase(0, after_bom(buf));
+      bom_checked = true;
+    }
     const size_t rest = complete_lines(buf, 0, line, name, tokens, fn);
     buf.erase(0, rest);
     // An unfinished line already too long fails now, not after reading the rest of it.

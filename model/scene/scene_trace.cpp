@@ -95,6 +95,11 @@ class TraceParser {
       line_ = open_line_;
       fail("'" + open_kw_ + "' without 'end' (reached the end of the file)");
     }
+    // A scene that draws nothing is a mistake (an empty or truncated file, the wrong
+    // file), not a frame of clear colour to measure.
+    if (!drew_)
+      throw SceneError(name_ + ": no draw command (tri, strip, fan, quads or quadstrip, or a 2D draw: point, line, "
+                               "lines, linestrip, lineloop, polygon, circle, arc, rect, blit or text)");
     return std::move(scene_);
   }
 
@@ -199,6 +204,7 @@ class TraceParser {
   }
 
   void emit(CommandBody body, int line) {
+    drew_ = drew_ || std::holds_alternative<CmdPrimitives>(body) || std::holds_alternative<CmdDraw2d>(body);
     scene_.commands.push_back({std::move(body), SourceLoc{name_, line}});
   }
 
@@ -495,6 +501,7 @@ class TraceParser {
   uint8_t r_ = 255, g_ = 255, b_ = 255;  // `color`: white until set
   double depth_ = 0.0;                   // `depth`: nearest until set
   bool open_ = false;                    // inside strip/fan ... end
+  bool drew_ = false;                    // a draw command was emitted
   std::string open_kw_;
   int open_line_ = 0, first_vertex_line_ = 0;
   int drained_line_ = 0;  // the line of the last drain (batches bounded by lines too)
@@ -507,7 +514,7 @@ class TraceParser {
 }  // namespace
 
 // The parser follows the name without its compression suffix: a.obj.gz is an OBJ.
-bool is_obj_name(const std::string& path) {
+bool is_obj_path(const std::string& path) {
   std::string ext = std::filesystem::path(scene_stream::strip_compression_suffix(path)).extension().string();
   for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   return ext == ".obj";
@@ -534,7 +541,7 @@ void stream_trace(const std::string& path, size_t batch, const CommandBatchFn& c
 
 void stream_scene(const std::string& path, const ObjPlacement& placement, size_t batch,
                   const CommandBatchFn& consume) {
-  if (!is_obj_name(path)) return stream_trace(path, batch, consume);
+  if (!is_obj_path(path)) return stream_trace(path, batch, consume);
   // An OBJ is placed by the bounding sphere of all its vertices: read whole, then batched.
   Scene scene = load_obj(path, placement);
   std::vector<Command> part;
@@ -547,7 +554,7 @@ void stream_scene(const std::string& path, const ObjPlacement& placement, size_t
 }
 
 Scene load_scene(const std::string& path, const ObjPlacement& placement) {
-  if (is_obj_name(path)) return load_obj(path, placement);
+  if (is_obj_path(path)) return load_obj(path, placement);
   return load_trace(path);
 }
 
