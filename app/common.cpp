@@ -18,11 +18,6 @@ namespace rastsim::app {
 
 namespace {
 
-std::vector<std::string>& command_line() {
-  static std::vector<std::string> argv;
-  return argv;
-}
-
 // FNV-1a 64 of a file's bytes, read a MiB at a time: scenes reach hundreds of MB.
 std::string file_hash(const std::string& path) {
   std::ifstream is(path, std::ios::binary);
@@ -37,12 +32,10 @@ std::string file_hash(const std::string& path) {
 
 }  // namespace
 
-void record_command_line(int argc, const char* const* argv) { command_line().assign(argv, argv + argc); }
-
 nlohmann::json provenance(const ConfigOptions& o, const Config& resolved, const std::string& scene_path) {
   const auto path_or_null = [](const std::string& p) { return p.empty() ? nlohmann::json() : nlohmann::json(p); };
   return {{"rastsim_version", rastsim_version()},
-          {"argv", command_line()},
+          {"argv", this_command_line()},
           {"cwd", std::filesystem::current_path().string()},
           {"config_path", path_or_null(o.config_path)},
           {"sets", o.sets},

@@ -35,9 +35,6 @@ ArchParams resolve_arch(const ConfigOptions& o);
 // scene.obj_depth_func.
 ArchParams resolve_arch(const ConfigOptions& o, const std::string& scene_path);
 
-// The command line of this process, recorded by main() for the provenance of its outputs.
-void record_command_line(int argc, const char* const* argv);
-
 // What produced a stats JSON, its "provenance" object (docs/provenance.md): rastsim's
 // version, the command line and working directory, the config file and every --set in
 // order, the resolved config as canonical TOML (config_toml) and its config_hash, the

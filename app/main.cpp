@@ -16,7 +16,6 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("rastsim ") + rastsim::rastsim_version(),
                        "Print the version (git describe of the sources at build time) and exit");
-  rastsim::app::record_command_line(argc, argv);
   app.set_help_all_flag("--help-all", "Help for every command");
   rastsim::app::register_config(app);
   rastsim::app::register_render(app);

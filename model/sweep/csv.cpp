@@ -150,7 +150,7 @@ size_t Csv::resume(std::vector<Point>& points) {
     for (const auto& c : leading) want += (want.empty() ? "" : ", ") + c;
     for (size_t i = 0; i < std::min(header.size(), leading.size()); ++i) got += (got.empty() ? "" : ", ") + header[i];
     throw std::runtime_error(path_ + ": --resume needs a CSV of this sweep's columns (" + want + "), it has (" + got +
-                             "); write to another --out or drop --resume");
+                             "); write to another --output or drop --resume");
   }
   std::map<std::string, size_t> by_key;
   for (size_t i = 0; i < points.size(); ++i) by_key.emplace(row_key(points[i].scene, level_, points[i].config_hash), i);

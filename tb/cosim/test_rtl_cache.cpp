@@ -85,7 +85,7 @@ std::string cosim_error(const std::string& set) {
   cfg.apply_override(set);
   cfg.validate();
   try {
-    run_cosim(parse_trace("viewport 64 64\n", "mem.trace"), ArchParams::resolve(cfg));
+    run_cosim(parse_trace("viewport 64 64\ntri 0 0 8 0 0 8\n", "mem.trace"), ArchParams::resolve(cfg));
   } catch (const std::exception& e) {
     return e.what();
   }
