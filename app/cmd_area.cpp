@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // `rastsim area`: the RTL built with a config's exported parameters, synthesised with
-// Yosys into generic gates (model/rtl/area.h): cells, flip-flops and the CMOS transistor
+// Yosys into generic gates (model/rtlsim/area.h): cells, flip-flops and the CMOS transistor
 // estimate of each stage module and of the whole design, cached per parameter set.
 #include <unistd.h>
 
@@ -9,7 +9,7 @@
 #include <iostream>
 
 #include "common.h"
-#include "rtl/area.h"
+#include "rtlsim/area.h"
 
 namespace rastsim::app {
 

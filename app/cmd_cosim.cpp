@@ -2,16 +2,16 @@
 // `rastsim cosim`: the verilated RTL (rtl/rast_top.sv) on one scene, every fragment
 // compared with the reference model, and its cycle count next to the SystemC model's.
 // Any valid config: a shipped model when one fits, else one built on demand into the
-// cache (model/rtl/rtl_cache.h; --rtl-build-only builds it and stops).
+// cache (model/rtlsim/rtl_cache.h; --rtl-build-only builds it and stops).
 #include <cmath>
 #include <cstdio>
 #include <iostream>
 
 #include "common.h"
 #include "report/stats_json.h"
-#include "rtl/cosim.h"
-#include "rtl/rtl_cache.h"
-#include "rtl/stage_compare.h"
+#include "rtlsim/cosim.h"
+#include "rtlsim/rtl_cache.h"
+#include "rtlsim/stage_compare.h"
 #include "sc/raster_pipeline.h"
 #include "scene/scene_io.h"
 
@@ -19,7 +19,7 @@ namespace rastsim::app {
 
 namespace {
 
-// `rastsim rtl-cache`: the on-demand RTL models (model/rtl/rtl_cache.h), listed or removed.
+// `rastsim rtl-cache`: the on-demand RTL models (model/rtlsim/rtl_cache.h), listed or removed.
 void register_rtl_cache(CLI::App& app) {
   auto* cmd = app.add_subcommand("rtl-cache", "List (or --clean) the RTL models `cosim` built on demand");
   static bool clean = false, quiet = false;
@@ -43,12 +43,12 @@ void register_rtl_cache(CLI::App& app) {
 
 // Per stage (docs/microarchitecture.md "Stage statistics"): both sides' busy, stalled and
 // starved cycles into the stats and a table on `out`; --trace-diff's CSVs.
-void report_stages(const std::vector<cosim::StageAgreement>& a, const std::string& trace_dir, nlohmann::json& j,
+void report_stages(const std::vector<rtlsim::StageAgreement>& a, const std::string& trace_dir, nlohmann::json& j,
                    std::ostream& out) {
   // Merged into stages.<name> (with --simulate-stats the SystemC model's own keys are there).
-  j["stages"].update(cosim::stages_json(a), /*merge_objects=*/true);
+  j["stages"].update(rtlsim::stages_json(a), /*merge_objects=*/true);
   out << "cosim: stage           busy model / RTL   error   stalled model / RTL   starved model / RTL\n";
-  for (const cosim::StageAgreement& s : a) {
+  for (const rtlsim::StageAgreement& s : a) {
     char line[200];
     std::snprintf(line, sizeof line, "cosim: %-14s %10llu / %-10llu %6.2f %% %9llu / %-9llu %9llu / %llu\n",
                   s.name.c_str(), (unsigned long long)s.model.busy, (unsigned long long)s.rtl.busy,
@@ -56,12 +56,12 @@ void report_stages(const std::vector<cosim::StageAgreement>& a, const std::strin
                   (unsigned long long)s.model.starved, (unsigned long long)s.rtl.starved);
     out << line;
   }
-  if (const cosim::StageAgreement* w = cosim::worst_stage(a)) {
+  if (const rtlsim::StageAgreement* w = rtlsim::worst_stage(a)) {
     j["stage_worst_busy_error"] = w->busy_error;
     j["stage_worst"] = w->name;
   }
   if (trace_dir.empty()) return;
-  const cosim::TraceDiff d = cosim::write_trace_diff(trace_dir, a);
+  const rtlsim::TraceDiff d = rtlsim::write_trace_diff(trace_dir, a);
   j["trace_diff"] = {{"rows_model", d.rows_model}, {"rows_rtl", d.rows_rtl}, {"first", d.first}, {"earliest", d.earliest}};
   out << "cosim: trace-diff " << trace_dir << "/model.csv (" << d.rows_model << " rows), " << trace_dir
             << "/rtl.csv (" << d.rows_rtl << " rows): "
@@ -73,20 +73,20 @@ void report_stages(const std::vector<cosim::StageAgreement>& a, const std::strin
 struct CosimCommand {
   ConfigOptions config;
   std::string scene_path, stats_path, trace_diff_dir;
-  cosim::CosimOptions run;
+  rtlsim::CosimOptions run;
   bool no_model = false, build_only = false, simulate_stats = false, quiet = false;
   double max_error = -1;
 };
 
 // --rtl-build-only: the config's model, shipped or built into the cache.
-void build_rtl_model(const ArchParams& arch, const cosim::CosimOptions& co, std::ostream& out) {
-  const cosim::RtlModelChoice m = cosim::prepare_rtl_model(arch, co);
+void build_rtl_model(const ArchParams& arch, const rtlsim::CosimOptions& co, std::ostream& out) {
+  const rtlsim::RtlModelChoice m = rtlsim::prepare_rtl_model(arch, co);
   out << "cosim: RTL model " << m.name
             << (m.dir.empty() ? " (shipped)" : (m.cache_hit ? " (in the cache: " : " (built: ") + m.dir + ")") << "\n";
 }
 
 // The RTL run's summary lines; the stress seed whenever a stress was on.
-void print_rtl_run(const cosim::CosimResult& r, const cosim::CosimOptions& co, std::ostream& out) {
+void print_rtl_run(const rtlsim::CosimResult& r, const rtlsim::CosimOptions& co, std::ostream& out) {
   if (!r.rtl_model_dir.empty())
     out << "cosim: on-demand RTL model " << r.rtl_model_dir
               << (r.rtl_cache_hit ? " (cache hit)" : " (built in " + std::to_string(r.rtl_build_seconds) + " s)")
@@ -108,7 +108,7 @@ void print_rtl_run(const cosim::CosimResult& r, const cosim::CosimOptions& co, s
 
 // The SystemC model on the same scene: its cycles and error into `j` (with
 // --simulate-stats its whole stats under simulate's names), the per-stage comparison.
-void compare_with_model(const Scene& scene, const ArchParams& arch, const CosimCommand& c, const cosim::CosimResult& r,
+void compare_with_model(const Scene& scene, const ArchParams& arch, const CosimCommand& c, const rtlsim::CosimResult& r,
                         nlohmann::json& j, std::ostream& out) {
   sc::SimOptions so;
   so.spans = !c.trace_diff_dir.empty();
@@ -127,7 +127,7 @@ void compare_with_model(const Scene& scene, const ArchParams& arch, const CosimC
   }
   out << "cosim: cycles_rtl " << r.cycles_rtl << ", cycles_model " << m.cycles << ", error "
             << std::round(err * 10000) / 100 << " %\n";
-  report_stages(cosim::compare_stages(cosim::stage_records(m.stages), r.stages), c.trace_diff_dir, j, out);
+  report_stages(rtlsim::compare_stages(rtlsim::stage_records(m.stages), r.stages), c.trace_diff_dir, j, out);
 }
 
 // One `rastsim cosim` run: the RTL against the reference, then (unless --no-model) the
@@ -147,7 +147,7 @@ void run_cosim_command(CosimCommand& c) {
   if (!c.trace_diff_dir.empty() && c.no_model)
     throw std::runtime_error("--trace-diff needs the SystemC model (drop --no-model)");
   c.run.record_transactions = !c.trace_diff_dir.empty();
-  const cosim::CosimResult r = cosim::run_cosim(scene, arch, c.run);
+  const rtlsim::CosimResult r = rtlsim::run_cosim(scene, arch, c.run);
   nlohmann::json j = r.to_json(c.run);
   j["config"] = arch.config.source_name();
   j["scene"] = c.scene_path;
@@ -162,7 +162,7 @@ void run_cosim_command(CosimCommand& c) {
 }
 
 // The stress and waveform options of the RTL run.
-void add_rtl_run_options(CLI::App* cmd, cosim::CosimOptions& co) {
+void add_rtl_run_options(CLI::App* cmd, rtlsim::CosimOptions& co) {
   cmd->add_option("--fst", co.fst_path, "Write an FST waveform of the RTL");
   cmd->add_option("--backpressure", co.backpressure,
                   "Probability that the ROP refuses fragments (frag_ready_i low) in a cycle (random, seeded by --seed; "

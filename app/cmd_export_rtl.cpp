@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: Apache-2.0
-// `rastsim export-rtl`: the Verilog parameter header of a config (model/rtl/rtl_params.h),
+// `rastsim export-rtl`: the Verilog parameter header of a config (model/rtlsim/rtl_params.h),
 // the same text the build's exporter writes for each verilated config.
 #include <fstream>
 #include <iostream>
 
 #include "common.h"
-#include "rtl/rtl_params.h"
+#include "rtlsim/rtl_params.h"
 
 namespace rastsim::app {
 

@@ -13,7 +13,7 @@
 #include "display/monitor.h"
 #include "ref/pipeline.h"
 #include "display/scanout.h"
-#include "rtl/rtl_params.h"
+#include "rtlsim/rtl_params.h"
 #include "sc/scanout.h"
 #include "scene/scene_io.h"
 #include "image/image_io.h"

@@ -25,7 +25,7 @@
 `default_nettype none
 
 module rast_engine2d #(
-  // Public: the testbench checks them against its table (model/rtl/rtl_params.cpp,
+  // Public: the testbench checks them against its table (model/rtlsim/rtl_params.cpp,
   // Engine2dRtlParams), which takes LanesMax from the config schema.
   parameter int Width    /*verilator public*/ = 20,  // bits of a signed pixel index
   parameter int LanesMax /*verilator public*/ = 8    // largest engine2d.fill_pixels_per_cycle

@@ -8,7 +8,7 @@
 //   cycle it works on it (the FIFO slot frees at once, as in the SystemC model).
 //
 // - Every parameter comes from the config through the exported header rast_params.vh
-//   (`rastsim export-rtl`, model/rtl/rtl_params.cpp): widths of docs/fixed-point.md,
+//   (`rastsim export-rtl`, model/rtlsim/rtl_params.cpp): widths of docs/fixed-point.md,
 //   the timing keys and FIFO depths. The same stages, FIFOs and timing equations as the
 //   SystemC model (docs/microarchitecture.md, docs/rtl.md).
 // - The raster state is run-time input, held constant while the pipeline is busy: the

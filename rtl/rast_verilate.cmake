@@ -3,8 +3,8 @@
 # written once. Two users include this file:
 # - rtl/CMakeLists.txt, for the shipped configs (RAST_RTL_CONFIGS) at configure time;
 # - the small project `rastsim cosim` writes into its cache when no shipped model fits a
-#   config (model/rtl/rtl_cache.cpp): the text of this file is compiled into rastsim
-#   (model/rtl/CMakeLists.txt, embed_rtl.cmake) and written out beside the RTL sources, so
+#   config (model/rtlsim/rtl_cache.cpp): the text of this file is compiled into rastsim
+#   (model/rtlsim/CMakeLists.txt, embed_rtl.cmake) and written out beside the RTL sources, so
 #   an on-demand model is verilated exactly as a shipped one.
 
 # rast_rtl_files(DIR <top> <engine> <waivers>): the sources under DIR (rtl/ or the cache

@@ -10,7 +10,7 @@
 // - Cycle 2: codes out. A pixel without data (outside the framebuffer, or fb_rvalid_i
 //   low: an underrun) goes out blank: BLANK high, codes 0.
 // - Every parameter comes from the config through the exported header
-//   scanout_params.vh (`rastsim export-rtl-scanout`, model/rtl/rtl_params.cpp).
+//   scanout_params.vh (`rastsim export-rtl-scanout`, model/rtlsim/rtl_params.cpp).
 `default_nettype none
 
 module scanout_top #(

@@ -42,7 +42,7 @@ struct TimingParams {
   int fragment_fifo_entries() const { return fifo_fragment + int(interp_latency); }
 
   // The stages' cost equations (docs/microarchitecture.md), in cycles. The SystemC
-  // stages and the RTL testbench's stages (model/rtl) both call these.
+  // stages and the RTL testbench's stages (model/rtlsim) both call these.
   // Command fetch: the command header (paid once a command, with its first triangle)
   // plus its new vertices; a list triangle brings 3, a strip or fan triangle after the
   // first brings 1.

@@ -49,7 +49,7 @@ inline int64_t max_viewport_extent(const FixedFormat& f) { return (int64_t{2} <<
 
 // The datapath widths that follow from a coordinate format (docs/fixed-point.md,
 // "Datapath widths"). The one place these equations are written: export-rtl
-// (model/rtl/rtl_params.cpp), `rastsim fit` and the stability tests all call it.
+// (model/rtlsim/rtl_params.cpp), `rastsim fit` and the stability tests all call it.
 // N = I + F; widths in bits, signed unless marked unsigned.
 struct DatapathWidths {
   int coord = 0;      // snapped vertex x, y: N + 1

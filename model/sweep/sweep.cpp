@@ -9,8 +9,8 @@
 #include <set>
 #include <stdexcept>
 
-#include "rtl/area.h"
-#include "rtl/cosim.h"
+#include "rtlsim/area.h"
+#include "rtlsim/cosim.h"
 #include "sweep/sweep.h"
 #include "util/atomic_file.h"
 #include "util/interrupt.h"
@@ -22,7 +22,7 @@ volatile std::sig_atomic_t interrupted = 0;
 
 namespace {
 
-// `--area`: a point's RTL area (rastsim area, model/rtl/area.h) under "area" in its stats,
+// `--area`: a point's RTL area (rastsim area, model/rtlsim/area.h) under "area" in its stats,
 // so the CSV gains area.cells, area.flip_flops and area.transistors. Synthesised once a
 // distinct RTL parameter set (a tile-size sweep over three scenes: one run a tile size),
 // the rest from this map or the on-disk cache.
@@ -61,7 +61,7 @@ void prepare_rtl_models(const std::vector<Point>& points, const std::vector<size
     const Point& p = points[i];
     if (!seen.insert(p.config_hash).second) continue;
     try {
-      cosim::prepare_rtl_model(ArchParams::resolve(point_config(p, axes, base)));
+      rtlsim::prepare_rtl_model(ArchParams::resolve(point_config(p, axes, base)));
     } catch (const std::exception& e) {
       std::cerr << "sweep: no RTL model for " << describe(p, axes) << ": " << e.what() << "\n";
     }

@@ -5,7 +5,7 @@
 // SystemC pipeline's modules, their stall-RNG seeds and stats order (model/sc), the
 // fill latencies (TimingParams::stage_fill_cycles), the analytic estimate's per-stage
 // totals (model/estimate), the sampled level's FIFO capacity (model/fidelity), the RTL
-// testbench's stage meters (model/rtl) and `rastsim config --stages`, which scripts read.
+// testbench's stage meters (model/rtlsim) and `rastsim config --stages`, which scripts read.
 //
 // Adding a stage is one StageId enumerator, one kStages row and its module; every
 // `switch` over StageId or FifoId is written without a default, so a consumer that does

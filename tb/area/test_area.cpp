@@ -20,7 +20,7 @@
 
 #include "common.h"
 #include "util/process.h"
-#include "rtl/area.h"
+#include "rtlsim/area.h"
 
 namespace rastsim {
 namespace {

@@ -14,9 +14,9 @@
 
 #include "config/config.h"
 #include "ref/scene.h"
-#include "rtl/cosim.h"
+#include "rtlsim/cosim.h"
 
-namespace rastsim::cosim {
+namespace rastsim::rtlsim {
 
 inline Config load_shipped_config(const std::string& name) {
   Config c;
@@ -119,4 +119,4 @@ inline void expect_clean(const CosimResult& r) {
   EXPECT_GT(r.cycles_rtl, 0u);
 }
 
-}  // namespace rastsim::cosim
+}  // namespace rastsim::rtlsim

@@ -20,11 +20,11 @@
 #include <cmath>
 #include <random>
 
-#include "rtl/cosim.h"
+#include "rtlsim/cosim.h"
 #include "timing/stage_table.h"
 #include "cosim_test_util.h"
 
-namespace rastsim::cosim {
+namespace rastsim::rtlsim {
 namespace {
 
 struct RandomCase {
@@ -174,4 +174,4 @@ TEST(StressCosim, ValidGapsAndBackpressureKeepEveryFragment) {
 }
 
 }  // namespace
-}  // namespace rastsim::cosim
+}  // namespace rastsim::rtlsim

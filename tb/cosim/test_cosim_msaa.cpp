@@ -25,9 +25,9 @@
 #include "ref/coarse_raster.h"
 #include "ref/prim_assembly.h"
 #include "ref/tri_setup.h"
-#include "rtl/cosim.h"
+#include "rtlsim/cosim.h"
 
-namespace rastsim::cosim {
+namespace rastsim::rtlsim {
 namespace {
 
 Config with_samples(const char* config, int samples) {
@@ -173,4 +173,4 @@ TEST(MsaaCosim, SsaaHasNoRtlAndSaysWhichKey) {
 }
 
 }  // namespace
-}  // namespace rastsim::cosim
+}  // namespace rastsim::rtlsim

@@ -20,12 +20,12 @@
 #include <random>
 #include <utility>
 
-#include "rtl/cosim.h"
+#include "rtlsim/cosim.h"
 #include "cosim_test_util.h"
 #include "ref/pipeline.h"
 #include "config/raster_state_config.h"
 
-namespace rastsim::cosim {
+namespace rastsim::rtlsim {
 namespace {
 
 struct SceneBuilder {
@@ -211,4 +211,4 @@ TEST(BackFaceCull, NoFragmentsAndCostOfACulledTriangle) {
 }
 
 }  // namespace
-}  // namespace rastsim::cosim
+}  // namespace rastsim::rtlsim

@@ -10,12 +10,12 @@
 #include <stdexcept>
 #include <string>
 
-#include "rtl/cosim.h"
-#include "rtl/cosim_setup.h"
+#include "rtlsim/cosim.h"
+#include "rtlsim/cosim_setup.h"
 #include "scene/scene_io.h"
 #include "cosim_test_util.h"
 
-namespace rastsim::cosim {
+namespace rastsim::rtlsim {
 namespace {
 
 TEST(RtlRunnerRequest, CarriesEveryConfigValueAndOrigin) {
@@ -121,4 +121,4 @@ TEST(RtlOnDemand, TileTooLargeForVerilatorNamesTileSizeAndSamples) {
 }
 
 }  // namespace
-}  // namespace rastsim::cosim
+}  // namespace rastsim::rtlsim

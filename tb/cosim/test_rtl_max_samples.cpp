@@ -11,13 +11,13 @@
 #include <string>
 
 #include "cosim_test_util.h"
-#include "rtl/cosim.h"
-#include "rtl/cosim_setup.h"
-#include "rtl/rtl_cache.h"
-#include "rtl/rtl_params.h"
+#include "rtlsim/cosim.h"
+#include "rtlsim/cosim_setup.h"
+#include "rtlsim/rtl_cache.h"
+#include "rtlsim/rtl_params.h"
 #include "scene/scene_io.h"
 
-namespace rastsim::cosim {
+namespace rastsim::rtlsim {
 namespace {
 
 Config embedded_with(int samples, int max_samples) {
@@ -61,4 +61,4 @@ TEST(RtlMaxSamples, SmallModelMatchesShippedModel) {
 }
 
 }  // namespace
-}  // namespace rastsim::cosim
+}  // namespace rastsim::rtlsim

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// The parameters compiled into the registry of verilated models (model/rtl/CMakeLists.txt,
+// The parameters compiled into the registry of verilated models (model/rtlsim/CMakeLists.txt,
 // written by the configure-time exporter) against the shipped configs they were built
 // from, read here independently; and the initializer's round trip.
 #include <gtest/gtest.h>
@@ -10,11 +10,11 @@
 #include <string>
 #include <vector>
 
-#include "rtl/cosim.h"
-#include "rtl/rtl_params.h"
+#include "rtlsim/cosim.h"
+#include "rtlsim/rtl_params.h"
 #include "cosim_test_util.h"
 
-namespace rastsim::cosim {
+namespace rastsim::rtlsim {
 namespace {
 
 TEST(RtlRegistry, CompiledParametersEqualTheShippedConfigs) {
@@ -108,4 +108,4 @@ TEST(Engine2dRtlParams, LanesFromTheSchemaAndMismatchNamed) {
 }
 
 }  // namespace
-}  // namespace rastsim::cosim
+}  // namespace rastsim::rtlsim

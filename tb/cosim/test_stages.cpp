@@ -26,11 +26,11 @@
 
 #include "cosim_test_util.h"
 #include "fidelity/run_child.h"
-#include "rtl/stage_compare.h"
+#include "rtlsim/stage_compare.h"
 #include "sc/raster_pipeline.h"
 #include "timing/stage_table.h"
 
-namespace rastsim::cosim {
+namespace rastsim::rtlsim {
 namespace {
 
 nlohmann::json records_json(const std::vector<StageRecord>& v) {
@@ -174,4 +174,4 @@ TEST(TraceDiff, PerturbedRopTransactionIsTheFirstDifference) {
 }
 
 }  // namespace
-}  // namespace rastsim::cosim
+}  // namespace rastsim::rtlsim

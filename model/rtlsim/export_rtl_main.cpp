@@ -6,7 +6,7 @@
 //   rastsim_export_rtl CONFIG.toml OUT.vh OUT.inc
 //     OUT.vh:  rast_top's parameter header (rtl_params_verilog)
 //     OUT.inc: the same parameters as a C++ initializer list (rtl_params_values),
-//              compiled into the registry of verilated models (model/rtl/CMakeLists.txt)
+//              compiled into the registry of verilated models (model/rtlsim/CMakeLists.txt)
 //   rastsim_export_rtl --scanout CONFIG.toml OUT.vh
 //     OUT.vh:  the scan-out top's parameter header (scanout_rtl_params_verilog)
 #include <fstream>
@@ -15,7 +15,7 @@
 #include <string>
 
 #include "config/config.h"
-#include "rtl/rtl_params.h"
+#include "rtlsim/rtl_params.h"
 
 namespace {
 

@@ -16,14 +16,14 @@
 #include <iostream>
 
 #include "Vrast_top.h"
-#include "rtl/cosim_driver.h"
-#include "rtl/cosim_setup.h"
+#include "rtlsim/cosim_driver.h"
+#include "rtlsim/cosim_setup.h"
 #include "scene/scene_io.h"
 #include "scene/scene_params.h"
 
 int main(int argc, char** argv) {
   using namespace rastsim;
-  using namespace rastsim::cosim;
+  using namespace rastsim::rtlsim;
   if (argc != 3) {
     std::cerr << "usage: rast_runner REQUEST.json RESULT.json (run by rastsim cosim)\n";
     return 2;

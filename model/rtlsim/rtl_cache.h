@@ -34,7 +34,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "rtl/rtl_params.h"
+#include "rtlsim/rtl_params.h"
 
 namespace rastsim {
 
@@ -42,7 +42,7 @@ namespace rastsim {
 std::string rastsim_cache_dir(const std::string& sub);
 
 // What this binary's build tree provides for on-demand builds (generated at configure
-// time by model/rtl/CMakeLists.txt: rtl_build_info.cpp).
+// time by model/rtlsim/CMakeLists.txt: rtl_build_info.cpp).
 struct RtlBuildInfo {
   std::string cmake, generator, make_program;      // to configure and build the project
   std::string cxx_compiler, cxx_compiler_id, cxx_launcher, build_type;

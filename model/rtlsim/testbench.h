@@ -4,7 +4,7 @@
 // RTL's ports as the testbench sees them (RastPorts, implemented per verilated config by
 // the port adapter in cosim_driver.h), and the testbench itself (run_testbench,
 // testbench.cpp): the command front end, the ROP and framebuffer as a memory model, the
-// stage meters and the checks. Internal to model/rtl; callers use cosim.h.
+// stage meters and the checks. Internal to model/rtlsim; callers use cosim.h.
 #pragma once
 
 #include <array>
@@ -19,9 +19,9 @@
 #include "ref/raster_state.h"
 #include "ref/sample_pattern.h"
 #include "ref/scene.h"
-#include "rtl/cosim.h"
+#include "rtlsim/cosim.h"
 
-namespace rastsim::cosim {
+namespace rastsim::rtlsim {
 
 // One transaction of the testbench's command stream.
 struct TbItem {
@@ -146,4 +146,4 @@ struct RegistryEntry {
 };
 const std::vector<RegistryEntry>& rtl_registry();  // generated: rtl_registry.cpp
 
-}  // namespace rastsim::cosim
+}  // namespace rastsim::rtlsim

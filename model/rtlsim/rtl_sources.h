@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Text compiled into the binary (model/rtl/embed_rtl.cmake writes it at build time and
+// Text compiled into the binary (model/rtlsim/embed_rtl.cmake writes it at build time and
 // rewrites it when a file changes), so a tool that needs it never reads the source tree:
 // - rtl_sources(): the Verilog of rtl/rast_*.sv, for Yosys (`rastsim area`) and for the
 //   on-demand models (rtl_cache.h);
@@ -7,7 +7,7 @@
 //   waivers ("rtl/lint/<name>.vlt"), the shared Verilator arguments
 //   ("rtl/rast_verilate.cmake"), the runner's main ("runner/rtl_runner_main.cpp"), and
 //   the testbench headers the runner compiles ("key/<name>.h": hashed into the cache key
-//   under that name, compiled from the copy written to the project's include/rtl/).
+//   under that name, compiled from the copy written to the project's include/rtlsim/).
 #pragma once
 
 #include <string_view>

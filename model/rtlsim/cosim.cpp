@@ -1,17 +1,17 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "rtl/cosim.h"
+#include "rtlsim/cosim.h"
 
 #include <algorithm>
 #include <filesystem>
 #include <stdexcept>
 
-#include "rtl/testbench.h"
-#include "rtl/cosim_setup.h"
+#include "rtlsim/testbench.h"
+#include "rtlsim/cosim_setup.h"
 #include "report/stats_json.h"
-#include "rtl/rtl_cache.h"
+#include "rtlsim/rtl_cache.h"
 #include "util/atomic_file.h"
 
-namespace rastsim::cosim {
+namespace rastsim::rtlsim {
 
 namespace {
 
@@ -168,4 +168,4 @@ CosimResult run_cosim(const Scene& scene, const ArchParams& arch, const CosimOpt
   return r;
 }
 
-}  // namespace rastsim::cosim
+}  // namespace rastsim::rtlsim

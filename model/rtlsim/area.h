@@ -29,7 +29,7 @@
 #include <string>
 #include <vector>
 
-#include "rtl/rtl_params.h"
+#include "rtlsim/rtl_params.h"
 
 namespace rastsim {
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "rtl/area.h"
+#include "rtlsim/area.h"
 
 #include <csignal>
 #include <unistd.h>
@@ -23,8 +23,8 @@
 #include <stdexcept>
 #include <thread>
 
-#include "rtl/rtl_cache.h"
-#include "rtl/rtl_sources.h"
+#include "rtlsim/rtl_cache.h"
+#include "rtlsim/rtl_sources.h"
 #include "util/hash.h"
 #include "util/process.h"
 

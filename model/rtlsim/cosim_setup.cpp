@@ -2,14 +2,14 @@
 // The co-simulation testbench's stimulus and expectation for one run (cosim_setup.h):
 // shared by run_cosim (shipped models, in this process) and the on-demand runner
 // (rtl_runner_main.cpp, its own process).
-#include "rtl/cosim_setup.h"
+#include "rtlsim/cosim_setup.h"
 
 #include <bit>
 #include <charconv>
 #include <stdexcept>
 
 #include "config/timing_params.h"
-#include "rtl/testbench.h"
+#include "rtlsim/testbench.h"
 #include "ref/pipeline.h"
 #include "ref/prim_assembly.h"
 #include "ref/raster_state.h"
@@ -19,7 +19,7 @@
 #include "ref/sample_pattern.h"
 #include "config/raster_state_config.h"
 
-namespace rastsim::cosim {
+namespace rastsim::rtlsim {
 
 namespace {
 
@@ -262,4 +262,4 @@ RunnerRequest read_runner_request(const nlohmann::json& j) {
   return q;
 }
 
-}  // namespace rastsim::cosim
+}  // namespace rastsim::rtlsim

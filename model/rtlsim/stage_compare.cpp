@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "rtl/stage_compare.h"
+#include "rtlsim/stage_compare.h"
 
 #include <cmath>
 #include <filesystem>
@@ -8,7 +8,7 @@
 
 #include "util/atomic_file.h"
 
-namespace rastsim::cosim {
+namespace rastsim::rtlsim {
 
 std::vector<StageAgreement> compare_stages(const std::vector<StageRecord>& model, const std::vector<StageRecord>& rtl) {
   std::vector<StageAgreement> v;
@@ -97,4 +97,4 @@ TraceDiff write_trace_diff(const std::string& dir, const std::vector<StageAgreem
   return d;
 }
 
-}  // namespace rastsim::cosim
+}  // namespace rastsim::rtlsim

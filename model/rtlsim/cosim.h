@@ -31,10 +31,10 @@
 #include <nlohmann/json.hpp>
 
 #include "config/arch_params.h"
-#include "rtl/rtl_params.h"
+#include "rtlsim/rtl_params.h"
 #include "ref/scene.h"
 
-namespace rastsim::cosim {
+namespace rastsim::rtlsim {
 
 struct CosimOptions {
   int tile_size = 0;               // 0: raster.tile_size of the config
@@ -138,4 +138,4 @@ RtlModelChoice prepare_rtl_model(const ArchParams& arch, const CosimOptions& opt
 // the scene again from its file, Scene::source: an in-memory scene needs a shipped model).
 CosimResult run_cosim(const Scene& scene, const ArchParams& arch, const CosimOptions& opts = {});
 
-}  // namespace rastsim::cosim
+}  // namespace rastsim::rtlsim

@@ -13,7 +13,7 @@
 //   rtl/rast_top.sv includes; `rastsim export-rtl` and the build's exporter write it.
 // - rtl_params_values / rtl_params_from_values: the parameters as a C++ initializer
 //   list of ints (the table's order), which the build compiles into the registry of
-//   verilated models (model/rtl/CMakeLists.txt), so a binary knows what each model was
+//   verilated models (model/rtlsim/CMakeLists.txt), so a binary knows what each model was
 //   built with without reading any config at run time.
 // - rtl_params_compatible: whether an RTL library built for one config can simulate
 //   another (same widths and timing, tile size and sample count at most the built
@@ -91,7 +91,7 @@ ScanoutRtlParams scanout_rtl_params(const ArchParams& arch, const DisplayParams&
 
 // The 2D engine (rtl/rast_engine2d.sv, rast_line, rast_pattern, rast_rop3) is one
 // verilated model for every config (its timing keys are run-time inputs): its two
-// parameters, for the testbench's port packing (model/rtl/testbench.cpp, cosim_driver.h).
+// parameters, for the testbench's port packing (model/rtlsim/testbench.cpp, cosim_driver.h).
 struct Engine2dRtlParams {
   int width = 0;      // Width: bits of a signed pixel index on its operation, clip and memory ports
   int lanes_max = 0;  // LanesMax: framebuffer lanes a beat, the largest engine2d.fill_pixels_per_cycle

@@ -20,7 +20,7 @@
 // tri_valid_i and the 2D engine's in_valid_i, each from its own generator seeded by
 // CosimOptions::stress_seed, drawn only when its probability is above 0 (so a run
 // without stress, or with backpressure only, is the same run as before either existed).
-#include "rtl/testbench.h"
+#include "rtlsim/testbench.h"
 
 #include <algorithm>
 #include <chrono>
@@ -32,7 +32,7 @@
 #include "ref/rop.h"
 #include "timing/stage_table.h"
 
-namespace rastsim::cosim {
+namespace rastsim::rtlsim {
 
 namespace {
 
@@ -676,4 +676,4 @@ void run_testbench(const TbSetup& setup, RastPorts& ports, CosimResult& result) 
   Testbench(setup, ports, result).run();
 }
 
-}  // namespace rastsim::cosim
+}  // namespace rastsim::rtlsim

@@ -20,9 +20,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "rtl/cosim.h"
+#include "rtlsim/cosim.h"
 
-namespace rastsim::cosim {
+namespace rastsim::rtlsim {
 
 // A model-side report (sc::StageReport: name, busy, stalled, starved, transactions, spans
 // {t0, t1}) as a StageRecord; a template so this layer needs no SystemC.
@@ -65,4 +65,4 @@ struct TraceDiff {
 // Throws std::runtime_error naming the file when one cannot be written.
 TraceDiff write_trace_diff(const std::string& dir, const std::vector<StageAgreement>& a);
 
-}  // namespace rastsim::cosim
+}  // namespace rastsim::rtlsim

@@ -4,16 +4,16 @@
 // fragments and reference image (TbSetup, testbench.h). Shared by run_cosim (the
 // shipped models, in the calling process) and the on-demand runner (rtl_runner_main.cpp,
 // a process of its own, built into the cache by rtl_cache.cpp), so both run the same
-// testbench. Internal to model/rtl; callers use cosim.h.
+// testbench. Internal to model/rtlsim; callers use cosim.h.
 #pragma once
 
 #include <string>
 
 #include <nlohmann/json.hpp>
 
-#include "rtl/cosim.h"
+#include "rtlsim/cosim.h"
 
-namespace rastsim::cosim {
+namespace rastsim::rtlsim {
 
 struct TbSetup;  // testbench.h
 
@@ -41,4 +41,4 @@ struct RunnerRequest {
 };
 RunnerRequest read_runner_request(const nlohmann::json& j);
 
-}  // namespace rastsim::cosim
+}  // namespace rastsim::rtlsim

@@ -21,9 +21,9 @@
 #include "Vrast_engine2d.h"
 #include "Vrast_engine2d_rast_engine2d.h"  // its public parameters
 
-#include "rtl/testbench.h"
+#include "rtlsim/testbench.h"
 
-namespace rastsim::cosim {
+namespace rastsim::rtlsim {
 
 // Bits [lsb, lsb + w) of a verilated port (C integer or VlWide), w <= 64.
 template <class T>
@@ -233,4 +233,4 @@ void run_rtl(const TbSetup& s, CosimResult& r) {
   run_testbench(s, ports, r);
 }
 
-}  // namespace rastsim::cosim
+}  // namespace rastsim::rtlsim
