@@ -19,14 +19,6 @@ bool is_power_of_two(const ParamValue& v) {
   return n > 0 && (n & (n - 1)) == 0;
 }
 
-bool is_fixed_format(const ParamValue& v) {
-  try {
-    FixedFormat::parse(std::get<std::string>(v));
-    return true;
-  } catch (const std::invalid_argument&) {
-    return false;
-  }
-}
 
 std::vector<ParamDef> make_schema() {
   using T = ParamType;
@@ -67,10 +59,20 @@ std::vector<ParamDef> make_schema() {
   add_scanout_params(s);
   add_2d_params(s);
   add_interp_params(s);
+  add_clip_params(s);
   return s;
 }
 
 }  // namespace
+
+bool is_fixed_format(const ParamValue& v) {
+  try {
+    FixedFormat::parse(std::get<std::string>(v));
+    return true;
+  } catch (const std::invalid_argument&) {
+    return false;
+  }
+}
 
 const std::vector<ParamDef>& config_schema() {
   static const std::vector<ParamDef> schema = make_schema();

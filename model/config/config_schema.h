@@ -24,5 +24,9 @@ void add_scanout_params(std::vector<ParamDef>& schema);  // config_schema_scanou
 void add_2d_params(std::vector<ParamDef>& schema);  // config_schema_2d.cpp
 // Keys of the attribute interpolation method.
 void add_interp_params(std::vector<ParamDef>& schema);  // config_schema_interp.cpp
+// Keys of the geometry front end (clip method, guard band).
+void add_clip_params(std::vector<ParamDef>& schema);  // config_schema_clip.cpp
+// A string key's check: of form s<I>.<F> (FixedFormat::parse accepts it).
+bool is_fixed_format(const ParamValue& v);
 
 }  // namespace rastsim

@@ -16,6 +16,21 @@ void add_interp_params(std::vector<ParamDef>& s) {
                "fraction bits (start value and step rounded to nearest, ties to even)"});
   s.push_back({"interp.dda_frac_bits", T::Int, int64_t{16}, "bits", 1, 32, {},
                "Fraction bits of the fixed-point dda interpolation accumulator (below the attribute's LSB)"});
+  // Perspective-correct attributes (docs/clip-space.md).
+  s.push_back({"interp.perspective", T::Bool, true, "", 1, 0, {},
+               "Interpolate colour and texture coordinates perspective-correctly (a/w and 1/w planes, a reciprocal "
+               "a pixel); false: affine in screen space. Screen-space input has 1/w = 1: the same either way"});
+  s.push_back({"interp.recip", T::Enum, std::string("exact"), "", 1, 0, {"exact", "newton"},
+               "The per-pixel reciprocal of perspective-correct interpolation: exact (a rational rounded once, the "
+               "golden) or newton (a seed table and Newton-Raphson steps in fixed point)"});
+  s.push_back({"interp.recip_seed_bits", T::Int, int64_t{8}, "bits", 1, 16, {},
+               "Index bits of the newton reciprocal's seed table (2^bits entries)"});
+  s.push_back({"interp.recip_iterations", T::Int, int64_t{2}, "", 0, 4, {},
+               "Newton-Raphson steps of the newton reciprocal after the seed"});
+  s.push_back({"interp.texcoord_format", T::String, std::string("s7.20"), "", 1, 0, {},
+               "Interpolated texture coordinate format s<I>.<F> in repeats: I bits of repeat range, F bits of position "
+               "within a repeat (a 2^k-texel texture keeps F - k sub-texel bits for bilinear weights)",
+               is_fixed_format, "of form s<I>.<F> with I >= 0, F >= 1, I + F <= 31"});
 }
 
 }  // namespace rastsim

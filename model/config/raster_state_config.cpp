@@ -59,6 +59,13 @@ RasterState raster_state_from_config(const Config& cfg) {
   s.interp_frac_bits = static_cast<int>(cfg.get_int("interp.dda_frac_bits"));
   s.samples = static_cast<int>(cfg.get_int("raster.samples"));
   s.aa_mode = cfg.get_string("raster.aa_mode") == "ssaa" ? AaMode::Ssaa : AaMode::Msaa;
+  s.clip_method = cfg.get_string("clip.method") == "homogeneous" ? ClipMethod::Homogeneous : ClipMethod::Clip;
+  s.guard_band = static_cast<float>(cfg.get_float("clip.guard_band"));
+  s.perspective = cfg.get_bool("interp.perspective");
+  s.recip = cfg.get_string("interp.recip") == "newton" ? RecipMethod::Newton : RecipMethod::Exact;
+  s.recip_seed_bits = static_cast<int>(cfg.get_int("interp.recip_seed_bits"));
+  s.recip_iterations = static_cast<int>(cfg.get_int("interp.recip_iterations"));
+  s.texcoord_format = FixedFormat::parse(cfg.get_string("interp.texcoord_format"));
   s.viewport_width = s.fb_width;
   s.viewport_height = s.fb_height;
   return s;

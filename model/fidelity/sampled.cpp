@@ -67,6 +67,10 @@ Command slice(const Command& c, size_t k0, size_t k1) {
       out.vertices.push_back(v[0]);
       out.vertices.insert(out.vertices.end(), v.begin() + long(k0 + 1), v.begin() + long(k1 + 2));
       break;
+    case Topology::Points:  // clip-space only; triangle_count() is 0 for them
+    case Topology::Lines:
+    case Topology::LineStrip:
+    case Topology::LineLoop: break;
   }
   return Command{std::move(out), c.loc};
 }

@@ -9,6 +9,10 @@ size_t triangle_count(const CmdPrimitives& p) {
     case Topology::List: return n / 3;
     case Topology::Strip:
     case Topology::Fan: return n >= 3 ? n - 2 : 0;
+    case Topology::Points:  // clip-space only: the front end expands them (docs/clip-space.md)
+    case Topology::Lines:
+    case Topology::LineStrip:
+    case Topology::LineLoop: return 0;
   }
   return 0;
 }
@@ -21,6 +25,10 @@ std::array<SceneVertex, 3> assemble_triangle(const CmdPrimitives& p, size_t k) {
       if (k % 2 == 0) return {v[k], v[k + 1], v[k + 2]};
       return {v[k + 1], v[k], v[k + 2]};
     case Topology::Fan: return {v[0], v[k + 1], v[k + 2]};
+    case Topology::Points:
+    case Topology::Lines:
+    case Topology::LineStrip:
+    case Topology::LineLoop: break;
   }
   return {};
 }

@@ -26,6 +26,12 @@ enum class InterpArith { F32, Fixed };  // interp.dda_arith
 // centre and write that colour to every covered sample (msaa), or shade every covered
 // sample at its own position (ssaa).
 enum class AaMode { Msaa, Ssaa };
+// clip.method (docs/clip-space.md): Sutherland-Hodgman clipping before the divide by w,
+// or 2D-homogeneous rasterization (Olano and Greer 1997).
+enum class ClipMethod { Clip, Homogeneous };
+// interp.recip: the per-pixel reciprocal of perspective-correct interpolation, exact
+// (the golden) or a seed table and Newton-Raphson steps in fixed point.
+enum class RecipMethod { Exact, Newton };
 
 // Half-open pixel rectangle [x0, x1) x [y0, y1).
 struct PixelRect {
@@ -66,6 +72,15 @@ struct RasterState {
   // single sample at the pixel centre.
   int samples = 1;
   AaMode aa_mode = AaMode::Msaa;
+  // Geometry front end and perspective-correct attributes (keys clip.*, interp.perspective,
+  // interp.recip*, interp.texcoord_format; docs/clip-space.md).
+  ClipMethod clip_method = ClipMethod::Clip;
+  float guard_band = 1.0f;  // clip.guard_band: x/y clipped only outside +-g w
+  bool perspective = false;  // interp.perspective: a/w and 1/w planes and a reciprocal a pixel
+  RecipMethod recip = RecipMethod::Exact;
+  int recip_seed_bits = 0;      // interp.recip_seed_bits: index bits of the seed table
+  int recip_iterations = 0;     // interp.recip_iterations: Newton-Raphson steps
+  FixedFormat texcoord_format;  // interp.texcoord_format: s, t out of interpolation
 
   // Scene state (from commands).
   int viewport_width = 0, viewport_height = 0;

@@ -29,23 +29,57 @@ struct SourceLoc {
   std::string str() const { return file + ":" + std::to_string(line); }
 };
 
-// One vertex as the scene gives it: position in pixels (y down, exact Q64), depth in
-// [0, 1] and an RGB8 colour.
+// One vertex on screen, as setup snaps it: position in pixels (y down, exact Q64), depth
+// in [0, 1], an RGB8 colour, and what the geometry front end adds to a clip-space vertex
+// (docs/clip-space.md): the binary32 1/w that weights perspective-correct interpolation
+// (1: affine, every screen-space vertex) and the texture coordinate (repeats, binary32).
 struct SceneVertex {
   Q64 x, y;
   double z = 0.0;
   uint8_t r = 255, g = 255, b = 255;
+  float inv_w = 1.0f;
+  float s = 0.0f, t = 0.0f;
 };
 
-enum class Topology { List, Strip, Fan };
+// One vertex in clip space, as a vertex stage hands it over (docs/clip-space.md):
+// position in IEEE binary32, each read from its decimal text with one round to nearest
+// even; colour RGB8; texture coordinate (s, t) in repeats, binary32.
+struct ClipVertex {
+  float x = 0.0f, y = 0.0f, z = 0.0f, w = 1.0f;
+  uint8_t r = 255, g = 255, b = 255;
+  float s = 0.0f, t = 0.0f;
+};
+
+// Triangle topologies (prim_assembly.h) and, for clip-space primitives only, the 3D
+// point and line topologies the front end expands into screen-aligned quads.
+enum class Topology { List, Strip, Fan, Points, Lines, LineStrip, LineLoop };
+
+// The front-end state a clip-space primitive is drawn with (`viewport_xform`,
+// `depth_range`, `point_size`, `point_sprite`), carried by the command as a 2D command
+// carries its style.
+struct ViewportXform {
+  bool whole_viewport = true;  // the default: the current `viewport` W x H at (0, 0)
+  int x = 0, y = 0, width = 0, height = 0;  // pixels, when !whole_viewport
+  bool operator==(const ViewportXform&) const = default;
+};
+struct ClipState {
+  ViewportXform xform;
+  float depth_near = 0.0f, depth_far = 1.0f;  // depth_range N F
+  float point_size = 1.0f;                    // pixels, the side of a 3D point's square
+  bool point_sprite = false;                  // point_sprite on: s, t run 0..1 across it
+  bool operator==(const ClipState&) const = default;
+};
 
 struct CmdViewport { int width = 0, height = 0; };        // viewport W H
 struct CmdClear { uint8_t r = 0, g = 0, b = 0; };         // clear colour (A = 255)
 struct CmdClearDepth { double z = 1.0; };                 // clear depth in [0, 1]
 struct CmdScissor { bool enabled = false; int x = 0, y = 0, width = 0, height = 0; };
-struct CmdPrimitives {                                    // tri / strip / fan
+struct CmdPrimitives {                                    // tri / strip / fan / tri4 / v4 blocks
   Topology topology = Topology::List;
-  std::vector<SceneVertex> vertices;
+  std::vector<SceneVertex> vertices;     // screen-space input (tri, v)
+  std::vector<ClipVertex> clip_vertices;  // clip-space input (tri4, v4); vertices then empty
+  ClipState clip;                         // the front-end state clip_vertices are drawn with
+  bool clip_space() const { return !clip_vertices.empty(); }
 };
 
 // ---- 2D drawing (docs/2d.md): each command carries the 2D state it is drawn with ----
