@@ -370,6 +370,8 @@ std::string fragment_trace_line(const Fragment& f) {
   field(unsigned(f.r));
   field(unsigned(f.g));
   field(unsigned(f.b));
+  field(f.s);
+  field(f.t);
   if (f.samples > 1) field(unsigned(f.mask));
   return line;
 }

@@ -130,8 +130,9 @@ class SceneRenderer {
   std::unique_ptr<Impl> impl_;
 };
 
-// One fragment as a line of the shared fragment-trace format: "x y z r g b" (decimal),
-// followed by " mask" (decimal) when raster.samples > 1.
+// One fragment as a line of the shared fragment-trace format: "x y z r g b s t" (decimal;
+// s, t raw interp.texcoord_format, signed), followed by " mask" (decimal) when
+// raster.samples > 1.
 std::string fragment_trace_line(const Fragment& f);
 
 }  // namespace rastsim
