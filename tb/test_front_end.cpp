@@ -188,6 +188,24 @@ TEST(FrontEnd, NearPlaneIntersectionNearExactRational) {
   EXPECT_TRUE(has(p2));
 }
 
+// A shared edge P-Q cut by near and then by the right plane, in two triangles that run
+// it in opposite directions: both polygons hold the same vertex where it leaves the
+// volume (near's crossing, then the right plane's, each from the inside end).
+TEST(FrontEnd, SharedEdgeCutByTwoPlanesIsBitIdentical) {
+  const ClipVertex P = cv(0.1f, 0.2f, 0.6f, 1.1f), Q = cv(2.9f, -0.3f, -0.7f, 0.9f);
+  const ClipVertex near_cut = clip_intersection(P, Q, ClipPlane::Near, 1.0f);
+  ASSERT_LT(plane_distance(near_cut, ClipPlane::Right, 1.0f), 0.0f);  // still outside the right plane
+  const ClipVertex want = clip_intersection(P, near_cut, ClipPlane::Right, 1.0f);
+  FrontEndStats s;
+  bool c = false;
+  for (const auto& tri : {std::array{P, Q, cv(-0.5f, 0.6f, 0.5f, 1)}, std::array{Q, P, cv(0.4f, -0.8f, 0.5f, 1)}}) {
+    const auto poly = clip_triangle(tri, 1.0f, s, c);
+    EXPECT_TRUE(std::any_of(poly.begin(), poly.end(), [&](const ClipVertex& v) {
+      return v.x == want.x && v.y == want.y && v.z == want.z && v.w == want.w;
+    }));
+  }
+}
+
 // Behind the eye: w = -1 everywhere, and x/w, y/w, z/w inside the volume, so a divide
 // without clipping would draw it. Nothing drawn, counted as behind.
 TEST(FrontEnd, BehindTheEyeDrawsNothing) {
@@ -469,6 +487,11 @@ TEST(FrontEnd, StatsJsonAndThreads) {
     EXPECT_TRUE(j1.contains(key)) << key;
   EXPECT_EQ(j1["clip_triangles_in"], 6 * 8 * 8 * 2);
   EXPECT_FALSE(to_json(RenderStats{}).contains("triangles_clipped"));
+  // The summary line says what the front end did before setup's counts.
+  const std::string summary = triangles_summary(one);
+  EXPECT_EQ(summary.rfind("768 clip-space triangles (" + std::to_string(one.front_end.triangles_clipped) + " clipped, ", 0), 0u)
+      << summary;
+  EXPECT_EQ(triangles_summary(RenderStats{}), "0 triangles");
 }
 
 }  // namespace
