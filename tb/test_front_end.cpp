@@ -159,6 +159,39 @@ TEST(FrontEnd, NearPlaneClipHandWorked) {
   EXPECT_EQ(tris[1][2].y.to_double(), 0x1.555556p+5);
 }
 
+// The far plane: A = (0, 0, 3, 2) lies beyond it (w - z = -1), B = (1, 0, 1, 2) and
+// C = (0, 1, 1, 2) inside (w - z = 1). On A-B from B: t = 1 / (1 + 1) = 1/2, so
+// (1 - 0.5, 0, 1 + 1, 2) = (0.5, 0, 2, 2), on the plane z = w; its depth is 2 * 0.5 = 1.
+TEST(FrontEnd, FarPlaneClipHandWorked) {
+  const RasterState st = state(64, 64);
+  FrontEndStats fs;
+  const auto tris = run_front_end(clip_prims(Topology::List, {cv(0, 0, 3, 2), cv(1, 0, 1, 2), cv(0, 1, 1, 2)}), st, fs);
+  ASSERT_EQ(tris.size(), 2u);  // [I_AB, B, C, I_CA] fanned
+  EXPECT_EQ(fs.clip_vertices_made, 2u);
+  EXPECT_EQ(tris[0][0].x.to_double(), 0.5 * 0.5 * 32 + 32);  // x q = 0.25: 40
+  EXPECT_EQ(tris[0][0].z, 1.0);
+  EXPECT_EQ(tris[0][1].z, 0.5);  // B: 1 * 0.5
+}
+
+// A clip-space strip keeps the strip's winding (triangle 1 is (v2, v1, v3)) through the
+// front end: both triangles of a quad strip face the same way on screen.
+TEST(FrontEnd, StripKeepsItsWinding) {
+  const RasterState st = state(64, 64);
+  FrontEndStats fs;
+  const auto tris = run_front_end(
+      clip_prims(Topology::Strip, {cv(-0.5f, -0.5f, 0.5f, 1), cv(0.5f, -0.5f, 0.5f, 1), cv(-0.5f, 0.5f, 0.5f, 1),
+                                   cv(0.5f, 0.5f, 0.5f, 1)}),
+      st, fs);
+  ASSERT_EQ(tris.size(), 2u);
+  const auto area2 = [](const ScreenTriangle& t) {
+    return (t[1].x.to_double() - t[0].x.to_double()) * (t[2].y.to_double() - t[0].y.to_double()) -
+           (t[1].y.to_double() - t[0].y.to_double()) * (t[2].x.to_double() - t[0].x.to_double());
+  };
+  EXPECT_GT(area2(tris[0]) * area2(tris[1]), 0.0);
+  EXPECT_EQ(tris[1][0].x.to_double(), 16.0);  // v2 = (-0.5, 0.5) -> (16, 48)
+  EXPECT_EQ(tris[1][0].y.to_double(), 48.0);
+}
+
 // A general near crossing against the exact rational intersection (computed in double
 // from the binary32 inputs, exact to ~1e-16): every coordinate within 4 binary32 ulps.
 TEST(FrontEnd, NearPlaneIntersectionNearExactRational) {
@@ -186,6 +219,24 @@ TEST(FrontEnd, NearPlaneIntersectionNearExactRational) {
   };
   EXPECT_TRUE(has(p1));
   EXPECT_TRUE(has(p2));
+}
+
+// A shared edge P-Q cut by near and then by the right plane, in two triangles that run
+// it in opposite directions: both polygons hold the same vertex where it leaves the
+// volume (near's crossing, then the right plane's, each from the inside end).
+TEST(FrontEnd, SharedEdgeCutByTwoPlanesIsBitIdentical) {
+  const ClipVertex P = cv(0.1f, 0.2f, 0.6f, 1.1f), Q = cv(2.9f, -0.3f, -0.7f, 0.9f);
+  const ClipVertex near_cut = clip_intersection(P, Q, ClipPlane::Near, 1.0f);
+  ASSERT_LT(plane_distance(near_cut, ClipPlane::Right, 1.0f), 0.0f);  // still outside the right plane
+  const ClipVertex want = clip_intersection(P, near_cut, ClipPlane::Right, 1.0f);
+  FrontEndStats s;
+  bool c = false;
+  for (const auto& tri : {std::array{P, Q, cv(-0.5f, 0.6f, 0.5f, 1)}, std::array{Q, P, cv(0.4f, -0.8f, 0.5f, 1)}}) {
+    const auto poly = clip_triangle(tri, 1.0f, s, c);
+    EXPECT_TRUE(std::any_of(poly.begin(), poly.end(), [&](const ClipVertex& v) {
+      return v.x == want.x && v.y == want.y && v.z == want.z && v.w == want.w;
+    }));
+  }
 }
 
 // Behind the eye: w = -1 everywhere, and x/w, y/w, z/w inside the volume, so a divide
@@ -469,6 +520,11 @@ TEST(FrontEnd, StatsJsonAndThreads) {
     EXPECT_TRUE(j1.contains(key)) << key;
   EXPECT_EQ(j1["clip_triangles_in"], 6 * 8 * 8 * 2);
   EXPECT_FALSE(to_json(RenderStats{}).contains("triangles_clipped"));
+  // The summary line says what the front end did before setup's counts.
+  const std::string summary = triangles_summary(one);
+  EXPECT_EQ(summary.rfind("768 clip-space triangles (" + std::to_string(one.front_end.triangles_clipped) + " clipped, ", 0), 0u)
+      << summary;
+  EXPECT_EQ(triangles_summary(RenderStats{}), "0 triangles");
 }
 
 }  // namespace

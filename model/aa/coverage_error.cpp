@@ -64,8 +64,7 @@ class CoverageMeasure {
     visit_command(cmd, Overloaded{
         state_commands(state),
         [&](const CmdPrimitives& prims) {
-          const size_t n = triangle_count(prims);
-          for (size_t k = 0; k < n; ++k) triangle(assemble_triangle(prims, k), cmd.loc);
+          for_each_triangle(prims, st_, cmd.loc, front_end_, [&](const ScreenTriangle& v) { triangle(v, cmd.loc); });
         },
         [](const CmdDraw2d&) {},  // 2D drawing has no triangles
     });
@@ -155,6 +154,7 @@ class CoverageMeasure {
   const int F_;
   const TraversalParams tp_;
   TraversalCounters counters_;  // not reported
+  FrontEndStats front_end_;     // not reported
   CoverageErrorResult& r_;
   // One triangle's set-ups, one a sample count.
   std::vector<SetupTriangle> tri_;

@@ -74,22 +74,23 @@ class Walker {
   // A primitives command's triangles, one transaction each down to setup (a culled one
   // stops there), then traversal's.
   void primitives(size_t index, const Command& cmd, const CmdPrimitives& prims, const EstimateProgress& progress) {
-    const size_t n = triangle_count(prims);
-    if (n == 0 && progress) progress(index, 0, r_);
-    if (n == 0) stage(StageId::CommandFetch).busy += p_.fetch_header_cycles();  // a header, no transaction
-    for (size_t k = 0; k < n; ++k) {
+    size_t k = 0;
+    for_each_triangle(prims, st_, cmd.loc, r_.render.front_end, [&](const ScreenTriangle& v) {
       if (progress) progress(index, k, r_);
       work(StageId::CommandFetch, p_.fetch_triangle_cycles(k == 0, (k == 0 || prims.topology == Topology::List) ? 3 : 1));
       work(StageId::PrimAssembly, p_.assembly_triangle_cycles());
+      ++k;
       ++r_.render.triangles_in;
       SetupTriangle tri;
-      const SetupOutcome outcome = setup_triangle(assemble_triangle(prims, k), st_, cmd.loc, tri);
+      const SetupOutcome outcome = setup_triangle(v, st_, cmd.loc, tri);
       stage(StageId::TriSetup).busy += p_.setup_triangle_cycles();
-      if (!count_setup_outcome(outcome, r_.render)) continue;  // culled: no transaction out
+      if (!count_setup_outcome(outcome, r_.render)) return;  // culled: no transaction out
       emit(StageId::TriSetup);
       r_.latency_waits += p_.setup_pipeline_latency();
       traverse(tri);
-    }
+    });
+    if (k == 0 && progress) progress(index, 0, r_);
+    if (k == 0) stage(StageId::CommandFetch).busy += p_.fetch_header_cycles();  // a header, no transaction
   }
 
   // A stage spends `cycles` on one transaction and writes it to the next FIFO.
@@ -279,7 +280,10 @@ nlohmann::json EstimateResult::to_json() const {
                           "tiles_rejected", "tiles_accepted", "tiles_partial", "pixel_tests", "fragments",
                           "samples", "aa_mode", "sample_tests", "samples_covered", "pixels_partially_covered",
                           "fragments_shaded", "color_buffer_bytes", "depth_buffer_bytes", "resolve_bytes",
-                          "primitives_2d", "primitives_2d_culled", "traversal", "spans"})
+                          "primitives_2d", "primitives_2d_culled", "traversal", "spans", "clip_triangles_in",
+                          "triangles_behind", "triangles_culled_outside", "triangles_clipped", "clip_vertices_made",
+                          "triangles_nonfinite", "clip_triangles_out", "points_in", "points_culled", "lines_in",
+                          "lines_culled", "lines_clipped"})
     if (all.contains(key)) j[key] = all[key];
   return j;
 }

@@ -67,7 +67,7 @@ Command slice(const Command& c, size_t k0, size_t k1) {
       out.vertices.push_back(v[0]);
       out.vertices.insert(out.vertices.end(), v.begin() + long(k0 + 1), v.begin() + long(k1 + 2));
       break;
-    case Topology::Points:  // clip-space only; triangle_count() is 0 for them
+    case Topology::Points:  // clip-space only: plan_units rejects them
     case Topology::Lines:
     case Topology::LineStrip:
     case Topology::LineLoop: break;
@@ -198,6 +198,10 @@ uint64_t triangle_path_entries(const TimingParams& p) {
 }
 
 UnitPlan plan_units(const Scene& scene, const ArchParams& arch, size_t batch) {
+  // Units are simulated by the SystemC model, which has no front end: a clip-space
+  // command is an error here, before the analytic walk cuts its triangles into marks.
+  for (const Command& cmd : scene.commands)
+    if (const auto* p = std::get_if<CmdPrimitives>(&cmd.body)) reject_clip_space(*p, cmd.loc);
   std::vector<Mark> marks;
   UnitPlan plan;
   plan.analytic = estimate_scene(scene, arch, [&](size_t c, size_t k, const EstimateResult& r) {

@@ -28,7 +28,13 @@ std::string triangles_summary(const RenderStats& s) {
     not_drawn += n;
     why += (why.empty() ? "" : ", ") + std::to_string(n) + " " + reason;
   }
-  const std::string total = std::to_string(s.triangles_in) + " triangles";
+  const FrontEndStats& f = s.front_end;
+  // Clip-space input: what the front end culled before those triangles (front_end.h).
+  const std::string front = !f.any() ? "" : std::to_string(f.clip_triangles_in) + " clip-space triangles (" +
+                                                std::to_string(f.triangles_clipped) + " clipped, " +
+                                                std::to_string(f.triangles_behind) + " behind the eye, " +
+                                                std::to_string(f.triangles_culled_outside) + " outside) -> ";
+  const std::string total = front + std::to_string(s.triangles_in) + " triangles";
   if (not_drawn == 0) return total + (s.triangles_in ? " (all drawn)" : "");
   return total + " (" + std::to_string(not_drawn) + " not drawn: " + why + ")";
 }

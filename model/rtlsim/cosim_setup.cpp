@@ -92,6 +92,7 @@ void StreamBuilder::draw2d(const Command& cmd, const CmdDraw2d& d2) {
 
 // A primitive command: a triangle item each (an empty one: a header-only item).
 void StreamBuilder::primitives(const Command& cmd, const CmdPrimitives& prims) {
+  reject_clip_space(prims, cmd.loc);  // no front end in the testbench yet
   const size_t n = triangle_count(prims);
   if (n == 0) {
     TbItem e;

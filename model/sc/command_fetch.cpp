@@ -27,6 +27,7 @@ void CommandFetch::fetch(const CommandPtr& p) {
   visit_command(cmd, Overloaded{
       state_commands(state),
       [&](const CmdPrimitives& prims) {
+        reject_clip_space(prims, cmd.loc);  // no front end at this level yet
         const size_t n = triangle_count(prims);
         if (n == 0) mark(0);
         if (n == 0) busy(p_.fetch_header_cycles());

@@ -9,7 +9,7 @@ void PrimAssembly::body() {
   for (;;) {
     const CommandItem in = read(in_);
     if (pass_state(in, out_)) continue;
-    const auto& prims = std::get<CmdPrimitives>(in.work.cmd->body);
+    const auto& prims = std::get<CmdPrimitives>(in.work.cmd->body);  // screen-space: fetch rejects clip space
     TriangleItem out{nullptr, AssembledTriangle{assemble_triangle(prims, in.work.index), in.work.cmd}};
     busy(p_.assembly_triangle_cycles());
     write(out_, std::move(out));

@@ -7,6 +7,7 @@
 
 #include "sim_harness.h"
 #include "sc/model_error.h"
+#include "sc/raster_pipeline.h"
 #include "sc/stage.h"
 
 namespace rastsim::sctest {
@@ -67,6 +68,26 @@ TEST(ScErrors, SceneErrorInAStageStaysASceneError) {
   const auto r = rethrown_kind([] { throw SceneError("t.trace:3: bad vertex"); });
   ASSERT_FALSE(r.contains("error")) << r["error"];
   EXPECT_EQ(r["kind"], "scene");
+}
+
+// The timed model has no geometry front end yet: a clip-space command is a scene error
+// naming its line, not a command that draws nothing.
+TEST(ScErrors, ClipSpaceCommandIsASceneError) {
+  const auto r = run_isolated([] {
+    Scene scene;
+    CmdPrimitives p;
+    p.clip_vertices.assign(3, ClipVertex{});
+    scene.commands.push_back(Command{p, SourceLoc{"c.trace", 4}});
+    try {
+      sc::simulate_scene(scene, ArchParams::resolve(Config{}));
+    } catch (const SceneError& e) {
+      return nlohmann::json{{"what", e.what()}};
+    }
+    return nlohmann::json{{"what", "no error"}};
+  });
+  ASSERT_FALSE(r.contains("error")) << r["error"];
+  EXPECT_EQ(r["what"].get<std::string>().rfind("c.trace:4: clip-space primitives (tri4, v4) are modelled by render only", 0), 0u)
+      << r["what"];
 }
 
 }  // namespace

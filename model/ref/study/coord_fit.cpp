@@ -18,16 +18,18 @@ namespace {
 FixedFormat widest_with(int int_bits) { return FixedFormat{int_bits, kMaxFormatBits - int_bits}; }
 
 // Walks the scene's state commands (viewport, scissor) as render_scene does and calls
-// on_tri(state, triangle vertices, loc) for every assembled triangle.
+// on_tri(state, triangle vertices, loc) for every assembled triangle (a clip-space
+// command's out of the front end).
 template <class OnTri>
-void for_each_triangle(const Scene& scene, RasterState st, OnTri&& on_tri) {
+void for_each_scene_triangle(const Scene& scene, RasterState st, OnTri&& on_tri) {
+  FrontEndStats front_end;  // not reported
   Framebuffer scratch(1, 1);  // clears land here; only the state matters
   for (const Command& cmd : scene.commands) {
     const auto state = [&] { apply_state_command(cmd, st, scratch); };
     visit_command(cmd, Overloaded{
         state_commands(state),
         [&](const CmdPrimitives& prims) {
-          for (size_t k = 0; k < triangle_count(prims); ++k) on_tri(st, assemble_triangle(prims, k), cmd.loc);
+          for_each_triangle(prims, st, cmd.loc, front_end, [&](const ScreenTriangle& v) { on_tri(st, v, cmd.loc); });
         },
         [](const CmdDraw2d&) {},  // no triangle vertices
     });
@@ -60,9 +62,19 @@ RenderSignature render_signature(const Scene& scene, const RasterState& arch) {
   return sig;
 }
 
-Scene snap_scene_to_integer_pixels(const Scene& scene) {
+Scene snap_scene_to_integer_pixels(const Scene& scene, const RasterState& arch) {
   Scene out = scene;
-  const auto snap = [](CmdPrimitives& prims) {
+  RasterState st = arch;
+  Framebuffer scratch(1, 1);  // clears land here; only the state matters
+  FrontEndStats front_end;    // not reported
+  const auto snap = [&](CmdPrimitives& prims, const SourceLoc& loc) {
+    if (prims.clip_space()) {  // the front end's screen-space triangles, as a list
+      CmdPrimitives screen;
+      for_each_triangle(prims, st, loc, front_end, [&](const ScreenTriangle& v) {
+        screen.vertices.insert(screen.vertices.end(), v.begin(), v.end());
+      });
+      prims = std::move(screen);
+    }
     for (SceneVertex& v : prims.vertices) {
       if (v.x.saturated() || v.y.saturated()) continue;  // stays out of range for every format
       v.x.q = shift_right_round(v.x.q, Q64::kFracBits, Rounding::NearestEven) << Q64::kFracBits;
@@ -71,8 +83,8 @@ Scene snap_scene_to_integer_pixels(const Scene& scene) {
   };
   for (Command& cmd : out.commands)  // std::visit, not visit_command: the command changes in place
     std::visit(Overloaded{
-        state_commands([] {}),
-        snap,
+        state_commands([&] { apply_state_command(cmd, st, scratch); }),
+        [&](CmdPrimitives& prims) { snap(prims, cmd.loc); },
         [](const CmdDraw2d&) {},  // 2D drawing keeps its coordinates
     }, cmd.body);
   return out;
@@ -98,7 +110,7 @@ int int_bits_for_vertices(const Scene& scene, const RasterState& arch) {
   int need = 0;
   RasterState st = arch;
   st.coord_format = widest_with(kMaxFormatBits - 1);  // s30.1: no viewport check fails on the walk
-  for_each_triangle(scene, st, [&](const RasterState& s, const std::array<SceneVertex, 3>& v, const SourceLoc& loc) {
+  for_each_scene_triangle(scene, st, [&](const RasterState& s, const std::array<SceneVertex, 3>& v, const SourceLoc& loc) {
     for (int k = 0; k < 3; ++k) {
       // Raise I until this vertex snaps inside s I.(31-I) (range [-2^I, 2^I - 2^-(31-I)]).
       while (need < kMaxFormatBits &&
@@ -143,7 +155,7 @@ CoordFit fit_coord_format(const Scene& scene, const RasterState& arch) {
   fit.widths = datapath_widths(fit.format, arch.depth_bits);
   if (fit.format.frac_bits == 1) {
     st.coord_format = FixedFormat{I, 1};
-    fit.exact_at_zero_frac = render_signature(snap_scene_to_integer_pixels(scene), st).same_as(fit.reference);
+    fit.exact_at_zero_frac = render_signature(snap_scene_to_integer_pixels(scene, st), st).same_as(fit.reference);
   }
   return fit;
 }
@@ -166,13 +178,17 @@ bool is_closed_mesh(const Scene& scene) {
       }
     }
   };
+  bool clip_space = false;
   for (const Command& cmd : scene.commands)
     visit_command(cmd, Overloaded{
         state_commands([] {}),
-        add_edges,
+        [&](const CmdPrimitives& prims) {
+          clip_space = clip_space || prims.clip_space();
+          add_edges(prims);
+        },
         [](const CmdDraw2d&) {},  // the triangles' mesh only
     });
-  if (triangles == 0) return false;
+  if (triangles == 0 || clip_space) return false;
   for (const auto& [key, e] : edges)
     if (e.first != 2 || e.second != 0) return false;
   return true;
@@ -184,7 +200,7 @@ uint64_t unbalanced_pixels(const Scene& scene, const RasterState& arch) {
   st.out_of_range = OutOfRange::Cull;
   std::vector<int> signed_cover(size_t(st.fb_width) * st.fb_height, 0);
   const int F = st.coord_format.frac_bits;
-  for_each_triangle(scene, st, [&](const RasterState& s, const std::array<SceneVertex, 3>& v, const SourceLoc& loc) {
+  for_each_scene_triangle(scene, st, [&](const RasterState& s, const std::array<SceneVertex, 3>& v, const SourceLoc& loc) {
     SetupTriangle t;
     if (setup_triangle(v, s, loc, t) != SetupOutcome::Accepted) return;
     const int w = t.ccw_on_screen ? -1 : 1;
@@ -201,7 +217,7 @@ uint64_t unbalanced_pixels(const Scene& scene, const RasterState& arch) {
 
 std::vector<PrecisionRow> measure_precision(const Scene& scene, const RasterState& arch, int int_bits, int max_frac) {
   const bool closed = is_closed_mesh(scene);
-  const Scene integer_scene = snap_scene_to_integer_pixels(scene);
+  const Scene integer_scene = snap_scene_to_integer_pixels(scene, arch);
   auto render = [&](int F, Framebuffer& fb) -> std::string {
     RasterState st = arch;
     st.out_of_range = OutOfRange::Error;

@@ -12,7 +12,9 @@
 //   fraction bits (1 .. 31-I, scanned upward) whose render signature equals that of
 //   s I.(31-I). Also says whether the scene is exact at 0 fraction bits.
 // - snap_scene_to_integer_pixels: every triangle vertex rounded to an integer pixel
-//   (nearest, ties to even): the "0 sub-pixel bits" case. The model's formats need
+//   (nearest, ties to even): the "0 sub-pixel bits" case; a clip-space command becomes
+//   the list of its front end's screen-space triangles (under `arch` and the scene's
+//   viewport commands), snapped. The model's formats need
 //   F >= 1 (pixel centres sit at +0.5), so F = 0 is rendered as these integer vertices
 //   in s I.1, which is exactly what a 0-fraction-bit vertex grid gives.
 // - measure_precision: for F = 0..max_frac, pixels whose colour differs from the render
@@ -48,7 +50,7 @@ struct RenderSignature {
 // error so that a vertex outside the format fails the render rather than vanishing).
 RenderSignature render_signature(const Scene& scene, const RasterState& arch);
 
-Scene snap_scene_to_integer_pixels(const Scene& scene);
+Scene snap_scene_to_integer_pixels(const Scene& scene, const RasterState& arch);
 
 // Smallest I (0..30) whose format s I.(31-I) holds every viewport of the scene.
 int int_bits_for_viewports(const Scene& scene, const RasterState& arch);
@@ -82,7 +84,9 @@ struct CoordFit {
 CoordFit fit_coord_format(const Scene& scene, const RasterState& arch);
 
 // True when the scene's triangles form closed surfaces: every edge (by exact vertex
-// position) is used by exactly two triangles, once in each direction.
+// position) is used by exactly two triangles, once in each direction. False for a scene
+// with a clip-space command: the front end's clipping opens a closed mesh where a plane
+// cuts it, so its screen triangles need not balance.
 bool is_closed_mesh(const Scene& scene);
 
 // Pixels whose signed coverage (clockwise triangles +1, counter-clockwise -1, the exact
