@@ -10,6 +10,7 @@
 #include <string>
 
 #include "scene_test.h"
+#include "ref/pipeline.h"
 #include "ref/scene.h"
 #include "scene/scene_io.h"
 
@@ -222,6 +223,22 @@ TEST(SceneObjCamera, ConcaveFacesAreTriangulatedInTheirPlane) {
   }
   EXPECT_TRUE(SceneFails([&] { parse("v 0 0 0\nv 1 1 0\nv 1 0 0\nv 0 1 0\nf 1 2 3 4\n", camera()); }, "m.obj:5:",
                          "the face crosses itself"));
+}
+
+// Through the reference pipeline (the geometry front end): the octahedron seen from
+// outside and from inside (the eye between its centre and its front vertex, so the
+// front faces cross the near plane and the eye) draws, and only SceneError may escape.
+TEST(SceneObjCamera, RendersFromOutsideAndInside) {
+  for (const double distance : {2.5, 0.5}) {
+    SCOPED_TRACE(distance);
+    ObjPlacement p = obj_placement_from_config(Config{});  // the default display the renderer uses
+    p.camera = ObjCamera::Perspective;
+    p.distance = distance;
+    const Scene s = parse(kOcta, p);
+    RenderStats stats;
+    ASSERT_NO_THROW(stats = scene_test::render_default(s));
+    EXPECT_GT(stats.fragments_passed, 0u);
+  }
 }
 
 TEST(SceneObjCamera, PlacementAndKeyChecks) {
