@@ -1,0 +1,114 @@
+// SPDX-License-Identifier: Apache-2.0
+// The exact screen geometry of clip-space triangles (see clip_geometry.h).
+#include "clip_geometry.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace rastsim::mesa {
+namespace {
+
+using Homog = std::array<double, 4>;  // x, y, z, w
+
+// The six view-volume planes as signed distances (inside: >= 0).
+double plane_distance(const Homog& p, int plane) {
+  switch (plane) {
+    case 0: return p[3] + p[0];
+    case 1: return p[3] - p[0];
+    case 2: return p[3] + p[1];
+    case 3: return p[3] - p[1];
+    case 4: return p[2];
+    default: return p[3] - p[2];
+  }
+}
+
+std::vector<Homog> clip_against(const std::vector<Homog>& in, int plane) {
+  std::vector<Homog> out;
+  for (size_t i = 0; i < in.size(); ++i) {
+    const Homog& a = in[i];
+    const Homog& b = in[(i + 1) % in.size()];
+    const double da = plane_distance(a, plane), db = plane_distance(b, plane);
+    if (da >= 0) out.push_back(a);
+    if ((da >= 0) != (db >= 0)) {
+      const double t = da / (da - db);
+      Homog m;
+      for (int k = 0; k < 4; ++k) m[k] = a[k] + t * (b[k] - a[k]);
+      out.push_back(m);
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+VisiblePolygon::VisiblePolygon(const ClipTri& t, const ViewRect& vp) {
+  std::vector<Homog> poly;
+  for (const ClipVertex& v : t.v) poly.push_back({double(v.x), double(v.y), double(v.z), double(v.w)});
+  for (int plane = 0; plane < 6 && !poly.empty(); ++plane) poly = clip_against(poly, plane);
+  const double hw = vp.width / 2.0, hh = vp.height / 2.0;
+  for (const Homog& p : poly)  // w > 0 after clipping, but for the eye itself (0, 0, 0, 0)
+    if (p[3] > 0) pts_.push_back({vp.x + hw + p[0] / p[3] * hw, vp.y + hh + p[1] / p[3] * hh});
+  double area2 = 0;
+  for (size_t i = 0; i < pts_.size(); ++i) {
+    const ScreenPoint& a = pts_[i];
+    const ScreenPoint& b = pts_[(i + 1) % pts_.size()];
+    Edge e{a, b.x - a.x, b.y - a.y, 0, 0, 0};
+    e.len2 = e.dx * e.dx + e.dy * e.dy;
+    if (e.len2 > 0) e.nx = -e.dy / std::sqrt(e.len2), e.ny = e.dx / std::sqrt(e.len2);
+    edges_.push_back(e);
+    area2 += a.x * b.y - a.y * b.x;
+  }
+  has_area_ = area2 != 0;
+}
+
+double VisiblePolygon::segment_distance(const Edge& e, double px, double py) const {
+  const double u = e.len2 > 0 ? std::clamp(((px - e.a.x) * e.dx + (py - e.a.y) * e.dy) / e.len2, 0.0, 1.0) : 0.0;
+  return std::hypot(px - (e.a.x + u * e.dx), py - (e.a.y + u * e.dy));
+}
+
+double VisiblePolygon::edge_distance(double px, double py) const {
+  double best = std::numeric_limits<double>::infinity();
+  for (const Edge& e : edges_) best = std::min(best, segment_distance(e, px, py));
+  return best;
+}
+
+bool VisiblePolygon::near_edge(double px, double py, double r) const {
+  for (const Edge& e : edges_) {
+    // A segment is no nearer than its line (a zero-length edge has no line: measure it).
+    if (e.len2 > 0 && std::abs((px - e.a.x) * e.nx + (py - e.a.y) * e.ny) > r) continue;
+    if (segment_distance(e, px, py) <= r) return true;
+  }
+  return false;
+}
+
+bool VisiblePolygon::inside(double px, double py) const {
+  if (!has_area_) return false;
+  bool pos = false, neg = false;
+  for (const Edge& e : edges_) {
+    const double c = e.dx * (py - e.a.y) - e.dy * (px - e.a.x);
+    pos |= c > 0, neg |= c < 0;
+  }
+  return !(pos && neg);
+}
+
+std::array<double, 3> exact_colour(const ClipTri& t, const ViewRect& vp, double sx, double sy) {
+  const double hw = vp.width / 2.0, hh = vp.height / 2.0;
+  const double nx = (sx - (vp.x + hw)) / hw, ny = (sy - (vp.y + hh)) / hh;
+  std::array<double, 3> a, c;
+  for (int i = 0; i < 3; ++i) {
+    a[i] = double(t.v[i].x) - nx * double(t.v[i].w);
+    c[i] = double(t.v[i].y) - ny * double(t.v[i].w);
+  }
+  // b is orthogonal to a and c: b = (a x c) / sum(a x c).
+  const std::array<double, 3> b = {a[1] * c[2] - a[2] * c[1], a[2] * c[0] - a[0] * c[2], a[0] * c[1] - a[1] * c[0]};
+  const double sum = b[0] + b[1] + b[2];
+  std::array<double, 3> rgb{};
+  for (int i = 0; i < 3; ++i) {
+    const double wi = b[i] / sum;
+    rgb[0] += wi * t.v[i].r, rgb[1] += wi * t.v[i].g, rgb[2] += wi * t.v[i].b;
+  }
+  return rgb;
+}
+
+}  // namespace rastsim::mesa
