@@ -62,9 +62,10 @@ struct TriCompare {
   void pixel(int x, int y, uint32_t lp, uint32_t rs, bool candidate) {
     const double cx = x + 0.5, cy = y + 0.5;
     const bool lc = covered(lp), rc = with_reference && covered(rs);
-    if (candidate && poly.near_edge(cx, cy, lsb)) {
+    if (const std::optional<EdgeKind> k = candidate ? poly.near_edge(cx, cy, lsb) : std::nullopt) {
       s.near_edge += lc || rc;
       s.near_mismatches += with_reference && lc != rc;
+      s.near_mismatches_by_edge[size_t(*k)] += with_reference && lc != rc;
       return;
     }
     const bool inside = candidate && poly.inside(cx, cy);
@@ -139,6 +140,7 @@ ClipStats& ClipStats::operator+=(const ClipStats& o) {
   triangles += o.triangles, visible += o.visible;
   covered_reference += o.covered_reference, covered_llvmpipe += o.covered_llvmpipe;
   near_edge += o.near_edge, near_mismatches += o.near_mismatches, far_mismatches += o.far_mismatches;
+  for (int k = 0; k < kEdgeKinds; ++k) near_mismatches_by_edge[size_t(k)] += o.near_mismatches_by_edge[size_t(k)];
   llvmpipe_far_errors += o.llvmpipe_far_errors, reference_far_errors += o.reference_far_errors;
   colour_pixels += o.colour_pixels, colour_over_1 += o.colour_over_1;
   colour_max = std::max(colour_max, o.colour_max);

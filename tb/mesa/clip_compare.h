@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "clip_geometry.h"
 #include "clip_scenes.h"
 #include "osmesa_clip.h"
 #include "ref/raster_state.h"
@@ -54,6 +55,7 @@ struct ClipStats {
   uint64_t covered_reference = 0, covered_llvmpipe = 0;
   uint64_t near_edge = 0;          // pixels covered by either whose centre is near an edge
   uint64_t near_mismatches = 0;    // of those, coverage differs (allowed, reported)
+  std::array<uint64_t, kEdgeKinds> near_mismatches_by_edge{};  // by the nearest edge's EdgeKind
   uint64_t far_mismatches = 0;     // coverage differs away from every edge (must be 0)
   uint64_t llvmpipe_far_errors = 0, reference_far_errors = 0;  // against the exact coverage
   uint64_t colour_pixels = 0;      // interior pixels whose colours are compared

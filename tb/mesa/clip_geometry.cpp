@@ -9,10 +9,14 @@
 namespace rastsim::mesa {
 namespace {
 
-using Homog = std::array<double, 4>;  // x, y, z, w
+// A polygon vertex: x, y, z, w and the clip planes it was made on (bit k: plane k).
+struct Homog {
+  std::array<double, 4> p;
+  unsigned planes = 0;
+};
 
 // The six view-volume planes as signed distances (inside: >= 0).
-double plane_distance(const Homog& p, int plane) {
+double plane_distance(const std::array<double, 4>& p, int plane) {
   switch (plane) {
     case 0: return p[3] + p[0];
     case 1: return p[3] - p[0];
@@ -28,12 +32,13 @@ std::vector<Homog> clip_against(const std::vector<Homog>& in, int plane) {
   for (size_t i = 0; i < in.size(); ++i) {
     const Homog& a = in[i];
     const Homog& b = in[(i + 1) % in.size()];
-    const double da = plane_distance(a, plane), db = plane_distance(b, plane);
+    const double da = plane_distance(a.p, plane), db = plane_distance(b.p, plane);
     if (da >= 0) out.push_back(a);
     if ((da >= 0) != (db >= 0)) {
       const double t = da / (da - db);
-      Homog m;
-      for (int k = 0; k < 4; ++k) m[k] = a[k] + t * (b[k] - a[k]);
+      // On this plane, and on any plane both ends were made on (the edge lies in it).
+      Homog m{{}, (a.planes & b.planes) | 1u << plane};
+      for (int k = 0; k < 4; ++k) m.p[k] = a.p[k] + t * (b.p[k] - a.p[k]);
       out.push_back(m);
     }
   }
@@ -44,16 +49,25 @@ std::vector<Homog> clip_against(const std::vector<Homog>& in, int plane) {
 
 VisiblePolygon::VisiblePolygon(const ClipTri& t, const ViewRect& vp) {
   std::vector<Homog> poly;
-  for (const ClipVertex& v : t.v) poly.push_back({double(v.x), double(v.y), double(v.z), double(v.w)});
+  for (const ClipVertex& v : t.v) poly.push_back({{double(v.x), double(v.y), double(v.z), double(v.w)}, 0});
   for (int plane = 0; plane < 6 && !poly.empty(); ++plane) poly = clip_against(poly, plane);
   const double hw = vp.width / 2.0, hh = vp.height / 2.0;
-  for (const Homog& p : poly)  // w > 0 after clipping, but for the eye itself (0, 0, 0, 0)
-    if (p[3] > 0) pts_.push_back({vp.x + hw + p[0] / p[3] * hw, vp.y + hh + p[1] / p[3] * hh});
+  std::vector<unsigned> planes;
+  for (const Homog& h : poly)  // w > 0 after clipping, but for the eye itself (0, 0, 0, 0)
+    if (h.p[3] > 0) {
+      pts_.push_back({vp.x + hw + h.p[0] / h.p[3] * hw, vp.y + hh + h.p[1] / h.p[3] * hh});
+      planes.push_back(h.planes);
+    }
   double area2 = 0;
   for (size_t i = 0; i < pts_.size(); ++i) {
+    const size_t j = (i + 1) % pts_.size();
     const ScreenPoint& a = pts_[i];
-    const ScreenPoint& b = pts_[(i + 1) % pts_.size()];
-    Edge e{a, b.x - a.x, b.y - a.y, 0, 0, 0};
+    const ScreenPoint& b = pts_[j];
+    // An edge whose ends were both made on a plane lies in it: bits 0..3 are x and y
+    // (the viewport border), 4 and 5 near and far.
+    const unsigned common = planes[i] & planes[j];
+    const EdgeKind kind = common & 0x30u ? EdgeKind::NearFar : common ? EdgeKind::Border : EdgeKind::Triangle;
+    Edge e{a, b.x - a.x, b.y - a.y, 0, 0, 0, kind};
     e.len2 = e.dx * e.dx + e.dy * e.dy;
     if (e.len2 > 0) e.nx = -e.dy / std::sqrt(e.len2), e.ny = e.dx / std::sqrt(e.len2);
     edges_.push_back(e);
@@ -73,13 +87,16 @@ double VisiblePolygon::edge_distance(double px, double py) const {
   return best;
 }
 
-bool VisiblePolygon::near_edge(double px, double py, double r) const {
+std::optional<EdgeKind> VisiblePolygon::near_edge(double px, double py, double r) const {
+  std::optional<EdgeKind> kind;
+  double best = r;
   for (const Edge& e : edges_) {
     // A segment is no nearer than its line (a zero-length edge has no line: measure it).
-    if (e.len2 > 0 && std::abs((px - e.a.x) * e.nx + (py - e.a.y) * e.ny) > r) continue;
-    if (segment_distance(e, px, py) <= r) return true;
+    if (e.len2 > 0 && std::abs((px - e.a.x) * e.nx + (py - e.a.y) * e.ny) > best) continue;
+    const double d = segment_distance(e, px, py);
+    if (d <= best) best = d, kind = e.kind;
   }
-  return false;
+  return kind;
 }
 
 bool VisiblePolygon::inside(double px, double py) const {

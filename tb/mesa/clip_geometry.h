@@ -14,6 +14,7 @@
 #pragma once
 
 #include <array>
+#include <optional>
 #include <vector>
 
 #include "clip_scenes.h"
@@ -24,6 +25,11 @@ struct ScreenPoint {
   double x = 0, y = 0;  // pixels, y down
 };
 
+// Where an edge of the visible polygon comes from: the triangle's own edge, the near or
+// far plane (z = 0, z = w), or the border of the viewport (x, y = +-w).
+enum class EdgeKind { Triangle, NearFar, Border };
+inline constexpr int kEdgeKinds = 3;
+
 // The visible part of t, projected: a convex polygon (empty when nothing is visible; it
 // may be degenerate, e.g. a collinear triangle's segment or a single point).
 class VisiblePolygon {
@@ -33,8 +39,9 @@ class VisiblePolygon {
   bool empty() const { return pts_.empty(); }
   // Distance (px) from (px, py) to the nearest edge (segments); infinity when empty.
   double edge_distance(double px, double py) const;
-  // edge_distance(px, py) <= r, cheaply: a segment is measured only when its line is near.
-  bool near_edge(double px, double py, double r) const;
+  // The kind of the nearest edge when edge_distance(px, py) <= r, cheaply (a segment is
+  // measured only when its line is near); nothing when every edge is farther.
+  std::optional<EdgeKind> near_edge(double px, double py, double r) const;
   // True when (px, py) lies inside (either winding, edges included; false for a polygon of
   // zero area). Meaningful away from the edges, where rounding cannot change the answer.
   bool inside(double px, double py) const;
@@ -44,6 +51,7 @@ class VisiblePolygon {
     ScreenPoint a;
     double dx = 0, dy = 0, len2 = 0;  // b - a and its squared length
     double nx = 0, ny = 0;            // unit normal (0 for a zero-length edge)
+    EdgeKind kind = EdgeKind::Triangle;
   };
   double segment_distance(const Edge& e, double px, double py) const;
   std::vector<ScreenPoint> pts_;

@@ -162,7 +162,9 @@ TEST(MesaClipOrientation, ReferenceMinusWIsTheTopRow) {
 void print(const std::string& what, const ClipStats& s, double ms) {
   std::cout << what << ": " << s.triangles << " triangles (" << s.visible << " visible), covered rastsim "
             << s.covered_reference << " / llvmpipe " << s.covered_llvmpipe << "; near an edge " << s.near_edge
-            << " (" << s.near_mismatches << " differ); far mismatches " << s.far_mismatches
+            << " (" << s.near_mismatches << " differ: " << s.near_mismatches_by_edge[0] << " at a triangle edge, "
+            << s.near_mismatches_by_edge[1] << " at the near or far line, " << s.near_mismatches_by_edge[2]
+            << " at the viewport border); far mismatches " << s.far_mismatches
             << "; against exact coverage: llvmpipe " << s.llvmpipe_far_errors << ", rastsim " << s.reference_far_errors
             << "; colour on " << s.colour_pixels << " interior pixels: max |rastsim - llvmpipe| " << s.colour_max
             << " (" << s.colour_over_1 << " over 1), max against exact: llvmpipe " << s.llvmpipe_exact_max << " ("
