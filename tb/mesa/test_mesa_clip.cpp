@@ -63,11 +63,17 @@ uint64_t base_seed() {
   return s ? std::strtoull(s, nullptr, 10) : 20261127;
 }
 
-bool has_front_end(const RasterState& st) {
-  static const bool present = reference_draws_clip_space(st);
-  return present;
+// Why the reference model cannot be compared under st: empty when it draws clip-space
+// triangles; otherwise the reason (no front end yet, or the error it gives, e.g. for a
+// clip.method it does not model).
+std::string front_end_missing(const RasterState& st) {
+  try {
+    return reference_draws_clip_space(st) ? ""
+                                          : "the reference model draws no clip-space triangle (no geometry front end)";
+  } catch (const std::exception& e) {
+    return std::string("the reference model cannot draw clip space in this configuration: ") + e.what();
+  }
 }
-constexpr const char* kNoFrontEnd = "the reference model draws no clip-space triangle (no geometry front end)";
 
 ClipVertex vtx(float x, float y, uint8_t r = 255, uint8_t g = 255, uint8_t b = 255) {
   ClipVertex v;
@@ -152,11 +158,52 @@ TEST(MesaClipOrientation, LlvmpipeMinusWIsTheTopRow) {
 
 TEST(MesaClipOrientation, ReferenceMinusWIsTheTopRow) {
   const RasterState st = clip_state();
-  if (!has_front_end(st)) GTEST_SKIP() << kNoFrontEnd;
+  if (const std::string why = front_end_missing(st); !why.empty()) GTEST_SKIP() << why;
   const ViewRect vp{16, 8, 128, 128};
   check_upper_left_half(reference_image({kUpperLeftHalf}, vp, st).rgba, st, "rastsim");
   const std::vector<ClipTri> sq = split_square();
   check_split_square(reference_image({sq[0]}, vp, st).rgba, reference_image({sq[1]}, vp, st).rgba, st, "rastsim");
+}
+
+// With a guard band x and y are not clipped at the viewport, so the viewport_xform
+// rectangle itself must bound the pixels, as OpenGL's viewport does: the upper-left half
+// of the 128 x 128 rectangle at (16, 8) widened to three viewports on the right (corner
+// (3, -1), inside a guard band of 4) covers, by hand, every pixel (16 + i, 8 + j) of the
+// rectangle whose centre satisfies (i + 0.5) / 2 + (j + 0.5) < 128, and nothing else.
+std::vector<uint32_t> beyond_rectangle_expected(const RasterState& st) {
+  std::vector<uint32_t> img(size_t(st.fb_width) * size_t(st.fb_height), 0);
+  for (int j = 0; j < 128; ++j)
+    for (int i = 0; i < 128; ++i)
+      if ((i + 0.5) / 2 + (j + 0.5) < 128) img[size_t(8 + j) * st.fb_width + size_t(16 + i)] = 0xff000000u;
+  return img;
+}
+
+const ClipTri kBeyondRectangle{{vtx(-1, -1), vtx(3, -1), vtx(-1, 1)}};
+
+TEST(MesaClipOrientation, LlvmpipeViewportBoundsAGuardBand) {
+  const RasterState st = clip_state();
+  const std::vector<uint32_t> want = beyond_rectangle_expected(st);
+  const std::vector<uint32_t> got = renderer(st).render({kBeyondRectangle}, {16, 8, 128, 128});
+  size_t wrong = 0;
+  for (size_t p = 0; p < want.size(); ++p) wrong += (want[p] >> 24 != 0) != (got[p] >> 24 != 0);
+  EXPECT_EQ(wrong, 0u);
+}
+
+TEST(MesaClipOrientation, ReferenceViewportBoundsAGuardBand) {
+  const RasterState st = clip_state({"clip.guard_band=4"});
+  if (const std::string why = front_end_missing(st); !why.empty()) GTEST_SKIP() << why;
+  const std::vector<uint32_t> want = beyond_rectangle_expected(st);
+  const std::vector<uint32_t> got = reference_image({kBeyondRectangle}, {16, 8, 128, 128}, st).rgba;
+  size_t wrong = 0, outside = 0;
+  for (int y = 0; y < st.fb_height; ++y)
+    for (int x = 0; x < st.fb_width; ++x) {
+      const size_t p = size_t(y) * st.fb_width + size_t(x);
+      const bool g = got[p] >> 24 != 0;
+      wrong += (want[p] >> 24 != 0) != g;
+      outside += g && (x < 16 || x >= 144 || y < 8 || y >= 136);
+    }
+  EXPECT_EQ(outside, 0u) << "pixels outside the viewport_xform rectangle";
+  EXPECT_EQ(wrong, 0u);
 }
 
 void print(const std::string& what, const ClipStats& s, double ms) {
@@ -237,8 +284,9 @@ class MesaClip : public ::testing::TestWithParam<ClipCase> {};
 TEST_P(MesaClip, CoverageAndColourAgainstLlvmpipe) {
   const ClipCase& c = GetParam();
   const RasterState st = clip_state(c.variant->overrides);
-  const bool with_reference = has_front_end(st);
-  if (!with_reference && c.variant != &kVariants[0]) GTEST_SKIP() << kNoFrontEnd;
+  const std::string missing = front_end_missing(st);
+  const bool with_reference = missing.empty();
+  if (!with_reference && c.variant != &kVariants[0]) GTEST_SKIP() << missing;
   const auto t0 = std::chrono::steady_clock::now();
   const ClipStats total = run_scenes(c.kind, c.variant->scenes, st, with_reference, kMaxReported);
   const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
@@ -248,7 +296,7 @@ TEST_P(MesaClip, CoverageAndColourAgainstLlvmpipe) {
         total, ms);
   record(total);
   EXPECT_EQ(total.llvmpipe_far_errors, 0u) << "llvmpipe against the exact coverage";
-  if (!with_reference) GTEST_SKIP() << kNoFrontEnd << ": only llvmpipe was held against the oracle";
+  if (!with_reference) GTEST_SKIP() << missing << ": only llvmpipe was held against the oracle";
   EXPECT_EQ(total.far_mismatches, 0u);
   EXPECT_EQ(total.reference_far_errors, 0u) << "rastsim against the exact coverage";
   EXPECT_EQ(total.colour_over_1, 0u);
@@ -263,7 +311,7 @@ INSTANTIATE_TEST_SUITE_P(Kinds, MesaClip, ::testing::ValuesIn(clip_cases()), [](
 // near plane moved by 1/64 w (z + w/64) must disagree with llvmpipe away from the edges.
 TEST(MesaClipNegativeControl, NearPlaneMovedDisagrees) {
   const RasterState st = clip_state();
-  if (!has_front_end(st)) GTEST_SKIP() << kNoFrontEnd;
+  if (const std::string why = front_end_missing(st); !why.empty()) GTEST_SKIP() << why;
   const ClipStats s = run_scenes(ClipKind::NearCrossing, 1, st, true, 0, [](const std::vector<ClipTri>& tris) {
     std::vector<ClipTri> moved = tris;
     for (ClipTri& t : moved)
@@ -278,7 +326,7 @@ TEST(MesaClipNegativeControl, NearPlaneMovedDisagrees) {
 // differ from llvmpipe's perspective-correct colour by more than 1 LSB somewhere.
 TEST(MesaClipNegativeControl, AffineColourDisagrees) {
   const RasterState st = clip_state({"interp.perspective=false"});
-  if (!has_front_end(st)) GTEST_SKIP() << kNoFrontEnd;
+  if (const std::string why = front_end_missing(st); !why.empty()) GTEST_SKIP() << why;
   const ClipStats s = run_scenes(ClipKind::Camera, 1, st, true, 0);
   std::cout << "affine colour: " << s.colour_over_1 << " of " << s.colour_pixels
             << " interior pixels differ by more than 1 LSB (max " << s.colour_max << ")\n";
