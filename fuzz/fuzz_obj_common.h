@@ -26,6 +26,14 @@ inline void check_placed(const Scene& s, const ObjPlacement& p) {
     const auto* prim = std::get_if<CmdPrimitives>(&c.body);
     if (!prim) continue;
     const std::string at = "line " + std::to_string(c.loc.line) + ": ";
+    if (p.camera == ObjCamera::Perspective) {  // clip space: finite binary32, w the eye distance's sign
+      check(prim->vertices.empty() && !prim->clip_vertices.empty(), at + "a perspective command not in clip space");
+      for (const ClipVertex& v : prim->clip_vertices)
+        check(std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z) && std::isfinite(v.w) &&
+                  std::isfinite(v.s) && std::isfinite(v.t),
+              at + "a clip-space value not finite");
+      continue;
+    }
     check(prim->topology == Topology::List && prim->vertices.size() >= 3 && prim->vertices.size() % 3 == 0,
           at + "a face is not a list of triangles");
     for (const SceneVertex& v : prim->vertices) {
@@ -46,7 +54,10 @@ inline void parse_and_check_obj(const std::string& text, const std::string& name
   extreme.fill = 4.0;
   extreme.yaw_deg = -360;
   extreme.pitch_deg = 90;
-  for (const ObjPlacement& p : {def, extreme})
+  ObjPlacement perspective = def;  // the perspective camera, its eye inside the mesh
+  perspective.camera = ObjCamera::Perspective;
+  perspective.distance = 0.5;
+  for (const ObjPlacement& p : {def, extreme, perspective})
     expect_only<SceneError>("SceneError", [&] { check_placed(parse_obj(text, name, p, base_dir), p); });
 }
 

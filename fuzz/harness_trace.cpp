@@ -44,6 +44,31 @@ void check_vertex(const SceneVertex& v, int line) {
     check(q.saturated() || std::abs(q.to_double()) <= 1e18, at + "coordinate wrapped");
 }
 
+// A clip-space command (tri4, v4 blocks): finite binary32 values, a vertex count its
+// topology accepts, and front-end state within the ranges the trace format gives.
+void check_clip(const CmdPrimitives& p, int line) {
+  const std::string at = "line " + std::to_string(line) + ": ";
+  check(p.vertices.empty(), at + "a clip-space command with screen-space vertices");
+  const size_t n = p.clip_vertices.size();
+  bool count_ok = n >= 1;
+  switch (p.topology) {
+    case Topology::List: count_ok = n % 3 == 0; break;
+    case Topology::Strip:
+    case Topology::Fan: count_ok = n >= 3; break;
+    case Topology::Lines: count_ok = n % 2 == 0; break;
+    case Topology::LineStrip:
+    case Topology::LineLoop: count_ok = n >= 2; break;
+    case Topology::Points: break;
+  }
+  check(count_ok, at + "vertex count of a clip-space primitive");
+  for (const ClipVertex& v : p.clip_vertices)
+    for (const float f : {v.x, v.y, v.z, v.w, v.s, v.t}) check(std::isfinite(f), at + "a clip-space value not finite");
+  const ClipState& c = p.clip;
+  check(c.depth_near >= 0 && c.depth_near <= 1 && c.depth_far >= 0 && c.depth_far <= 1, at + "depth range");
+  check(c.point_size >= 1 && c.point_size <= 256, at + "3D point size");
+  check(c.xform.whole_viewport || (c.xform.width >= 1 && c.xform.height >= 1), at + "viewport transform size");
+}
+
 void check_scene(const Scene& s, const std::string& name, size_t text_lines) {
   int prev = 0;
   for (const Command& c : s.commands) {
@@ -61,9 +86,13 @@ void check_scene(const Scene& s, const std::string& name, size_t text_lines) {
                 sc->width <= 16384 && sc->height <= 16384,
             at + "scissor rectangle");
     if (const auto* p = std::get_if<CmdPrimitives>(&c.body)) {
-      const size_t n = p->vertices.size();
-      check(p->topology == Topology::List ? n >= 3 && n % 3 == 0 : n >= 3, at + "vertex count of a primitive");
-      for (const SceneVertex& v : p->vertices) check_vertex(v, line);
+      if (p->clip_space()) {
+        check_clip(*p, line);
+      } else {
+        const size_t n = p->vertices.size();
+        check(p->topology == Topology::List ? n >= 3 && n % 3 == 0 : n >= 3, at + "vertex count of a primitive");
+        for (const SceneVertex& v : p->vertices) check_vertex(v, line);
+      }
     }
     if (const auto* d = std::get_if<CmdDraw2d>(&c.body)) {
       check(d->style.point_size >= 1 && d->style.point_size <= 256, at + "point size");

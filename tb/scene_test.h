@@ -20,4 +20,17 @@ namespace rastsim::scene_test {
 // The scene rendered by the reference pipeline with the default config.
 RenderStats render_default(const Scene& scene);
 
+// An OBJ octahedron of radius 5 about the origin (bounding-box centre 0, sphere radius
+// 5): vertices on the axes (+x, -x, +y, -y, +z, -z), a front face (1 3 5, counter-clockwise
+// seen from +z) and a back face (2 6 4).
+inline constexpr const char* kOcta =
+    "v 5 0 0\n"
+    "v -5 0 0\n"
+    "v 0 5 0\n"
+    "v 0 -5 0\n"
+    "v 0 0 5\n"
+    "v 0 0 -5\n"
+    "f 1 3 5\n"
+    "f 2 6 4\n";
+
 }  // namespace rastsim::scene_test

@@ -179,7 +179,7 @@ TEST(ConfigKeys, TyposSuggestTheClosestKey) {
 }
 
 TEST(ConfigKeys, NoSuggestionWithoutACloseKey) {
-  for (const char* key : {"raster.nope", "raster.xyzzy_frobnicate", "foo.bar", "raster.tile_sz_max"}) {
+  for (const char* key : {"raster.nope", "raster.xyzzy_frobnicate", "foo.qux", "raster.tile_sz_max"}) {
     SCOPED_TRACE(key);
     const std::string e = unknown_key_error(key);
     EXPECT_EQ(e.find("did you mean"), std::string::npos) << e;

@@ -138,14 +138,17 @@ TEST(SceneFuzz, MutatedTracesAndObjsGiveSceneOrSceneError) {
       "tri 1 2 0 255 0 0 30 4 0.5 0 255 0 5 60 1 0 0 255\n"
       "strip\nv 0 0\nv 0 10 0.5 1 2 3\nv 10 0\nv 10 10\nend\n"
       "fan # c\nv 5 5\nv 0 0\nv 10.25 0\nv 10 10\nend\n"};
-  for (const char* t : {"primitives", "fill_rule", "state"})
+  for (const char* t : {"primitives", "fill_rule", "state", "clip_cube"})
     traces.push_back(file_text(std::string(RASTSIM_SOURCE_DIR) + "/traces/" + t + ".trace"));
+  traces.push_back(file_text(std::string(RASTSIM_SOURCE_DIR) + "/fuzz/corpus/trace/clip.trace"));
   const std::vector<std::string> objs = {
-      file_text(kData + "/cube.obj"),
+      file_text(kData + "/cube.obj"), file_text(std::string(RASTSIM_SOURCE_DIR) + "/fuzz/corpus/obj/perspective.obj"),
       "mtllib cube.mtl\nv 0 0 0\nv 1 0 0 0.5 0.5 0.5\nv 0 1 0\nv 1 1 0 1\nvt 0 0\nvn 0 0 1\n"
       "usemtl blue\nf 1/1/1 2/1/1 3/1/1\nf -1//-1 -2//1 -3//1\ng x\ns 1\nf 1 2 4 3\n"};
   for (const auto& t : traces) ASSERT_NO_THROW(parse_trace(t, "seed.trace"));
-  for (const auto& t : objs) ASSERT_NO_THROW(parse_obj(t, "seed.obj", obj_placement_from_config(Config{}), kData));
+  ObjPlacement perspective = obj_placement_from_config(Config{});  // which draws every seed's l and p
+  perspective.camera = ObjCamera::Perspective;
+  for (const auto& t : objs) ASSERT_NO_THROW(parse_obj(t, "seed.obj", perspective, kData));
 
   FuzzCounts tn, on;
   fuzz(traces, 8000, rng, seed, [](const std::string& t, std::mt19937_64&) { return parse_trace(t, "fuzz.trace"); },
@@ -156,6 +159,10 @@ TEST(SceneFuzz, MutatedTracesAndObjsGiveSceneOrSceneError) {
          p.yaw_deg = double(r() % 721) - 360;
          p.pitch_deg = double(r() % 181) - 90;
          p.fill = 0.01 + double(r() % 400) / 100;
+         if (r() % 2) {  // the perspective camera, sometimes with its eye inside the mesh
+           p.camera = ObjCamera::Perspective;
+           p.distance = double(r() % 400) / 100;
+         }
          return parse_obj(t, "fuzz.obj", p, kData);
        },
        on);

@@ -45,16 +45,7 @@ double area2(const SceneVertex& a, const SceneVertex& b, const SceneVertex& c) {
          (b.y.to_double() - a.y.to_double()) * (c.x.to_double() - a.x.to_double());
 }
 
-// An octahedron of radius 5 about the origin: bounding-box centre 0, sphere radius 5.
-const char* kOcta =
-    "v 5 0 0\n"
-    "v -5 0 0\n"
-    "v 0 5 0\n"
-    "v 0 -5 0\n"
-    "v 0 0 5\n"
-    "v 0 0 -5\n"
-    "f 1 3 5\n"
-    "f 2 6 4\n";
+using scene_test::kOcta;
 
 TEST(SceneObj, HeadOnPlacementIsExact) {
   const Scene s = parse(kOcta, flat());

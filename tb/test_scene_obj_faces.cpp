@@ -300,8 +300,7 @@ TEST(ObjFaces, EdgeOnConcaveFaceDrawsNothingAndLoads) {
 TEST(ObjStatements, LinesAndPointsStopUnlessSkipped) {
   const std::string tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
   EXPECT_TRUE(SceneFails([&] { parse(tri + "l 1 2\n"); }, "m.obj:5:",
-                         "'l' (polyline) statements are not drawn yet: 3D lines and points come with the clip-space "
-                         "front end"));
+                         "'l' (polyline) statements are drawn by the perspective camera only"));
   EXPECT_TRUE(SceneFails([&] { parse(tri + "\np 1\n"); }, "m.obj:6:", "scene.obj_lines_points = \"skip\""));
   ObjPlacement skip = head_on();
   skip.lines_points = ObjLinesPoints::Skip;
@@ -318,14 +317,14 @@ TEST(ObjStatements, ConfigKeyChoosesSkip) {
 }
 
 TEST(ObjStatements, UnusedStatementsAreCounted) {
-  // Hand count of tb/data/cube.obj and cube.mtl.
-  const StatementCounts want = {{"vt", 4}, {"vn", 2}, {"o", 1}, {"s", 1}, {"g", 1}, {"Ka", 1},
+  // Hand count of tb/data/cube.obj and cube.mtl (its vt are used: texture coordinates).
+  const StatementCounts want = {{"vn", 2}, {"o", 1}, {"s", 1}, {"g", 1}, {"Ka", 1},
                                 {"Ks", 1}, {"Ns", 1}, {"illum", 1}, {"d", 1}, {"map_Kd", 1}};
   testing::internal::CaptureStderr();
   const Scene s = load_obj(kData + "/cube.obj", head_on());
   const std::string err = testing::internal::GetCapturedStderr();
   EXPECT_EQ(s.obj_ignored, want);
-  EXPECT_EQ(err, kData + "/cube.obj: ignored: Ka 1, Ks 1, Ns 1, d 1, g 1, illum 1, map_Kd 1, o 1, s 1, vn 2, vt 4\n");
+  EXPECT_EQ(err, kData + "/cube.obj: ignored: Ka 1, Ks 1, Ns 1, d 1, g 1, illum 1, map_Kd 1, o 1, s 1, vn 2\n");
   EXPECT_EQ(obj_ignored_counts(kData + "/cube.obj"), want);
   EXPECT_EQ(obj_ignored_counts(std::string(RASTSIM_SOURCE_DIR) + "/traces/torus.trace"), std::nullopt);
   // Nothing unused: no line on stderr.

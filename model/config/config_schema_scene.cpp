@@ -27,6 +27,27 @@ ParamDef obj_depth_func_param(const std::vector<ParamDef>& s) {
           "raster.depth_func's own; traces always take raster.depth_func)"};
 }
 
+// The OBJ camera (docs/trace-format.md, "Perspective camera"). Lengths are in units of
+// the mesh's bounding radius, so one setting frames any mesh whatever units it is written
+// in; scene.far > scene.near is checked by obj_placement_from_config.
+void add_camera_params(std::vector<ParamDef>& s) {
+  using T = ParamType;
+  s.push_back({"scene.camera", T::Enum, std::string("ortho"), "", 1, 0, {"ortho", "perspective"},
+               "OBJ placement: ortho (screen-space triangles, the bounding sphere spanning scene.obj_fill) or "
+               "perspective (clip-space vertices in binary32 through the geometry front end, docs/clip-space.md)"});
+  s.push_back({"scene.fov_deg", T::Float, 60.0, "deg", 1.0, 179.0, {},
+               "OBJ perspective camera: vertical field of view"});
+  s.push_back({"scene.near", T::Float, 0.1, "radii", 1e-6, 1e6, {},
+               "OBJ perspective camera: near plane distance from the eye, in bounding radii of the mesh "
+               "(depth z/w = 0 there; nearer geometry is clipped)"});
+  s.push_back({"scene.far", T::Float, 100.0, "radii", 1e-6, 1e6, {},
+               "OBJ perspective camera: far plane distance from the eye, in bounding radii (depth 1; must exceed "
+               "scene.near)"});
+  s.push_back({"scene.distance", T::Float, 2.5, "radii", 0.0, 1e6, {},
+               "OBJ perspective camera: eye distance from the mesh centre along the view axis, in bounding radii "
+               "(below 1 the eye may be inside the mesh)"});
+}
+
 }  // namespace
 
 void add_scene_params(std::vector<ParamDef>& s) {
@@ -53,11 +74,14 @@ void add_scene_params(std::vector<ParamDef>& s) {
                "OBJ reading: faces sent in one List command (1: each face its own command; "
                "larger: batched as in one draw call), same triangles in the same order"});
   s.push_back(obj_depth_func_param(s));
-  // Points and lines with depth need the clip-space front end; until then the reader
-  // refuses them at every level (render, simulate, cosim, estimate read one loader).
+  // 3D points and lines need depth through the clip-space front end: with the
+  // perspective camera they become clip-space Points / Lines commands; the orthographic
+  // placement makes screen-space triangles only, so there the reader refuses or skips them.
   s.push_back({"scene.obj_lines_points", T::Enum, std::string("error"), "", 1, 0, {"error", "skip"},
-               "OBJ reading: 'l' (polyline) and 'p' (point) statements, which are not drawn yet "
-               "(error: stop at the first with its file:line; skip: leave them out, counted in obj_ignored)"});
+               "OBJ reading with scene.camera = ortho: 'l' (polyline) and 'p' (point) statements, which only the "
+               "perspective camera draws (error: stop at the first with its file:line; skip: leave them out, "
+               "counted in obj_ignored); with scene.camera = perspective they are drawn"});
+  add_camera_params(s);
 }
 
 }  // namespace rastsim

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "config/obj_placement.h"
 
+#include <sstream>
 #include <utility>
 
 namespace rastsim {
@@ -30,6 +31,17 @@ ObjPlacement obj_placement_from_config(const Config& cfg) {
   p.faces_per_command = static_cast<int>(cfg.get_int("scene.obj_faces_per_command"));
   p.coord_format = FixedFormat::parse(cfg.get_string("raster.coord_format"));
   p.lines_points = cfg.get_string("scene.obj_lines_points") == "skip" ? ObjLinesPoints::Skip : ObjLinesPoints::Error;
+  p.camera = cfg.get_string("scene.camera") == "perspective" ? ObjCamera::Perspective : ObjCamera::Ortho;
+  p.fov_deg = cfg.get_float("scene.fov_deg");
+  p.near = cfg.get_float("scene.near");
+  p.far = cfg.get_float("scene.far");
+  p.distance = cfg.get_float("scene.distance");
+  if (!(p.far > p.near)) {
+    std::ostringstream why;  // the shortest form of each value, as written in a config
+    why << cfg.origin("scene.far") << ": scene.far = " << p.far << " must exceed scene.near = " << p.near << " ("
+        << cfg.origin("scene.near") << "): the perspective camera's far plane lies beyond its near plane";
+    throw ConfigError(why.str());
+  }
   return p;
 }
 

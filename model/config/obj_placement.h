@@ -24,6 +24,10 @@ std::optional<ObjUp> parse_obj_up(const std::string& name);
 // (scene.obj_lines_points): stop at the first with its file:line, or skip and count them.
 enum class ObjLinesPoints { Error, Skip };
 
+// The OBJ camera (scene.camera): orthographic onto the screen, or perspective into clip
+// space (docs/trace-format.md, "Perspective camera").
+enum class ObjCamera { Ortho, Perspective };
+
 // Where an OBJ mesh lands on screen: a camera looking at the mesh's bounding sphere.
 // Every value comes from the config (obj_placement_from_config); none has a default here.
 struct ObjPlacement {
@@ -38,6 +42,10 @@ struct ObjPlacement {
   // exactly as setup snaps them (docs/trace-format.md, "Polygon faces").
   FixedFormat coord_format{};
   ObjLinesPoints lines_points = ObjLinesPoints::Error;  // scene.obj_lines_points
+  // scene.camera and, for perspective, its frustum: vertical field of view, near and far
+  // planes and the eye's distance from the mesh centre, lengths in bounding radii.
+  ObjCamera camera = ObjCamera::Ortho;
+  double fov_deg = 0, near = 0, far = 0, distance = 0;
   uint8_t clear_r = 0, clear_g = 0, clear_b = 0;
 };
 

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
-// Attribute interpolation: colour and depth at a pixel centre from barycentric weights.
+// Attribute interpolation: depth, colour and texture coordinates at a pixel centre from
+// barycentric weights.
 //
 // The weights are the triangle's own edge values at the sample (exact integers in
 // raw^2 units, 2F fraction bits): w0 = E1, w1 = E2, w2 = E0, each >= 0 for a covered
@@ -7,8 +8,17 @@
 //     attr = round_half_up((w0*a0 + w1*a1 + w2*a2) / area2)
 // an exact rational rounded once, so the result lies between the vertex values and is
 // the same in every model. Hardware: one divider per attribute with a quotient as wide
-// as the attribute (8 bits for colour, raster.depth_bits for depth); widths in
-// docs/fixed-point.md. This is interp.method = "plane", the default.
+// as the attribute (8 bits for colour, raster.depth_bits for depth, the signed
+// interp.texcoord_format for s, t); widths in docs/fixed-point.md. This is
+// interp.method = "plane", the default, and the whole story for an `affine` triangle.
+//
+// Perspective-correct (a triangle set up with affine false: interp.perspective and
+// different 1/w, tri_setup.h): depth stays the rational above (z/w is linear on
+// screen); colour and texture coordinates weight each vertex by its Q_k as well:
+//     attr = round_half_up((e0 Q0 a0 + e1 Q1 a1 + e2 Q2 a2) / (e0 Q0 + e1 Q1 + e2 Q2))
+// with e_k = w_k. interp.recip = exact divides exactly (the golden); newton multiplies
+// by the reciprocal unit's y ~ 1/D (ref/recip.h) from the top 40 bits of D. Widths,
+// truncations and the extrapolation rule in docs/clip-space.md.
 //
 // interp.method = "dda" (the lecture notes' incremental spans): along each row the
 // covered pixels form one span; its first pixel x0 gets the exact value v0 (the
@@ -40,6 +50,7 @@ struct Fragment {
   uint8_t r = 0, g = 0, b = 0;
   uint16_t mask = 1;       // the samples it writes (raster.samples > 1)
   uint8_t samples = 1;     // raster.samples: how many bits of mask are meaningful
+  int32_t s = 0, t = 0;    // texture coordinate, raw interp.texcoord_format (signed)
   bool operator==(const Fragment&) const = default;
 };
 
@@ -50,7 +61,9 @@ Fragment interpolate_plane(const SetupTriangle& t, int px, int py, int frac_bits
 // Plane equations at raw point (sx, sy) for pixel (px, py). Outside the triangle (a
 // multisampled pixel whose centre is not covered) the weights go negative and the
 // rational is extrapolated; the rounded value is clamped to the attribute's range
-// [0, 2^bits - 1] (a no-op inside the triangle).
+// [0, 2^bits - 1] (texture coordinates: the format's range; a no-op inside the triangle).
+// Perspective-correct where the denominator D = sum e_k Q_k is <= 0 (only outside the
+// triangle) with the negative weights taken as 0.
 Fragment interpolate_plane_at(const SetupTriangle& t, int px, int py, int64_t sx, int64_t sy);
 
 // interpolate_plane for the pixels of one single-sample triangle in turn, without a
@@ -60,7 +73,7 @@ Fragment interpolate_plane_at(const SetupTriangle& t, int px, int py, int64_t sx
 // divided out as interpolate_plane does. All in int64, so active() only when the
 // triangle's edges64 holds, area2 <= w64_limit (the weights of a covered centre lie in
 // [0, area2]) and the steps fit int64; the same fragments as interpolate_plane
-// (tb/test_int64_paths.cpp). Only for covered pixel centres.
+// (tb/test_int64_paths.cpp). Only for covered pixel centres of an affine triangle.
 class PlaneStepper {
  public:
   PlaneStepper(const SetupTriangle& t, int frac_bits);
@@ -72,7 +85,7 @@ class PlaneStepper {
   [[gnu::always_inline]] Fragment at(int px, int py);
 
  private:
-  static constexpr int kAttrs = 4;  // in make_fragment's order: z, r, g, b
+  static constexpr int kAttrs = 6;  // in make_fragment's order: z, r, g, b, s, t
   void restart(int px, int py);     // q_, r_ at (px, py) by division
   const SetupTriangle* t_;          // a pointer, so that a stepper can be copied (PixelShader)
   int frac_bits_;
@@ -80,7 +93,7 @@ class PlaneStepper {
   int last_x_ = 0, last_y_ = 0;
   int64_t den_ = 1;
   int64_t q_[kAttrs]{}, r_[kAttrs]{}, dq_[kAttrs]{}, dr_[kAttrs]{};
-  uint32_t a_[kAttrs][3]{};
+  int64_t a_[kAttrs][3]{};
   // A flat attribute (the same value a at the three vertices) is that value at every
   // point: num = a (w0 + w1 + w2) = a area2 exactly, so q = a, r = 0 and its x-step is 0
   // (sum_k edge.a = 0). Its q_ and r_ are set once and restart() divides only the others
@@ -126,7 +139,7 @@ class PixelShader {
       const Fragment f = plane_.at(x0, y);
       // Built field by field, not copied whole and x changed: a copy through memory with x
       // stored into it stalls the next load of it (store forwarding), a fragment at a time.
-      return use([f](int x) { return Fragment{x, f.y, f.z, f.r, f.g, f.b, f.mask, f.samples}; });
+      return use([f](int x) { return Fragment{x, f.y, f.z, f.r, f.g, f.b, f.mask, f.samples, f.s, f.t}; });
     }
     return use([this, y](int x) { return plane_.at(x, y); });
   }
@@ -140,25 +153,36 @@ class PixelShader {
 
 namespace interp_detail {
 
+// v clamped to an attribute's range [lo, hi].
 template <class T>
-inline uint32_t clamp_attr(T v, int bits) {
-  const T hi = (T(1) << bits) - 1;
-  return static_cast<uint32_t>(std::clamp<T>(v, 0, hi));
+inline int64_t clamp_attr(T v, int64_t lo, int64_t hi) {
+  return static_cast<int64_t>(std::clamp<T>(v, T(lo), T(hi)));
 }
+inline int64_t unorm_max(int bits) { return (int64_t{1} << bits) - 1; }
 
-// The fragment at pixel (px, py) whose every attribute is attr(a0, a1, a2, bits) of the
-// three vertex values (bits: raster.depth_bits for depth, 8 for colour).
-template <class Attr>
-[[gnu::always_inline]] inline Fragment make_fragment(const SetupTriangle& t, int px, int py, Attr&& attr) {
+// The fragment at pixel (px, py) whose depth is depth_attr(z0, z1, z2, lo, hi) and whose
+// every other attribute is attr(a0, a1, a2, lo, hi) of the three vertex values (int64),
+// lo and hi the attribute's range: [0, 2^raster.depth_bits - 1] for depth, [0, 255] for
+// colour, interp.texcoord_format's raw range for s and t.
+template <class DepthAttr, class Attr>
+[[gnu::always_inline]] inline Fragment make_fragment(const SetupTriangle& t, int px, int py, DepthAttr&& depth_attr,
+                                                     Attr&& attr) {
   Fragment f;
   f.x = px;
   f.y = py;
-  f.z = attr(t.z[0], t.z[1], t.z[2], t.depth_bits);
-  f.r = static_cast<uint8_t>(attr(t.rgb[0][0], t.rgb[1][0], t.rgb[2][0], 8));
-  f.g = static_cast<uint8_t>(attr(t.rgb[0][1], t.rgb[1][1], t.rgb[2][1], 8));
-  f.b = static_cast<uint8_t>(attr(t.rgb[0][2], t.rgb[1][2], t.rgb[2][2], 8));
+  f.z = static_cast<uint32_t>(depth_attr(t.z[0], t.z[1], t.z[2], 0, unorm_max(t.depth_bits)));
+  f.r = static_cast<uint8_t>(attr(t.rgb[0][0], t.rgb[1][0], t.rgb[2][0], 0, 255));
+  f.g = static_cast<uint8_t>(attr(t.rgb[0][1], t.rgb[1][1], t.rgb[2][1], 0, 255));
+  f.b = static_cast<uint8_t>(attr(t.rgb[0][2], t.rgb[1][2], t.rgb[2][2], 0, 255));
   f.samples = static_cast<uint8_t>(t.samples);
+  f.s = static_cast<int32_t>(attr(t.tex_s[0], t.tex_s[1], t.tex_s[2], t.tex_min, t.tex_max));
+  f.t = static_cast<int32_t>(attr(t.tex_t[0], t.tex_t[1], t.tex_t[2], t.tex_min, t.tex_max));
   return f;
+}
+// Every attribute, depth included, by attr (the affine methods).
+template <class Attr>
+[[gnu::always_inline]] inline Fragment make_fragment(const SetupTriangle& t, int px, int py, Attr&& attr) {
+  return make_fragment(t, px, py, attr, attr);
 }
 
 }  // namespace interp_detail
@@ -183,10 +207,10 @@ inline Fragment PlaneStepper::at(int px, int py) {
   last_y_ = py;
   // Round half up from the floor quotient and remainder, as div_round_in does.
   int i = 0;
-  return interp_detail::make_fragment(*t_, px, py, [&](uint32_t, uint32_t, uint32_t, int bits) __attribute__((always_inline)) {
+  return interp_detail::make_fragment(*t_, px, py, [&](int64_t, int64_t, int64_t, int64_t lo, int64_t hi) __attribute__((always_inline)) {
     const int64_t v = r_[i] >= den_ - r_[i] ? q_[i] + 1 : q_[i];
     ++i;
-    return interp_detail::clamp_attr(v, bits);
+    return interp_detail::clamp_attr(v, lo, hi);
   });
 }
 

@@ -158,7 +158,7 @@ struct SceneRenderer::Impl {
   RegionGrid grid;
   std::vector<SetupTriangle> tris;
   std::vector<SetupOutcome> outcomes;
-  std::vector<std::pair<const Command*, size_t>> refs;  // (command, triangle k) of a run of primitives
+  std::vector<std::pair<ScreenTriangle, const SourceLoc*>> chunk;  // assembled triangles of a run of primitives
   std::vector<std::vector<uint32_t>> bins;              // per region: indices into tris, in order
 
   Impl(const RasterState& arch, RenderStats& s, const FragmentSink& sink, int fb_tile_log2, int n_threads)
@@ -181,7 +181,7 @@ struct SceneRenderer::Impl {
   void draw_triangles(const Command& cmd, const CmdPrimitives& prims);
   void run_parallel(std::span<const Command> commands);
   void draw_primitives(std::span<const Command> commands);
-  void draw_chunk(size_t first, size_t n);
+  void draw_chunk();
 
   // Traverses `walk` (tri itself, or tri with its box clipped to a region) and shades,
   // tests and writes every fragment of tri, counting into s.
@@ -242,15 +242,14 @@ void SceneRenderer::Impl::run(const Command& cmd) {
 
 // One primitives command's triangles on this thread, in order.
 void SceneRenderer::Impl::draw_triangles(const Command& cmd, const CmdPrimitives& prims) {
-  const size_t n = triangle_count(prims);
-  for (size_t k = 0; k < n; ++k) {
+  for_each_triangle(prims, st, cmd.loc, stats.front_end, [&](const ScreenTriangle& v) {
     ++stats.triangles_in;
     SetupTriangle tri;
-    if (!count_setup_outcome(setup_triangle(assemble_triangle(prims, k), st, cmd.loc, tri), stats)) continue;
+    if (!count_setup_outcome(setup_triangle(v, st, cmd.loc, tri), stats)) return;
     pixels.clear();
     draw(tri, tri, stats);
     if (check) check->add_triangle(tri, F, pixels, stats.coverage);
-  }
+  });
 }
 
 // State and 2D commands one by one, in order; each run of primitive commands between
@@ -276,32 +275,40 @@ constexpr size_t kChunkTriangles = 16384, kMinParallelTriangles = 256;
 }  // namespace
 
 void SceneRenderer::Impl::draw_primitives(std::span<const Command> commands) {
-  refs.clear();
+  size_t inputs = 0;  // triangles in (a clip-space command's before clipping): is the run worth the threads?
   for (const Command& cmd : commands) {
-    const size_t n = triangle_count(std::get<CmdPrimitives>(cmd.body));
-    for (size_t k = 0; k < n; ++k) refs.emplace_back(&cmd, k);
+    const auto& p = std::get<CmdPrimitives>(cmd.body);
+    inputs += p.clip_space() ? triangle_count(p.topology, p.clip_vertices.size()) : triangle_count(p);
   }
-  if (refs.size() < kMinParallelTriangles) {
+  if (inputs < kMinParallelTriangles) {
     for (const Command& cmd : commands) run(cmd);
     return;
   }
-  for (size_t first = 0; first < refs.size(); first += kChunkTriangles)
-    draw_chunk(first, std::min(kChunkTriangles, refs.size() - first));
+  // Assembled (and front-end) triangles in order, set up and drawn a chunk at a time.
+  chunk.clear();
+  for (const Command& cmd : commands)
+    for_each_triangle(std::get<CmdPrimitives>(cmd.body), st, cmd.loc, stats.front_end, [&](const ScreenTriangle& v) {
+      chunk.push_back({v, &cmd.loc});
+      if (chunk.size() < kChunkTriangles) return;
+      draw_chunk();
+      chunk.clear();
+    });
+  if (!chunk.empty()) draw_chunk();
 }
 
-// Triangles refs[first, first + n): set up on `threads` contiguous slices (setup is per
+// The triangles of `chunk`: set up on `threads` contiguous slices (setup is per
 // triangle), counted and binned in order, then the regions rasterized by `threads`
 // workers taking the next region with a triangle. Counters are per tile, pixel or
 // fragment and add up over regions, except the bbox method's one "tile" a triangle,
 // counted in the region of its box's first pixel only.
-void SceneRenderer::Impl::draw_chunk(size_t first, size_t n) {
+void SceneRenderer::Impl::draw_chunk() {
+  const size_t n = chunk.size();
   tris.resize(n);
   outcomes.resize(n);
   run_on_threads(threads, [&](int t) {
     const size_t k0 = n * size_t(t) / size_t(threads), k1 = n * size_t(t + 1) / size_t(threads);
     for (size_t k = k0; k < k1; ++k) {
-      const auto& [cmd, tk] = refs[first + k];
-      outcomes[k] = setup_triangle(assemble_triangle(std::get<CmdPrimitives>(cmd->body), tk), st, cmd->loc, tris[k]);
+      outcomes[k] = setup_triangle(chunk[k].first, st, *chunk[k].second, tris[k]);
     }
   });
   for (auto& b : bins) b.clear();
@@ -363,6 +370,8 @@ std::string fragment_trace_line(const Fragment& f) {
   field(unsigned(f.r));
   field(unsigned(f.g));
   field(unsigned(f.b));
+  field(f.s);
+  field(f.t);
   if (f.samples > 1) field(unsigned(f.mask));
   return line;
 }

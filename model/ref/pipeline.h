@@ -12,6 +12,7 @@
 
 #include "ref/2d/draw2d.h"
 #include "ref/framebuffer.h"
+#include "ref/front_end.h"
 #include "ref/interpolate.h"
 #include "ref/raster_state.h"
 #include "ref/scene.h"
@@ -21,6 +22,7 @@
 namespace rastsim {
 
 struct RenderStats {
+  FrontEndStats front_end;            // the geometry front end (clip-space commands only)
   uint64_t triangles_in = 0;          // triangles out of primitive assembly
   uint64_t triangles_culled = 0;      // zero-area + facing culls
   uint64_t triangles_zero_area = 0;
@@ -128,8 +130,9 @@ class SceneRenderer {
   std::unique_ptr<Impl> impl_;
 };
 
-// One fragment as a line of the shared fragment-trace format: "x y z r g b" (decimal),
-// followed by " mask" (decimal) when raster.samples > 1.
+// One fragment as a line of the shared fragment-trace format: "x y z r g b s t" (decimal;
+// s, t raw interp.texcoord_format, signed), followed by " mask" (decimal) when
+// raster.samples > 1.
 std::string fragment_trace_line(const Fragment& f);
 
 }  // namespace rastsim

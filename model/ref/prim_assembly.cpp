@@ -3,9 +3,8 @@
 
 namespace rastsim {
 
-size_t triangle_count(const CmdPrimitives& p) {
-  const size_t n = p.vertices.size();
-  switch (p.topology) {
+size_t triangle_count(Topology t, size_t n) {
+  switch (t) {
     case Topology::List: return n / 3;
     case Topology::Strip:
     case Topology::Fan: return n >= 3 ? n - 2 : 0;
@@ -17,20 +16,32 @@ size_t triangle_count(const CmdPrimitives& p) {
   return 0;
 }
 
-std::array<SceneVertex, 3> assemble_triangle(const CmdPrimitives& p, size_t k) {
-  const auto& v = p.vertices;
-  switch (p.topology) {
-    case Topology::List: return {v[3 * k], v[3 * k + 1], v[3 * k + 2]};
+std::array<size_t, 3> triangle_indices(Topology t, size_t k) {
+  switch (t) {
+    case Topology::List: return {3 * k, 3 * k + 1, 3 * k + 2};
     case Topology::Strip:
-      if (k % 2 == 0) return {v[k], v[k + 1], v[k + 2]};
-      return {v[k + 1], v[k], v[k + 2]};
-    case Topology::Fan: return {v[0], v[k + 1], v[k + 2]};
+      if (k % 2 == 0) return {k, k + 1, k + 2};
+      return {k + 1, k, k + 2};
+    case Topology::Fan: return {0, k + 1, k + 2};
     case Topology::Points:
     case Topology::Lines:
     case Topology::LineStrip:
     case Topology::LineLoop: break;
   }
   return {};
+}
+
+size_t triangle_count(const CmdPrimitives& p) { return triangle_count(p.topology, p.vertices.size()); }
+
+std::array<SceneVertex, 3> assemble_triangle(const CmdPrimitives& p, size_t k) {
+  const auto i = triangle_indices(p.topology, k);
+  return {p.vertices[i[0]], p.vertices[i[1]], p.vertices[i[2]]};
+}
+
+void reject_clip_space(const CmdPrimitives& p, const SourceLoc& loc) {
+  if (p.clip_space())
+    throw SceneError(loc.str() + ": clip-space primitives (tri4, v4) are modelled by render only so far "
+                                 "(docs/clip-space.md)");
 }
 
 }  // namespace rastsim

@@ -4,7 +4,11 @@
 #include "ref/sample_pattern.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
+#include <cstdlib>
+#include <optional>
+#include <string>
 
 namespace rastsim {
 
@@ -59,11 +63,73 @@ void take_raster_state(const RasterState& st, SetupTriangle& t) {
   t.samples = st.samples;
   t.aa_mode = st.aa_mode;
   t.edges64 = edges_fit_int64(st.coord_format);
-  const int64_t attr_max = int64_t((uint64_t{1} << std::max(8, st.depth_bits)) - 1);
+  t.tex_min = st.texcoord_format.raw_min();
+  t.tex_max = st.texcoord_format.raw_max();
+  t.recip = st.recip;
+  t.recip_seed_bits = st.recip_seed_bits;
+  t.recip_iterations = st.recip_iterations;
+}
+
+// A texture coordinate (repeats) in raw interp.texcoord_format units: v 2^F rounded to
+// nearest even (exact in double: v is binary32); nullopt outside the format or not finite.
+std::optional<int32_t> quantize_texcoord(float v, const FixedFormat& fmt) {
+  if (!std::isfinite(v)) return std::nullopt;
+  const double raw = std::nearbyint(std::ldexp(double(v), fmt.frac_bits));  // default mode: ties to even
+  if (raw < double(fmt.raw_min()) || raw > double(fmt.raw_max())) return std::nullopt;
+  return static_cast<int32_t>(raw);
+}
+
+// Depth, colour, texture coordinates and perspective weights of the three vertices, and
+// the 64-bit interpolation limit that follows from the largest attribute magnitude.
+void take_attributes(const std::array<SceneVertex, 3>& v, const RasterState& st, const SourceLoc& loc,
+                     SetupTriangle& t) {
+  int64_t attr_max = int64_t((uint64_t{1} << std::max(8, st.depth_bits)) - 1);
+  std::array<float, 3> inv_w{};
+  for (int i = 0; i < 3; ++i) {
+    const auto where = [&] { return loc.str() + ": vertex " + std::to_string(i); };  // built only to throw
+    const auto z = quantize_unorm(v[i].z, st.depth_bits);
+    if (!z) throw SceneError(where() + " depth " + std::to_string(v[i].z) + " is outside [0, 1]");
+    t.z[i] = *z;
+    t.rgb[i] = {v[i].r, v[i].g, v[i].b};
+    const auto s = quantize_texcoord(v[i].s, st.texcoord_format), tt = quantize_texcoord(v[i].t, st.texcoord_format);
+    if (!s || !tt) {
+      const FixedFormat& f = st.texcoord_format;
+      throw SceneError(where() + " texture coordinate (" + std::to_string(v[i].s) + ", " + std::to_string(v[i].t) +
+                       ") is outside interp.texcoord_format " + f.name() + ": [" + std::to_string(f.to_double(f.raw_min())) +
+                       ", " + std::to_string(f.to_double(f.raw_max())) + "] repeats");
+    }
+    t.tex_s[i] = *s;
+    t.tex_t[i] = *tt;
+    attr_max = std::max({attr_max, int64_t(std::abs(int64_t(*s))), int64_t(std::abs(int64_t(*tt)))});
+    if (!(std::isfinite(v[i].inv_w) && v[i].inv_w > 0.0f))
+      throw SceneError(where() + " 1/w " + std::to_string(v[i].inv_w) + " is not finite and > 0");
+    inv_w[size_t(i)] = v[i].inv_w;
+  }
   t.w64_limit = INT64_MAX / (3 * attr_max);
+  t.persp_q = perspective_weights(inv_w);
+  t.affine = !st.perspective || (t.persp_q[0] == t.persp_q[1] && t.persp_q[1] == t.persp_q[2]);
+  if (!t.affine && st.interp_method == InterpMethod::Dda)
+    throw SceneError(loc.str() + ": interp.method = \"dda\" interpolates affinely only and this triangle's vertices "
+                     "have different 1/w; set interp.method = \"plane\" or interp.perspective = false");
 }
 
 }  // namespace
+
+std::array<uint32_t, 3> perspective_weights(const std::array<float, 3>& inv_w) {
+  std::array<int, 3> e{};
+  std::array<int64_t, 3> m{};
+  for (size_t k = 0; k < 3; ++k) {
+    // 1/w = f 2^e, f in [1/2, 1): the 24-bit significand is f 2^24 (exact, subnormals too).
+    m[k] = static_cast<int64_t>(std::ldexp(std::frexp(double(inv_w[k]), &e[k]), 24));
+  }
+  const int emax = std::max({e[0], e[1], e[2]});
+  std::array<uint32_t, 3> q{};
+  for (size_t k = 0; k < 3; ++k) {
+    const int shift = std::min(emax - e[k], 30);  // beyond 25 bits every value rounds to 0
+    q[k] = static_cast<uint32_t>(std::max<i128>(1, shift_right_round(m[k], shift, Rounding::NearestEven)));
+  }
+  return q;
+}
 
 SetupOutcome setup_triangle(const std::array<SceneVertex, 3>& v, const RasterState& st,
                             const SourceLoc& loc, SetupTriangle& t) {
@@ -88,13 +154,7 @@ SetupOutcome setup_triangle(const std::array<SceneVertex, 3>& v, const RasterSta
   }
 
   // Attributes first, so a bad depth is reported even for a culled triangle.
-  for (int i = 0; i < 3; ++i) {
-    const auto z = quantize_unorm(v[i].z, st.depth_bits);
-    if (!z) throw SceneError(loc.str() + ": vertex " + std::to_string(i) + " depth " +
-                             std::to_string(v[i].z) + " is outside [0, 1]");
-    t.z[i] = *z;
-    t.rgb[i] = {v[i].r, v[i].g, v[i].b};
-  }
+  take_attributes(v, st, loc, t);
 
   // Doubled signed area, exact: > 0 means clockwise on screen (y grows downward).
   t.area2 = i128(t.x[1] - t.x[0]) * (t.y[2] - t.y[0]) - i128(t.y[1] - t.y[0]) * (t.x[2] - t.x[0]);

@@ -11,7 +11,10 @@
 // - Bounding box of the snapped vertices in pixels, clamped to viewport and scissor:
 //   the pixels whose centre, or with raster.samples > 1 whose sample positions' bounding
 //   box, may be covered.
-// - Per-vertex attributes (RGB8, depth quantised to raster.depth_bits).
+// - Per-vertex attributes (RGB8, depth quantised to raster.depth_bits, texture
+//   coordinates quantised to interp.texcoord_format) and the perspective weights Q_k
+//   of the three 1/w (perspective_weights), with the flag `affine` when interpolation
+//   needs no reciprocal (docs/clip-space.md, "Perspective-correct interpolation").
 #pragma once
 
 #include <array>
@@ -56,6 +59,15 @@ struct SetupTriangle {
   PixelRect bbox;                   // pixels whose centres may be covered, clipped
   std::array<uint32_t, 3> z{};      // depth, unorm raster.depth_bits
   std::array<std::array<uint8_t, 3>, 3> rgb{};  // per-vertex colour
+  std::array<int32_t, 3> tex_s{}, tex_t{};      // texture coordinate, raw interp.texcoord_format
+  int64_t tex_min = 0, tex_max = 0;             // that format's raw range (clamps extrapolation)
+  // Perspective-correct interpolation: the weights Q_k < 2^24 of the vertices' 1/w
+  // (perspective_weights); affine when interp.perspective is false or the three are equal,
+  // and then colour and texture coordinates are the affine rational (no reciprocal).
+  std::array<uint32_t, 3> persp_q{1, 1, 1};
+  bool affine = true;
+  RecipMethod recip = RecipMethod::Exact;  // interp.recip and its parameters
+  int recip_seed_bits = 8, recip_iterations = 2;
   int64_t origin_x = 0, origin_y = 0;  // pixel of raw (0, 0), to map samples back
   // How interpolation evaluates this triangle's attributes (from the state at setup, so
   // every stage that interpolates, reference or timed, uses the same method).
@@ -69,7 +81,8 @@ struct SetupTriangle {
   // edge value at a point of the format's range fits int64 (fixed_point.h
   // edges_fit_int64); an interpolation numerator w0 a0 + w1 a1 + w2 a2 (a_k < 2^A, A =
   // max(8, raster.depth_bits)) fits int64 when every |w_k| <= w64_limit =
-  // floor((2^63 - 1) / (3 (2^A - 1))), checked per sample point (interpolate.cpp).
+  // floor((2^63 - 1) / (3 M)), M = max(2^A - 1, |s_k|, |t_k|) the largest attribute
+  // magnitude of the triangle, checked per sample point (interpolate.cpp).
   bool edges64 = false;
   int64_t w64_limit = 0;
 
@@ -83,8 +96,19 @@ struct SetupTriangle {
   uint32_t full_mask() const { return full_sample_mask(samples); }
 };
 
+// Perspective weights of three binary32 1/w (finite, > 0) in block floating point: each
+// 24-bit significand m_k (hidden bit included) of 1/w_k = m_k 2^(e_k - 23) is shifted to
+// the largest exponent E and rounded to nearest even, Q_k = max(1, RNE(m_k 2^(e_k - E))),
+// so 1 <= Q_k < 2^24 and the largest is >= 2^23. The common scale 2^(E - 23) cancels in
+// sum e_k Q_k a_k / sum e_k Q_k; max(1, .) keeps a weight from vanishing (1/w ratios
+// beyond 2^24) so that the denominator is > 0 inside the triangle.
+std::array<uint32_t, 3> perspective_weights(const std::array<float, 3>& inv_w);
+
 // Sets up one triangle. On CulledOutOfRange with raster.out_of_range = error it throws
-// SceneError naming `loc` and the vertex instead of returning.
+// SceneError naming `loc` and the vertex instead of returning. It throws SceneError too for
+// a texture coordinate outside interp.texcoord_format, a 1/w that is not finite and > 0,
+// and a triangle with different 1/w under interp.method = dda with interp.perspective
+// (the DDA is affine only).
 SetupOutcome setup_triangle(const std::array<SceneVertex, 3>& v, const RasterState& st,
                             const SourceLoc& loc, SetupTriangle& out);
 

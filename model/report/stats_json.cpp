@@ -33,6 +33,20 @@ std::string triangles_summary(const RenderStats& s) {
   return total + " (" + std::to_string(not_drawn) + " not drawn: " + why + ")";
 }
 
+namespace {
+void add_front_end(nlohmann::json& j, const FrontEndStats& f) {
+  const std::pair<const char*, uint64_t> keys[] = {
+      {"clip_triangles_in", f.clip_triangles_in},   {"triangles_behind", f.triangles_behind},
+      {"triangles_culled_outside", f.triangles_culled_outside}, {"triangles_clipped", f.triangles_clipped},
+      {"clip_vertices_made", f.clip_vertices_made}, {"triangles_nonfinite", f.triangles_nonfinite},
+      {"clip_triangles_out", f.clip_triangles_out}, {"points_in", f.points_in},
+      {"points_culled", f.points_culled},           {"lines_in", f.lines_in},
+      {"lines_culled", f.lines_culled},             {"lines_clipped", f.lines_clipped},
+  };
+  for (const auto& [key, n] : keys) j[key] = n;
+}
+}  // namespace
+
 nlohmann::json to_json(const RenderStats& s) {
   nlohmann::json j = {
       {"triangles_in", s.triangles_in},
@@ -73,6 +87,9 @@ nlohmann::json to_json(const RenderStats& s) {
   if (s.traversal_method != Traversal::Tiled) j["traversal"] = to_string(s.traversal_method);
   if (s.traversal_method == Traversal::Scanline) j["spans"] = s.traversal.spans;
   if (s.samples > 1) j["aa_mode"] = s.aa_mode == AaMode::Ssaa ? "ssaa" : "msaa";
+  // The geometry front end's keys only where a clip-space primitive was drawn, so that a
+  // screen-space scene's stats are the same as before clip space existed.
+  if (s.front_end.any()) add_front_end(j, s.front_end);
   if (s.coverage.measured) {
     j["pixels_wrong"] = s.coverage.pixels_wrong;
     j["cracks"] = s.coverage.cracks;

@@ -147,10 +147,14 @@ FaceTriangulation triangulate_outline(const std::vector<ScreenPoint>& p) {
   return {OutlineShape::Concave, ear_clip(p, s)};
 }
 
-std::optional<std::pair<size_t, size_t>> face_crossing_in_plane(const std::vector<std::array<double, 3>>& p) {
+namespace {
+
+// The polygon in its own plane: the coordinate plane most nearly parallel to it (the
+// axis the largest fan-triangle normal is most nearly along dropped), an affine map of a
+// planar face that keeps crossings, convexity and ears; nullopt when every corner is on
+// one line (no plane).
+std::optional<std::vector<std::array<double, 2>>> plane_coords(const std::vector<std::array<double, 3>>& p) {
   using Vec = std::array<double, 3>;
-  // The face's normal: the largest cross product of a fan triangle, which is non-zero
-  // unless every corner is on one line (then there is no plane to test in).
   Vec normal{};
   double best = 0;
   for (size_t k = 1; k + 1 < p.size(); ++k) {
@@ -161,14 +165,42 @@ std::optional<std::pair<size_t, size_t>> face_crossing_in_plane(const std::vecto
     if (len > best) best = len, normal = c;
   }
   if (best == 0) return std::nullopt;
-  // Drop the axis the normal is most nearly along: an affine map of the plane onto the
-  // other two axes, which keeps crossings (and their absence) of a planar polygon.
   size_t drop = 0;
   for (size_t a = 1; a < 3; ++a)
     if (std::abs(normal[a]) > std::abs(normal[drop])) drop = a;
   std::vector<std::array<double, 2>> q;
   for (const Vec& v : p) q.push_back({v[drop == 0 ? 1 : 0], v[drop == 2 ? 1 : 2]});
-  return first_crossing<long double>(q);
+  return q;
+}
+
+}  // namespace
+
+std::optional<std::pair<size_t, size_t>> face_crossing_in_plane(const std::vector<std::array<double, 3>>& p) {
+  const auto q = plane_coords(p);
+  if (!q) return std::nullopt;
+  return first_crossing<long double>(*q);
+}
+
+std::vector<FaceTriangle> triangulate_in_plane(const std::vector<std::array<double, 3>>& p) {
+  if (p.size() == 3) return fan_triangles(3);
+  const auto q = plane_coords(p);
+  if (!q) return fan_triangles(p.size());  // every corner on one line: no area to cover
+  // Onto an integer grid of kPlaneGridSteps across the face's larger extent (the same
+  // scale on both axes), where triangulate_outline's tests are exact.
+  constexpr double kPlaneGridSteps = double(int64_t{1} << 30);
+  std::array<double, 2> lo{HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL};
+  for (const auto& c : *q)
+    for (size_t a = 0; a < 2; ++a) lo[a] = std::min(lo[a], c[a]), hi[a] = std::max(hi[a], c[a]);
+  const double span = std::max(hi[0] - lo[0], hi[1] - lo[1]);
+  std::vector<ScreenPoint> grid;
+  for (const auto& c : *q)
+    grid.push_back({std::llround((c[0] - lo[0]) / span * kPlaneGridSteps),
+                    std::llround((c[1] - lo[1]) / span * kPlaneGridSteps)});
+  FaceTriangulation t = triangulate_outline(grid);
+  // Corners closer than a grid step to an edge may cross on the grid although the face
+  // does not: fanned, a sliver that thin at most.
+  if (t.shape == OutlineShape::Crossing) return fan_triangles(p.size());
+  return std::move(t.triangles);
 }
 
 }  // namespace rastsim

@@ -6,7 +6,8 @@
 //   A weakly convex simple outline keeps the fan from its first corner (0, k, k + 1); a
 //   simple concave one is ear-clipped; both give triangles in the outline's winding.
 // - In the face's own plane: whether the 3D polygon crosses itself, independent of the
-//   view (so a mesh seen edge-on never fails), in the file's double precision.
+//   view (so a mesh seen edge-on never fails), in the file's double precision; and, for
+//   the perspective camera, its triangles.
 #pragma once
 
 #include <array>
@@ -43,5 +44,11 @@ std::vector<FaceTriangle> fan_triangles(size_t n);
 // the polygon is simple there or degenerate (every corner on one line). The plane is the
 // coordinate plane most nearly parallel to the face, so it is exact for planar faces.
 std::optional<std::pair<size_t, size_t>> face_crossing_in_plane(const std::vector<std::array<double, 3>>& p);
+
+// The triangles of a 3D polygon of n >= 3 corners that does not cross itself, found in
+// its own plane (view independent, for clip-space faces, whose screen outline may lie
+// partly behind the eye): as triangulate_outline on the plane's coordinates snapped to a
+// 2^30-step grid; fanned when every corner is on one line or the grid makes it cross.
+std::vector<FaceTriangle> triangulate_in_plane(const std::vector<std::array<double, 3>>& p);
 
 }  // namespace rastsim

@@ -67,7 +67,8 @@ class SceneAhead {
 // What an OBJ scene reads but does not use (Scene::obj_ignored, statement -> count),
 // read again from the file without placing it; nullopt for a trace. load_obj also
 // prints these counts once per file on stderr ("bunny.obj: ignored: vn 34834, s 1").
-std::optional<StatementCounts> obj_ignored_counts(const std::string& path);
+// `l` and `p` are counted unless `camera` (scene.camera) is perspective, which draws them.
+std::optional<StatementCounts> obj_ignored_counts(const std::string& path, ObjCamera camera = ObjCamera::Ortho);
 
 // True when `path` names an OBJ mesh: the name, without any .gz / .zst, ends in .obj (any case).
 bool is_obj_path(const std::string& path);

@@ -1,22 +1,28 @@
 // SPDX-License-Identifier: Apache-2.0
 // OBJ loader: a Wavefront OBJ subset placed on screen by ObjPlacement (docs/trace-format.md).
 //
-// - Parse: `v x y z [w] [r g b]`, `f` in the forms i, i/t, i//n, i/t/n with negative
-//   (relative) indices and distinct corners, `mtllib`/`usemtl` with `newmtl`/`Kd` from
-//   the MTL. What is read but not used (vt, vn, o, g, s, the MTL's other statements and
-//   texture maps, whose files must exist) is counted in Scene::obj_ignored; `l` and `p`
-//   stop the reader unless scene.obj_lines_points = skip, which counts them too.
+// - Parse: `v x y z [w] [r g b]`, `vt u [v [w]]`, `f` in the forms i, i/t, i//n, i/t/n
+//   with negative (relative) indices and distinct corners, `mtllib`/`usemtl` with
+//   `newmtl`/`Kd` from the MTL. What is read but not used (vn, o, g, s, the MTL's other
+//   statements and texture maps, whose files must exist) is counted in
+//   Scene::obj_ignored. `l` and `p` are drawn by the perspective camera; with the
+//   orthographic one they stop the reader unless scene.obj_lines_points = skip, which
+//   counts them too.
 // - Place: turn the mesh's up axis (scene.obj_up) to +y, centre the bounding box of the
-//   vertices faces use, rotate about y (yaw) then x (pitch), project orthographically so the bounding sphere spans `fill` of the
-//   smaller viewport side, y down on screen, depth 0 (near) .. 1 (far) over the sphere.
+//   vertices faces use, rotate about y (yaw) then x (pitch); then either project
+//   orthographically so the bounding sphere spans `fill` of the smaller viewport side, y
+//   down on screen, depth 0 (near) .. 1 (far) over the sphere, or (scene.camera =
+//   perspective) into binary32 clip space (obj_camera.h) for the geometry front end.
+// - Texture coordinates: a corner's `vt u v` travels with it as s = u, t = 1 - v.
 // - Shade: colour (vertex colour, else material Kd, else white) times a headlight
 //   Lambert term 0.25 + 0.75 * max(0, n_z) of the face's view-space normal.
-// - Triangulate (face_triangulate.h) on the corners snapped to raster.coord_format: a
-//   convex outline is fanned from its first corner, a concave one ear-clipped; a face
-//   crossing itself in its own plane is an error.
+// - Triangulate (face_triangulate.h) on the corners snapped to raster.coord_format (in
+//   the face's own plane for the perspective camera): a convex outline is fanned from
+//   its first corner, a concave one ear-clipped; a face crossing itself in its own plane
+//   is an error.
 // - Emit: CmdClear, CmdClearDepth 1, then one List command per face, each named by the
 //   face's line; or, with scene.obj_faces_per_command N > 1, one List command per N
-//   faces, named by the first.
+//   faces, named by the first; each `l` a LineStrip and each `p` a Points command.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -30,6 +36,7 @@
 
 #include "ref/scene.h"
 #include "scene/face_triangulate.h"
+#include "scene/obj_camera.h"
 #include "scene/scene_text.h"
 #include "scene/scene_io.h"
 
@@ -52,9 +59,17 @@ struct ObjVertex {
   int line = 0;
 };
 
+// What a face, `l` or `p` statement draws: a polygon, a polyline or points.
+enum class ObjKind { Face, Line, Point };
+
+// A corner without a texture coordinate.
+constexpr size_t kNoTexcoord = SIZE_MAX;
+
 struct ObjFace {
   int line = 0;
+  ObjKind kind = ObjKind::Face;
   std::vector<size_t> v;   // 0-based vertex indices
+  std::vector<size_t> vt;  // 0-based texture coordinate index of each corner, or kNoTexcoord
   std::optional<Rgb> kd;   // material in force at the face
 };
 
@@ -81,25 +96,29 @@ std::string rest_of_line(const Tokens& t) {
 
 class ObjParser {
  public:
-  ObjParser(const std::string& name, const std::string& base_dir, ObjLinesPoints lines_points)
-      : name_(name), base_dir_(base_dir), lines_points_(lines_points) {}
+  // `draw_lines_points`: `l` and `p` are drawn (the perspective camera); otherwise
+  // `lines_points` says whether they stop the reader or are skipped.
+  ObjParser(const std::string& name, const std::string& base_dir, ObjLinesPoints lines_points,
+            bool draw_lines_points)
+      : name_(name), base_dir_(base_dir), lines_points_(lines_points), draw_lines_points_(draw_lines_points) {}
 
   void line(int n, const Tokens& t) {
     line_ = n;
     const std::string_view kw = t[0];
     if (kw == "v") return vertex(t);
-    if (kw == "vt") return counted(t, 1, 3, vt_count_);
+    if (kw == "vt") return texcoord(t);
     if (kw == "vn") return counted(t, 3, 3, vn_count_);
     if (kw == "f") return face(t);
     if (kw == "mtllib") return mtllib(t);
     if (kw == "usemtl") return usemtl(t);
-    if (kw == "l" || kw == "p") return line_or_point(kw);
+    if (kw == "l" || kw == "p") return line_or_point(t);
     if (!ignored_statement(kw)) fail("unknown OBJ statement " + quote(kw));
     ++ignored[std::string(kw)];
   }
 
   std::vector<ObjVertex> vertices;
-  std::vector<ObjFace> faces;
+  std::vector<std::array<double, 2>> texcoords;  // `vt u v` (v 0 when not written)
+  std::vector<ObjFace> faces;  // faces, and `l` and `p` when drawn, in file order
   StatementCounts ignored;  // statement -> count, the MTL files' included
 
  private:
@@ -129,16 +148,45 @@ class ObjParser {
     vertices.push_back(v);
   }
 
-  // 3D points and lines need depth through the clip-space front end, which the pipeline
-  // does not have yet: refused at every level, or skipped and counted on request.
-  void line_or_point(std::string_view kw) {
+  // 3D points and lines need depth, which only clip space carries: drawn by the
+  // perspective camera; with the orthographic one refused at every level, or skipped and
+  // counted on request.
+  void line_or_point(const Tokens& t) {
+    const std::string_view kw = t[0];
+    if (draw_lines_points_) {
+      const size_t least = kw == "l" ? 2 : 1;
+      if (t.size() - 1 < least)
+        fail("'" + std::string(kw) + "' needs at least " + std::to_string(least) + (least == 1 ? " vertex" : " vertices") +
+             ", got " + std::to_string(t.size() - 1));
+      ObjFace f;
+      f.line = line_;
+      f.kind = kw == "l" ? ObjKind::Line : ObjKind::Point;
+      f.kd = material_;
+      for (size_t k = 1; k < t.size(); ++k) corner(t[k], "vertex " + std::to_string(k) + " ", f);
+      faces.push_back(std::move(f));
+      return;
+    }
     if (lines_points_ == ObjLinesPoints::Skip) {
       ++ignored[std::string(kw)];
       return;
     }
     fail(std::string(kw == "l" ? "'l' (polyline)" : "'p' (point)") +
-         " statements are not drawn yet: 3D lines and points come with the clip-space front end "
-         "(docs/trace-format.md, \"OBJ subset\"); remove them or set scene.obj_lines_points = \"skip\"");
+         " statements are drawn by the perspective camera only (3D lines and points need clip space's depth; "
+         "docs/trace-format.md, \"OBJ subset\"): set scene.camera = \"perspective\", remove them or set "
+         "scene.obj_lines_points = \"skip\"");
+  }
+
+  // vt u [v [w]]: u and v kept (v 0 when not written), w checked only.
+  void texcoord(const Tokens& t) {
+    const size_t n = t.size() - 1;
+    if (n < 1 || n > 3) fail("'vt' takes 1 to 3 numbers, got " + std::to_string(n));
+    const double u = number(t[1], "'vt' u"), v = n >= 2 ? number(t[2], "'vt' v") : 0.0;
+    if (n == 3) number(t[3], "'vt' w");
+    // s = u and t = 1 - v become binary32 (corner_attributes): they must stay finite.
+    if (!std::isfinite(static_cast<float>(u)) || !std::isfinite(static_cast<float>(1.0 - v)))
+      fail("'vt' " + std::string(std::isfinite(static_cast<float>(u)) ? "v " + quote(t[2]) : "u " + quote(t[1])) +
+           " is outside the binary32 range of a texture coordinate");
+    texcoords.push_back({u, v});
   }
 
   // vt / vn: only their count matters (faces may index them); the numbers are checked.
@@ -163,6 +211,28 @@ class ObjParser {
     return static_cast<size_t>(*v > 0 ? *v - 1 : n + *v);
   }
 
+  // One corner `i`, `i/t`, `i//n` or `i/t/n` appended to f (vertex and texture indices).
+  void corner(std::string_view tok, const std::string& label, ObjFace& f) const {
+    // Split "i/t/n" into at most three parts.
+    std::array<std::string_view, 3> part{};
+    size_t parts = 0;
+    std::string_view rest = tok;
+    for (;;) {
+      if (parts == 3) fail(label + quote(tok) + " has more than three '/'-separated parts");
+      const size_t slash = rest.find('/');
+      part[parts++] = rest.substr(0, slash);
+      if (slash == std::string_view::npos) break;
+      rest.remove_prefix(slash + 1);
+    }
+    const bool bad_tex = parts == 2 && part[1].empty();
+    if (part[0].empty() || bad_tex || (parts == 3 && part[2].empty()))
+      fail(label + quote(tok) + " is not of the form i, i/t, i//n or i/t/n");
+    f.v.push_back(index(part[0], vertices.size(), label + "index"));
+    f.vt.push_back(parts >= 2 && !part[1].empty() ? index(part[1], texcoords.size(), label + "texture index")
+                                                  : kNoTexcoord);
+    if (parts == 3) index(part[2], vn_count_, label + "normal index");
+  }
+
   void face(const Tokens& t) {
     if (t.size() - 1 < 3) fail("'f' needs at least 3 vertices, got " + std::to_string(t.size() - 1));
     ObjFace f;
@@ -170,28 +240,12 @@ class ObjParser {
     f.kd = material_;
     for (size_t k = 1; k < t.size(); ++k) {
       const std::string label = "face vertex " + std::to_string(k) + " ";
-      // Split "i/t/n" into at most three parts; the forms are i, i/t, i//n and i/t/n.
-      std::array<std::string_view, 3> part{};
-      size_t parts = 0;
-      std::string_view rest = t[k];
-      for (;;) {
-        if (parts == 3) fail(label + quote(t[k]) + " has more than three '/'-separated parts");
-        const size_t slash = rest.find('/');
-        part[parts++] = rest.substr(0, slash);
-        if (slash == std::string_view::npos) break;
-        rest.remove_prefix(slash + 1);
-      }
-      const bool bad_tex = parts == 2 && part[1].empty();
-      if (part[0].empty() || bad_tex || (parts == 3 && part[2].empty()))
-        fail(label + quote(t[k]) + " is not of the form i, i/t, i//n or i/t/n");
-      const size_t v = index(part[0], vertices.size(), label + "index");
-      for (size_t j = 0; j < f.v.size(); ++j)
+      corner(t[k], label, f);
+      const size_t v = f.v.back();
+      for (size_t j = 0; j + 1 < f.v.size(); ++j)
         if (f.v[j] == v)
           fail(label + quote(t[k]) + " is vertex " + std::to_string(v + 1) + " again (face vertex " +
                std::to_string(j + 1) + "): a face's corners must be distinct");
-      f.v.push_back(v);
-      if (parts >= 2 && !part[1].empty()) index(part[1], vt_count_, label + "texture index");
-      if (parts == 3) index(part[2], vn_count_, label + "normal index");
     }
     faces.push_back(std::move(f));
   }
@@ -264,8 +318,9 @@ class ObjParser {
   const std::string& name_;
   const std::string& base_dir_;
   ObjLinesPoints lines_points_;
+  bool draw_lines_points_;
   int line_ = 0;
-  size_t vt_count_ = 0, vn_count_ = 0;
+  size_t vn_count_ = 0;
   std::map<std::string, Rgb> materials_;
   std::optional<Rgb> material_;
 };
@@ -363,25 +418,50 @@ double face_shade(const ObjFace& f, const std::vector<Vec3>& view) {
   return kAmbient + (1 - kAmbient) * std::max(0.0, nz);
 }
 
+// A corner's colour (its vertex colour, else the face's material Kd, else white) times
+// `shade`, and its texture coordinate, s = u and t = 1 - v (t = 0 is the image's top
+// row, as D3D and Vulkan sample), each computed in double and rounded once to binary32;
+// (0, 0) without a `vt`. For a SceneVertex or a ClipVertex.
+template <class V>
+void corner_attributes(V& out, const ObjFace& f, size_t k, const ObjParser& obj, double shade) {
+  const Rgb rgb = obj.vertices[f.v[k]].rgb.value_or(f.kd.value_or(Rgb{1.0, 1.0, 1.0}));
+  out.r = to_rgb8(rgb[0], shade);
+  out.g = to_rgb8(rgb[1], shade);
+  out.b = to_rgb8(rgb[2], shade);
+  if (f.vt[k] == kNoTexcoord) return;
+  const std::array<double, 2>& uv = obj.texcoords[f.vt[k]];
+  out.s = static_cast<float>(uv[0]);
+  out.t = static_cast<float>(1.0 - uv[1]);
+}
+
 // A face's corners on screen: orthographic, the unit sphere spanning `fill` of the
 // smaller viewport side, y down, depth 0 (near) .. 1 (far) over the sphere, shaded.
-std::vector<SceneVertex> face_corners(const ObjFace& f, const std::vector<Vec3>& view,
-                                      const std::vector<ObjVertex>& verts, const ObjPlacement& pl) {
+std::vector<SceneVertex> face_corners(const ObjFace& f, const std::vector<Vec3>& view, const ObjParser& obj,
+                                      const ObjPlacement& pl) {
   const double px_per_radius = pl.fill * std::min(pl.viewport_width, pl.viewport_height) / 2.0;
   const double mid_x = pl.viewport_width / 2.0, mid_y = pl.viewport_height / 2.0;
   const double shade = face_shade(f, view);
   std::vector<SceneVertex> corner;
-  for (size_t i : f.v) {
-    const Vec3& q = view[i];
-    const Rgb rgb = verts[i].rgb.value_or(f.kd.value_or(Rgb{1.0, 1.0, 1.0}));
+  for (size_t k = 0; k < f.v.size(); ++k) {
+    const Vec3& q = view[f.v[k]];
     SceneVertex sv;
     sv.x = Q64::from_double(mid_x + px_per_radius * q[0]);
     sv.y = Q64::from_double(mid_y - px_per_radius * q[1]);  // object +y is up on screen
     sv.z = std::clamp(0.5 - 0.5 * q[2], 0.0, 1.0);           // larger view z is nearer
-    sv.r = to_rgb8(rgb[0], shade);
-    sv.g = to_rgb8(rgb[1], shade);
-    sv.b = to_rgb8(rgb[2], shade);
+    corner_attributes(sv, f, k, obj, shade);
     corner.push_back(sv);
+  }
+  return corner;
+}
+
+// The corners of a face (shaded as on screen), polyline or points in clip space.
+std::vector<ClipVertex> clip_corners(const ObjFace& f, const std::vector<Vec3>& view, const ObjParser& obj,
+                                     const PerspectiveCamera& camera, double shade) {
+  std::vector<ClipVertex> corner;
+  for (size_t k = 0; k < f.v.size(); ++k) {
+    ClipVertex c = camera.clip(view[f.v[k]]);
+    corner_attributes(c, f, k, obj, shade);
+    corner.push_back(c);
   }
   return corner;
 }
@@ -395,19 +475,26 @@ std::string crossing_text(std::pair<size_t, size_t> e, size_t n) {
          ((e.second == (e.first + 1) % n) ? " fold back onto each other" : " cross or touch");
 }
 
+// A polygon face's corners in model space, after checking that it does not cross itself
+// in its own plane (an error whatever the view; docs/trace-format.md, "Polygon faces").
+std::vector<Vec3> simple_face(const ObjFace& f, const std::vector<ObjVertex>& verts, const std::string& name) {
+  std::vector<Vec3> face;
+  for (size_t i : f.v) face.push_back(verts[i].p);
+  if (face.size() == 3) return face;
+  if (const auto e = face_crossing_in_plane(face))
+    scene_text::fail(name, f.line, "the face crosses itself: " + crossing_text(*e, face.size()) +
+                                       " (split it into simple polygons)");
+  return face;
+}
+
 // The triangles of a face as corner indices, in its winding (docs/trace-format.md,
-// "Polygon faces"). A face crossing itself in its own plane is an error whatever the
-// view; the triangulation itself is on the corners snapped as setup snaps them, relative
-// to the viewport centre, so that the triangles cover exactly the snapped outline.
+// "Polygon faces"), on the corners snapped as setup snaps them, relative to the viewport
+// centre, so that the triangles cover exactly the snapped outline.
 std::vector<FaceTriangle> face_triangles(const ObjFace& f, const std::vector<SceneVertex>& corner,
                                          const std::vector<ObjVertex>& verts, const ObjPlacement& pl,
                                          const std::string& name) {
   if (corner.size() == 3) return fan_triangles(3);
-  std::vector<std::array<double, 3>> face;
-  for (size_t i : f.v) face.push_back(verts[i].p);
-  if (const auto e = face_crossing_in_plane(face))
-    scene_text::fail(name, f.line, "the face crosses itself: " + crossing_text(*e, face.size()) +
-                                       " (split it into simple polygons)");
+  simple_face(f, verts, name);
   std::vector<ScreenPoint> outline;
   for (const SceneVertex& c : corner) {
     const auto x = snap_coord(c.x, pl.viewport_width / 2, pl.coord_format);
@@ -423,6 +510,37 @@ std::vector<FaceTriangle> face_triangles(const ObjFace& f, const std::vector<Sce
   return std::move(t.triangles);
 }
 
+// What the placement needs of the parsed mesh, for each face, `l` and `p`.
+struct Placed {
+  const ObjParser& obj;
+  const std::vector<Vec3>& view;
+  const ObjPlacement& pl;
+  const PerspectiveCamera camera;
+  const std::string& name;
+};
+
+// A face's triangles appended to a List command: on screen (ortho) or in clip space,
+// triangulated in the face's own plane (part of it may lie behind the eye).
+void append_face(CmdPrimitives& p, const ObjFace& f, const Placed& m) {
+  if (m.pl.camera == ObjCamera::Ortho) {
+    const std::vector<SceneVertex> corner = face_corners(f, m.view, m.obj, m.pl);
+    for (const FaceTriangle& t : face_triangles(f, corner, m.obj.vertices, m.pl, m.name))
+      for (uint32_t k : t) p.vertices.push_back(corner[k]);
+    return;
+  }
+  const std::vector<ClipVertex> corner = clip_corners(f, m.view, m.obj, m.camera, face_shade(f, m.view));
+  for (const FaceTriangle& t : triangulate_in_plane(simple_face(f, m.obj.vertices, m.name)))
+    for (uint32_t k : t) p.clip_vertices.push_back(corner[k]);
+}
+
+// An `l` as a clip-space LineStrip, a `p` as Points: unlit (no normal), full colour.
+CmdPrimitives line_or_point_command(const ObjFace& f, const Placed& m) {
+  CmdPrimitives p;
+  p.topology = f.kind == ObjKind::Line ? Topology::LineStrip : Topology::Points;
+  p.clip_vertices = clip_corners(f, m.view, m.obj, m.camera, 1.0);
+  return p;
+}
+
 // Places the parsed mesh and emits its commands (see the file comment for the maths).
 Scene place(ObjParser& obj, const std::string& name, const ObjPlacement& pl) {
   for (ObjVertex& v : obj.vertices) v.p = to_y_up(v.p, pl.up);  // in place: no second copy
@@ -431,6 +549,7 @@ Scene place(ObjParser& obj, const std::string& name, const ObjPlacement& pl) {
   for (const ObjFace& f : obj.faces)
     for (size_t i : f.v) used[i] = true;
   const std::vector<Vec3> view = view_positions(verts, used, bounding_sphere(verts, used, name), pl);
+  const Placed m{obj, view, pl, PerspectiveCamera(pl), name};
 
   Scene scene;
   scene.source = name;
@@ -440,13 +559,15 @@ Scene place(ObjParser& obj, const std::string& name, const ObjPlacement& pl) {
   scene.commands.push_back({CmdClearDepth{1.0}, first});
   int faces_in_command = 0;  // faces in the List command being filled (0: start a new one)
   for (const ObjFace& f : obj.faces) {
-    const std::vector<SceneVertex> corner = face_corners(f, view, verts, pl);
+    if (f.kind != ObjKind::Face) {  // its own command, between the faces before and after it
+      scene.commands.push_back({line_or_point_command(f, m), SourceLoc{name, f.line}});
+      faces_in_command = 0;
+      continue;
+    }
     // A new List command every faces_per_command faces, named by its first face's line;
     // the triangles and their order are the same whatever the grouping.
     if (faces_in_command == 0) scene.commands.push_back({CmdPrimitives{Topology::List, {}}, SourceLoc{name, f.line}});
-    auto& p = std::get<CmdPrimitives>(scene.commands.back().body);
-    for (const FaceTriangle& t : face_triangles(f, corner, verts, pl, name))
-      for (uint32_t k : t) p.vertices.push_back(corner[k]);
+    append_face(std::get<CmdPrimitives>(scene.commands.back().body), f, m);
     if (++faces_in_command == pl.faces_per_command) faces_in_command = 0;
   }
   return scene;
@@ -469,9 +590,17 @@ Scene parse_obj(const std::string& text, const std::string& name, const ObjPlace
       pl.coord_format.frac_bits < 1 || pl.coord_format.int_bits + pl.coord_format.frac_bits > kMaxFormatBits)
     throw SceneError(name + ": OBJ placement needs a positive viewport, a positive finite fill, "
                             "finite yaw and pitch, at least one face a command and a coordinate format");
-  ObjParser obj(name, base_dir, pl.lines_points);
+  const bool perspective = pl.camera == ObjCamera::Perspective;
+  if (perspective && !(std::isfinite(pl.fov_deg) && pl.fov_deg > 0 && pl.fov_deg < 180 && pl.near > 0 &&
+                       pl.far > pl.near && std::isfinite(pl.far) && pl.distance >= 0 && std::isfinite(pl.distance)))
+    throw SceneError(name + ": OBJ perspective camera needs a field of view in (0, 180) degrees, "
+                            "0 < near < far and a finite distance >= 0");
+  ObjParser obj(name, base_dir, pl.lines_points, perspective);
   const int lines = scene_text::for_each_line(text, name, [&](int n, const Tokens& t) { obj.line(n, t); });
-  if (obj.faces.empty()) scene_text::fail(name, std::max(lines, 1), "no faces (an OBJ scene needs at least one 'f')");
+  if (obj.faces.empty())
+    scene_text::fail(name, std::max(lines, 1),
+                     perspective ? "no faces, lines or points (an OBJ scene needs at least one 'f', 'l' or 'p')"
+                                 : "no faces (an OBJ scene needs at least one 'f')");
   return place(obj, name, pl);
 }
 
@@ -489,10 +618,10 @@ Scene load_obj(const std::string& path, const ObjPlacement& placement) {
   return scene;
 }
 
-std::optional<StatementCounts> obj_ignored_counts(const std::string& path) {
+std::optional<StatementCounts> obj_ignored_counts(const std::string& path, ObjCamera camera) {
   if (!is_obj_path(path)) return std::nullopt;
   const std::string dir = dir_of(path);
-  ObjParser obj(path, dir, ObjLinesPoints::Skip);
+  ObjParser obj(path, dir, ObjLinesPoints::Skip, camera == ObjCamera::Perspective);
   scene_text::for_each_line(scene_text::read_file(path), path, [&](int n, const Tokens& t) { obj.line(n, t); });
   return std::move(obj.ignored);
 }

@@ -6,7 +6,9 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
+#include <string>
 #include <functional>
 #include <limits>
 #include <optional>
@@ -158,6 +160,31 @@ std::optional<double> parse_double(std::string_view tok) {
   const auto v = from_token<double>(tok);
   if (v && !std::isfinite(*v)) return std::nullopt;
   return v;
+}
+
+// libstdc++'s from_chars<float> (GCC 12) rounds the exact decimal value once, to
+// nearest even, straight to binary32 (no detour through double, which could round
+// twice), and gives denormals; it reports result_out_of_range both for a value past the
+// largest binary32 (at or over 2^128 - 2^103, which rounds to infinity) and for one that
+// rounds to zero (below half the smallest denormal, 2^-150, or exactly half: ties to
+// even). The second is the correctly rounded +-0, not an error: told apart by the
+// exponent of the same text read as a long double (whose range holds both cases).
+ParsedFloat parse_float(std::string_view tok) {
+  const bool plus = !tok.empty() && tok[0] == '+';  // exporters write it; from_chars does not read it
+  const std::string_view body = plus ? tok.substr(1) : tok;
+  if (body.empty() || (plus && body[0] == '-')) return {FloatStatus::Malformed, 0.0f};
+  float v = 0.0f;
+  const auto r = std::from_chars(body.data(), body.data() + body.size(), v);
+  if (r.ptr != body.data() + body.size() || (r.ec != std::errc() && r.ec != std::errc::result_out_of_range))
+    return {FloatStatus::Malformed, 0.0f};
+  if (r.ec == std::errc::result_out_of_range) {
+    const std::string text(body);  // strtold needs the terminating NUL
+    const long double wide = std::strtold(text.c_str(), nullptr);
+    if (std::fabs(wide) > 1.0L) return {FloatStatus::Overflow, 0.0f};
+    return {FloatStatus::Ok, body[0] == '-' ? -0.0f : 0.0f};
+  }
+  if (!std::isfinite(v)) return {FloatStatus::NotFinite, 0.0f};
+  return {FloatStatus::Ok, v};
 }
 
 }  // namespace scene_text

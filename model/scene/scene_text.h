@@ -32,4 +32,13 @@ int for_each_line(scene_stream::Reader& in, const std::string& name, const LineF
 std::optional<int64_t> parse_int(std::string_view tok);
 std::optional<double> parse_double(std::string_view tok);
 
+// A decimal (or exponent) number as IEEE binary32, rounded to nearest even once from the
+// exact decimal value (what a vertex stage hands over): a value or why not.
+enum class FloatStatus { Ok, Malformed, NotFinite, Overflow };
+struct ParsedFloat {
+  FloatStatus status = FloatStatus::Malformed;
+  float value = 0.0f;
+};
+ParsedFloat parse_float(std::string_view tok);
+
 }  // namespace rastsim::scene_text

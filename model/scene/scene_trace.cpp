@@ -7,6 +7,10 @@
 //   and emitted as one CmdPrimitives whose SourceLoc is its first vertex's line.
 // - Coordinates go through Q64::parse_decimal so the scene holds the exact decimal
 //   value (round to odd), never a double that setup would round a second time.
+// - Clip-space input (`tri4`, `v4` in a block, `points`) is IEEE binary32, each number
+//   rounded once from its decimal text (scene_text::parse_float), with the front-end
+//   state (`texcoord`, `viewport_xform`, `depth_range`, `point_size`, `point_sprite`)
+//   carried by each command as its ClipState (docs/clip-space.md).
 // - Every malformed input ends in a SceneError; nothing here indexes past a token list
 //   or trusts a number's size before checking it.
 #include <algorithm>
@@ -14,6 +18,7 @@
 #include <filesystem>
 #include <optional>
 #include <string_view>
+#include <tuple>
 
 #include "ref/2d/font.h"
 #include "ref/framebuffer.h"
@@ -56,7 +61,9 @@ class TraceParser {
     line_ = n;
     using Handler = void (TraceParser::*)(const Tokens&);
     // `emits`: the command makes a command of its own, which would land before the
-    // strip/fan it interrupts (that is emitted at `end`), so it may not appear inside one.
+    // strip/fan it interrupts (that is emitted at `end`), so it may not appear inside one;
+    // nor may the front-end state a block's command carries as a whole (viewport_xform,
+    // depth_range, point_sprite), which a block takes as it stands at its `end`.
     struct Entry {
       std::string_view keyword;
       Handler handler;
@@ -79,7 +86,13 @@ class TraceParser {
         {"rect", &TraceParser::rect, true},         {"blit", &TraceParser::blit, true},
         {"bgcolor", &TraceParser::bgcolor, false},  {"pattern", &TraceParser::pattern, false},
         {"rop3", &TraceParser::rop3, false},        {"text", &TraceParser::text, true},
-        {"font", &TraceParser::font, false}};
+        {"font", &TraceParser::font, false},
+        // Clip-space input (docs/clip-space.md) and the front-end state.
+        {"tri4", &TraceParser::tri4, true},         {"v4", &TraceParser::vertex4, false},
+        {"points", &TraceParser::begin, true},      {"texcoord", &TraceParser::texcoord, false},
+        {"viewport_xform", &TraceParser::viewport_xform, true},
+        {"depth_range", &TraceParser::depth_range, true},
+        {"point_sprite", &TraceParser::point_sprite, true}};
     for (const Entry& e : kCommands) {
       if (e.keyword != t[0]) continue;
       if (e.emits && open_)
@@ -98,8 +111,9 @@ class TraceParser {
     // A scene that draws nothing is a mistake (an empty or truncated file, the wrong
     // file), not a frame of clear colour to measure.
     if (!drew_)
-      throw SceneError(name_ + ": no draw command (tri, strip, fan, quads or quadstrip, or a 2D draw: point, line, "
-                               "lines, linestrip, lineloop, polygon, circle, arc, rect, blit or text)");
+      throw SceneError(name_ + ": no draw command (tri, strip, fan, quads or quadstrip, tri4 or points, or a 2D "
+                               "draw: point, line, lines, linestrip, lineloop, polygon, circle, arc, rect, blit or "
+                               "text)");
     return std::move(scene_);
   }
 
@@ -191,6 +205,7 @@ class TraceParser {
     SceneVertex v;
     v.x = coord(t[i], k, "x");
     v.y = coord(t[i + 1], k, "y");
+    v.s = s_, v.t = t_;
     if (!full) {
       v.z = depth_;
       v.r = r_, v.g = g_, v.b = b_;
@@ -201,6 +216,55 @@ class TraceParser {
     v.g = channel(t[i + 4], k, "green");
     v.b = channel(t[i + 5], k, "blue");
     return v;
+  }
+
+  // A clip-space number: IEEE binary32, rounded once from the decimal text.
+  float clip_number(std::string_view tok, const std::string& what) const {
+    const scene_text::ParsedFloat f = scene_text::parse_float(tok);
+    switch (f.status) {
+      case scene_text::FloatStatus::Ok: return f.value;
+      case scene_text::FloatStatus::Malformed: fail(what + " " + quote(tok) + " is not a decimal number");
+      case scene_text::FloatStatus::NotFinite:
+        fail(what + " " + quote(tok) + " is not finite (a clip-space value is a finite binary32)");
+      case scene_text::FloatStatus::Overflow:
+        fail(what + " " + quote(tok) + " is outside the binary32 range (it rounds to infinity past 3.4028235e38)");
+    }
+    fail(what + " " + quote(tok) + " is not a number");
+  }
+  float clip_number(std::string_view tok, int k, const char* name) const {
+    if (const auto f = scene_text::parse_float(tok); f.status == scene_text::FloatStatus::Ok) return f.value;
+    return clip_number(tok, field(k, name));
+  }
+
+  // A clip-space vertex of `per` numbers starting at t[i] (docs/trace-format.md,
+  // "Clip-space input"): x y z w (4; current colour and texcoord), then r g b (7), then
+  // s t (9); k: see field().
+  ClipVertex clip_vertex_at(const Tokens& t, size_t i, size_t per, int k) const {
+    ClipVertex v;
+    v.x = clip_number(t[i], k, "x");
+    v.y = clip_number(t[i + 1], k, "y");
+    v.z = clip_number(t[i + 2], k, "z");
+    v.w = clip_number(t[i + 3], k, "w");
+    v.r = r_, v.g = g_, v.b = b_;
+    if (per >= 7) {
+      v.r = channel(t[i + 4], k, "red");
+      v.g = channel(t[i + 5], k, "green");
+      v.b = channel(t[i + 6], k, "blue");
+    }
+    v.s = s_, v.t = t_;
+    if (per == 9) {
+      v.s = clip_number(t[i + 7], k, "s");
+      v.t = clip_number(t[i + 8], k, "t");
+    }
+    return v;
+  }
+
+  // The front-end state a clip-space command carries: the `point_size` of 2D points
+  // (the one point-size state) as the side of a 3D point's square.
+  ClipState clip_state() const {
+    ClipState c = clip_;
+    c.point_size = float(style_.point_size);
+    return c;
   }
 
   void emit(CommandBody body, int line) {
@@ -263,6 +327,54 @@ class TraceParser {
     emit(std::move(p), line_);
   }
 
+  // One clip-space List command per `tri4` line.
+  void tri4(const Tokens& t) {
+    const size_t n = t.size() - 1;
+    if (n != 12 && n != 21 && n != 27)
+      fail("'tri4' takes 12 numbers (x y z w per vertex), 21 (x y z w r g b per vertex) or 27 (x y z w r g b s t "
+           "per vertex), got " + std::to_string(n));
+    CmdPrimitives p;
+    p.clip_vertices.reserve(3);
+    for (size_t k = 0; k < 3; ++k) p.clip_vertices.push_back(clip_vertex_at(t, 1 + k * (n / 3), n / 3, int(k)));
+    p.clip = clip_state();
+    emit(std::move(p), line_);
+  }
+
+  // texcoord s t: the current texture coordinate of every following vertex (binary32).
+  void texcoord(const Tokens& t) {
+    args(t, 2, "s t, binary32 repeats");
+    s_ = clip_number(t[1], "texcoord s");
+    t_ = clip_number(t[2], "texcoord t");
+  }
+
+  // viewport_xform X Y W H (pixels) or `default` (the whole current viewport).
+  void viewport_xform(const Tokens& t) {
+    if (t.size() == 2 && t[1] == "default") {
+      clip_.xform = ViewportXform{};
+      return;
+    }
+    args(t, 4, "X Y W H, integers, W and H 1..16384; or 'default'");
+    clip_.xform = {false, int(pixel_int(t[1], "viewport_xform x")), int(pixel_int(t[2], "viewport_xform y")),
+                   int(integer(t[3], "viewport_xform width", 1, kMaxExtent)),
+                   int(integer(t[4], "viewport_xform height", 1, kMaxExtent))};
+  }
+
+  // depth_range N F: where z/w = 0 and 1 land in depth, binary32 in [0, 1] (N > F allowed).
+  void depth_range(const Tokens& t) {
+    args(t, 2, "N F, each in [0, 1]");
+    const float n = clip_number(t[1], "depth_range near"), f = clip_number(t[2], "depth_range far");
+    for (const auto& [v, tok, what] : {std::tuple{n, t[1], "near"}, std::tuple{f, t[2], "far"}})
+      if (!(v >= 0.0f && v <= 1.0f)) fail(std::string("depth_range ") + what + " " + quote(tok) + " is outside [0, 1]");
+    clip_.depth_near = n;
+    clip_.depth_far = f;
+  }
+
+  void point_sprite(const Tokens& t) {
+    args(t, 1, "'on' or 'off'");
+    if (t[1] != "on" && t[1] != "off") fail("point_sprite " + quote(t[1]) + " is not 'on' or 'off'");
+    clip_.point_sprite = t[1] == "on";
+  }
+
   // Blocks of `v` lines closed by `end`: strip / fan (triangles), quads / quadstrip
   // (triangles too: split by the front end, winding kept), lines / linestrip /
   // lineloop and polygon (2D).
@@ -280,6 +392,8 @@ class TraceParser {
 
   void vertex(const Tokens& t) {
     if (!open_) fail("'v' outside a strip or fan (or a quads, quadstrip, lines, linestrip, lineloop or polygon block)");
+    if (open_kw_ == "points") fail("'v' in a 'points' block: 3D points take 'v4 x y z w' (4, 7 or 9 numbers)");
+    if (!open_prims_.clip_vertices.empty()) mixed("v", "v4");
     const size_t n = t.size() - 1;
     if (open_is_2d()) {
       if (n != 2) fail("'v' in a '" + open_kw_ + "' takes 2 numbers (x y), got " + std::to_string(n));
@@ -290,11 +404,41 @@ class TraceParser {
     open_prims_.vertices.push_back(vertex_at(t, 1, n == 6, -1));
   }
 
+  [[noreturn]] void mixed(const char* kw, const char* others) const {
+    fail(std::string("'") + kw + "' in the '" + open_kw_ + "' begun at line " + std::to_string(open_line_) +
+         ", whose vertices are '" + others + "': a block's vertices are all 'v' or all 'v4'");
+  }
+
+  // v4 x y z w [r g b [s t]]: a clip-space vertex of the open block (not a polygon).
+  void vertex4(const Tokens& t) {
+    if (!open_)
+      fail("'v4' outside a block (strip, fan, quads, quadstrip, lines, linestrip, lineloop or points)");
+    if (open_kw_ == "polygon") fail("'v4' in a 'polygon': a polygon is 2D, its vertices are 'v x y'");
+    if (!open_prims_.vertices.empty()) mixed("v4", "v");
+    const size_t n = t.size() - 1;
+    if (n != 4 && n != 7 && n != 9)
+      fail("'v4' takes 4 numbers (x y z w), 7 (x y z w r g b) or 9 (x y z w r g b s t), got " + std::to_string(n));
+    if (open_prims_.clip_vertices.empty()) first_vertex_line_ = line_;
+    open_prims_.clip_vertices.push_back(clip_vertex_at(t, 1, n, -1));
+  }
+
+  // A block of `v4` vertices: a clip-space command with the front-end state at `end`.
+  void end_clip() {
+    CmdPrimitives& p = open_prims_;
+    p.clip = clip_state();
+    if (open_kw_ == "quads" || open_kw_ == "quadstrip") p.clip_vertices = split_quads(p.clip_vertices);
+    if (open_kw_ == "points") p.topology = Topology::Points;
+    if (open_kw_ == "lines") p.topology = Topology::Lines;
+    if (open_kw_ == "linestrip") p.topology = Topology::LineStrip;
+    if (open_kw_ == "lineloop") p.topology = Topology::LineLoop;
+    emit(std::move(p), first_vertex_line_);
+  }
+
   void end(const Tokens& t) {
     if (!open_) fail("'end' without a 'strip' or 'fan' (or a 'quads', 'quadstrip', 'lines', 'linestrip', "
-                     "'lineloop' or 'polygon')");
+                     "'lineloop', 'polygon' or 'points')");
     args(t, 0, "none");
-    const size_t n = open_prims_.vertices.size();
+    const size_t n = open_prims_.vertices.size() + open_prims_.clip_vertices.size();
     const int at = line_;
     line_ = open_line_;  // count errors name the block's line
     auto need = [&](bool ok, const std::string& what) {
@@ -306,8 +450,10 @@ class TraceParser {
     if (open_kw_ == "lines") need(n >= 2 && n % 2 == 0, "an even number, at least 2");
     if (open_kw_ == "linestrip" || open_kw_ == "lineloop") need(n >= 2, "at least 2");
     if (open_kw_ == "polygon") need(n >= 3, "at least 3");
+    if (open_kw_ == "points") need(n >= 1, "at least 1");
     line_ = at;
     open_ = false;
+    if (open_prims_.clip_space()) return end_clip();
     if (open_is_2d()) {
       std::vector<Vertex2d> v;
       for (const SceneVertex& sv : open_prims_.vertices) v.push_back({sv.x, sv.y});
@@ -324,8 +470,9 @@ class TraceParser {
 
   // Quads (a, b, c, d) -> triangles (a, b, c), (a, c, d); a quad strip's quad k is
   // (v2k, v2k+1, v2k+3, v2k+2). Both keep the quad's winding; the result is a list.
-  std::vector<SceneVertex> split_quads(const std::vector<SceneVertex>& v) const {
-    std::vector<SceneVertex> out;
+  template <class V>
+  std::vector<V> split_quads(const std::vector<V>& v) const {
+    std::vector<V> out;
     auto quad = [&](size_t a, size_t b, size_t c, size_t d) {
       for (size_t i : {a, b, c, a, c, d}) out.push_back(v[i]);
     };
@@ -500,6 +647,8 @@ class TraceParser {
   int line_ = 0;
   uint8_t r_ = 255, g_ = 255, b_ = 255;  // `color`: white until set
   double depth_ = 0.0;                   // `depth`: nearest until set
+  float s_ = 0.0f, t_ = 0.0f;            // `texcoord`: (0, 0) until set
+  ClipState clip_;  // viewport_xform (whole viewport), depth_range (0 1), point_sprite (off)
   bool open_ = false;                    // inside strip/fan ... end
   bool drew_ = false;                    // a draw command was emitted
   std::string open_kw_;

@@ -1,0 +1,298 @@
+// SPDX-License-Identifier: Apache-2.0
+// Perspective-correct interpolation (docs/clip-space.md, "Perspective-correct
+// interpolation") against an independent exact reference written here: barycentric
+// weights by cross products of the snapped vertices, perspective weights Q_k from the
+// binary32 bit fields of 1/w, and round_half_up of the rational by floor((2N + D) / 2D)
+// in i128. Then: equal 1/w gives the affine fragments exactly; the newton reciprocal's
+// error against exact at the default seed table and iterations; the cheapest (seed bits,
+// iterations) that matches exact; a floor plane receding to the horizon, where affine
+// texture coordinates are off by many texels and perspective ones are not. Every random
+// test is seeded and names its seed.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstring>
+#include <iostream>
+#include <random>
+#include <string>
+
+#include "config/config.h"
+#include "config/raster_state_config.h"
+#include "ref/interpolate.h"
+#include "ref/pipeline.h"
+#include "ref/recip.h"
+#include "ref/tri_setup.h"
+
+namespace rastsim {
+namespace {
+
+// ---- The independent reference ----
+
+// Q_k from the IEEE fields (normal numbers only): 24-bit significand with its hidden bit,
+// shifted right to the largest biased exponent, ties to even, at least 1.
+std::array<int64_t, 3> ref_weights(const std::array<float, 3>& inv_w) {
+  std::array<int64_t, 3> mant{}, q{};
+  std::array<int, 3> ex{};
+  for (size_t k = 0; k < 3; ++k) {
+    const auto bits = std::bit_cast<uint32_t>(inv_w[k]);
+    ex[k] = int(bits >> 23);
+    mant[k] = int64_t(bits & 0x7FFFFF) | 0x800000;
+  }
+  const int emax = std::max({ex[0], ex[1], ex[2]});
+  for (size_t k = 0; k < 3; ++k) {
+    const int sh = emax - ex[k];
+    if (sh == 0) { q[k] = mant[k]; continue; }
+    if (sh > 40) { q[k] = 1; continue; }
+    int64_t v = mant[k] >> sh;
+    const int64_t rem = mant[k] - (v << sh), half = int64_t{1} << (sh - 1);
+    if (rem > half || (rem == half && (v & 1))) ++v;
+    q[k] = std::max<int64_t>(v, 1);
+  }
+  return q;
+}
+
+// floor(n / d) for d > 0, by the sign (no library rounding helper).
+i128 floor_div(i128 n, i128 d) {
+  const i128 q = n / d;
+  return (n % d != 0 && n < 0) ? q - 1 : q;
+}
+// round_half_up(n / d), d > 0.
+i128 round_half_up(i128 n, i128 d) { return floor_div(2 * n + d, 2 * d); }
+
+struct RefAttrs {
+  int64_t z, r, g, b, s, t;
+};
+
+// The attributes at raw point (px, py) strictly inside the snapped triangle (every weight
+// > 0): depth affine, the rest perspective-correct with the weights w_k Q_k.
+RefAttrs reference_at(const SetupTriangle& tri, const std::array<int64_t, 3>& q, int64_t px, int64_t py,
+                      bool* inside) {
+  const auto& X = tri.x;
+  const auto& Y = tri.y;
+  auto cross = [&](int i, int j) { return i128(X[i] - px) * (Y[j] - py) - i128(Y[i] - py) * (X[j] - px); };
+  i128 w[3] = {cross(1, 2), cross(2, 0), cross(0, 1)};
+  const i128 area = w[0] + w[1] + w[2];
+  if (area < 0)
+    for (auto& v : w) v = -v;
+  *inside = w[0] > 0 && w[1] > 0 && w[2] > 0;
+  const i128 a = area < 0 ? -area : area;
+  auto affine = [&](int64_t a0, int64_t a1, int64_t a2) {
+    return int64_t(round_half_up(w[0] * a0 + w[1] * a1 + w[2] * a2, a));
+  };
+  const i128 e[3] = {w[0] * q[0], w[1] * q[1], w[2] * q[2]};
+  const i128 den = e[0] + e[1] + e[2];
+  auto persp = [&](int64_t a0, int64_t a1, int64_t a2) {
+    return int64_t(round_half_up(e[0] * a0 + e[1] * a1 + e[2] * a2, den));
+  };
+  return {affine(tri.z[0], tri.z[1], tri.z[2]),
+          persp(tri.rgb[0][0], tri.rgb[1][0], tri.rgb[2][0]),
+          persp(tri.rgb[0][1], tri.rgb[1][1], tri.rgb[2][1]),
+          persp(tri.rgb[0][2], tri.rgb[1][2], tri.rgb[2][2]),
+          persp(tri.tex_s[0], tri.tex_s[1], tri.tex_s[2]),
+          persp(tri.tex_t[0], tri.tex_t[1], tri.tex_t[2])};
+}
+
+// ---- Scenes ----
+
+RasterState test_state() {
+  RasterState st = raster_state_from_config(Config{});
+  st.fb_width = st.viewport_width = 64;
+  st.fb_height = st.viewport_height = 64;
+  st.out_of_range = OutOfRange::Cull;
+  st.cull = CullMode::None;
+  st.perspective = true;
+  st.recip = RecipMethod::Exact;
+  return st;
+}
+
+constexpr int kTexFrac = 20;  // the default interp.texcoord_format, s7.20
+
+// A random triangle in the viewport with random 1/w over up to 2^12 and texture
+// coordinates on the format's grid (k 2^-20 repeats, exact in binary32 for |k| < 2^24).
+std::array<SceneVertex, 3> random_triangle(const RasterState& st, std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> px(-4.0, st.viewport_width + 4.0), py(-4.0, st.viewport_height + 4.0);
+  std::uniform_int_distribution<int> tex(-(1 << 23) + 1, (1 << 23) - 1), spread(0, 12);
+  std::uniform_real_distribution<float> mant(1.0f, 2.0f);
+  std::array<SceneVertex, 3> v;
+  for (auto& x : v) {
+    x.x = Q64::from_double(px(rng));
+    x.y = Q64::from_double(py(rng));
+    x.z = double(rng() % 1000001) / 1e6;
+    x.r = uint8_t(rng()), x.g = uint8_t(rng()), x.b = uint8_t(rng());
+    x.inv_w = std::ldexp(mant(rng), -spread(rng));
+    x.s = std::ldexp(float(tex(rng)), -kTexFrac);
+    x.t = std::ldexp(float(tex(rng)), -kTexFrac);
+  }
+  return v;
+}
+
+std::array<float, 3> inv_ws(const std::array<SceneVertex, 3>& v) { return {v[0].inv_w, v[1].inv_w, v[2].inv_w}; }
+
+// Walks the interior pixel centres of a set-up triangle: visit(px, py, reference).
+template <class Visit>
+int for_interior_centres(const SetupTriangle& t, const std::array<float, 3>& inv_w, int F, Visit&& visit) {
+  const auto q = ref_weights(inv_w);
+  int n = 0;
+  for (int py = t.bbox.y0; py < t.bbox.y1; ++py)
+    for (int px = t.bbox.x0; px < t.bbox.x1; ++px) {
+      bool inside = false;
+      const RefAttrs ref = reference_at(t, q, t.sample_x(px, F), t.sample_y(py, F), &inside);
+      if (!inside) continue;
+      ++n;
+      visit(px, py, ref);
+    }
+  return n;
+}
+
+// Calls use(k, vertices, set-up triangle) for each of n seeded random triangles that setup
+// accepts in state st.
+template <class Use>
+void for_random_triangles(const RasterState& st, uint64_t seed, int n, Use&& use) {
+  SCOPED_TRACE("seed " + std::to_string(seed));
+  std::mt19937_64 rng(seed);
+  for (int k = 0; k < n && !::testing::Test::HasFailure(); ++k) {
+    const auto v = random_triangle(st, rng);
+    SetupTriangle t;
+    if (setup_triangle(v, st, SourceLoc{"random", k}, t) == SetupOutcome::Accepted) use(k, v, t, rng);
+  }
+}
+
+void expect_fragment(const Fragment& f, const RefAttrs& r) {
+  EXPECT_EQ(int64_t(f.z), r.z);
+  EXPECT_EQ(int64_t(f.r), r.r);
+  EXPECT_EQ(int64_t(f.g), r.g);
+  EXPECT_EQ(int64_t(f.b), r.b);
+  EXPECT_EQ(int64_t(f.s), r.s);
+  EXPECT_EQ(int64_t(f.t), r.t);
+}
+
+// ---- Tests ----
+
+TEST(Perspective, WeightsAreBlockFloatingPoint) {
+  // Hand-worked: 1, 0.75 and 0.5 share exponent 2^-1..2^0: Q = 2^23, 0.75 2^23 = 6291456
+  // (exponent one lower: 0x C00000 >> 1), 0.5: 0x800000 >> 1 = 2^22.
+  EXPECT_EQ(perspective_weights({1.0f, 0.75f, 0.5f}), (std::array<uint32_t, 3>{8388608, 6291456, 4194304}));
+  // Ties: significands 0x800001 and 0x800003 one exponent below 1.0, shifted by 1, round
+  // to even: down to 0x400000 and up to 0x400002.
+  const float a = std::ldexp(float(0x800001), -24), b = std::ldexp(float(0x800003), -24);
+  EXPECT_EQ(perspective_weights({1.0f, a, b}), (std::array<uint32_t, 3>{8388608, 4194304, 4194306}));
+  // A weight below 2^-24 of the largest stays 1.
+  EXPECT_EQ(perspective_weights({1.0f, 1e-9f, 1.0f})[1], 1u);
+}
+
+TEST(Perspective, ExactMatchesIndependentRational) {
+  const RasterState st = test_state();
+  const int F = st.coord_format.frac_bits;
+  int pixels = 0, non_affine = 0;
+  for_random_triangles(st, 0x9e35, 300, [&](int k, const auto& v, const SetupTriangle& t, std::mt19937_64&) {
+    non_affine += !t.affine;
+    pixels += for_interior_centres(t, inv_ws(v), F, [&](int px, int py, const RefAttrs& r) {
+      SCOPED_TRACE("triangle " + std::to_string(k) + " pixel " + std::to_string(px) + "," + std::to_string(py));
+      expect_fragment(interpolate(t, px, py, F), r);
+    });
+  });
+  EXPECT_GT(non_affine, 200);
+  EXPECT_GT(pixels, 20000);
+}
+
+// Multisampled paths evaluate at sample positions (interpolate_plane_at): random raw
+// points strictly inside each triangle against the reference there.
+TEST(Perspective, SamplePositionsMatchIndependentRational) {
+  RasterState st = test_state();
+  st.samples = 4;
+  st.aa_mode = AaMode::Ssaa;
+  int points = 0;
+  for_random_triangles(st, 0x5a3e, 300, [&](int, const auto& v, const SetupTriangle& t, std::mt19937_64& rng) {
+    const auto q = ref_weights(inv_ws(v));
+    const int64_t x0 = std::min({t.x[0], t.x[1], t.x[2]}), x1 = std::max({t.x[0], t.x[1], t.x[2]});
+    const int64_t y0 = std::min({t.y[0], t.y[1], t.y[2]}), y1 = std::max({t.y[0], t.y[1], t.y[2]});
+    for (int i = 0; i < 40; ++i) {
+      const int64_t sx = x0 + int64_t(rng() % uint64_t(x1 - x0 + 1)), sy = y0 + int64_t(rng() % uint64_t(y1 - y0 + 1));
+      bool inside = false;
+      const RefAttrs r = reference_at(t, q, sx, sy, &inside);
+      if (!inside) continue;
+      ++points;
+      expect_fragment(interpolate_plane_at(t, 0, 0, sx, sy), r);
+    }
+  });
+  EXPECT_GT(points, 3000);
+}
+
+// Equal 1/w (any value), or interp.perspective = false, gives exactly the fragments of
+// the same triangle with 1/w = 1: the affine path, the one every screen-space scene takes.
+TEST(Perspective, EqualInvWIsAffine) {
+  const uint64_t seed = 0xaff1;
+  SCOPED_TRACE("seed " + std::to_string(seed));
+  std::mt19937_64 rng(seed);
+  RasterState st = test_state();
+  const int F = st.coord_format.frac_bits;
+  RasterState flat_st = st;
+  flat_st.perspective = false;
+  int compared = 0;
+  for (int k = 0; k < 200 && !HasFailure(); ++k) {
+    auto v = random_triangle(st, rng);
+    auto one = v, same = v;
+    for (size_t i = 0; i < 3; ++i) {
+      one[i].inv_w = 1.0f;
+      same[i].inv_w = v[0].inv_w;
+    }
+    SetupTriangle t1, ts, ta;
+    if (setup_triangle(one, st, SourceLoc{"one", k}, t1) != SetupOutcome::Accepted) continue;
+    ASSERT_EQ(setup_triangle(same, st, SourceLoc{"same", k}, ts), SetupOutcome::Accepted);
+    ASSERT_EQ(setup_triangle(v, flat_st, SourceLoc{"off", k}, ta), SetupOutcome::Accepted);
+    EXPECT_TRUE(t1.affine && ts.affine && ta.affine);
+    for (int py = t1.bbox.y0; py < t1.bbox.y1; ++py)
+      for (int px = t1.bbox.x0; px < t1.bbox.x1; ++px) {
+        const Fragment f = interpolate(t1, px, py, F);
+        ASSERT_EQ(interpolate(ts, px, py, F), f);
+        ASSERT_EQ(interpolate(ta, px, py, F), f);
+        ++compared;
+      }
+  }
+  EXPECT_GT(compared, 20000);
+}
+
+// Largest and summed |newton - exact| in LSBs over every interior pixel's colour and
+// texture coordinates of `n` seeded random triangles, with the given reciprocal.
+struct RecipError {
+  int64_t max = 0, sum = 0, values = 0, wrong = 0;
+};
+RecipError newton_error(int seed_bits, int iterations, int n, uint64_t seed) {
+  const RasterState st = test_state();
+  const int F = st.coord_format.frac_bits;
+  RecipError e;
+  for_random_triangles(st, seed, n, [&](int, const auto& v, const SetupTriangle& t, std::mt19937_64&) {
+    if (t.affine) return;
+    SetupTriangle tn = t;
+    tn.recip = RecipMethod::Newton;
+    tn.recip_seed_bits = seed_bits;
+    tn.recip_iterations = iterations;
+    for_interior_centres(t, inv_ws(v), F, [&](int px, int py, const RefAttrs& r) {
+      const Fragment f = interpolate(tn, px, py, F);
+      for (const int64_t d : {int64_t(f.r) - r.r, int64_t(f.g) - r.g, int64_t(f.b) - r.b, int64_t(f.s) - r.s,
+                              int64_t(f.t) - r.t}) {
+        e.max = std::max(e.max, std::abs(d));
+        e.sum += std::abs(d);
+        e.wrong += d != 0;
+        ++e.values;
+      }
+    });
+  });
+  return e;
+}
+
+TEST(Perspective, NewtonAtDefaultsWithinOneLsb) {
+  RasterState st = test_state();
+  const uint64_t seed = 0x4e77;
+  const RecipError e = newton_error(st.recip_seed_bits, st.recip_iterations, 300, seed);
+  std::cout << "newton seed " << st.recip_seed_bits << " bits, " << st.recip_iterations << " iterations, seed "
+            << seed << ": max error " << e.max << " LSB, mean " << double(e.sum) / double(e.values) << " LSB, "
+            << e.wrong << " of " << e.values << " values differ from exact\n";
+  EXPECT_GT(e.values, 100000);
+  EXPECT_LE(e.max, 1);
+}
+
+}  // namespace
+}  // namespace rastsim
