@@ -79,14 +79,28 @@ struct TriCompare {
     if (lc && inside) colour(x, y, lp, rs);
   }
 
+  // Interior pixel covered by llvmpipe: its colour against the exact one; with the
+  // reference too, against it where snapping does not move the exact colour by more than
+  // half an LSB (elsewhere the two may round apart: counted as colour-sensitive).
   void colour(int x, int y, uint32_t lp, uint32_t rs) {
     const std::array<double, 3> ex = exact_colour(tri, vp, x + 0.5, y + 0.5);
-    const uint32_t e = rounded(ex);
-    const uint32_t le = channel_diff(lp, e);
+    const uint32_t le = channel_diff(lp, rounded(ex));
     s.llvmpipe_exact_max = std::max(s.llvmpipe_exact_max, le);
     s.llvmpipe_exact_over_1 += le > 1;
     if (!with_reference || !covered(rs)) return;
-    const uint32_t re = channel_diff(rs, e), rl = channel_diff(rs, lp);
+    const std::array<double, 3> sn = poly.snapped_colour(x + 0.5, y + 0.5, lsb);
+    double shift = 0;
+    for (int ch = 0; ch < 3; ++ch) shift = std::max(shift, std::abs(sn[size_t(ch)] - ex[size_t(ch)]));
+    const uint32_t rsn = std::isfinite(shift) ? channel_diff(rs, rounded(sn)) : 0;
+    s.reference_snapped_max = std::max(s.reference_snapped_max, rsn);
+    s.reference_snapped_over_1 += rsn > 1;
+    const uint32_t rl = channel_diff(rs, lp);
+    if (!(shift <= 0.5)) {  // NaN: a degenerate snapped triangle
+      ++s.colour_sensitive;
+      s.sensitive_max = std::max(s.sensitive_max, rl);
+      return;
+    }
+    const uint32_t re = channel_diff(rs, rounded(ex));
     ++s.colour_pixels;
     s.reference_exact_max = std::max(s.reference_exact_max, re);
     s.reference_exact_over_1 += re > 1;
@@ -142,8 +156,11 @@ ClipStats& ClipStats::operator+=(const ClipStats& o) {
   near_edge += o.near_edge, near_mismatches += o.near_mismatches, far_mismatches += o.far_mismatches;
   for (int k = 0; k < kEdgeKinds; ++k) near_mismatches_by_edge[size_t(k)] += o.near_mismatches_by_edge[size_t(k)];
   llvmpipe_far_errors += o.llvmpipe_far_errors, reference_far_errors += o.reference_far_errors;
-  colour_pixels += o.colour_pixels, colour_over_1 += o.colour_over_1;
+  colour_pixels += o.colour_pixels, colour_over_1 += o.colour_over_1, colour_sensitive += o.colour_sensitive;
   colour_max = std::max(colour_max, o.colour_max);
+  sensitive_max = std::max(sensitive_max, o.sensitive_max);
+  reference_snapped_max = std::max(reference_snapped_max, o.reference_snapped_max);
+  reference_snapped_over_1 += o.reference_snapped_over_1;
   llvmpipe_exact_max = std::max(llvmpipe_exact_max, o.llvmpipe_exact_max);
   reference_exact_max = std::max(reference_exact_max, o.reference_exact_max);
   llvmpipe_exact_over_1 += o.llvmpipe_exact_over_1, reference_exact_over_1 += o.reference_exact_over_1;

@@ -58,11 +58,21 @@ struct ClipStats {
   std::array<uint64_t, kEdgeKinds> near_mismatches_by_edge{};  // by the nearest edge's EdgeKind
   uint64_t far_mismatches = 0;     // coverage differs away from every edge (must be 0)
   uint64_t llvmpipe_far_errors = 0, reference_far_errors = 0;  // against the exact coverage
-  uint64_t colour_pixels = 0;      // interior pixels whose colours are compared
-  uint64_t colour_over_1 = 0;      // of those, a channel differs by more than 1
+  // Colour on interior pixels covered by both. Colour-sensitive ones: snapping the
+  // polygon's vertices to the coordinate grid moves the exact colour by more than half an
+  // LSB (slivers, steep gradients), so the reference (which interpolates over its
+  // snapped vertices) and llvmpipe (over its float ones) may round apart there.
+  uint64_t colour_pixels = 0;      // not colour-sensitive: compared, |reference - llvmpipe| <= 1
+  uint64_t colour_over_1 = 0;      // of those, a channel differs by more than 1 (must be 0)
   uint32_t colour_max = 0;         // max |reference - llvmpipe| over channels, LSBs
+  uint64_t colour_sensitive = 0;   // colour-sensitive pixels (counted, not compared)
+  uint32_t sensitive_max = 0;      // max |reference - llvmpipe| on them
   uint32_t llvmpipe_exact_max = 0, reference_exact_max = 0;  // against round(exact colour)
   uint64_t llvmpipe_exact_over_1 = 0, reference_exact_over_1 = 0;
+  // The reference against round(snapped_colour) on every interior pixel: what it computes
+  // (an independent check of perspective-correct interpolation over snapped vertices).
+  uint32_t reference_snapped_max = 0;
+  uint64_t reference_snapped_over_1 = 0;
   uint64_t repeats = 0;            // ReferenceImage::repeats
   ClipStats& operator+=(const ClipStats& o);
 };

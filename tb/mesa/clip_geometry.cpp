@@ -9,9 +9,11 @@
 namespace rastsim::mesa {
 namespace {
 
-// A polygon vertex: x, y, z, w and the clip planes it was made on (bit k: plane k).
+// A polygon vertex: x, y, z, w, its colour (linear in clip space: perspective-correct)
+// and the clip planes it was made on (bit k: plane k).
 struct Homog {
   std::array<double, 4> p;
+  std::array<double, 3> c;
   unsigned planes = 0;
 };
 
@@ -37,25 +39,37 @@ std::vector<Homog> clip_against(const std::vector<Homog>& in, int plane) {
     if ((da >= 0) != (db >= 0)) {
       const double t = da / (da - db);
       // On this plane, and on any plane both ends were made on (the edge lies in it).
-      Homog m{{}, (a.planes & b.planes) | 1u << plane};
+      Homog m{{}, {}, (a.planes & b.planes) | 1u << plane};
       for (int k = 0; k < 4; ++k) m.p[k] = a.p[k] + t * (b.p[k] - a.p[k]);
+      for (int k = 0; k < 3; ++k) m.c[k] = a.c[k] + t * (b.c[k] - a.c[k]);
       out.push_back(m);
     }
   }
   return out;
 }
 
+// Twice the signed area of (o, a, b).
+double cross(const ScreenPoint& o, const ScreenPoint& a, const ScreenPoint& b) {
+  return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x);
+}
+
 }  // namespace
 
 VisiblePolygon::VisiblePolygon(const ClipTri& t, const ViewRect& vp) {
   std::vector<Homog> poly;
-  for (const ClipVertex& v : t.v) poly.push_back({{double(v.x), double(v.y), double(v.z), double(v.w)}, 0});
-  for (int plane = 0; plane < 6 && !poly.empty(); ++plane) poly = clip_against(poly, plane);
+  for (const ClipVertex& v : t.v)
+    poly.push_back({{double(v.x), double(v.y), double(v.z), double(v.w)}, {double(v.r), double(v.g), double(v.b)}, 0});
+  // Near, far, left, right, top, bottom: the order of docs/clip-space.md, so the polygon
+  // starts at the vertex the reference's does and is fanned alike.
+  for (int plane : {4, 5, 0, 1, 2, 3})
+    if (!poly.empty()) poly = clip_against(poly, plane);
   const double hw = vp.width / 2.0, hh = vp.height / 2.0;
   std::vector<unsigned> planes;
   for (const Homog& h : poly)  // w > 0 after clipping, but for the eye itself (0, 0, 0, 0)
     if (h.p[3] > 0) {
       pts_.push_back({vp.x + hw + h.p[0] / h.p[3] * hw, vp.y + hh + h.p[1] / h.p[3] * hh});
+      inv_w_.push_back(1 / h.p[3]);
+      colour_.push_back(h.c);
       planes.push_back(h.planes);
     }
   double area2 = 0;
@@ -107,6 +121,34 @@ bool VisiblePolygon::inside(double px, double py) const {
     pos |= c > 0, neg |= c < 0;
   }
   return !(pos && neg);
+}
+
+std::array<double, 3> VisiblePolygon::snapped_colour(double px, double py, double lsb) const {
+  std::array<double, 3> rgb{};
+  if (pts_.size() < 3) return rgb;
+  const auto bary = [&](const std::array<ScreenPoint, 3>& v) {  // screen-space weights of (px, py)
+    const double area2 = cross(v[0], v[1], v[2]);
+    return std::array<double, 3>{cross({px, py}, v[1], v[2]) / area2, cross(v[0], {px, py}, v[2]) / area2,
+                                 cross(v[0], v[1], {px, py}) / area2};
+  };
+  // The fan triangle (P0, Pi, Pi+1) holding the point best (largest smallest weight).
+  size_t best = 1;
+  double best_min = -std::numeric_limits<double>::infinity();
+  for (size_t i = 1; i + 1 < pts_.size(); ++i) {
+    const std::array<double, 3> l = bary({pts_[0], pts_[i], pts_[i + 1]});
+    const double m = std::min({l[0], l[1], l[2]});
+    if (m > best_min) best_min = m, best = i;
+  }
+  const std::array<size_t, 3> idx = {0, best, best + 1};
+  std::array<ScreenPoint, 3> snapped;
+  for (int k = 0; k < 3; ++k)
+    snapped[k] = {std::nearbyint(pts_[idx[k]].x / lsb) * lsb, std::nearbyint(pts_[idx[k]].y / lsb) * lsb};
+  const std::array<double, 3> l = bary(snapped);
+  double den = 0;
+  for (int k = 0; k < 3; ++k) den += l[k] * inv_w_[idx[k]];
+  for (int k = 0; k < 3; ++k)
+    for (int ch = 0; ch < 3; ++ch) rgb[ch] += l[k] * inv_w_[idx[k]] * colour_[idx[k]][ch] / den;
+  return rgb;
 }
 
 std::array<double, 3> exact_colour(const ClipTri& t, const ViewRect& vp, double sx, double sy) {

@@ -45,6 +45,13 @@ class VisiblePolygon {
   // True when (px, py) lies inside (either winding, edges included; false for a polygon of
   // zero area). Meaningful away from the edges, where rounding cannot change the answer.
   bool inside(double px, double py) const;
+  // The perspective-correct colour at (px, py) once the polygon's screen vertices are
+  // snapped to the lsb grid (round to nearest): the colour of the fan triangle (P0, Pi,
+  // Pi+1) that holds the point, as the reference fans and snaps it. Where it differs from
+  // exact_colour, the colour depends on sub-LSB vertex positions (slivers, steep
+  // gradients), which the two renderers treat differently (llvmpipe interpolates over
+  // its unsnapped float positions).
+  std::array<double, 3> snapped_colour(double px, double py, double lsb) const;
 
  private:
   struct Edge {
@@ -55,6 +62,8 @@ class VisiblePolygon {
   };
   double segment_distance(const Edge& e, double px, double py) const;
   std::vector<ScreenPoint> pts_;
+  std::vector<double> inv_w_;                  // 1/w of each vertex
+  std::vector<std::array<double, 3>> colour_;  // RGB of each vertex (unrounded)
   std::vector<Edge> edges_;
   bool has_area_ = false;
 };

@@ -214,9 +214,12 @@ void print(const std::string& what, const ClipStats& s, double ms) {
             << " at the viewport border); far mismatches " << s.far_mismatches
             << "; against exact coverage: llvmpipe " << s.llvmpipe_far_errors << ", rastsim " << s.reference_far_errors
             << "; colour on " << s.colour_pixels << " interior pixels: max |rastsim - llvmpipe| " << s.colour_max
-            << " (" << s.colour_over_1 << " over 1), max against exact: llvmpipe " << s.llvmpipe_exact_max << " ("
-            << s.llvmpipe_exact_over_1 << " over 1), rastsim " << s.reference_exact_max << " ("
-            << s.reference_exact_over_1 << " over 1); repeated pixels " << s.repeats << "; " << ms << " ms\n";
+            << " (" << s.colour_over_1 << " over 1); " << s.colour_sensitive
+            << " colour-sensitive pixels (max |rastsim - llvmpipe| " << s.sensitive_max
+            << "); against exact: llvmpipe max " << s.llvmpipe_exact_max << " (" << s.llvmpipe_exact_over_1
+            << " over 1), rastsim max " << s.reference_exact_max << " (" << s.reference_exact_over_1
+            << " over 1); rastsim against its snapped-vertex colour: max " << s.reference_snapped_max << " ("
+            << s.reference_snapped_over_1 << " over 1); repeated pixels " << s.repeats << "; " << ms << " ms\n";
 }
 
 void record(const ClipStats& s) {
@@ -226,6 +229,7 @@ void record(const ClipStats& s) {
   ::testing::Test::RecordProperty("far_mismatches", std::to_string(s.far_mismatches));
   ::testing::Test::RecordProperty("colour_pixels", std::to_string(s.colour_pixels));
   ::testing::Test::RecordProperty("colour_max_lsb", std::to_string(s.colour_max));
+  ::testing::Test::RecordProperty("colour_sensitive_pixels", std::to_string(s.colour_sensitive));
 }
 
 // A reference configuration the random scenes are drawn with (config overrides on top
