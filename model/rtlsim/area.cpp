@@ -121,8 +121,11 @@ ModuleInfo module_from_stat(const std::string& id, const nlohmann::json& m,
   if (m.contains("estimated_num_transistors")) info.own.transistors = transistors_of(m);
   for (const auto& [type, n] : m.at("num_cells_by_type").items()) {
     const uint64_t count = n.get<uint64_t>();
-    if (is_module(type)) {
-      info.children.emplace_back(type, count);
+    // Yosys 0.23 gives an instance of a module without parameters its type without the
+    // module id's leading backslash ("rast_fp32_unpack" for "\rast_fp32_unpack").
+    const std::string child = is_module(type) ? type : is_module("\\" + type) ? "\\" + type : "";
+    if (!child.empty()) {
+      info.children.emplace_back(child, count);
       continue;
     }
     if (type.rfind("$_", 0) != 0)

@@ -89,6 +89,20 @@ TEST(AreaStat, SumsSubmodulesByHand) {
   EXPECT_THROW(area_from_yosys_stat(stat, "absent"), std::runtime_error);
 }
 
+// Yosys 0.23 types an instance of a module without parameters by its bare name ("leaf"),
+// while the module's id is "\leaf": still a submodule, not an unknown cell.
+TEST(AreaStat, ParameterlessSubmoduleByBareName) {
+  const nlohmann::json stat = nlohmann::json::parse(R"({
+    "modules": {
+      "\\top": {"num_cells_by_type": {"$_AND_": 1, "leaf": 2}, "estimated_num_transistors": "6+"},
+      "\\leaf": {"num_cells_by_type": {"$_NOT_": 3}, "estimated_num_transistors": "6"}
+    }})");
+  const AreaReport r = area_from_yosys_stat(stat, "top");
+  EXPECT_EQ(r.total.cells, 1u + 2 * 3);             // top's AND and two leaves of 3 NOT
+  EXPECT_EQ(r.total.transistors, 6u + 2 * 6);
+  EXPECT_EQ(r.stages.at("leaf").instances, 2u);
+}
+
 TEST(Area, StatsJsonKeysPositiveAndSecondCallFromCache) {
   if (!have_yosys()) GTEST_SKIP() << "yosys not installed";
   const fs::path cache = temp_path("cache");
