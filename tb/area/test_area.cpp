@@ -153,6 +153,20 @@ TEST(Area, MoreFineLanesMoreCells) {
   EXPECT_GE(four.total.flip_flops, one.total.flip_flops);
 }
 
+// The front end's binary32 adder, a --top root of its own (no config parameter): its
+// parameterless submodules (rast_fp32_unpack) count, and it holds no flip-flop. A lower
+// bound, not its figure: a 28-bit adder, two shifters and a rounder take over 1,000 gates.
+TEST(Area, Fp32AdderIsItsOwnRoot) {
+  if (!have_yosys()) GTEST_SKIP() << "yosys not installed";
+  AreaOptions ao;
+  ao.top = "rast_fp32_add";
+  ao.use_cache = false;
+  const AreaReport r = synthesize_area(rtl_params(ArchParams::resolve(app::load_config(small_config(1)))), ao);
+  EXPECT_GT(r.total.cells, 1000u);
+  EXPECT_EQ(r.total.flip_flops, 0u);
+  EXPECT_EQ(r.stages.count("rast_fp32_add"), 1u);
+}
+
 // The split synthesis (one Yosys process a module of rast_top, submodules as blackboxes,
 // sums taken in C++) against one process holding the whole hierarchy, on the smallest
 // pipeline (16 px display, s4.2, 4 px tiles, one fine and one fragment lane, 2 samples):
