@@ -39,7 +39,7 @@ module rast_fp32_round #(
   end
 
   logic          tiny;      // exp_i < -126: the result is subnormal (or rounds up to 2^-126)
-  logic signed [10:0] under;  // -126 - exp_i: how far below the normal range (1..386 when tiny)
+  logic signed [10:0] under;  // -126 - exp_i: how far below the normal range (> 0 when tiny)
   logic [DW-1:0] shift;     // the subnormal shift, clamped to SigW (all bits to sticky)
   logic [SigW-1:0] shifted; // sig_i >> shift
   logic          lost;      // nonzero bits shifted out
