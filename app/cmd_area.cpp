@@ -77,8 +77,9 @@ void register_area(CLI::App& app) {
   cmd->add_option("--stats", o.stats_path,
                   "Write cells, flip_flops, transistors, cells_by_type and stages.<module>.* as JSON ('-' for stdout)");
   cmd->add_option("--top", o.top,
-                  "Synthesise one module only: rast_top (the raster pipeline), rast_engine2d, or a stage module "
-                  "under rast_top such as rast_fine_raster (default: rast_top and rast_engine2d)");
+                  "Synthesise one module only: rast_top (the raster pipeline), rast_engine2d, a binary32 unit of "
+                  "the front end (rast_fp32_mul, rast_fp32_add, rast_fp32_recip, rast_front_end_xform) or a stage "
+                  "module under rast_top such as rast_fine_raster (default: rast_top and rast_engine2d)");
   cmd->add_flag("--one-process", o.one_process,
                 "Synthesise rast_top's whole hierarchy in one Yosys process (default: one process a module, its "
                 "submodules as blackboxes, summed; one process needs several GB on the wide configs)");

@@ -121,8 +121,11 @@ ModuleInfo module_from_stat(const std::string& id, const nlohmann::json& m,
   if (m.contains("estimated_num_transistors")) info.own.transistors = transistors_of(m);
   for (const auto& [type, n] : m.at("num_cells_by_type").items()) {
     const uint64_t count = n.get<uint64_t>();
-    if (is_module(type)) {
-      info.children.emplace_back(type, count);
+    // Yosys 0.23 gives an instance of a module without parameters its type without the
+    // module id's leading backslash ("rast_fp32_unpack" for "\rast_fp32_unpack").
+    const std::string child = is_module(type) ? type : is_module("\\" + type) ? "\\" + type : "";
+    if (!child.empty()) {
+      info.children.emplace_back(child, count);
       continue;
     }
     if (type.rfind("$_", 0) != 0)
@@ -649,6 +652,20 @@ std::vector<std::pair<std::string, std::string>> instance_sites(const std::strin
   return out;
 }
 
+// Hierarchies synthesised apart from rast_top, each its own root with no config
+// parameter: the 2D engine, and the front end's binary32 units (docs/rtl.md, "Binary32
+// units of the front end"), which rast_top does not instantiate.
+const std::vector<std::string>& standalone_roots() {
+  static const std::vector<std::string> roots{"rast_engine2d", "rast_fp32_mul", "rast_fp32_add", "rast_fp32_recip",
+                                              "rast_front_end_xform"};
+  return roots;
+}
+
+bool is_standalone_root(const std::string& top) {
+  const std::vector<std::string>& r = standalone_roots();
+  return std::find(r.begin(), r.end(), top) != r.end();
+}
+
 }  // namespace
 
 std::vector<std::string> area_reportable_tops() {
@@ -661,7 +678,8 @@ std::vector<std::string> area_reportable_tops() {
     modules.insert(stem);
   }
   std::map<std::string, std::set<std::string>> sets;  // module -> parameter texts of its sites under rast_top
-  std::vector<std::string> todo{"rast_top"}, out{"rast_top", "rast_engine2d"};
+  std::vector<std::string> todo{"rast_top"}, out{"rast_top"};
+  out.insert(out.end(), standalone_roots().begin(), standalone_roots().end());
   std::set<std::string> seen{"rast_top"};
   while (!todo.empty()) {
     const std::string parent = todo.back();
@@ -710,7 +728,7 @@ struct Part {
 
 std::vector<Part> parts_of(const AreaOptions& o) {
   if (o.top.empty()) return {{"rast_top", "", true}, {"rast_engine2d", "", false}};
-  if (o.top == "rast_top" || o.top == "rast_engine2d") return {{o.top, "", o.top == "rast_top"}};
+  if (o.top == "rast_top" || is_standalone_root(o.top)) return {{o.top, "", o.top == "rast_top"}};
   return {{"rast_top", o.top, false}};  // a module under rast_top, with the parameters rast_top derives
 }
 

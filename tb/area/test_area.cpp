@@ -89,6 +89,20 @@ TEST(AreaStat, SumsSubmodulesByHand) {
   EXPECT_THROW(area_from_yosys_stat(stat, "absent"), std::runtime_error);
 }
 
+// Yosys 0.23 types an instance of a module without parameters by its bare name ("leaf"),
+// while the module's id is "\leaf": still a submodule, not an unknown cell.
+TEST(AreaStat, ParameterlessSubmoduleByBareName) {
+  const nlohmann::json stat = nlohmann::json::parse(R"({
+    "modules": {
+      "\\top": {"num_cells_by_type": {"$_AND_": 1, "leaf": 2}, "estimated_num_transistors": "6+"},
+      "\\leaf": {"num_cells_by_type": {"$_NOT_": 3}, "estimated_num_transistors": "6"}
+    }})");
+  const AreaReport r = area_from_yosys_stat(stat, "top");
+  EXPECT_EQ(r.total.cells, 1u + 2 * 3);             // top's AND and two leaves of 3 NOT
+  EXPECT_EQ(r.total.transistors, 6u + 2 * 6);
+  EXPECT_EQ(r.stages.at("leaf").instances, 2u);
+}
+
 TEST(Area, StatsJsonKeysPositiveAndSecondCallFromCache) {
   if (!have_yosys()) GTEST_SKIP() << "yosys not installed";
   const fs::path cache = temp_path("cache");
@@ -137,6 +151,20 @@ TEST(Area, MoreFineLanesMoreCells) {
   EXPECT_GT(four.total.cells, one.total.cells);
   EXPECT_GT(four.total.transistors, one.total.transistors);
   EXPECT_GE(four.total.flip_flops, one.total.flip_flops);
+}
+
+// The front end's binary32 adder, a --top root of its own (no config parameter): its
+// parameterless submodules (rast_fp32_unpack) count, and it holds no flip-flop. A lower
+// bound, not its figure: a 28-bit adder, two shifters and a rounder take over 1,000 gates.
+TEST(Area, Fp32AdderIsItsOwnRoot) {
+  if (!have_yosys()) GTEST_SKIP() << "yosys not installed";
+  AreaOptions ao;
+  ao.top = "rast_fp32_add";
+  ao.use_cache = false;
+  const AreaReport r = synthesize_area(rtl_params(ArchParams::resolve(app::load_config(small_config(1)))), ao);
+  EXPECT_GT(r.total.cells, 1000u);
+  EXPECT_EQ(r.total.flip_flops, 0u);
+  EXPECT_EQ(r.stages.count("rast_fp32_add"), 1u);
 }
 
 // The split synthesis (one Yosys process a module of rast_top, submodules as blackboxes,
