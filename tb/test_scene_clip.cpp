@@ -284,7 +284,7 @@ TEST(SceneClip, MalformedLinesNameTheirLine) {
 // The example scene (docs/trace-format.md): a perspective cube the near plane cuts, with
 // colours and texture coordinates; every vertex binary32 as written.
 TEST(SceneClip, ClipCubeExampleParses) {
-  const Scene s = load_trace(std::string(RASTSIM_SOURCE_DIR) + "/traces/clip_cube.trace");
+  const Scene s = load_trace(std::string(RASTSIM_SOURCE_DIR) + "/traces/3d/clip_cube.trace");
   size_t triangles = 0, behind_near = 0, textured = 0;
   for (const Command& c : s.commands) {
     const auto* p = std::get_if<CmdPrimitives>(&c.body);

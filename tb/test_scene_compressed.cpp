@@ -111,7 +111,7 @@ void expect_same_render(const std::string& path, const RenderStats& want, size_t
 
 TEST_F(CompressedScene, ShippedTracesRenderLikeThePlainFiles) {
   std::vector<fs::path> traces;
-  for (const char* sub : {"traces", "traces/2d"})
+  for (const char* sub : {"traces", "traces/2d", "traces/3d"})
     for (const auto& e : fs::directory_iterator(fs::path(RASTSIM_SOURCE_DIR) / sub))
       if (e.path().extension() == ".trace") traces.push_back(e.path());
   ASSERT_GE(traces.size(), 5u);

@@ -138,7 +138,7 @@ TEST(SceneFuzz, MutatedTracesAndObjsGiveSceneOrSceneError) {
       "tri 1 2 0 255 0 0 30 4 0.5 0 255 0 5 60 1 0 0 255\n"
       "strip\nv 0 0\nv 0 10 0.5 1 2 3\nv 10 0\nv 10 10\nend\n"
       "fan # c\nv 5 5\nv 0 0\nv 10.25 0\nv 10 10\nend\n"};
-  for (const char* t : {"primitives", "fill_rule", "state", "clip_cube"})
+  for (const char* t : {"primitives", "fill_rule", "state", "3d/clip_cube"})
     traces.push_back(file_text(std::string(RASTSIM_SOURCE_DIR) + "/traces/" + t + ".trace"));
   traces.push_back(file_text(std::string(RASTSIM_SOURCE_DIR) + "/fuzz/corpus/trace/clip.trace"));
   const std::vector<std::string> objs = {

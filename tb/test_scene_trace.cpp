@@ -7,6 +7,7 @@
 #include <fstream>
 #include <functional>
 #include <map>
+#include <vector>
 
 #include <unistd.h>
 
@@ -373,11 +374,15 @@ TEST(SceneTrace, LoadSceneDispatchesOnExtension) {
 // Every example trace parses and renders with the default architecture.
 TEST(SceneTrace, ExampleTracesRender) {
   int seen = 0;
-  for (const auto& e : std::filesystem::directory_iterator(std::string(RASTSIM_SOURCE_DIR) + "/traces")) {
-    if (e.path().extension() != ".trace") continue;
-    SCOPED_TRACE(e.path().string());
+  // traces/ and traces/3d/ (clip space); the 2D traces draw no triangle fragments.
+  std::vector<std::filesystem::path> paths;
+  for (const char* dir : {"/traces", "/traces/3d"})
+    for (const auto& e : std::filesystem::directory_iterator(std::string(RASTSIM_SOURCE_DIR) + dir))
+      if (e.path().extension() == ".trace") paths.push_back(e.path());
+  for (const auto& path : paths) {
+    SCOPED_TRACE(path.string());
     ++seen;
-    const Scene s = load_trace(e.path().string());
+    const Scene s = load_trace(path.string());
     EXPECT_FALSE(s.commands.empty());
     RenderStats stats;
     ASSERT_NO_THROW(stats = scene_test::render_default(s));

@@ -27,16 +27,20 @@ void CommandFetch::fetch(const CommandPtr& p) {
   visit_command(cmd, Overloaded{
       state_commands(state),
       [&](const CmdPrimitives& prims) {
-        reject_clip_space(prims, cmd.loc);  // no front end at this level yet
-        const size_t n = triangle_count(prims);
-        if (n == 0) mark(0);
-        if (n == 0) busy(p_.fetch_header_cycles());
-        for (size_t k = 0; k < n; ++k) {
+        // Triangle k (a clip-space command's k-th triangle out of the front end, costed
+        // as one fetched triangle, as estimate counts it) down to primitive assembly.
+        size_t k = 0;
+        for_each_triangle(prims, st_, cmd.loc, ctx_.render.front_end, [&](const ScreenTriangle& v) {
           mark(k);
           const uint64_t new_vertices = (k == 0 || prims.topology == Topology::List) ? 3 : 1;
           busy(p_.fetch_triangle_cycles(k == 0, new_vertices));
-          write(out_, CommandItem{nullptr, TriangleRef{p, k}});
-        }
+          std::shared_ptr<const ScreenTriangle> screen;
+          if (prims.clip_space()) screen = std::make_shared<const ScreenTriangle>(v);
+          write(out_, CommandItem{nullptr, TriangleRef{p, k, std::move(screen)}});
+          ++k;
+        });
+        if (k == 0) mark(0);
+        if (k == 0) busy(p_.fetch_header_cycles());
       },
       [&](const CmdDraw2d& d2) {
         mark(0);

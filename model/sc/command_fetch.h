@@ -13,6 +13,11 @@
 //   fetch.vertices_per_cycle) per triangle (3 new vertices in a list, 1 in a strip or
 //   fan after its first triangle); a 2D command its header plus ceil(vertices /
 //   fetch.vertices_per_cycle).
+// - A clip-space command (tri4, v4 blocks) goes through the geometry front end here
+//   (ref/front_end.h, the reference's own function: clip, divide, viewport map), in
+//   fetch's order and state; each screen-space triangle it makes is one transaction,
+//   costed as a fetched triangle, as `estimate` counts it. The front end has no cycles of
+//   its own yet (docs/clip-space.md, "Levels").
 // - The commands come from a CommandSource, in program order: a whole Scene's
 //   (scene_source), or a trace streamed batch by batch while the simulation runs
 //   (stream_source; the parser runs on fetch's own thread, so a malformed line late in
@@ -23,8 +28,10 @@
 //   command is an error there (check_2d_sample_count).
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <functional>
+#include <memory>
 #include <string>
 
 #include "ref/framebuffer.h"
@@ -38,6 +45,9 @@ namespace rastsim::sc {
 struct TriangleRef {
   CommandPtr cmd;  // a primitives command
   size_t index = 0;              // triangle index within it
+  // A clip-space command's triangle k, out of the geometry front end (fetch runs it:
+  // ref/front_end.h); null for a screen-space command, whose triangle k prim assembly forms.
+  std::shared_ptr<const std::array<SceneVertex, 3>> screen;
 };
 using CommandItem = Item<TriangleRef>;
 

@@ -26,7 +26,7 @@ render_same() {
 
 # 2. The round trip on every shipped trace: the fit renders as the widest format with the
 #    same integer bits, one fraction bit fewer does not.
-for t in "$SRC"/traces/*.trace; do
+for t in "$SRC"/traces/*.trace "$SRC"/traces/3d/*.trace; do
   name="$(basename "$t")"
   fmt="$("$BIN" fit --config "$CFG" --scene "$t" --format-only)" || { fail "$name: fit failed"; continue; }
   [[ "$fmt" =~ ^s([0-9]+)\.([0-9]+)$ ]] || { fail "$name: --format-only printed '$fmt'"; continue; }

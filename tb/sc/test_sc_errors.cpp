@@ -3,6 +3,7 @@
 // of the model (a Link ordering failure) is a ModelError and never a SceneError.
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <string>
 
 #include "sim_harness.h"
@@ -72,11 +73,14 @@ TEST(ScErrors, SceneErrorInAStageStaysASceneError) {
 
 // The timed model has no geometry front end yet: a clip-space command is a scene error
 // naming its line, not a command that draws nothing.
-TEST(ScErrors, ClipSpaceCommandIsASceneError) {
+// The timed model runs the reference's front end: a clip-space value it cannot divide
+// by (not finite) stops the simulation with the front end's SceneError, naming the line.
+TEST(ScErrors, NonFiniteClipSpaceValueIsASceneError) {
   const auto r = run_isolated([] {
     Scene scene;
     CmdPrimitives p;
     p.clip_vertices.assign(3, ClipVertex{});
+    p.clip_vertices[1].w = std::numeric_limits<float>::infinity();
     scene.commands.push_back(Command{p, SourceLoc{"c.trace", 4}});
     try {
       sc::simulate_scene(scene, ArchParams::resolve(Config{}));
@@ -86,7 +90,7 @@ TEST(ScErrors, ClipSpaceCommandIsASceneError) {
     return nlohmann::json{{"what", "no error"}};
   });
   ASSERT_FALSE(r.contains("error")) << r["error"];
-  EXPECT_EQ(r["what"].get<std::string>().rfind("c.trace:4: clip-space primitives (tri4, v4) are modelled by render only", 0), 0u)
+  EXPECT_EQ(r["what"].get<std::string>().rfind("c.trace:4: clip-space vertex 1 has a value that is not a finite", 0), 0u)
       << r["what"];
 }
 

@@ -69,7 +69,7 @@ std::vector<std::string> files_in(const std::string& dir, const std::string& ext
 
 TEST(ScEstimate, ShippedTracesAndConfigs) {
   const std::vector<std::string> configs = files_in("configs", ".toml");
-  const std::vector<std::string> traces = shipped_traces();  // traces/*.trace and traces/2d/
+  const std::vector<std::string> traces = shipped_traces();  // traces/*.trace, traces/2d/ and traces/3d/
   ASSERT_GE(configs.size(), 4u);
   ASSERT_GE(traces.size(), 5u);
   for (const std::string& config_path : configs) {
