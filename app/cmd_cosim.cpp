@@ -152,7 +152,7 @@ void run_cosim_command(CosimCommand& c) {
   j["config"] = arch.config.source_name();
   j["scene"] = c.scene_path;
   j["provenance"] = provenance(c.config, arch.config, c.scene_path);
-  add_obj_ignored(j, c.scene_path);
+  add_obj_ignored(j, c.scene_path, arch.placement.camera);
   print_rtl_run(r, c.run, out);
   if (!c.no_model) compare_with_model(scene, arch, c, r, j, out);
   if (!c.stats_path.empty()) write_json(c.stats_path, j);

@@ -39,7 +39,7 @@ void run_coverage_error_command(const CoverageErrorOptions& o) {
   j["config"] = arch.config.source_name();
   j["scene"] = o.scene_path;
   j["provenance"] = provenance(o.config, arch.config, o.scene_path);
-  add_obj_ignored(j, o.scene_path);
+  add_obj_ignored(j, o.scene_path, arch.placement.camera);
   j["pixels_clipped"] = r.pixels_clipped;
   j["wall_seconds"] = r.wall_seconds;
   for (const CoverageErrorStats& s : r.per_samples)

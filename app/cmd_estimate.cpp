@@ -19,7 +19,7 @@ void run_estimate_command(const EstimateOptions& o) {
   j["config"] = arch.config.source_name();
   j["scene"] = o.scene_path;
   j["provenance"] = provenance(o.config, arch.config, o.scene_path);
-  add_obj_ignored(j, o.scene_path);
+  add_obj_ignored(j, o.scene_path, arch.placement.camera);
   if (!o.stats_path.empty()) write_json(o.stats_path, j);
   size_t busiest = 0;
   for (size_t s = 0; s < r.stages.size(); ++s)

@@ -80,7 +80,7 @@ void run_fit_command(const FitOptions& o) {
   j["config"] = params.config.source_name();
   j["scene"] = o.scene_path;
   j["provenance"] = provenance(o.config, params.config, o.scene_path);
-  add_obj_ignored(j, o.scene_path);
+  add_obj_ignored(j, o.scene_path, params.placement.camera);
   j["coord_format"] = fit.format.name();
   j["reference_format"] = fit.widest.name();
   j["int_bits_viewport"] = fit.int_bits_viewport;

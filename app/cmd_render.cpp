@@ -55,7 +55,7 @@ void run_render_command(const RenderOptions& o) {
   j["config"] = params.config.source_name();
   j["scene"] = o.scene_path;
   j["provenance"] = provenance(o.config, params.config, o.scene_path);
-  add_obj_ignored(j, o.scene_path);
+  add_obj_ignored(j, o.scene_path, params.placement.camera);
   if (!o.stats_path.empty()) write_json(o.stats_path, j);
   if (frag_file) frag_file->commit();
   std::ostream& out = summary_stream(o.stats_path, o.quiet);

@@ -133,9 +133,10 @@ DecodeCheck compare_decoded(const MonitorResult& r, const Framebuffer& fb, const
   return d;
 }
 
-nlohmann::json scanout_stats(const ScanoutOptions& o, const Config& cfg, const VideoTiming& t, const Dac& dac,
+nlohmann::json scanout_stats(const ScanoutOptions& o, const ArchParams& arch, const VideoTiming& t, const Dac& dac,
                              const MonitorResult& r, const DecodeCheck& d, uint32_t crc,
                              const nlohmann::json& deadline) {
+  const Config& cfg = arch.config;
   nlohmann::json j = measured_json(r);
   j.update({
       {"config", cfg.source_name()}, {"scene", o.scene_path},
@@ -147,7 +148,7 @@ nlohmann::json scanout_stats(const ScanoutOptions& o, const Config& cfg, const V
       {"framebuffer_crc32", crc32_hex(crc)}});
   if (!deadline.is_null()) j["deadline"] = deadline;
   j["provenance"] = provenance(o.config, cfg, o.scene_path);
-  add_obj_ignored(j, o.scene_path);
+  add_obj_ignored(j, o.scene_path, arch.placement.camera);
   return j;
 }
 
@@ -224,7 +225,7 @@ void run_scanout_command(const ScanoutOptions& o) {
   write_image(r.image, o.out_path);
 
   const DecodeCheck d = compare_decoded(r, fb, t);
-  if (!o.stats_path.empty()) write_json(o.stats_path, scanout_stats(o, arch.config, t, dac, r, d, rstats.framebuffer_crc32, deadline));
+  if (!o.stats_path.empty()) write_json(o.stats_path, scanout_stats(o, arch, t, dac, r, d, rstats.framebuffer_crc32, deadline));
   std::ostream& out = summary_stream(o.stats_path, o.quiet);
   print_summary(out, t, r, d, deadline);
   out.flush();  // the summary first, then the monitor's messages

@@ -117,7 +117,7 @@ void run_level_mode(const SimulateOptions& o, const ArchParams& arch) {
   j["config"] = arch.config.source_name();
   j["scene"] = o.scene_path;
   j["provenance"] = provenance(o.config, arch.config, o.scene_path);
-  add_obj_ignored(j, o.scene_path);
+  add_obj_ignored(j, o.scene_path, arch.placement.camera);
   if (!o.stats_path.empty()) write_json(o.stats_path, j);
   print_level(j, summary_stream(o.stats_path, o.quiet));
 }
@@ -167,7 +167,7 @@ void run_simulate_command(const SimulateOptions& o) {
   j["config"] = arch.config.source_name();
   j["scene"] = o.scene_path;
   j["provenance"] = provenance(o.config, arch.config, o.scene_path);
-  add_obj_ignored(j, o.scene_path);
+  add_obj_ignored(j, o.scene_path, arch.placement.camera);
   if (!o.timeline_path.empty())
     j["timeline"] = {{"events", r.timeline.events},
                      {"bytes", r.timeline.bytes},

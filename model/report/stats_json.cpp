@@ -104,8 +104,8 @@ nlohmann::json to_json(const RenderStats& s) {
   return j;
 }
 
-void add_obj_ignored(nlohmann::json& j, const std::string& scene_path) {
-  if (const auto counts = obj_ignored_counts(scene_path)) j["obj_ignored"] = nlohmann::json(*counts);
+void add_obj_ignored(nlohmann::json& j, const std::string& scene_path, ObjCamera camera) {
+  if (const auto counts = obj_ignored_counts(scene_path, camera)) j["obj_ignored"] = nlohmann::json(*counts);
 }
 
 }  // namespace rastsim

@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "config/obj_placement.h"
 #include "ref/pipeline.h"
 
 namespace rastsim {
@@ -24,7 +25,8 @@ std::string triangles_summary(const RenderStats& s);
 nlohmann::json to_json(const RenderStats& s);
 
 // For an OBJ scene, sets j["obj_ignored"] to what its reader read but did not use
-// (statement -> count, {} when nothing; scene_io.h obj_ignored_counts); a trace adds no key.
-void add_obj_ignored(nlohmann::json& j, const std::string& scene_path);
+// (statement -> count, {} when nothing; scene_io.h obj_ignored_counts) under the placement's
+// camera (a perspective camera draws `l` and `p`); a trace adds no key.
+void add_obj_ignored(nlohmann::json& j, const std::string& scene_path, ObjCamera camera);
 
 }  // namespace rastsim

@@ -262,5 +262,13 @@ for o in --samples --stats --scene --config --set --quiet; do
   "$BIN" coverage-error --help | grep -q -- "$o" && pass || fail "coverage-error --help lacks $o"
 done
 
+# obj_ignored follows the camera: a perspective camera draws OBJ `l` and `p`, ortho skips
+# them (scene.obj_lines_points = skip) and lists them.
+OBJ_LP="$SRC/fuzz/corpus/obj/perspective.obj"
+got=$("$BIN" render --scene "$OBJ_LP" --set scene.camera=perspective --stats - -q 2>/dev/null | python3 -c 'import json,sys; print(json.dumps(json.load(sys.stdin)["obj_ignored"], sort_keys=True))')
+[ "$got" = '{"vn": 1}' ] && pass || fail "perspective obj_ignored: $got"
+got=$("$BIN" render --scene "$OBJ_LP" --set scene.obj_lines_points=skip --stats - -q 2>/dev/null | python3 -c 'import json,sys; print(json.dumps(json.load(sys.stdin)["obj_ignored"], sort_keys=True))')
+[ "$got" = '{"l": 2, "p": 1, "vn": 1}' ] && pass || fail "ortho obj_ignored: $got"
+
 echo "cli: $passes passed, $fails failed"
 [ $fails -eq 0 ]
