@@ -61,22 +61,31 @@ float plane_distance(const ClipVertex& v, ClipPlane p, float guard_band) {
 
 ClipVertex clip_intersection(const ClipVertex& inside, const ClipVertex& outside, ClipPlane p, float guard_band) {
   const float d_in = plane_distance(inside, p, guard_band), d_out = plane_distance(outside, p, guard_band);
-  const float t = d_in / (d_in - d_out);  // in [0, 1]: d_in >= 0 > d_out
-  const auto lerp = [t](float a, float b) { return a + t * (b - a); };
+  // From the end nearer the plane (the inside one on a tie): t <= 1/2, and a + t (b - a)
+  // keeps that end's digits, where from the far end the sum would cancel them (a vertex
+  // with w near 0: the new w lost a tenth of its value from the inside end). Which end
+  // depends only on the edge's two vertices, so both triangles of a shared edge make
+  // the same vertex bit for bit.
+  const bool from_in = d_in <= -d_out;  // d_in >= 0 > d_out
+  const ClipVertex& a = from_in ? inside : outside;
+  const ClipVertex& b = from_in ? outside : inside;
+  const float d_a = from_in ? d_in : d_out, d_b = from_in ? d_out : d_in;
+  const float t = d_a / (d_a - d_b);  // in [0, 1/2]
+  const auto lerp = [t](float u, float v) { return u + t * (v - u); };
   // A colour channel in binary32, then rounded to the nearest RGB8 value (ties to even).
   const auto lerp8 = [&](uint8_t a, uint8_t b) {
     return uint8_t(std::clamp(std::nearbyint(lerp(float(a), float(b))), 0.0f, 255.0f));
   };
   ClipVertex o;
-  o.x = lerp(inside.x, outside.x);
-  o.y = lerp(inside.y, outside.y);
-  o.z = lerp(inside.z, outside.z);
-  o.w = lerp(inside.w, outside.w);
-  o.r = lerp8(inside.r, outside.r);
-  o.g = lerp8(inside.g, outside.g);
-  o.b = lerp8(inside.b, outside.b);
-  o.s = lerp(inside.s, outside.s);
-  o.t = lerp(inside.t, outside.t);
+  o.x = lerp(a.x, b.x);
+  o.y = lerp(a.y, b.y);
+  o.z = lerp(a.z, b.z);
+  o.w = lerp(a.w, b.w);
+  o.r = lerp8(a.r, b.r);
+  o.g = lerp8(a.g, b.g);
+  o.b = lerp8(a.b, b.b);
+  o.s = lerp(a.s, b.s);
+  o.t = lerp(a.t, b.t);
   // Exactly on the plane (its distance is 0), whatever the rounding above did.
   const float gw = guard_band * o.w;
   switch (p) {
@@ -232,6 +241,14 @@ struct FrontEnd {
   }
 };
 
+// clip.guard_band where the viewport_xform rectangle covers the viewport, whose box
+// setup bounds pixels by; else 1: x and y clipped at the rectangle's own edges.
+float guard_band_of(const ViewportXform& x, const RasterState& st) {
+  const bool covers = x.whole_viewport || (x.x <= 0 && x.y <= 0 && int64_t(x.x) + x.width >= st.viewport_width &&
+                                           int64_t(x.y) + x.height >= st.viewport_height);
+  return covers ? st.guard_band : 1.0f;
+}
+
 void check_finite(const CmdPrimitives& p, const SourceLoc& loc) {
   for (size_t i = 0; i < p.clip_vertices.size(); ++i) {
     const ClipVertex& v = p.clip_vertices[i];
@@ -250,7 +267,7 @@ void front_end(const CmdPrimitives& p, const RasterState& st, const SourceLoc& l
     throw SceneError(loc.str() + ": clip.method = homogeneous is not modelled yet; use clip.method = \"clip\" "
                                  "(docs/clip-space.md)");
   check_finite(p, loc);
-  FrontEnd fe{viewport_map(p.clip, st), st.guard_band, st.front_ccw, p.clip, stats, emit};
+  FrontEnd fe{viewport_map(p.clip, st), guard_band_of(p.clip.xform, st), st.front_ccw, p.clip, stats, emit};
   const auto& v = p.clip_vertices;
   const size_t n = v.size();
   switch (p.topology) {

@@ -63,8 +63,9 @@ enum class ClipPlane { Near, Far, Left, Right, Top, Bottom };
 inline constexpr std::array<ClipPlane, 6> kClipPlanes{ClipPlane::Near, ClipPlane::Far,  ClipPlane::Left,
                                                       ClipPlane::Right, ClipPlane::Top, ClipPlane::Bottom};
 float plane_distance(const ClipVertex& v, ClipPlane p, float guard_band);
-// The point where segment (inside, outside) crosses plane p, interpolated from `inside`
-// so that both triangles of a shared edge make the same vertex bit for bit.
+// The point where segment (inside, outside) crosses plane p, interpolated from the end
+// nearer the plane (no cancellation), a choice of the edge alone, so that both triangles
+// of a shared edge make the same vertex bit for bit.
 ClipVertex clip_intersection(const ClipVertex& inside, const ClipVertex& outside, ClipPlane p, float guard_band);
 
 // Sutherland-Hodgman: a triangle's clipped polygon (empty when nothing is left), counting

@@ -56,6 +56,7 @@ struct TriCompare {
   ClipStats& s;
   std::vector<ClipMismatch>& report;
   size_t max_report;
+  bool cut;  // a vertex outside near, far or +-w: clipping may make RGB8-rounded vertices
 
   // `candidate`: within the polygon's bounding box widened by a pixel; elsewhere the
   // centre is outside and far from every edge.
@@ -107,7 +108,9 @@ struct TriCompare {
     s.colour_max = std::max(s.colour_max, rl);
     if (rl > 1) {
       ++s.colour_over_1;
-      note("colour differs by more than 1", x, y, lp, rs, true, ex);
+      s.colour_over_1_cut += cut;
+      if (cut) s.colour_cut_max = std::max(s.colour_cut_max, rl);
+      if (!cut) note("colour differs by more than 1", x, y, lp, rs, true, ex);
     }
   }
 
@@ -156,8 +159,10 @@ ClipStats& ClipStats::operator+=(const ClipStats& o) {
   near_edge += o.near_edge, near_mismatches += o.near_mismatches, far_mismatches += o.far_mismatches;
   for (int k = 0; k < kEdgeKinds; ++k) near_mismatches_by_edge[size_t(k)] += o.near_mismatches_by_edge[size_t(k)];
   llvmpipe_far_errors += o.llvmpipe_far_errors, reference_far_errors += o.reference_far_errors;
-  colour_pixels += o.colour_pixels, colour_over_1 += o.colour_over_1, colour_sensitive += o.colour_sensitive;
+  colour_pixels += o.colour_pixels, colour_over_1 += o.colour_over_1, colour_over_1_cut += o.colour_over_1_cut,
+  colour_sensitive += o.colour_sensitive;
   colour_max = std::max(colour_max, o.colour_max);
+  colour_cut_max = std::max(colour_cut_max, o.colour_cut_max);
   sensitive_max = std::max(sensitive_max, o.sensitive_max);
   reference_snapped_max = std::max(reference_snapped_max, o.reference_snapped_max);
   reference_snapped_over_1 += o.reference_snapped_over_1;
@@ -186,7 +191,10 @@ ClipStats compare_clip(const std::vector<ClipTri>& tris, const ViewRect& vp, con
     s.visible += !poly.empty();
     s.repeats += ref.repeats;
     const PixelRect box = candidate_pixels(poly, w, h);
-    TriCompare tc{tris[i], i, vp, poly, lsb, with_reference, s, report, max_report};
+    const bool cut = std::any_of(tris[i].v.begin(), tris[i].v.end(), [](const ClipVertex& c) {
+      return c.z < 0 || c.z > c.w || c.x < -c.w || c.x > c.w || c.y < -c.w || c.y > c.w;
+    });
+    TriCompare tc{tris[i], i, vp, poly, lsb, with_reference, s, report, max_report, cut};
     for (int y = 0; y < h; ++y)
       for (int x = 0; x < w; ++x) {
         const size_t p = size_t(y) * size_t(w) + size_t(x);
