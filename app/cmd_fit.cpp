@@ -70,6 +70,30 @@ nlohmann::json precision_table(const Scene& scene, const RasterState& arch, cons
   return pj;
 }
 
+// The perspective datapath's widths (fit_recip): printed on `out`, returned as JSON.
+nlohmann::json recip_fit(const Scene& scene, const RasterState& arch, std::ostream& out) {
+  const RecipFit f = fit_recip(scene, arch);
+  nlohmann::json j = {{"triangles", f.triangles}, {"perspective_triangles", f.perspective_triangles},
+                      {"max_abs_texcoord", f.max_abs_texcoord}, {"texcoord_int_bits", f.texcoord_int_bits}};
+  out << "  texture coordinates: largest |s|, |t| " << f.max_abs_texcoord << " repeats: interp.texcoord_format needs "
+      << f.texcoord_int_bits << " integer bits (s" << f.texcoord_int_bits << ".F)\n";
+  if (f.perspective_triangles == 0) {
+    out << "  reciprocal: no triangle of " << f.triangles << " has unequal 1/w: interp.recip is never used\n";
+    return j;
+  }
+  nlohmann::json seeds = nlohmann::json::object();
+  out << "  reciprocal: " << f.perspective_triangles << " of " << f.triangles
+      << " triangles take one; interp.recip = newton renders as exact with";
+  for (int it = 0; it <= kRecipFitIterations; ++it) {
+    const int b = f.seed_bits[size_t(it)];
+    seeds[std::to_string(it)] = b;
+    out << (it ? ", " : " ") << it << " steps: " << (b ? std::to_string(b) + " seed bits" : "no seed width <= 16");
+  }
+  out << "\n";
+  j["fewest_seed_bits_by_iterations"] = seeds;
+  return j;
+}
+
 void run_fit_command(const FitOptions& o) {
   check_one_stdout({{"--stats", o.stats_path}, {"--format-only", o.format_only ? "-" : ""}});
   const ArchParams params = resolve_arch(o.config, o.scene_path);
@@ -97,6 +121,7 @@ void run_fit_command(const FitOptions& o) {
   std::ostream& out = summary_stream(o.stats_path, o.quiet || o.format_only);
   if (o.format_only) std::cout << fit.format.name() << "\n";
   print_fit(out, o, params.config, fit);
+  if (!o.format_only) j["perspective"] = recip_fit(scene, arch, out);
   if (o.precision) j["precision"] = precision_table(scene, arch, fit, out);
   if (!o.stats_path.empty()) write_json(o.stats_path, j);
 }

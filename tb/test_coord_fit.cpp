@@ -131,5 +131,39 @@ TEST(FitGenerated, ClosedMeshDetection) {
   EXPECT_TRUE(is_closed_mesh(load_scene(std::string(RASTSIM_SOURCE_DIR) + "/traces/torus.trace", ObjPlacement{})));
 }
 
+// fit_recip on the clip-space cube: every triangle the near plane cuts has unequal 1/w;
+// for each Newton-Raphson step count the fitted seed width renders as exact and one bit
+// fewer does not (checked by rendering here); texture coordinates run 0..1 (the trace's
+// texcoord values), so one integer bit (2^1 > 1). A screen-space scene takes no reciprocal.
+TEST(FitRecip, FewestSeedBitsRenderAsExactOneFewerDoNot) {
+  const RasterState arch = default_state();
+  const Scene cube = load_scene(std::string(RASTSIM_SOURCE_DIR) + "/traces/3d/clip_cube.trace", ObjPlacement{});
+  const RecipFit fit = fit_recip(cube, arch);
+  EXPECT_GT(fit.perspective_triangles, 0u);
+  EXPECT_EQ(fit.perspective_triangles, fit.triangles);
+  EXPECT_EQ(fit.max_abs_texcoord, 1.0);
+  EXPECT_EQ(fit.texcoord_int_bits, 1);
+  RasterState st = arch;
+  st.recip = RecipMethod::Newton;
+  int found = 0;
+  for (int it = 0; it <= kRecipFitIterations; ++it) {
+    const int b = fit.seed_bits[size_t(it)];
+    SCOPED_TRACE("iterations " + std::to_string(it) + ", seed bits " + std::to_string(b));
+    st.recip_iterations = it;
+    if (b == 0) continue;  // none up to 16 bits
+    ++found;
+    st.recip_seed_bits = b;
+    EXPECT_TRUE(render_signature(cube, st).same_as(fit.exact));
+    if (b > 1) {
+      st.recip_seed_bits = b - 1;
+      EXPECT_FALSE(render_signature(cube, st).same_as(fit.exact));
+    }
+  }
+  EXPECT_GE(found, 3);  // more steps need fewer seed bits: at least 2..4 steps find a width
+  const RecipFit torus = fit_recip(load_scene(std::string(RASTSIM_SOURCE_DIR) + "/traces/torus.trace", ObjPlacement{}), arch);
+  EXPECT_EQ(torus.perspective_triangles, 0u);
+  EXPECT_EQ(torus.seed_bits, (std::array<int, kRecipFitIterations + 1>{}));
+}
+
 }  // namespace
 }  // namespace rastsim

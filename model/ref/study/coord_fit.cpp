@@ -4,6 +4,7 @@
 #include <zlib.h>
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <variant>
 
@@ -259,6 +260,32 @@ std::vector<PrecisionRow> measure_precision(const Scene& scene, const RasterStat
     rows.push_back(std::move(r));
   }
   return rows;
+}
+
+RecipFit fit_recip(const Scene& scene, const RasterState& arch) {
+  RecipFit fit;
+  for_each_scene_triangle(scene, arch, [&](const RasterState& st, const ScreenTriangle& v, const SourceLoc& loc) {
+    SetupTriangle tri;
+    if (setup_triangle(v, st, loc, tri) != SetupOutcome::Accepted) return;
+    ++fit.triangles;
+    if (!tri.affine) ++fit.perspective_triangles;
+    for (const SceneVertex& c : v) fit.max_abs_texcoord = std::max({fit.max_abs_texcoord, std::fabs(double(c.s)), std::fabs(double(c.t))});
+  });
+  while (std::ldexp(1.0, fit.texcoord_int_bits) <= fit.max_abs_texcoord) ++fit.texcoord_int_bits;
+  RasterState st = arch;
+  st.recip = RecipMethod::Exact;
+  fit.exact = render_signature(scene, st);
+  if (!fit.exact.ok) throw SceneError("the reference render (interp.recip = exact) fails: " + fit.exact.error);
+  if (fit.perspective_triangles == 0) return fit;
+  st.recip = RecipMethod::Newton;
+  for (int it = 0; it <= kRecipFitIterations; ++it) {
+    st.recip_iterations = it;
+    for (int b = 1; b <= 16 && !fit.seed_bits[size_t(it)]; ++b) {
+      st.recip_seed_bits = b;
+      if (render_signature(scene, st).same_as(fit.exact)) fit.seed_bits[size_t(it)] = b;
+    }
+  }
+  return fit;
 }
 
 }  // namespace rastsim

@@ -21,6 +21,7 @@
 //   at max_frac, cracks of a closed mesh, and the edge width of s I.F.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -108,5 +109,23 @@ struct PrecisionRow {
 
 std::vector<PrecisionRow> measure_precision(const Scene& scene, const RasterState& arch, int int_bits,
                                             int max_frac = 16);
+
+// The perspective datapath's widths a scene needs (`rastsim fit`, docs/clip-space.md):
+// - texture coordinates: the largest |s|, |t| of a set-up triangle's vertex (the
+//   perspective-correct value at any covered sample lies between its vertices') and the
+//   fewest integer bits I of interp.texcoord_format s I.F holding it (2^I > it);
+// - the reciprocal: for 0..kRecipFitIterations Newton-Raphson steps, the fewest
+//   interp.recip_seed_bits (1..16, scanned upward) whose render signature equals that of
+//   interp.recip = exact; 0 when none does. Only triangles whose three 1/w differ take a
+//   reciprocal (SetupTriangle::affine): with none, nothing is scanned.
+inline constexpr int kRecipFitIterations = 4;  // interp.recip_iterations' largest value
+struct RecipFit {
+  uint64_t triangles = 0, perspective_triangles = 0;  // set up (accepted); of them not affine
+  double max_abs_texcoord = 0.0;
+  int texcoord_int_bits = 0;
+  RenderSignature exact;                                 // interp.recip = exact
+  std::array<int, kRecipFitIterations + 1> seed_bits{};  // by iterations
+};
+RecipFit fit_recip(const Scene& scene, const RasterState& arch);
 
 }  // namespace rastsim
