@@ -443,7 +443,7 @@ void expect_covered_once(const CmdPrimitives& mesh, int samples, float guard_ban
 
 TEST(FrontEnd, WatertightCubeAroundTheCamera) {
   const Perspective P(100, 0.05, 10);
-  for (int samples : {1, 4})
+  for (int samples : {1, 2, 4, 8, 16})  // every sample count (sample_pattern.h)
     for (float g : {1.0f, 2.0f}) {
       SCOPED_TRACE("samples " + std::to_string(samples) + " guard band " + std::to_string(g));
       expect_covered_once(cube_mesh(P, 5), samples, g);
@@ -452,7 +452,7 @@ TEST(FrontEnd, WatertightCubeAroundTheCamera) {
 
 TEST(FrontEnd, WatertightSphereAroundTheCamera) {
   const Perspective P(90, 0.05, 10);
-  for (int samples : {1, 4}) {
+  for (int samples : {1, 2, 4, 8, 16}) {
     SCOPED_TRACE("samples " + std::to_string(samples));
     expect_covered_once(sphere_mesh(P, 24, 40), samples, 1.0f);
   }
