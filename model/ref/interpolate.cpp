@@ -136,6 +136,9 @@ Fragment interpolate_plane_at(const SetupTriangle& t, int px, int py, int64_t sx
     if (w[0] <= lim && w[0] >= -lim && w[1] <= lim && w[1] >= -lim && w[2] <= lim && w[2] >= -lim) {
       const int64_t den = static_cast<int64_t>(t.area2);  // < 2^(2N+2) <= 2^62 with edges64
       return make_fragment(t, px, py, [&](int64_t a0, int64_t a1, int64_t a2, int64_t lo, int64_t hi) {
+        // A flat attribute is its vertex value (num = a area2 exactly: the weights sum to
+        // area2 at every point), without a division: untextured scenes' s, t.
+        if (a0 == a1 && a1 == a2) return a0;
         const int64_t num = w[0] * a0 + w[1] * a1 + w[2] * a2;
         return clamp_attr(div_round_in<int64_t>(num, den, Rounding::HalfUp), lo, hi);
       });
@@ -160,6 +163,7 @@ PlaneStepper::PlaneStepper(const SetupTriangle& t, int frac_bits) : t_(&t), frac
       q_[i] = a0;  // flat (see the header): dq_, dr_, r_ stay 0
     } else {
       var_[nvar_++] = i;
+      tex_varies_ = tex_varies_ || i >= kTexAttr;
       // x-step of num (weight k is edge (k+1)%3), exact; then its floor quotient and remainder.
       const i128 d = (i128(t.edge[1].a) * a0 + i128(t.edge[2].a) * a1 + i128(t.edge[0].a) * a2) << frac_bits;
       fits = fits && fits_signed(d, 63);

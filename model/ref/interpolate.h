@@ -85,8 +85,17 @@ class PlaneStepper {
   [[gnu::always_inline]] Fragment at(int px, int py);
 
  private:
-  static constexpr int kAttrs = 6;  // in make_fragment's order: z, r, g, b, s, t
-  void restart(int px, int py);     // q_, r_ at (px, py) by division
+  static constexpr int kAttrs = 6;    // in make_fragment's order: z, r, g, b, s, t
+  static constexpr int kTexAttr = 4;  // index of s
+  void restart(int px, int py);       // q_, r_ at (px, py) by division
+  [[gnu::always_inline]] void step(int i) {
+    q_[i] += dq_[i];
+    r_[i] += dr_[i];  // both remainders in [0, den): the sum is below 2 den
+    if (r_[i] >= den_) {
+      r_[i] -= den_;
+      ++q_[i];
+    }
+  }
   const SetupTriangle* t_;          // a pointer, so that a stepper can be copied (PixelShader)
   int frac_bits_;
   bool active_ = false, have_last_ = false;
@@ -100,6 +109,7 @@ class PlaneStepper {
   // (var_[0..nvar_)): a flat-shaded triangle interpolates without a division.
   int nvar_ = 0;
   int var_[kAttrs]{};
+  bool tex_varies_ = false;  // s or t is not flat
 };
 
 // The fragments of one pixel whose sample coverage mask is m (docs/antialiasing.md):
@@ -191,14 +201,11 @@ inline Fragment PlaneStepper::at(int px, int py) {
   if (nvar_ == 0) {
     // Every attribute flat: q_ and r_ hold at every point.
   } else if (have_last_ && py == last_y_ && px == last_x_ + 1) {
-    for (int i = 0; i < kAttrs; ++i) {  // a flat attribute's steps are 0: a no-op
-      q_[i] += dq_[i];
-      r_[i] += dr_[i];  // both remainders in [0, den): the sum is below 2 den
-      if (r_[i] >= den_) {
-        r_[i] -= den_;
-        ++q_[i];
-      }
-    }
+    // A flat attribute's steps are 0: a no-op. Texture coordinates, flat in every
+    // untextured scene, are stepped only when one of them varies.
+    for (int i = 0; i < kTexAttr; ++i) step(i);
+    if (tex_varies_)
+      for (int i = kTexAttr; i < kAttrs; ++i) step(i);
   } else {
     restart(px, py);
   }
@@ -208,8 +215,9 @@ inline Fragment PlaneStepper::at(int px, int py) {
   // Round half up from the floor quotient and remainder, as div_round_in does.
   int i = 0;
   return interp_detail::make_fragment(*t_, px, py, [&](int64_t, int64_t, int64_t, int64_t lo, int64_t hi) __attribute__((always_inline)) {
-    const int64_t v = r_[i] >= den_ - r_[i] ? q_[i] + 1 : q_[i];
-    ++i;
+    const int j = i++;
+    if (j >= kTexAttr && !tex_varies_) return q_[j];  // flat s, t: the vertex value (r_ = 0)
+    const int64_t v = r_[j] >= den_ - r_[j] ? q_[j] + 1 : q_[j];
     return interp_detail::clamp_attr(v, lo, hi);
   });
 }

@@ -72,42 +72,63 @@ void take_raster_state(const RasterState& st, SetupTriangle& t) {
 
 // A texture coordinate (repeats) in raw interp.texcoord_format units: v 2^F rounded to
 // nearest even (exact in double: v is binary32); nullopt outside the format or not finite.
-std::optional<int32_t> quantize_texcoord(float v, const FixedFormat& fmt) {
-  if (!std::isfinite(v)) return std::nullopt;
-  const double raw = std::nearbyint(std::ldexp(double(v), fmt.frac_bits));  // default mode: ties to even
+inline std::optional<int32_t> quantize_texcoord(float v, const FixedFormat& fmt) {
+  if (v == 0.0f) return 0;  // every untextured vertex: the common case, without the conversions
+  const double scaled = double(v) * double(fmt.one());  // exact: a 24-bit significand times 2^F
+  if (!(std::abs(scaled) < 0x1p40)) return std::nullopt;  // not finite, or far outside any format
+  // Ties to even by the binary64 addition of 1.5 2^52 (exact below 2^51 in magnitude;
+  // the default rounding mode), cheaper than a library nearbyint.
+  const double raw = (scaled + 0x1.8p52) - 0x1.8p52;
   if (raw < double(fmt.raw_min()) || raw > double(fmt.raw_max())) return std::nullopt;
   return static_cast<int32_t>(raw);
+}
+
+std::string vertex_where(const SourceLoc& loc, int i) { return loc.str() + ": vertex " + std::to_string(i); }
+
+// Texture coordinates and 1/w checked and quantised (the general path of take_attributes).
+void take_texture_and_w(const std::array<SceneVertex, 3>& v, const RasterState& st, const SourceLoc& loc,
+                        SetupTriangle& t, int64_t& attr_max) {
+  const FixedFormat& f = st.texcoord_format;
+  for (int i = 0; i < 3; ++i) {
+    const auto s = quantize_texcoord(v[i].s, f), tt = quantize_texcoord(v[i].t, f);
+    if (!s || !tt)
+      throw SceneError(vertex_where(loc, i) + " texture coordinate (" + std::to_string(v[i].s) + ", " +
+                       std::to_string(v[i].t) + ") is outside interp.texcoord_format " + f.name() + ": [" +
+                       std::to_string(f.to_double(f.raw_min())) + ", " + std::to_string(f.to_double(f.raw_max())) +
+                       "] repeats");
+    t.tex_s[i] = *s;
+    t.tex_t[i] = *tt;
+    attr_max = std::max({attr_max, int64_t(std::abs(int64_t(*s))), int64_t(std::abs(int64_t(*tt)))});
+    if (!(std::isfinite(v[i].inv_w) && v[i].inv_w > 0.0f))
+      throw SceneError(vertex_where(loc, i) + " 1/w " + std::to_string(v[i].inv_w) + " is not finite and > 0");
+  }
 }
 
 // Depth, colour, texture coordinates and perspective weights of the three vertices, and
 // the 64-bit interpolation limit that follows from the largest attribute magnitude.
 void take_attributes(const std::array<SceneVertex, 3>& v, const RasterState& st, const SourceLoc& loc,
                      SetupTriangle& t) {
-  int64_t attr_max = int64_t((uint64_t{1} << std::max(8, st.depth_bits)) - 1);
-  std::array<float, 3> inv_w{};
   for (int i = 0; i < 3; ++i) {
-    const auto where = [&] { return loc.str() + ": vertex " + std::to_string(i); };  // built only to throw
     const auto z = quantize_unorm(v[i].z, st.depth_bits);
-    if (!z) throw SceneError(where() + " depth " + std::to_string(v[i].z) + " is outside [0, 1]");
+    if (!z) throw SceneError(vertex_where(loc, i) + " depth " + std::to_string(v[i].z) + " is outside [0, 1]");
     t.z[i] = *z;
     t.rgb[i] = {v[i].r, v[i].g, v[i].b};
-    const auto s = quantize_texcoord(v[i].s, st.texcoord_format), tt = quantize_texcoord(v[i].t, st.texcoord_format);
-    if (!s || !tt) {
-      const FixedFormat& f = st.texcoord_format;
-      throw SceneError(where() + " texture coordinate (" + std::to_string(v[i].s) + ", " + std::to_string(v[i].t) +
-                       ") is outside interp.texcoord_format " + f.name() + ": [" + std::to_string(f.to_double(f.raw_min())) +
-                       ", " + std::to_string(f.to_double(f.raw_max())) + "] repeats");
-    }
-    t.tex_s[i] = *s;
-    t.tex_t[i] = *tt;
-    attr_max = std::max({attr_max, int64_t(std::abs(int64_t(*s))), int64_t(std::abs(int64_t(*tt)))});
-    if (!(std::isfinite(v[i].inv_w) && v[i].inv_w > 0.0f))
-      throw SceneError(where() + " 1/w " + std::to_string(v[i].inv_w) + " is not finite and > 0");
-    inv_w[size_t(i)] = v[i].inv_w;
+  }
+  int64_t attr_max = int64_t((uint64_t{1} << std::max(8, st.depth_bits)) - 1);
+  const float w0 = v[0].inv_w;
+  const bool same_w = w0 == v[1].inv_w && w0 == v[2].inv_w;
+  const bool untextured = v[0].s == 0.0f && v[1].s == 0.0f && v[2].s == 0.0f && v[0].t == 0.0f &&
+                          v[1].t == 0.0f && v[2].t == 0.0f;
+  if (untextured && same_w && std::isfinite(w0) && w0 > 0.0f) {  // every screen-space triangle
+    t.tex_s = t.tex_t = {0, 0, 0};
+  } else {
+    take_texture_and_w(v, st, loc, t, attr_max);
   }
   t.w64_limit = INT64_MAX / (3 * attr_max);
-  t.persp_q = perspective_weights(inv_w);
-  t.affine = !st.perspective || (t.persp_q[0] == t.persp_q[1] && t.persp_q[1] == t.persp_q[2]);
+  // Equal 1/w give equal Q_k: affine, no weights needed.
+  t.persp_q = same_w || !st.perspective ? std::array<uint32_t, 3>{1, 1, 1}
+                                        : perspective_weights({v[0].inv_w, v[1].inv_w, v[2].inv_w});
+  t.affine = t.persp_q[0] == t.persp_q[1] && t.persp_q[1] == t.persp_q[2];
   if (!t.affine && st.interp_method == InterpMethod::Dda)
     throw SceneError(loc.str() + ": interp.method = \"dda\" interpolates affinely only and this triangle's vertices "
                      "have different 1/w; set interp.method = \"plane\" or interp.perspective = false");

@@ -63,7 +63,8 @@ struct SetupTriangle {
   int64_t tex_min = 0, tex_max = 0;             // that format's raw range (clamps extrapolation)
   // Perspective-correct interpolation: the weights Q_k < 2^24 of the vertices' 1/w
   // (perspective_weights); affine when interp.perspective is false or the three are equal,
-  // and then colour and texture coordinates are the affine rational (no reciprocal).
+  // and then colour and texture coordinates are the affine rational (no reciprocal) and
+  // persp_q is {1, 1, 1} (a common scale cancels).
   std::array<uint32_t, 3> persp_q{1, 1, 1};
   bool affine = true;
   RecipMethod recip = RecipMethod::Exact;  // interp.recip and its parameters
