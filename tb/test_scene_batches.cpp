@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include <unistd.h>
+
 #include "config/config.h"
 #include "config/raster_state_config.h"
 #include "ref/pipeline.h"
@@ -21,7 +23,8 @@ namespace {
 // n flat triangles (~3.5 MB for 60000: several 1 MB read chunks), a strip, comments,
 // then `last` as the final line.
 std::string write_trace(const std::string& name, int n, const std::string& last) {
-  const std::string path = ::testing::TempDir() + name;
+  // The process id in the name: test binaries of two build trees may run at once.
+  const std::string path = ::testing::TempDir() + std::to_string(getpid()) + "_" + name;
   std::ofstream os(path);
   os << "viewport 200 150\nclear 1 2 3\n# a comment\n";
   for (int i = 0; i < n; ++i)
@@ -63,7 +66,7 @@ TEST(SceneBatches, SameCommandsAsTheWholeFileInBoundedBatches) {
 // Long strips are one command each: a batch is bounded by the lines it took too, so a
 // reader thread hands the first strips over long before the file ends.
 TEST(SceneBatches, LongStripsAreBatchedByLines) {
-  const std::string path = ::testing::TempDir() + "batches_strips.trace";
+  const std::string path = ::testing::TempDir() + std::to_string(getpid()) + "_batches_strips.trace";
   {
     std::ofstream os(path);
     os << "viewport 200 150\n";
