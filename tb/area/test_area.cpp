@@ -167,6 +167,21 @@ TEST(Area, Fp32AdderIsItsOwnRoot) {
   EXPECT_EQ(r.stages.count("rast_fp32_add"), 1u);
 }
 
+// The reciprocal unit (rtl/rast_recip.sv) at its defaults, 8 index bits and 2 steps, is a
+// root of its own. Its flip-flops, counted by hand from the RTL (constant bits removed):
+// 5 valid bits; the seed, 10 significant bits, and d, 40; step 1 (its y is the seed's 10
+// bits): y 10, c 42, the new y 42, d twice 40; step 2: y 42, c 42, the new y 42. 355.
+TEST(Area, ReciprocalUnitIsItsOwnRoot) {
+  if (!have_yosys()) GTEST_SKIP() << "yosys not installed";
+  AreaOptions ao;
+  ao.top = "rast_recip";
+  ao.use_cache = false;
+  const AreaReport r = synthesize_area(rtl_params(ArchParams::resolve(app::load_config(small_config(1)))), ao);
+  EXPECT_EQ(r.total.flip_flops, 5u + 10 + 40 + (10 + 42 + 42 + 2 * 40) + (42 + 42 + 42));
+  EXPECT_GT(r.total.cells, 10000u);  // four multipliers of 40 to 42 bits, two of them by a 10-bit seed
+  EXPECT_EQ(r.stages.count("rast_recip"), 1u);
+}
+
 // The split synthesis (one Yosys process a module of rast_top, submodules as blackboxes,
 // sums taken in C++) against one process holding the whole hierarchy, on the smallest
 // pipeline (16 px display, s4.2, 4 px tiles, one fine and one fragment lane, 2 samples):
