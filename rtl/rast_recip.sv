@@ -13,7 +13,7 @@
 //     p = (d * y) >> 40          40 x 42-bit product, 42 bits kept (x y < 2)
 //     c = 2^41 - p               2 - x y
 //     y = (y * c) >> 40          42 x 42-bit product, 42 bits kept
-// - Out: y ~ 2^80 / d in units of 2^-40, 1 / x in (1, 2]: 42 bits (2^41 at d = 2^39).
+// - Out: y ~ 2^80 / d in units of 2^-40, an approximation of 1 / x in (1, 2]: 42 bits unsigned.
 // - Pipeline: one register stage for the table look-up, then two a step (the first
 //   multiply with the subtraction, the second multiply): latency 1 + 2 * ITERATIONS
 //   cycles (5 at the default 8 bits, 2 steps), one result a cycle. The stages advance
