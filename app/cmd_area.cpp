@@ -78,7 +78,8 @@ void register_area(CLI::App& app) {
                   "Write cells, flip_flops, transistors, cells_by_type and stages.<module>.* as JSON ('-' for stdout)");
   cmd->add_option("--top", o.top,
                   "Synthesise one module only: rast_top (the raster pipeline), rast_engine2d, a binary32 unit of "
-                  "the front end (rast_fp32_mul, rast_fp32_add, rast_fp32_recip, rast_front_end_xform) or a stage "
+                  "the front end (rast_fp32_mul, rast_fp32_add, rast_fp32_recip, rast_front_end_xform), the "
+                  "reciprocal unit of perspective-correct interpolation (rast_recip) or a stage "
                   "module under rast_top such as rast_fine_raster (default: rast_top and rast_engine2d)");
   cmd->add_flag("--one-process", o.one_process,
                 "Synthesise rast_top's whole hierarchy in one Yosys process (default: one process a module, its "

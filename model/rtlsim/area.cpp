@@ -653,11 +653,12 @@ std::vector<std::pair<std::string, std::string>> instance_sites(const std::strin
 }
 
 // Hierarchies synthesised apart from rast_top, each its own root with no config
-// parameter: the 2D engine, and the front end's binary32 units (docs/rtl.md, "Binary32
-// units of the front end"), which rast_top does not instantiate.
+// parameter: the 2D engine, the front end's binary32 units (docs/rtl.md, "Binary32
+// units of the front end") and the reciprocal unit at its default parameters (docs/rtl.md,
+// "Reciprocal unit"), which rast_top does not instantiate.
 const std::vector<std::string>& standalone_roots() {
   static const std::vector<std::string> roots{"rast_engine2d", "rast_fp32_mul", "rast_fp32_add", "rast_fp32_recip",
-                                              "rast_front_end_xform"};
+                                              "rast_front_end_xform", "rast_recip"};
   return roots;
 }
 

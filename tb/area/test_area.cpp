@@ -153,18 +153,35 @@ TEST(Area, MoreFineLanesMoreCells) {
   EXPECT_GE(four.total.flip_flops, one.total.flip_flops);
 }
 
+// A standalone --top root (no config parameter) synthesised without the cache.
+AreaReport synthesize_root(const std::string& top) {
+  AreaOptions ao;
+  ao.top = top;
+  ao.use_cache = false;
+  return synthesize_area(rtl_params(ArchParams::resolve(app::load_config(small_config(1)))), ao);
+}
+
 // The front end's binary32 adder, a --top root of its own (no config parameter): its
 // parameterless submodules (rast_fp32_unpack) count, and it holds no flip-flop. A lower
 // bound, not its figure: a 28-bit adder, two shifters and a rounder take over 1,000 gates.
 TEST(Area, Fp32AdderIsItsOwnRoot) {
   if (!have_yosys()) GTEST_SKIP() << "yosys not installed";
-  AreaOptions ao;
-  ao.top = "rast_fp32_add";
-  ao.use_cache = false;
-  const AreaReport r = synthesize_area(rtl_params(ArchParams::resolve(app::load_config(small_config(1)))), ao);
+  const AreaReport r = synthesize_root("rast_fp32_add");
   EXPECT_GT(r.total.cells, 1000u);
   EXPECT_EQ(r.total.flip_flops, 0u);
   EXPECT_EQ(r.stages.count("rast_fp32_add"), 1u);
+}
+
+// The reciprocal unit (rtl/rast_recip.sv) at its defaults, 8 index bits and 2 steps, is a
+// root of its own. Its flip-flops, counted by hand from the RTL (constant bits removed):
+// 5 valid bits; the seed, 10 significant bits, and d, 40; step 1 (its y is the seed's 10
+// bits): y 10, c 42, the new y 42, d twice 40; step 2: y 42, c 42, the new y 42. 355.
+TEST(Area, ReciprocalUnitIsItsOwnRoot) {
+  if (!have_yosys()) GTEST_SKIP() << "yosys not installed";
+  const AreaReport r = synthesize_root("rast_recip");
+  EXPECT_EQ(r.total.flip_flops, 5u + 10 + 40 + (10 + 42 + 42 + 2 * 40) + (42 + 42 + 42));
+  EXPECT_GT(r.total.cells, 10000u);  // four multipliers of 40 to 42 bits, two of them by a 10-bit seed
+  EXPECT_EQ(r.stages.count("rast_recip"), 1u);
 }
 
 // The split synthesis (one Yosys process a module of rast_top, submodules as blackboxes,

@@ -30,6 +30,7 @@
 #include "Vrast_fp32_add.h"
 #include "Vrast_fp32_mul.h"
 #include "Vrast_fp32_recip.h"
+#include "common/rtl_unit_test.h"
 
 namespace {
 
@@ -50,14 +51,7 @@ bool same(uint32_t got, uint32_t want) { return got == want || (std::isnan(value
 // A fixed seed by default (ctest runs the same operands every time);
 // RASTSIM_FP32_SEED=<n> replays run n, RASTSIM_FP32_SEED=random draws a new one.
 uint64_t seed() {
-  static const uint64_t s = [] {
-    const std::string env = std::getenv("RASTSIM_FP32_SEED") ? std::getenv("RASTSIM_FP32_SEED") : "";
-    const uint64_t v = env.empty()      ? 26
-                       : env == "random" ? std::random_device{}()
-                                         : std::strtoull(env.c_str(), nullptr, 10);
-    std::printf("RASTSIM_FP32_SEED=%llu\n", static_cast<unsigned long long>(v));
-    return v;
-  }();
+  static const uint64_t s = rastsim::test::seed_from_env("RASTSIM_FP32_SEED", 26);
   return s;
 }
 
@@ -276,13 +270,8 @@ std::array<float, 4> pick_vertex(std::mt19937_64& rng) {
 TEST(RtlFp32, FrontEndXform) {
   Vrast_front_end_xform m;
   std::mt19937_64 rng(seed() ^ 4);
-  auto tick = [&] {
-    m.clk_i = 0, m.eval();
-    m.clk_i = 1, m.eval();
-  };
-  m.rst_ni = 0, m.in_valid_i = 0, m.out_ready_i = 0, m.clk_i = 0;
-  m.eval();
-  m.rst_ni = 1, m.eval();
+  auto tick = [&] { rastsim::test::clock_cycle(m); };
+  rastsim::test::reset_stream(m);
   struct InFlight {
     std::array<float, 4> v;
     long entered;
