@@ -495,7 +495,7 @@ TEST(FrontEnd, OtherLevelsRejectClipSpace) {
     reject_clip_space(p, SourceLoc{"a.trace", 7});
     FAIL() << "no error";
   } catch (const SceneError& e) {
-    EXPECT_EQ(std::string(e.what()).rfind("a.trace:7: clip-space primitives (tri4, v4) are modelled by render only", 0), 0u)
+    EXPECT_EQ(std::string(e.what()).rfind("a.trace:7: clip-space primitives (tri4, v4) are not modelled at this level yet", 0), 0u)
         << e.what();
   }
   EXPECT_NO_THROW(reject_clip_space(CmdPrimitives{}, SourceLoc{"a.trace", 7}));

@@ -40,8 +40,8 @@ std::array<SceneVertex, 3> assemble_triangle(const CmdPrimitives& p, size_t k) {
 
 void reject_clip_space(const CmdPrimitives& p, const SourceLoc& loc) {
   if (p.clip_space())
-    throw SceneError(loc.str() + ": clip-space primitives (tri4, v4) are modelled by render only so far "
-                                 "(docs/clip-space.md)");
+    throw SceneError(loc.str() + ": clip-space primitives (tri4, v4) are not modelled at this level yet: render, "
+                                 "simulate and estimate draw them (docs/clip-space.md, \"Levels\")");
 }
 
 }  // namespace rastsim
