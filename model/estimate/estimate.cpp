@@ -89,8 +89,10 @@ class Walker {
       r_.latency_waits += p_.setup_pipeline_latency();
       traverse(tri);
     });
-    if (k == 0 && progress) progress(index, 0, r_);
-    if (k == 0) stage(StageId::CommandFetch).busy += p_.fetch_header_cycles();  // a header, no transaction
+    if (k == 0) {  // no triangle: a header, no transaction
+      if (progress) progress(index, 0, r_);
+      stage(StageId::CommandFetch).busy += p_.fetch_header_cycles();
+    }
   }
 
   // A stage spends `cycles` on one transaction and writes it to the next FIFO.

@@ -39,8 +39,10 @@ void CommandFetch::fetch(const CommandPtr& p) {
           write(out_, CommandItem{nullptr, TriangleRef{p, k, std::move(screen)}});
           ++k;
         });
-        if (k == 0) mark(0);
-        if (k == 0) busy(p_.fetch_header_cycles());
+        if (k == 0) {  // no triangle: the command header alone
+          mark(0);
+          busy(p_.fetch_header_cycles());
+        }
       },
       [&](const CmdDraw2d& d2) {
         mark(0);

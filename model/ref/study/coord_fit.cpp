@@ -272,11 +272,11 @@ RecipFit fit_recip(const Scene& scene, const RasterState& arch) {
     for (const SceneVertex& c : v) fit.max_abs_texcoord = std::max({fit.max_abs_texcoord, std::fabs(double(c.s)), std::fabs(double(c.t))});
   });
   while (std::ldexp(1.0, fit.texcoord_int_bits) <= fit.max_abs_texcoord) ++fit.texcoord_int_bits;
+  if (fit.perspective_triangles == 0) return fit;  // no reciprocal taken: nothing to scan
   RasterState st = arch;
   st.recip = RecipMethod::Exact;
   fit.exact = render_signature(scene, st);
   if (!fit.exact.ok) throw SceneError("the reference render (interp.recip = exact) fails: " + fit.exact.error);
-  if (fit.perspective_triangles == 0) return fit;
   st.recip = RecipMethod::Newton;
   for (int it = 0; it <= kRecipFitIterations; ++it) {
     st.recip_iterations = it;

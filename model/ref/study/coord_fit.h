@@ -123,7 +123,7 @@ struct RecipFit {
   uint64_t triangles = 0, perspective_triangles = 0;  // set up (accepted); of them not affine
   double max_abs_texcoord = 0.0;
   int texcoord_int_bits = 0;
-  RenderSignature exact;                                 // interp.recip = exact
+  RenderSignature exact;                                 // interp.recip = exact (perspective scenes only)
   std::array<int, kRecipFitIterations + 1> seed_bits{};  // by iterations
 };
 RecipFit fit_recip(const Scene& scene, const RasterState& arch);
