@@ -86,6 +86,7 @@ std::string project_cmake(const RtlBuildInfo& b) {
          "add_executable(rast_runner runner/rtl_runner_main.cpp)\n"
          "rast_verilate_top(rast_runner Vrast_top ${CMAKE_CURRENT_SOURCE_DIR} \"${top}\" \"${waivers}\")\n"
          "rast_verilate_engine2d(rast_runner \"${engine}\")\n"
+         "rast_verilated_unity(rast_runner)\n"
          "target_include_directories(rast_runner PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})\n"
          "# The embedded testbench headers (project_path) before the build tree's include paths.\n"
          "target_include_directories(rast_runner BEFORE PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/include)\n"
