@@ -121,7 +121,10 @@ std::array<SceneVertex, 3> random_triangle(const RasterState& st, std::mt19937_6
     x.y = Q64::from_double(py(rng));
     x.z = double(rng() % 1000001) / 1e6;
     x.r = uint8_t(rng()), x.g = uint8_t(rng()), x.b = uint8_t(rng());
-    x.inv_w = std::ldexp(mant(rng), -spread(rng));
+    // Two draws in a stated order (a call's arguments are evaluated in an unspecified
+    // order: GCC and clang differ): the exponent, then the significand.
+    const int exponent = -spread(rng);
+    x.inv_w = std::ldexp(mant(rng), exponent);
     x.s = std::ldexp(float(tex(rng)), -kTexFrac);
     x.t = std::ldexp(float(tex(rng)), -kTexFrac);
   }

@@ -6,7 +6,7 @@
 namespace rastsim {
 
 CoverageCheck::CoverageCheck(int fb_width, int fb_height)
-    : w_(fb_width), h_(fb_height), n_exact_(size_t(fb_width) * fb_height), n_method_(size_t(fb_width) * fb_height) {}
+    : w_(fb_width), n_exact_(size_t(fb_width) * fb_height), n_method_(size_t(fb_width) * fb_height) {}
 
 void CoverageCheck::add_triangle(const SetupTriangle& t, int frac_bits,
                                  const std::vector<std::pair<int, int>>& method_pixels, CoverageErrors& e) {

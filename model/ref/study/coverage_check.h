@@ -38,7 +38,7 @@ class CoverageCheck {
   void finish(CoverageErrors& e) const;
 
  private:
-  int w_, h_;
+  int w_;  // framebuffer width in pixels (row stride of the counts)
   // Per pixel: triangles covering it, 16 bits each (saturating; a scene puts fewer than
   // 65535 triangles on one pixel).
   std::vector<uint16_t> n_exact_, n_method_;
