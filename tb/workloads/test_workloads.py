@@ -19,7 +19,9 @@ glmark2's meshes, then
   tail on the ground, head and forelegs up; the cat lies on a flat cut). From the side
   the cat is wider than tall and the rearing horse taller than wide. The same meshes
   turned upside down (obj_up = z) and left Y-up (the default) fail the check, so it can
-  tell.
+  tell;
+- the bunny and the horse through the perspective camera (scene.camera = perspective),
+  from outside and from inside the mesh (check_perspective).
 
 usage: test_workloads.py RASTSIM SOURCE_DIR. Exits 77 (ctest: skipped) without
 glmark2-data or assimp-utils.
@@ -100,6 +102,77 @@ def projected_bbox(obj_path, width, height, yaw_deg, pitch_deg, fill):
     return sx.min(), sy.min(), sx.max(), sy.max()
 
 
+UP_AXES = {"y": lambda x, y, z: (x, y, z), "-y": lambda x, y, z: (x, -y, -z), "z": lambda x, y, z: (x, z, -y),
+           "-z": lambda x, y, z: (x, -z, y), "x": lambda x, y, z: (-y, x, z), "-x": lambda x, y, z: (y, -x, z)}
+
+
+def view_space(obj_path, up, yaw_deg, pitch_deg):
+    """Steps 0 to 2 of docs/trace-format.md's placement done independently: every face's
+    corners turned to the up axis, centred on the bounding-box centre, scaled by the
+    bounding-sphere radius, yaw about y then pitch about x. Returns (x2, y2, z2) of every
+    vertex and the faces as lists of vertex indices."""
+    verts, faces = [], []
+    for line in open(obj_path):
+        t = line.split()
+        if t and t[0] == "v":
+            verts.append(UP_AXES[up](*[float(x) for x in t[1:4]]))
+        elif t and t[0] == "f":
+            faces.append([int(c.split("/")[0]) - 1 for c in t[1:]])
+    p = np.array(verts)
+    used = sorted({i for f in faces for i in f})
+    centre = (p[used].min(axis=0) + p[used].max(axis=0)) / 2
+    q = (p - centre) / np.linalg.norm(p[used] - centre, axis=1).max()
+    a, b = math.radians(yaw_deg), math.radians(pitch_deg)
+    x1 = q[:, 0] * math.cos(a) + q[:, 2] * math.sin(a)
+    z1 = -q[:, 0] * math.sin(a) + q[:, 2] * math.cos(a)
+    y2 = q[:, 1] * math.cos(b) - z1 * math.sin(b)
+    z2 = q[:, 1] * math.sin(b) + z1 * math.cos(b)
+    return x1, y2, z2, faces
+
+
+def check_perspective(binary, cfg, name, mesh, sets, width, height, tmp):
+    """The perspective camera (docs/trace-format.md) on a real mesh, from outside (the
+    default scene.distance, 2.5 radii) and from inside (0.5: the eye between the centre and
+    the front): the reference and SystemC give the same CRC; from outside the silhouette's
+    box is the box of the vertices projected here (f = 1 / tan(fov / 2), x_c = f/a x2,
+    y_c = -f y2, w_c = d - z2, viewport transform) to within a pixel and a half; from
+    inside the front end culls exactly the faces whose corners all have w_c <= 0, counted
+    here, and clips some, and the mesh's inner side fills most of the view."""
+    kv = dict(a.split("=", 1) for a in sets)
+    x2, y2, z2, faces = view_space(mesh, kv.get("scene.obj_up", "y"), float(kv.get("scene.obj_yaw_deg", 0)),
+                                   float(kv.get("scene.obj_pitch_deg", 0)))
+    f, aspect = 1 / math.tan(math.radians(60) / 2), width / height
+    for d, where in ((2.5, "outside"), (0.5, "inside")):
+        view = sets + ["scene.camera=perspective", "scene.distance=%g" % d]
+        img, ref = rastsim(binary, "render", cfg, mesh, view, tmp, "%s_persp_%s" % (name, where))
+        _, sc = rastsim(binary, "simulate", cfg, mesh, view, tmp, "%s_persp_%s_sc" % (name, where))
+        check(ref["framebuffer_crc32"] == sc["framebuffer_crc32"] and ref["fragments"] > 0,
+              "%s, perspective camera %s: %d fragments, CRC reference %s, SystemC %s" %
+              (name, where, ref["fragments"], ref["framebuffer_crc32"], sc["framebuffer_crc32"]))
+        w = (d - z2).astype(np.float32)
+        if where == "outside":
+            sx = width / 2 + width / 2 * (f / aspect) * x2 / w
+            sy = height / 2 - height / 2 * f * y2 / w
+            used = sorted({i for fc in faces for i in fc})
+            want = (sx[used].min() - 0.5, sy[used].min() - 0.5, sx[used].max() - 0.5, sy[used].max() - 0.5)
+            bb = ink_bbox(img)
+            check(bb is not None and all(abs(g - e) <= 1.5 for g, e in zip(bb, want)),
+                  "%s perspective silhouette %s = projected vertices' box %s within 1.5 px" %
+                  (name, bb, tuple(round(e, 1) for e in want)))
+        else:
+            # A face of n corners is n - 2 triangles, all behind when every corner is; a
+            # polygon with corners on both sides, or a corner within 1e-6 of w = 0 (where
+            # numpy's cos and sin may round otherwise), is left as a tolerance.
+            behind = sum(len(fc) - 2 for fc in faces if all(w[i] <= 0 for i in fc))
+            near_zero = sum(len(fc) - 2 for fc in faces if any(abs(w[i]) < 1e-6 for i in fc) or
+                            (len(fc) > 3 and any(w[i] <= 0 for i in fc) and not all(w[i] <= 0 for i in fc)))
+            check(abs(ref["triangles_behind"] - behind) <= near_zero and ref["triangles_clipped"] > 0,
+                  "%s, camera inside: %d triangles behind the eye (counted here: %d), %d clipped" %
+                  (name, ref["triangles_behind"], behind, ref["triangles_clipped"]))
+            covered = np.count_nonzero(img.any(axis=2)) / (width * height)
+            check(covered > 0.25, "%s, camera inside: the inner side covers %.0f %% of the view" % (name, 100 * covered))
+
+
 def faces_of(obj_path):
     n, corners = 0, set()
     for line in open(obj_path):
@@ -174,6 +247,7 @@ def main():
         rtl = json.load(open(os.path.join(tmp, "bunny_rtl.json")))
         check(rtl["mismatches"] == 0 and rtl["framebuffer_crc32_rtl"] == ref["framebuffer_crc32"],
               "bunny through the RTL: %d mismatches, CRC %s" % (rtl["mismatches"], rtl["framebuffer_crc32_rtl"]))
+        check_perspective(binary, cfg, "bunny", bunny, sets, width, height, tmp)
         bb = ink_bbox(ref_img)
         check(bb is not None and bb[0] > 0 and bb[1] > 0 and bb[2] < width - 1 and bb[3] < height - 1,
               "bunny silhouette %s inside the %dx%d viewport" % (bb, width, height))
@@ -200,6 +274,7 @@ def main():
                 _, sc = rastsim(binary, "simulate", cfg, mesh, sets, tmp, "horse_sc")
                 check(st["framebuffer_crc32"] == sc["framebuffer_crc32"],
                       "horse CRC reference %s, SystemC %s" % (st["framebuffer_crc32"], sc["framebuffer_crc32"]))
+                check_perspective(binary, cfg, "horse", mesh, sets, width, height, tmp)
             up, w, h, base, top = stands(img)
             check(up, "%s stands upright: base %d px of width %d, top %d px" % (name, base, w, top))
             check(w > h if name == "cat" else h > w,
