@@ -23,6 +23,7 @@
 #include "ref/pipeline.h"
 #include "ref/traverse.h"
 #include "ref/tri_setup.h"
+#include "report/stats_json.h"
 
 namespace rastsim {
 namespace {
@@ -210,6 +211,24 @@ TEST(Homogeneous, OtherLevelsSayWhereItIsDrawn) {
   int n = 0;
   front_end(points, st, SourceLoc{"a.trace", 4}, fe, [&](const ScreenTriangle&) { ++n; });
   EXPECT_EQ(n, 2);
+}
+
+// A homogeneous command is drawn on one thread (no screen triangles to bin): render
+// --threads 4 gives the one-thread image and stats, the front-end keys included.
+TEST(Homogeneous, ThreadsAndStatsJson) {
+  Scene scene;
+  scene.commands.push_back(Command{cube_mesh(Perspective(100, 0.05, 10), 8), SourceLoc{"test", 1}});
+  RenderStats one, four;
+  render_scene(scene, homogeneous_state(96, 64), one);
+  render_scene(scene, homogeneous_state(96, 64), four, {}, Framebuffer::kDefaultTileLog2, 4);
+  auto j1 = to_json(one), j4 = to_json(four);
+  j1.erase("wall_seconds");
+  j4.erase("wall_seconds");
+  EXPECT_EQ(j1, j4);
+  EXPECT_EQ(j1["clip_triangles_in"], 6 * 8 * 8 * 2);
+  EXPECT_EQ(j1["triangles_clipped"], 0);
+  EXPECT_GT(j1["triangles_behind"], 0);
+  EXPECT_EQ(one.traversal.samples_covered, 96u * 64u);  // watertight: each pixel once
 }
 
 // ---- clip versus homogeneous on random clip-space triangles ----
