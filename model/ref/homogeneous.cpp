@@ -12,12 +12,23 @@
 
 namespace rastsim {
 
-HomogeneousVertex homogeneous_vertex(const ClipVertex& c, const ViewportMap& m, int64_t origin_x, int64_t origin_y) {
+int homogeneous_depth_shift(const ViewportMap& m, int frac_bits) {
+  int s = 0;
+  while (s < kMaxFormatBits - frac_bits && std::ldexp(1.0, s) < std::max({double(m.half_w), double(m.half_h), 1.0}))
+    ++s;
+  return s;
+}
+
+HomogeneousVertex homogeneous_vertex(const ClipVertex& c, const ViewportMap& m, int64_t origin_x, int64_t origin_y,
+                                     int depth_shift) {
   // Binary64: each product is exact (a 24-bit significand times a half-integer below
-  // 2^28), so x~ and y~ are the exact sums rounded once to nearest even.
+  // 2^28), so x~ and y~ are the exact sums rounded once to nearest even; z~ = z 2^s is
+  // exact. z~ is as large as x~ and y~ of a point in the view volume, so the block keeps
+  // as many bits of z/w as of x/w.
   const double cx = double(m.centre_x) - double(origin_x), cy = double(m.centre_y) - double(origin_y);
   const double v[4] = {double(c.x) * double(m.half_w) + cx * double(c.w),
-                       double(c.y) * double(m.half_h) + cy * double(c.w), double(c.z), double(c.w)};
+                       double(c.y) * double(m.half_h) + cy * double(c.w),
+                       std::ldexp(double(c.z), depth_shift), double(c.w)};
   int e = INT_MIN;  // the block exponent: every |v| < 2^e
   for (double d : v) {
     if (d == 0.0) continue;
@@ -51,7 +62,8 @@ int bit_length(i128 v) {
 }
 
 // The edge functions, oriented, and the determinant (> 0 after orientation; 0: degenerate).
-i128 build_edges(const std::array<HomogeneousVertex, 3>& h, const RasterState& st, HomogeneousTriangle& t) {
+i128 build_edges(const std::array<HomogeneousVertex, 3>& h, const RasterState& st, int depth_shift,
+                 HomogeneousTriangle& t) {
   const int F = st.coord_format.frac_bits;
   for (int m = 0; m < 3; ++m) {
     const auto& p = h[size_t(m)].v;
@@ -72,7 +84,8 @@ i128 build_edges(const std::array<HomogeneousVertex, 3>& h, const RasterState& s
   }
   for (SampleFunc& e : t.edge)
     e.bias = fill_bias(EdgeEq{static_cast<int64_t>(e.a), static_cast<int64_t>(e.b), e.c, 0}, st.fill_rule);
-  // n = sum_k E_{(k+1)%3} Z_k; far: 2^F det - n. |n| < 2^126 for I + F <= 31.
+  // n = sum_k E_{(k+1)%3} Z_k = 2^(F+s) det z/w; far: 2^(F+s) det - n. |n| < 2^126 for
+  // I + F <= 31, and F + s <= 31 keeps 2^(F+s) det below 2^124.
   SampleFunc n;
   for (int k = 0; k < 3; ++k) {
     const SampleFunc& e = t.edge[size_t((k + 1) % 3)];
@@ -82,7 +95,7 @@ i128 build_edges(const std::array<HomogeneousVertex, 3>& h, const RasterState& s
     n.c += e.c * z;
   }
   t.near_test = n;
-  t.depth_den = det << F;
+  t.depth_den = det << (F + depth_shift);
   t.far_test = SampleFunc{-n.a, -n.b, t.depth_den - n.c, 0};
   return det;
 }
@@ -148,7 +161,7 @@ void take_attributes(const std::array<ClipVertex, 3>& v, const ClipState& clip, 
   t.origin_y = st.origin_y();
 }
 
-// floor(m v / d) as q and the remainder r, for 0 <= v <= d < 2^125 and m < 2^32, one bit
+// floor(m v / d) as q and the remainder r, for 0 <= v <= d < 2^126 and m < 2^32, one bit
 // of m at a time (the product would need 160 bits).
 void mul_div(uint32_t m, i128 v, i128 d, i128& q, i128& r) {
   q = r = 0;
@@ -163,7 +176,7 @@ void mul_div(uint32_t m, i128 v, i128 d, i128& q, i128& r) {
   }
 }
 
-// Depth at n = sum E_k Z_k: round_half_up((lo (D - n) + hi n) / D), D = 2^F det and n
+// Depth at n = sum E_k Z_k: round_half_up((lo (D - n) + hi n) / D), D = 2^(F+s) det and n
 // clamped to [0, D] (z/w in [0, 1]; only an extrapolated centre is outside).
 uint32_t depth_at(const HomogeneousTriangle& t, i128 n) {
   const i128 D = t.depth_den;
@@ -199,14 +212,15 @@ SetupOutcome setup_homogeneous(const std::array<ClipVertex, 3>& v, const ClipSta
   take_attributes(v, clip, st, loc, t);
   const ViewportMap map = viewport_map(clip, st);
   std::array<HomogeneousVertex, 3> h;
-  for (size_t k = 0; k < 3; ++k) h[k] = homogeneous_vertex(v[k], map, t.origin_x, t.origin_y);
+  const int depth_shift = homogeneous_depth_shift(map, t.frac_bits);
+  for (size_t k = 0; k < 3; ++k) h[k] = homogeneous_vertex(v[k], map, t.origin_x, t.origin_y, depth_shift);
   int emax = INT_MIN;
   for (size_t k = 0; k < 3; ++k) {
     t.w[k] = h[k].v[kW];
     emax = std::max(emax, h[k].exp);
   }
   for (size_t k = 0; k < 3; ++k) t.weight_shift[k] = emax - h[k].exp;
-  if (build_edges(h, st, t) == 0) return SetupOutcome::CulledZeroArea;
+  if (build_edges(h, st, depth_shift, t) == 0) return SetupOutcome::CulledZeroArea;
   const bool front = t.ccw_on_screen == st.front_ccw;
   if (st.cull == CullMode::Back && !front) return SetupOutcome::CulledBackFace;
   if (st.cull == CullMode::Front && front) return SetupOutcome::CulledFrontFace;

@@ -4,7 +4,7 @@
 // homogeneous vertices, with no clipping, no divide by w and no new vertices.
 //
 // - Vertex: mapped to the viewport in homogeneous form, x~ = x (W/2) + (X + W/2 - ox) w,
-//   y~ = y (H/2) + (Y + H/2 - oy) w (ox, oy: the snapping origin, pixels), z, w; the
+//   y~ = y (H/2) + (Y + H/2 - oy) w (ox, oy: the snapping origin, pixels), z 2^s, w; the
 //   four rounded to nearest even into a block format of their own (HomogeneousVertex):
 //   signed integers |V| <= 2^30 sharing one exponent. They depend on the vertex alone,
 //   so the two triangles of a shared edge build the same edge function.
@@ -36,12 +36,16 @@ namespace rastsim {
 
 inline constexpr int kHomogeneousBits = 30;  // |x~|, |y~|, |z|, |w| <= 2^30 in a vertex's block
 
-// A vertex's x~, y~, z, w = v[i] 2^exp.
+// A vertex's x~, y~, z~ = z 2^s, w = v[i] 2^exp.
 struct HomogeneousVertex {
   std::array<int64_t, 4> v{};
   int exp = 0;
 };
-HomogeneousVertex homogeneous_vertex(const ClipVertex& c, const ViewportMap& m, int64_t origin_x, int64_t origin_y);
+// s: the smallest with 2^s >= max(W/2, H/2, 1) of the viewport map, at most 31 - F
+// (F = raster.coord_format's fraction bits), so that 2^(F+s) det fits the datapath.
+int homogeneous_depth_shift(const ViewportMap& m, int frac_bits);
+HomogeneousVertex homogeneous_vertex(const ClipVertex& c, const ViewportMap& m, int64_t origin_x, int64_t origin_y,
+                                     int depth_shift);
 
 // f(x, y) = a x + b y + c of a raw sample position (units 2^-F relative to the origin);
 // it passes when f + bias >= 0.
@@ -53,8 +57,8 @@ struct SampleFunc {
 
 struct HomogeneousTriangle {
   std::array<SampleFunc, 3> edge;  // edge m: vertices m, m+1 (vertex k's weight is edge (k+1)%3)
-  SampleFunc near_test, far_test;  // n = sum E_k Z_k >= 0; 2^F det - n >= 0
-  i128 depth_den = 1;              // 2^F det > 0: z/w = n / depth_den
+  SampleFunc near_test, far_test;  // n = sum E_k Z_k >= 0; depth_den - n >= 0
+  i128 depth_den = 1;              // 2^(F+s) det > 0: z/w = n / depth_den
   std::array<int64_t, 3> w{};      // W_k (affine weights E_k W_k)
   std::array<int, 3> weight_shift{};  // exp_max - exp_k: perspective weights E_k 2^shift
   bool ccw_on_screen = false;
