@@ -22,6 +22,7 @@
 #include "ref/pipeline.h"
 #include "ref/prim_assembly.h"
 #include "report/stats_json.h"
+#include "common/clip_meshes.h"
 
 namespace rastsim {
 namespace {
@@ -57,23 +58,12 @@ std::vector<ScreenTriangle> run_front_end(const CmdPrimitives& p, const RasterSt
   return out;
 }
 
-// Times each sample of each pixel was written: (py * W + px) * S + sample.
-struct Coverage {
-  std::vector<int> count;
-  RenderStats stats;
-};
-
-Coverage render_coverage(const std::vector<CmdPrimitives>& prims, const RasterState& st) {
-  Scene scene;
-  for (const auto& p : prims) scene.commands.push_back(Command{p, SourceLoc{"test", 1}});
-  Coverage c;
-  c.count.assign(size_t(st.fb_width) * size_t(st.fb_height) * size_t(st.samples), 0);
-  render_scene(scene, st, c.stats, [&](const Fragment& f) {
-    for (int s = 0; s < f.samples; ++s)
-      if (f.mask >> s & 1) ++c.count[(size_t(f.y) * size_t(st.fb_width) + size_t(f.x)) * size_t(f.samples) + size_t(s)];
-  });
-  return c;
-}
+using testing_common::Coverage;
+using testing_common::cube_mesh;
+using testing_common::Perspective;
+using testing_common::render_coverage;
+using testing_common::samples_not_covered_once;
+using testing_common::sphere_mesh;
 
 // Divide and viewport by hand. Viewport 64 x 64: W/2 = 32, X + W/2 = 32.
 // (1, -1, 0.5, 2): q = 1/2; x_w = (1 * 0.5) * 32 + 32 = 48; y_w = (-0.5) * 32 + 32 = 16;
@@ -369,72 +359,12 @@ TEST(FrontEnd, LinesAreOnePixelQuads) {
 
 // ---- Watertight closed meshes around the camera ----
 
-// Eye space (x right, y up, looking down -z) to Vulkan clip space: x_c = f x, y_c = -f y
-// (NDC y = -1 is the top row), z_c = far / (near - far) z + near far / (near - far),
-// w_c = -z (z_c = 0 at z = -near and z_c = w_c at z = -far), f = 1 / tan(fov / 2).
-struct Perspective {
-  double f, a, b;
-  Perspective(double fov_deg, double near, double far)
-      : f(1 / std::tan(fov_deg * M_PI / 360)), a(far / (near - far)), b(near * far / (near - far)) {}
-  ClipVertex operator()(double x, double y, double z) const {
-    return cv(float(f * x), float(-f * y), float(a * z + b), float(-z));
-  }
-};
-
-// An eye-space point of the mesh: a fixed rotation and offset of the model point (the
-// same model point always gives the same clip-space vertex, bit for bit).
-ClipVertex place(const Perspective& P, double x, double y, double z) {
-  const double c1 = std::cos(0.7), s1 = std::sin(0.7), c2 = std::cos(0.4), s2 = std::sin(0.4);
-  const double x1 = c1 * x - s1 * z, z1 = s1 * x + c1 * z;  // about y
-  const double y2 = c2 * y - s2 * z1, z2 = s2 * y + c2 * z1;  // about x
-  return P(x1 + 0.21, y2 - 0.13, z2 + 0.17);
-}
-
-// A cube of half-size 1 around the eye, each face an n x n grid of two-triangle quads.
-CmdPrimitives cube_mesh(const Perspective& P, int n) {
-  CmdPrimitives m;
-  m.topology = Topology::List;
-  const auto pt = [&](int face, int i, int j) {
-    const double u = 2.0 * i / n - 1, v = 2.0 * j / n - 1, s = face % 2 ? 1.0 : -1.0;
-    switch (face / 2) {
-      case 0: return place(P, s, u, v);
-      case 1: return place(P, u, s, v);
-      default: return place(P, u, v, s);
-    }
-  };
-  for (int face = 0; face < 6; ++face)
-    for (int i = 0; i < n; ++i)
-      for (int j = 0; j < n; ++j)
-        for (auto [a, b] : {std::pair{0, 0}, {1, 0}, {1, 1}, {0, 0}, {1, 1}, {0, 1}})
-          m.clip_vertices.push_back(pt(face, i + a, j + b));
-  return m;
-}
-
-// A UV sphere of radius 1 around the eye: rings x segments quads, the poles' triangles
-// degenerate (zero area, culled by setup).
-CmdPrimitives sphere_mesh(const Perspective& P, int rings, int segments) {
-  CmdPrimitives m;
-  m.topology = Topology::List;
-  const auto pt = [&](int r, int s) {
-    if (r == 0 || r == rings) return place(P, 0, r == 0 ? 1 : -1, 0);
-    const double th = M_PI * r / rings, ph = 2 * M_PI * (s % segments) / segments;
-    return place(P, std::sin(th) * std::cos(ph), std::cos(th), std::sin(th) * std::sin(ph));
-  };
-  for (int r = 0; r < rings; ++r)
-    for (int s = 0; s < segments; ++s)
-      for (auto [a, b] : {std::pair{0, 0}, {1, 0}, {1, 1}, {0, 0}, {1, 1}, {0, 1}})
-        m.clip_vertices.push_back(pt(r + a, s + b));
-  return m;
-}
-
 void expect_covered_once(const CmdPrimitives& mesh, int samples, float guard_band) {
   RasterState st = state(96, 64);
   st.samples = samples;
   st.guard_band = guard_band;
   const auto c = render_coverage({mesh}, st);
-  size_t wrong = 0;
-  for (int n : c.count) wrong += n != 1;
-  EXPECT_EQ(wrong, 0u) << "of " << c.count.size() << " samples";
+  EXPECT_EQ(samples_not_covered_once(c), 0u) << "of " << c.count.size() << " samples";
   // Some faces are cut by the near plane and some lie behind the eye.
   EXPECT_GT(c.stats.front_end.triangles_clipped, 0u);
   EXPECT_GT(c.stats.front_end.triangles_behind, 0u);
@@ -469,6 +399,8 @@ TEST(FrontEnd, NearPlaneCutCubeNeverOverlaps) {
   EXPECT_GT(c.stats.front_end.triangles_clipped, 0u);
 }
 
+// The front end (simulate, estimate and fit draw through it) leaves homogeneous triangles
+// to the reference renderer (ref/homogeneous.h) and says so.
 TEST(FrontEnd, HomogeneousIsAClearError) {
   RasterState st = state(64, 64);
   st.clip_method = ClipMethod::Homogeneous;
@@ -477,7 +409,7 @@ TEST(FrontEnd, HomogeneousIsAClearError) {
     run_front_end(clip_prims(Topology::List, {cv(0, 0, 0.5f, 1), cv(1, 0, 0.5f, 1), cv(0, 1, 0.5f, 1)}), st, s);
     FAIL() << "no error";
   } catch (const SceneError& e) {
-    EXPECT_NE(std::string(e.what()).find("test:1: clip.method = homogeneous is not modelled yet"), std::string::npos)
+    EXPECT_NE(std::string(e.what()).find("test:1: clip.method = homogeneous is modelled at the reference level only (rastsim render)"), std::string::npos)
         << e.what();
   }
 }

@@ -249,7 +249,9 @@ float guard_band_of(const ViewportXform& x, const RasterState& st) {
   return covers ? st.guard_band : 1.0f;
 }
 
-void check_finite(const CmdPrimitives& p, const SourceLoc& loc) {
+}  // namespace
+
+void check_clip_space_finite(const CmdPrimitives& p, const SourceLoc& loc) {
   for (size_t i = 0; i < p.clip_vertices.size(); ++i) {
     const ClipVertex& v = p.clip_vertices[i];
     for (float f : {v.x, v.y, v.z, v.w, v.s, v.t})
@@ -259,14 +261,13 @@ void check_finite(const CmdPrimitives& p, const SourceLoc& loc) {
   }
 }
 
-}  // namespace
-
 void front_end(const CmdPrimitives& p, const RasterState& st, const SourceLoc& loc, FrontEndStats& stats,
                const ScreenTriangleSink& emit) {
-  if (st.clip_method == ClipMethod::Homogeneous)
-    throw SceneError(loc.str() + ": clip.method = homogeneous is not modelled yet; use clip.method = \"clip\" "
-                                 "(docs/clip-space.md)");
-  check_finite(p, loc);
+  if (st.clip_method == ClipMethod::Homogeneous && triangle_count(p.topology, 3) > 0)
+    throw SceneError(loc.str() + ": clip.method = homogeneous is modelled at the reference level only (rastsim "
+                                 "render); the other levels draw clip-space triangles with clip.method = \"clip\" "
+                                 "(docs/clip-space.md, \"Levels\")");
+  check_clip_space_finite(p, loc);
   FrontEnd fe{viewport_map(p.clip, st), guard_band_of(p.clip.xform, st), st.front_ccw, p.clip, stats, emit};
   const auto& v = p.clip_vertices;
   const size_t n = v.size();

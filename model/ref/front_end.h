@@ -73,9 +73,13 @@ ClipVertex clip_intersection(const ClipVertex& inside, const ClipVertex& outside
 std::vector<ClipVertex> clip_triangle(const std::array<ClipVertex, 3>& tri, float guard_band, FrontEndStats& stats,
                                       bool& clipped);
 
+// Throws SceneError naming `loc` when a clip-space value of `p` is not a finite binary32.
+void check_clip_space_finite(const CmdPrimitives& p, const SourceLoc& loc);
+
 // The front end over one clip-space command (p.clip_space()): every screen-space
 // triangle it makes, in order, to `emit`. Throws SceneError naming `loc` for a
-// non-finite clip-space value and for clip.method = homogeneous (not modelled yet).
+// non-finite clip-space value and for triangles under clip.method = homogeneous, which
+// only the reference renderer draws (ref/homogeneous.h; its points and lines come here).
 void front_end(const CmdPrimitives& p, const RasterState& st, const SourceLoc& loc, FrontEndStats& stats,
                const ScreenTriangleSink& emit);
 

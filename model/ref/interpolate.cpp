@@ -62,34 +62,6 @@ int64_t dda_span_value_in(i128 num0, i128 dnum, i128 den, int64_t k, InterpArith
   return out;
 }
 
-// round_half_up(num / D) by the reciprocal unit (ref/recip.h), D > 0 of bit length L:
-// the divisor's top kRecipFracBits bits d = floor(D 2^(40 - L)) and the numerator
-// shifted alike, num' = floor(num 2^(40 - L)), then (num' y + 2^79) >> 80 with y ~ 2^80 / d.
-// A |num'| >= 2^84 means a quotient beyond 2^43 (extrapolated far outside the triangle):
-// returned as +-2^43, which the caller clamps to the attribute's range. num' y < 2^126.
-struct NewtonDivider {
-  int shift = 0;  // L - 40
-  uint64_t y = 0;
-  NewtonDivider() = default;
-  NewtonDivider(i128 den, int seed_bits, int iterations) {
-    // Leading-zero count of den > 0 (below 2^91): its bit length L.
-    const auto hi = static_cast<uint64_t>(den >> 64), lo = static_cast<uint64_t>(den);
-    const int len = hi ? 128 - __builtin_clzll(hi) : 64 - __builtin_clzll(lo);
-    shift = len - kRecipFracBits;
-    const i128 d = shift >= 0 ? den >> shift : den << -shift;
-    y = recip_newton(static_cast<uint64_t>(d), seed_bits, iterations);
-  }
-  i128 quotient(i128 num) const {
-    constexpr int kNumBits = 85;  // |num'| < 2^84
-    const i128 sat = i128(1) << 43;
-    if (shift < 0 && !fits_signed(num, kNumBits + shift)) return num < 0 ? -sat : sat;
-    const i128 n = shift >= 0 ? num >> shift : num << -shift;  // >>: floor
-    if (!fits_signed(n, kNumBits)) return n < 0 ? -sat : sat;
-    constexpr int F2 = 2 * kRecipFracBits;
-    return (n * i128(y) + (i128(1) << (F2 - 1))) >> F2;
-  }
-};
-
 // Perspective-correct colour and texture coordinates from the weights w (see the header);
 // depth affine, the same rational as interpolate_plane_at's.
 Fragment interpolate_perspective(const SetupTriangle& t, int px, int py, const i128 (&w)[3]) {

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <optional>
 
+#include "ref/homogeneous.h"
 #include "ref/prim_assembly.h"
 #include "ref/region_bins.h"
 #include "ref/rop.h"
@@ -242,6 +243,18 @@ void SceneRenderer::Impl::run(const Command& cmd) {
 
 // One primitives command's triangles on this thread, in order.
 void SceneRenderer::Impl::draw_triangles(const Command& cmd, const CmdPrimitives& prims) {
+  if (draws_homogeneous(prims, st)) {  // clip.method = homogeneous: no screen-space triangles
+    const auto setup_done = [&](SetupOutcome o) {
+      ++stats.triangles_in;
+      return count_setup_outcome(o, stats);
+    };
+    draw_homogeneous(prims, st, cmd.loc, stats.front_end, stats.traversal, setup_done, [&](const Fragment& f) {
+      ++stats.fragments_shaded;
+      if (on_fragment) on_fragment(f);
+      if (rop_write(fb, f, st.depth_func, st.depth_write, &stats.samples_passed)) ++stats.fragments_passed;
+    });
+    return;
+  }
   for_each_triangle(prims, st, cmd.loc, stats.front_end, [&](const ScreenTriangle& v) {
     ++stats.triangles_in;
     SetupTriangle tri;
@@ -276,11 +289,13 @@ constexpr size_t kChunkTriangles = 16384, kMinParallelTriangles = 256;
 
 void SceneRenderer::Impl::draw_primitives(std::span<const Command> commands) {
   size_t inputs = 0;  // triangles in (a clip-space command's before clipping): is the run worth the threads?
+  bool homogeneous = false;  // drawn on this thread (ref/homogeneous.h: no screen triangles to bin)
   for (const Command& cmd : commands) {
     const auto& p = std::get<CmdPrimitives>(cmd.body);
     inputs += p.clip_space() ? triangle_count(p.topology, p.clip_vertices.size()) : triangle_count(p);
+    homogeneous = homogeneous || draws_homogeneous(p, st);
   }
-  if (inputs < kMinParallelTriangles) {
+  if (inputs < kMinParallelTriangles || homogeneous) {
     for (const Command& cmd : commands) run(cmd);
     return;
   }

@@ -24,8 +24,6 @@ const char* to_string(SetupOutcome o) {
   return "?";
 }
 
-namespace {
-
 // Fill-rule bias for an edge already oriented so that the interior is E > 0.
 // Direct3D 11 top-left rule: a sample exactly on an edge is covered when the edge is a
 // left edge (interior to its right: a > 0) or a top edge (horizontal, interior below:
@@ -40,6 +38,19 @@ int fill_bias(const EdgeEq& e, FillRule rule) {
   return -1;
 }
 
+// A texture coordinate (repeats) in raw interp.texcoord_format units: v 2^F rounded to
+// nearest even (exact in double: v is binary32); nullopt outside the format or not finite.
+std::optional<int32_t> quantize_texcoord(float v, const FixedFormat& fmt) {
+  if (v == 0.0f) return 0;  // every untextured vertex: the common case, without the conversions
+  const double scaled = double(v) * double(fmt.one());  // exact: a 24-bit significand times 2^F
+  if (!(std::abs(scaled) < 0x1p40)) return std::nullopt;  // not finite, or far outside any format
+  // Ties to even by the binary64 addition of 1.5 2^52 (exact below 2^51 in magnitude;
+  // the default rounding mode), cheaper than a library nearbyint.
+  const double raw = (scaled + 0x1.8p52) - 0x1.8p52;
+  if (raw < double(fmt.raw_min()) || raw > double(fmt.raw_max())) return std::nullopt;
+  return static_cast<int32_t>(raw);
+}
+
 // Smallest pixel index whose centre (p + 1/2, in raw units relative to origin) is >= raw.
 int64_t first_pixel_at_or_after(int64_t raw, int64_t origin, int frac_bits) {
   const i128 t = i128(raw) - (i128(1) << (frac_bits - 1));
@@ -51,6 +62,8 @@ int64_t last_pixel_at_or_before(int64_t raw, int64_t origin, int frac_bits) {
   const i128 t = i128(raw) - (i128(1) << (frac_bits - 1));
   return origin + static_cast<int64_t>(shift_right_round(t, frac_bits, Rounding::Floor));
 }
+
+namespace {
 
 // The raster state a set-up triangle carries to traversal and interpolation.
 void take_raster_state(const RasterState& st, SetupTriangle& t) {
@@ -68,19 +81,6 @@ void take_raster_state(const RasterState& st, SetupTriangle& t) {
   t.recip = st.recip;
   t.recip_seed_bits = st.recip_seed_bits;
   t.recip_iterations = st.recip_iterations;
-}
-
-// A texture coordinate (repeats) in raw interp.texcoord_format units: v 2^F rounded to
-// nearest even (exact in double: v is binary32); nullopt outside the format or not finite.
-inline std::optional<int32_t> quantize_texcoord(float v, const FixedFormat& fmt) {
-  if (v == 0.0f) return 0;  // every untextured vertex: the common case, without the conversions
-  const double scaled = double(v) * double(fmt.one());  // exact: a 24-bit significand times 2^F
-  if (!(std::abs(scaled) < 0x1p40)) return std::nullopt;  // not finite, or far outside any format
-  // Ties to even by the binary64 addition of 1.5 2^52 (exact below 2^51 in magnitude;
-  // the default rounding mode), cheaper than a library nearbyint.
-  const double raw = (scaled + 0x1.8p52) - 0x1.8p52;
-  if (raw < double(fmt.raw_min()) || raw > double(fmt.raw_max())) return std::nullopt;
-  return static_cast<int32_t>(raw);
 }
 
 std::string vertex_where(const SourceLoc& loc, int i) { return loc.str() + ": vertex " + std::to_string(i); }

@@ -19,6 +19,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 
 #include "ref/fixed_point.h"
@@ -40,6 +41,20 @@ struct EdgeEq {
   // The same in int64, for a triangle whose edges64 holds and a point in the format's range.
   int64_t eval64(int64_t x, int64_t y) const { return a * x + b * y + static_cast<int64_t>(c); }
 };
+
+// Fill-rule bias (0 or -1) of an edge oriented so that the interior is E > 0: a sample on
+// the edge is covered when E + bias >= 0 (top_left: a left edge, a > 0, or a top edge,
+// a == 0 and b > 0; y grows downward).
+int fill_bias(const EdgeEq& e, FillRule rule);
+
+// A texture coordinate (repeats) in raw interp.texcoord_format units, rounded to nearest
+// even; nullopt outside the format or not finite.
+std::optional<int32_t> quantize_texcoord(float v, const FixedFormat& fmt);
+
+// Smallest pixel index whose centre (p + 1/2, raw units relative to pixel `origin`) is
+// >= raw, and the largest whose centre is <= raw: the bounding box's pixel range.
+int64_t first_pixel_at_or_after(int64_t raw, int64_t origin, int frac_bits);
+int64_t last_pixel_at_or_before(int64_t raw, int64_t origin, int frac_bits);
 
 enum class SetupOutcome {
   Accepted,
