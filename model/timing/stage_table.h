@@ -8,10 +8,9 @@
 // testbench's stage meters (model/rtlsim) and `rastsim config --stages`, which scripts read.
 //
 // Adding a stage is one StageId enumerator, one kStages row (with the next free stall
-// stream) and its module; every
-// `switch` over StageId or FifoId is written without a default, so a consumer that does
-// not handle the new entry stops the build (-Wswitch under -Werror) instead of
-// counting a wrong number.
+// stream) and its module; every `switch` over StageId or FifoId is written without a
+// default, so a consumer that does not handle the new entry stops the build (-Wswitch
+// under -Werror) instead of counting a wrong number.
 #pragma once
 
 #include <array>
