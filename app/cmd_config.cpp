@@ -20,7 +20,7 @@ nlohmann::json stage_table_json(const TimingParams& t) {
   for (const StageInfo& s : kStages)
     stages.push_back({{"index", stage_index(s.id)},
                       {"name", s.name},
-                      {"path", s.path == StagePath::Triangle ? "triangle" : "2d"},
+                      {"path", stage_path_name(s.path)},
                       {"fed_by", stage_name(s.fed_by)},
                       {"fill_cycles", t.stage_fill_cycles(s.id)},
                       {"tile_heat", s.tile_heat}});

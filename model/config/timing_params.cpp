@@ -14,6 +14,10 @@ TimingParams TimingParams::from_config(const Config& cfg) {
   p.core_mhz = cfg.get_float("clock.core_mhz");
   p.fetch_cycles_per_command = u("fetch.cycles_per_command");
   p.fetch_vertices_per_cycle = u("fetch.vertices_per_cycle");
+  p.front_end_cycles_per_primitive = u("front_end.cycles_per_primitive");
+  p.front_end_clip_cycles_per_vertex = u("front_end.clip_cycles_per_vertex");
+  p.front_end_vertices_per_cycle = u("front_end.vertices_per_cycle");
+  p.front_end_latency = u("front_end.latency_cycles");
   p.assembly_cycles_per_triangle = u("assembly.cycles_per_triangle");
   p.setup_interval = u("setup.interval_cycles");
   p.setup_latency = u("setup.latency_cycles");
@@ -36,6 +40,8 @@ TimingParams TimingParams::from_config(const Config& cfg) {
   p.fifo_draw2d = depth("fifo.draw2d_depth");
   p.fifo_op2d = depth("fifo.op2d_depth");
   p.fifo_command = depth("fifo.command_depth");
+  p.fifo_clip_command = depth("fifo.clip_command_depth");
+  p.fifo_screen = depth("fifo.screen_depth");
   p.fifo_triangle = depth("fifo.triangle_depth");
   p.fifo_setup = depth("fifo.setup_depth");
   p.fifo_tile = depth("fifo.tile_depth");
@@ -55,6 +61,7 @@ uint64_t TimingParams::stage_pass_cycles(StagePass pass) const {
     case StagePass::IssueCycle: return state_pass_cycles();  // every cost is >= 1 cycle (schema minimums)
     case StagePass::IssueSetupLatency: return state_pass_cycles() + setup_pipeline_latency();
     case StagePass::IssueInterpLatency: return state_pass_cycles() + interp_latency;
+    case StagePass::IssueFrontEndLatency: return state_pass_cycles() + front_end_pipeline_latency();
   }
   return 0;
 }
@@ -68,6 +75,8 @@ uint64_t TimingParams::stage_fill_cycles(StageId stage) const {
 int TimingParams::fifo_entries(FifoId fifo) const {
   switch (fifo) {
     case FifoId::Command: return fifo_command;
+    case FifoId::ClipCommand: return fifo_clip_command;
+    case FifoId::Screen: return screen_fifo_entries();
     case FifoId::Triangle: return fifo_triangle;
     case FifoId::Setup: return setup_fifo_entries();
     case FifoId::Tile: return fifo_tile;

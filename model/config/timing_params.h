@@ -10,6 +10,7 @@
 
 #include "config/config.h"
 #include "ref/2d/draw2d.h"
+#include "ref/front_end.h"
 #include "ref/sample_pattern.h"
 #include "timing/stage_table.h"
 #include "timing/tiled_walk.h"
@@ -22,6 +23,8 @@ inline uint64_t ceil_div(uint64_t n, uint64_t per_cycle) { return (n + per_cycle
 struct TimingParams {
   double core_mhz = 0;
   uint64_t fetch_cycles_per_command = 0, fetch_vertices_per_cycle = 0;
+  uint64_t front_end_cycles_per_primitive = 0, front_end_clip_cycles_per_vertex = 0;
+  uint64_t front_end_vertices_per_cycle = 0, front_end_latency = 0;
   uint64_t assembly_cycles_per_triangle = 0;
   uint64_t setup_interval = 0, setup_latency = 0;
   uint64_t coarse_tiles_per_cycle = 0;
@@ -33,6 +36,7 @@ struct TimingParams {
   uint64_t engine2d_fill_pixels_per_cycle = 0, engine2d_span_setup = 0, engine2d_rmw = 0;
   uint64_t engine2d_blit_bytes_per_cycle = 0;
   int fifo_draw2d = 0, fifo_op2d = 0;
+  int fifo_clip_command = 0, fifo_screen = 0;
   int fifo_command = 0, fifo_triangle = 0, fifo_setup = 0, fifo_tile = 0, fifo_pixel = 0, fifo_fragment = 0;
 
   // Entries of the FIFO after a stage with a pipeline latency: the configured depth plus
@@ -40,6 +44,7 @@ struct TimingParams {
   // so that latency costs time but not throughput.
   int setup_fifo_entries() const { return fifo_setup + int(ceil_div(setup_latency - setup_interval, setup_interval)); }
   int fragment_fifo_entries() const { return fifo_fragment + int(interp_latency); }
+  int screen_fifo_entries() const { return fifo_screen + int(front_end_latency); }
 
   // The stages' cost equations (docs/microarchitecture.md), in cycles. The SystemC
   // stages and the RTL testbench's stages (model/rtlsim) both call these.
@@ -49,15 +54,45 @@ struct TimingParams {
   uint64_t fetch_triangle_cycles(bool first_of_command, uint64_t new_vertices) const {
     return (first_of_command ? fetch_cycles_per_command : 0) + ceil_div(new_vertices, fetch_vertices_per_cycle);
   }
-  // Command fetch of a 2D command: the header plus its vertices.
-  uint64_t fetch_draw2d_cycles(uint64_t vertices) const {
+  // Command fetch of a command handed on whole (a 2D command to the 2D front end, a
+  // clip-space command to the geometry front end): the header plus its vertices.
+  uint64_t fetch_whole_command_cycles(uint64_t vertices) const {
     return fetch_cycles_per_command + ceil_div(vertices, fetch_vertices_per_cycle);
   }
+  uint64_t fetch_draw2d_cycles(uint64_t vertices) const { return fetch_whole_command_cycles(vertices); }
   // Command fetch of a state command (viewport, scissor, clear) or of a primitives
   // command with no triangle: its header alone.
   uint64_t fetch_header_cycles() const { return fetch_cycles_per_command; }
   // Any stage's issue slot for a state command or 2D marker it passes on (Stage::pass_state).
   static constexpr uint64_t state_pass_cycles() { return 1; }
+  // The geometry front end (docs/clip-space.md, "Levels"). A clip-space primitive
+  // (triangle, point or line segment, culled ones too) takes front_end.cycles_per_primitive
+  // for its plane tests and cull decision, plus front_end.clip_cycles_per_vertex for each
+  // vertex clipping makes (the division for t and the interpolation of its attributes).
+  uint64_t front_end_primitive_cycles(uint64_t primitives, uint64_t clip_vertices_made) const {
+    return primitives * front_end_cycles_per_primitive + clip_vertices_made * front_end_clip_cycles_per_vertex;
+  }
+  // Each screen-space triangle out takes its new vertices through the divide and viewport
+  // lanes (front_end.vertices_per_cycle): 3 for the first triangle of a primitive, 1 for
+  // each later one (a clipped polygon is fanned; a point's or line's quad has 4 corners).
+  uint64_t front_end_triangle_cycles(bool first_of_primitive) const {
+    return ceil_div(first_of_primitive ? 3 : 1, front_end_vertices_per_cycle);
+  }
+  // The primitives the front end has taken in, by its counters.
+  static uint64_t front_end_primitives(const FrontEndStats& s) { return s.clip_triangles_in + s.points_in + s.lines_in; }
+  // The front end's cycles between two points of its run over a command, by its counters
+  // at each (`from`, `to`): the primitives taken in since and the vertices clipping made,
+  // then, when `to` is at a triangle out (`triangle_out`), that triangle's vertices (the
+  // first of its primitive when a primitive was taken in since). A command's cycles are
+  // these steps from its start to each triangle out, then to its end.
+  uint64_t front_end_step_cycles(const FrontEndStats& from, const FrontEndStats& to, bool triangle_out) const {
+    const uint64_t taken = front_end_primitives(to) - front_end_primitives(from);
+    return front_end_primitive_cycles(taken, to.clip_vertices_made - from.clip_vertices_made) +
+           (triangle_out ? front_end_triangle_cycles(taken > 0) : 0);
+  }
+  // Cycles a triangle leaving the front end waits beyond its issue (the divide and
+  // viewport pipeline: front_end.latency_cycles).
+  uint64_t front_end_pipeline_latency() const { return front_end_latency; }
   // Primitive assembly of one triangle; triangle setup's issue slot for one triangle
   // (its initiation interval; the rest of setup.latency_cycles is pipeline latency).
   uint64_t assembly_triangle_cycles() const { return assembly_cycles_per_triangle; }

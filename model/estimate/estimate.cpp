@@ -72,12 +72,27 @@ class Walker {
   }
 
   // A primitives command's triangles, one transaction each down to setup (a culled one
-  // stops there), then traversal's.
+  // stops there), then traversal's. A clip-space command goes whole to the front end,
+  // which charges each triangle out its step (TimingParams::front_end_step_cycles) and
+  // ends the command with a transaction of its own, as sc/front_end.
   void primitives(size_t index, const Command& cmd, const CmdPrimitives& prims, const EstimateProgress& progress) {
+    const bool clip = prims.clip_space();
+    if (clip) {
+      if (progress) progress(index, 0, r_);
+      work(StageId::CommandFetch, p_.fetch_whole_command_cycles(prims.clip_vertices.size()));
+      emit(StageId::CommandFetch);  // the job to the front end and the marker down the command FIFO
+    }
+    FrontEndStats& fe = r_.render.front_end;
+    FrontEndStats last = fe;
     size_t k = 0;
-    for_each_triangle(prims, st_, cmd.loc, r_.render.front_end, [&](const ScreenTriangle& v) {
-      if (progress) progress(index, k, r_);
-      work(StageId::CommandFetch, p_.fetch_triangle_cycles(k == 0, (k == 0 || prims.topology == Topology::List) ? 3 : 1));
+    for_each_triangle(prims, st_, cmd.loc, fe, [&](const ScreenTriangle& v) {
+      if (clip) {
+        front_end_write(p_.front_end_step_cycles(last, fe, true));
+        last = fe;
+      } else {
+        if (progress) progress(index, k, r_);
+        work(StageId::CommandFetch, p_.fetch_triangle_cycles(k == 0, (k == 0 || prims.topology == Topology::List) ? 3 : 1));
+      }
       work(StageId::PrimAssembly, p_.assembly_triangle_cycles());
       ++k;
       ++r_.render.triangles_in;
@@ -89,10 +104,18 @@ class Walker {
       r_.latency_waits += p_.setup_pipeline_latency();
       traverse(tri);
     });
-    if (k == 0) {  // no triangle: a header, no transaction
+    if (clip) {
+      front_end_write(p_.front_end_step_cycles(last, fe, false));  // the command's end
+    } else if (k == 0) {  // no triangle: a header, no transaction
       if (progress) progress(index, 0, r_);
       stage(StageId::CommandFetch).busy += p_.fetch_header_cycles();
     }
+  }
+
+  // The front end writes one transaction after `cycles`; its reader waits out the pipeline.
+  void front_end_write(uint64_t cycles) {
+    work(StageId::FrontEnd, cycles);
+    r_.latency_waits += p_.front_end_pipeline_latency();
   }
 
   // A stage spends `cycles` on one transaction and writes it to the next FIFO.

@@ -39,7 +39,6 @@ std::string triangles_summary(const RenderStats& s) {
   return total + " (" + std::to_string(not_drawn) + " not drawn: " + why + ")";
 }
 
-namespace {
 void add_front_end(nlohmann::json& j, const FrontEndStats& f) {
   const std::pair<const char*, uint64_t> keys[] = {
       {"clip_triangles_in", f.clip_triangles_in},   {"triangles_behind", f.triangles_behind},
@@ -51,7 +50,6 @@ void add_front_end(nlohmann::json& j, const FrontEndStats& f) {
   };
   for (const auto& [key, n] : keys) j[key] = n;
 }
-}  // namespace
 
 nlohmann::json to_json(const RenderStats& s) {
   nlohmann::json j = {

@@ -21,6 +21,9 @@ std::string crc32_hex(uint32_t crc);
 // "69666 triangles (57916 not drawn: 34213 out of range, 23703 outside the clip)".
 std::string triangles_summary(const RenderStats& s);
 
+// The geometry front end's counters under their public names (docs/stats.md), into `j`.
+void add_front_end(nlohmann::json& j, const FrontEndStats& f);
+
 // Every stat under its public name; framebuffer_crc32 as crc32_hex.
 nlohmann::json to_json(const RenderStats& s);
 

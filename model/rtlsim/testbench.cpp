@@ -252,6 +252,9 @@ bool Testbench::cycle(uint64_t t) {
   ports_.clock_edge(false);
   const bool tri_taken = tri_valid && ports_.triangle_ready();
   observe_rtl_stages(t);
+  // The geometry front end's meter: the testbench takes no clip-space command
+  // (cosim_setup.cpp rejects one), so the stage is starved every cycle, as in SystemC.
+  count(StageId::FrontEnd, Cyc::Starved);
   const FragmentBeat beat = ports_.fragment_beat();
   if (!ports_.idle() || beat.valid || fetch_.active || assembly_.active) last_busy_ = std::max(last_busy_, t);
   if (beat.valid && frag_ready) take_beat(t, beat);

@@ -27,19 +27,23 @@ void CommandFetch::fetch(const CommandPtr& p) {
   visit_command(cmd, Overloaded{
       state_commands(state),
       [&](const CmdPrimitives& prims) {
-        // Triangle k (a clip-space command's k-th triangle out of the front end, costed
-        // as one fetched triangle, as estimate counts it) down to primitive assembly.
-        size_t k = 0;
-        for_each_triangle(prims, st_, cmd.loc, ctx_.render.front_end, [&](const ScreenTriangle& v) {
+        if (prims.clip_space()) {
+          // Whole to the geometry front end, then its marker (the job first: sc/front_end.h).
+          mark(0);
+          busy(p_.fetch_whole_command_cycles(prims.clip_vertices.size()));
+          write(out_clip_, ClipCommandItem{nullptr, ClipCommandJob{p, std::make_shared<const RasterState>(st_)}});
+          write(out_, CommandItem{nullptr, TriangleRef{p, 0}});
+          return;
+        }
+        // Triangle k down to primitive assembly.
+        const size_t n = triangle_count(prims);
+        for (size_t k = 0; k < n; ++k) {
           mark(k);
           const uint64_t new_vertices = (k == 0 || prims.topology == Topology::List) ? 3 : 1;
           busy(p_.fetch_triangle_cycles(k == 0, new_vertices));
-          std::shared_ptr<const ScreenTriangle> screen;
-          if (prims.clip_space()) screen = std::make_shared<const ScreenTriangle>(v);
-          write(out_, CommandItem{nullptr, TriangleRef{p, k, std::move(screen)}});
-          ++k;
-        });
-        if (k == 0) {  // no triangle: the command header alone
+          write(out_, CommandItem{nullptr, TriangleRef{p, k}});
+        }
+        if (n == 0) {  // no triangle: the command header alone
           mark(0);
           busy(p_.fetch_header_cycles());
         }

@@ -13,11 +13,10 @@
 //   fetch.vertices_per_cycle) per triangle (3 new vertices in a list, 1 in a strip or
 //   fan after its first triangle); a 2D command its header plus ceil(vertices /
 //   fetch.vertices_per_cycle).
-// - A clip-space command (tri4, v4 blocks) goes through the geometry front end here
-//   (ref/front_end.h, the reference's own function: clip, divide, viewport map), in
-//   fetch's order and state; each screen-space triangle it makes is one transaction,
-//   costed as a fetched triangle, as `estimate` counts it. The front end has no cycles of
-//   its own yet (docs/clip-space.md, "Levels").
+// - A clip-space command (tri4, v4 blocks) goes whole to the geometry front end
+//   (sc/front_end.h), with the raster state it is drawn with, and as a marker down the
+//   triangle path, where primitive assembly takes the front end's triangles in its place.
+//   Cost: its header plus ceil(vertices / fetch.vertices_per_cycle), as a 2D command.
 // - The commands come from a CommandSource, in program order: a whole Scene's
 //   (scene_source), or a trace streamed batch by batch while the simulation runs
 //   (stream_source; the parser runs on fetch's own thread, so a malformed line late in
@@ -37,17 +36,15 @@
 #include "ref/framebuffer.h"
 #include "ref/scene.h"
 #include "sc/draw2d_setup.h"
+#include "sc/front_end.h"
 #include "sc/stage.h"
 #include "config/timing_params.h"
 
 namespace rastsim::sc {
 
 struct TriangleRef {
-  CommandPtr cmd;  // a primitives command
-  size_t index = 0;              // triangle index within it
-  // A clip-space command's triangle k, out of the geometry front end (fetch runs it:
-  // ref/front_end.h); null for a screen-space command, whose triangle k prim assembly forms.
-  std::shared_ptr<const std::array<SceneVertex, 3>> screen;
+  CommandPtr cmd;     // a primitives command
+  size_t index = 0;   // triangle index within it (a clip-space command's marker: 0)
 };
 using CommandItem = Item<TriangleRef>;
 
@@ -61,9 +58,10 @@ class CommandFetch : public Stage {
  public:
   static constexpr StageId kId = StageId::CommandFetch;
   CommandFetch(SimContext& ctx, CommandSource source, const RasterState& arch,
-               const TimingParams& p, Link<CommandItem>& out, Link<Draw2dItem>& out_2d,
-             sc_core::sc_module_name name = stage_name(kId).data())
-      : Stage(name, ctx, kId), source_(std::move(source)), st_(arch), p_(p), out_(out), out_2d_(out_2d) {
+               const TimingParams& p, Link<CommandItem>& out, Link<ClipCommandItem>& out_clip,
+               Link<Draw2dItem>& out_2d, sc_core::sc_module_name name = stage_name(kId).data())
+      : Stage(name, ctx, kId), source_(std::move(source)), st_(arch), p_(p), out_(out), out_clip_(out_clip),
+        out_2d_(out_2d) {
     set_stack_size(kStackBytes);  // a streamed source's parser runs on this thread
   }
 
@@ -72,10 +70,11 @@ class CommandFetch : public Stage {
   void body() override;
   void fetch(const CommandPtr& cmd);
   CommandSource source_;
-  RasterState st_;     // the state 2D commands are drawn with
+  RasterState st_;     // the state 2D and clip-space commands are drawn with
   Framebuffer no_fb_;  // fetch owns no pixels: clears pass through to the ROP
   const TimingParams& p_;
   Link<CommandItem>& out_;
+  Link<ClipCommandItem>& out_clip_;
   Link<Draw2dItem>& out_2d_;
 };
 

@@ -26,6 +26,9 @@ struct RasterPipeline : sc_core::sc_module {
                  const TimingParams& p)
       : sc_module(name),
         command_fifo(fifo_name(FifoId::Command).data(), p.fifo_entries(FifoId::Command), ctx.tracing, ctx.lockstep),
+        clip_command_fifo(fifo_name(FifoId::ClipCommand).data(), p.fifo_entries(FifoId::ClipCommand), ctx.tracing,
+                          ctx.lockstep),
+        screen_fifo(fifo_name(FifoId::Screen).data(), p.fifo_entries(FifoId::Screen), ctx.tracing, ctx.lockstep),
         triangle_fifo(fifo_name(FifoId::Triangle).data(), p.fifo_entries(FifoId::Triangle), ctx.tracing, ctx.lockstep),
         setup_fifo(fifo_name(FifoId::Setup).data(), p.fifo_entries(FifoId::Setup), ctx.tracing, ctx.lockstep),
         tile_fifo(fifo_name(FifoId::Tile).data(), p.fifo_entries(FifoId::Tile), ctx.tracing, ctx.lockstep),
@@ -35,8 +38,9 @@ struct RasterPipeline : sc_core::sc_module {
         op2d_fifo(fifo_name(FifoId::Op2d).data(), p.fifo_entries(FifoId::Op2d), ctx.tracing, ctx.lockstep),
         grant_2d(fifo_name(FifoId::Grant2d).data(), p.fifo_entries(FifoId::Grant2d), ctx.tracing, ctx.lockstep),
         done_2d(fifo_name(FifoId::Done2d).data(), p.fifo_entries(FifoId::Done2d), ctx.tracing, ctx.lockstep),
-        command_fetch(ctx, std::move(source), arch, p, command_fifo, draw2d_fifo),
-        prim_assembly(ctx, p, command_fifo, triangle_fifo),
+        command_fetch(ctx, std::move(source), arch, p, command_fifo, clip_command_fifo, draw2d_fifo),
+        front_end(ctx, p, clip_command_fifo, screen_fifo),
+        prim_assembly(ctx, p, command_fifo, screen_fifo, triangle_fifo),
         tri_setup(ctx, arch, p, triangle_fifo, setup_fifo),
         coarse_raster(ctx, arch, p, setup_fifo, tile_fifo),
         fine_raster(ctx, arch, p, tile_fifo, pixel_fifo),
@@ -46,6 +50,8 @@ struct RasterPipeline : sc_core::sc_module {
         engine2d(ctx, p, rop.framebuffer(), op2d_fifo, grant_2d, done_2d) {}
 
   Link<CommandItem> command_fifo;
+  Link<ClipCommandItem> clip_command_fifo;
+  Link<ScreenItem> screen_fifo;
   Link<TriangleItem> triangle_fifo;
   Link<SetupItem> setup_fifo;
   Link<TileItem> tile_fifo;
@@ -55,6 +61,7 @@ struct RasterPipeline : sc_core::sc_module {
   Link<Op2dItem> op2d_fifo;
   Link<PortGrant> grant_2d, done_2d;  // the ROP's framebuffer port, lent to the 2D engine
   CommandFetch command_fetch;
+  FrontEnd front_end;
   PrimAssembly prim_assembly;
   TriSetup tri_setup;
   CoarseRaster coarse_raster;
@@ -67,6 +74,7 @@ struct RasterPipeline : sc_core::sc_module {
   Stage& stage(StageId id) {
     switch (id) {
       case StageId::CommandFetch: return command_fetch;
+      case StageId::FrontEnd: return front_end;
       case StageId::PrimAssembly: return prim_assembly;
       case StageId::TriSetup: return tri_setup;
       case StageId::CoarseRaster: return coarse_raster;
@@ -82,6 +90,8 @@ struct RasterPipeline : sc_core::sc_module {
   void visit_fifo(FifoId id, F&& f) {
     switch (id) {
       case FifoId::Command: return f(command_fifo);
+      case FifoId::ClipCommand: return f(clip_command_fifo);
+      case FifoId::Screen: return f(screen_fifo);
       case FifoId::Triangle: return f(triangle_fifo);
       case FifoId::Setup: return f(setup_fifo);
       case FifoId::Tile: return f(tile_fifo);
@@ -300,6 +310,12 @@ nlohmann::json SimResult::to_json() const {
                            {"transactions_in", s.transactions_in},
                            {"transactions_out", s.transactions_out}};
   for (const FifoReport& f : fifos) j["fifos"][f.name] = {{"depth", f.depth}, {"transactions", f.writes}};
+  // The geometry front end's counters under its stage too, beside its cycles.
+  if (render.front_end.any()) {
+    nlohmann::json counters;
+    add_front_end(counters, render.front_end);
+    j["stages"][std::string(stage_name(StageId::FrontEnd))].update(counters);
+  }
   return j;
 }
 

@@ -1,9 +1,11 @@
 // SPDX-License-Identifier: Apache-2.0
-// The timed raster pipeline: seven stages joined by six bounded FIFOs, and the one call
-// that elaborates it, runs a scene through it and reports cycles and per-stage stats.
+// The timed raster pipeline: the stages and FIFOs of timing/stage_table.h, and the one
+// call that elaborates it, runs a scene through it and reports cycles and per-stage stats.
 //
 //   command_fetch -> prim_assembly -> tri_setup -> coarse_raster -> fine_raster
 //                 -> interpolate -> rop (framebuffer)
+//   command_fetch -> front_end -> prim_assembly      (clip-space commands only)
+//   command_fetch -> draw2d_setup -> engine2d <-> rop (2D commands)
 //
 // All arithmetic is the reference model's; this layer only adds time. The framebuffer
 // and fragment stream are bit-identical to ref/pipeline.h: render_scene.
@@ -81,7 +83,8 @@ struct SimResult {
 
   // RenderStats::to_json plus cycles, cycles_lower_bound, simulated_seconds,
   // sim_wall_seconds, simulated_cycles_per_second, rop_accesses, framebuffer_bytes,
-  // resolve_cycles, stages.<name>.{busy,...}, fifos.<name>.
+  // resolve_cycles, stages.<name>.{busy,...} (stages.front_end also the front end's
+  // counters, when a clip-space primitive was drawn), fifos.<name>.
   nlohmann::json to_json() const;
 };
 

@@ -7,10 +7,10 @@
 // totals (model/estimate), the sampled level's FIFO capacity (model/fidelity), the RTL
 // testbench's stage meters (model/rtlsim) and `rastsim config --stages`, which scripts read.
 //
-// Adding a stage is one StageId enumerator, one kStages row and its module; every
-// `switch` over StageId or FifoId is written without a default, so a consumer that does
-// not handle the new entry stops the build (-Wswitch under -Werror) instead of
-// counting a wrong number.
+// Adding a stage is one StageId enumerator, one kStages row (with the next free stall
+// stream) and its module; every `switch` over StageId or FifoId is written without a
+// default, so a consumer that does not handle the new entry stops the build (-Wswitch
+// under -Werror) instead of counting a wrong number.
 #pragma once
 
 #include <array>
@@ -19,11 +19,13 @@
 
 namespace rastsim {
 
-// The stages in pipeline order: the triangle path from command fetch to the ROP, then
-// the 2D path. The value is the stage index: its position in stats, timelines and
-// reports, and the seed offset of its random stalls (sc/stage.h).
+// The stages in pipeline order: the triangle path from command fetch to the ROP (with
+// the geometry front end, which clip-space commands pass through between command fetch
+// and primitive assembly and screen-space ones bypass), then the 2D path. The value is
+// the stage index: its position in stats, timelines and reports.
 enum class StageId : int {
   CommandFetch,
+  FrontEnd,
   PrimAssembly,
   TriSetup,
   CoarseRaster,
@@ -42,9 +44,21 @@ enum class StagePass {
   IssueCycle,         // one issue cycle (every cost is >= 1 cycle: schema minimums)
   IssueSetupLatency,  // one issue cycle plus setup's pipeline (latency - interval)
   IssueInterpLatency, // one issue cycle plus interpolation's pipeline latency
+  IssueFrontEndLatency, // one issue cycle plus the geometry front end's pipeline latency
 };
 
-enum class StagePath { Triangle, TwoD };
+// Triangle: every triangle command; ClipSpace: the geometry front end, beside the
+// triangle path from command fetch to primitive assembly, which only clip-space
+// commands take (screen-space ones bypass it); TwoD: the 2D commands' path.
+enum class StagePath { Triangle, ClipSpace, TwoD };
+constexpr std::string_view stage_path_name(StagePath p) {
+  switch (p) {
+    case StagePath::Triangle: return "triangle";
+    case StagePath::ClipSpace: return "clip_space";
+    case StagePath::TwoD: return "2d";
+  }
+  return "";
+}
 
 struct StageInfo {
   StageId id;
@@ -55,19 +69,24 @@ struct StageInfo {
   StageId fed_by;
   StagePass pass;  // what passing this stage adds to the fill of the stages it feeds
   bool tile_heat;  // its busy cycles are attributed to screen tiles (simulate --heatmap)
+  // The seed offset of its random stalls (sc/stage.h): fixed per stage, not its index,
+  // so that a stage added to the table changes no other stage's stalls; a new stage
+  // takes the next free number.
+  int stall_stream;
 };
 
 inline constexpr std::array kStages = {
-    StageInfo{StageId::CommandFetch, "command_fetch", StagePath::Triangle, StageId::CommandFetch, StagePass::FetchHeader, false},
-    StageInfo{StageId::PrimAssembly, "prim_assembly", StagePath::Triangle, StageId::CommandFetch, StagePass::IssueCycle, false},
-    StageInfo{StageId::TriSetup, "tri_setup", StagePath::Triangle, StageId::PrimAssembly, StagePass::IssueSetupLatency, false},
-    StageInfo{StageId::CoarseRaster, "coarse_raster", StagePath::Triangle, StageId::TriSetup, StagePass::IssueCycle, true},
-    StageInfo{StageId::FineRaster, "fine_raster", StagePath::Triangle, StageId::CoarseRaster, StagePass::IssueCycle, true},
-    StageInfo{StageId::Interpolate, "interpolate", StagePath::Triangle, StageId::FineRaster, StagePass::IssueInterpLatency, true},
-    StageInfo{StageId::Rop, "rop", StagePath::Triangle, StageId::Interpolate, StagePass::IssueCycle, true},
+    StageInfo{StageId::CommandFetch, "command_fetch", StagePath::Triangle, StageId::CommandFetch, StagePass::FetchHeader, false, 0},
+    StageInfo{StageId::FrontEnd, "front_end", StagePath::ClipSpace, StageId::CommandFetch, StagePass::IssueFrontEndLatency, false, 9},
+    StageInfo{StageId::PrimAssembly, "prim_assembly", StagePath::Triangle, StageId::CommandFetch, StagePass::IssueCycle, false, 1},
+    StageInfo{StageId::TriSetup, "tri_setup", StagePath::Triangle, StageId::PrimAssembly, StagePass::IssueSetupLatency, false, 2},
+    StageInfo{StageId::CoarseRaster, "coarse_raster", StagePath::Triangle, StageId::TriSetup, StagePass::IssueCycle, true, 3},
+    StageInfo{StageId::FineRaster, "fine_raster", StagePath::Triangle, StageId::CoarseRaster, StagePass::IssueCycle, true, 4},
+    StageInfo{StageId::Interpolate, "interpolate", StagePath::Triangle, StageId::FineRaster, StagePass::IssueInterpLatency, true, 5},
+    StageInfo{StageId::Rop, "rop", StagePath::Triangle, StageId::Interpolate, StagePass::IssueCycle, true, 6},
     // Lower bound: a 2D command's first operation leaves command fetch with its header.
-    StageInfo{StageId::Draw2dSetup, "draw2d_setup", StagePath::TwoD, StageId::CommandFetch, StagePass::IssueCycle, false},
-    StageInfo{StageId::Engine2d, "engine2d", StagePath::TwoD, StageId::CommandFetch, StagePass::IssueCycle, false},
+    StageInfo{StageId::Draw2dSetup, "draw2d_setup", StagePath::TwoD, StageId::CommandFetch, StagePass::IssueCycle, false, 7},
+    StageInfo{StageId::Engine2d, "engine2d", StagePath::TwoD, StageId::CommandFetch, StagePass::IssueCycle, false, 8},
 };
 inline constexpr size_t kStageCount = kStages.size();
 
@@ -85,6 +104,8 @@ constexpr StageId last_triangle_stage() {
 // The links between stages: bounded FIFOs and the ROP's framebuffer port handshakes.
 enum class FifoId : int {
   Command,   // command fetch -> primitive assembly: commands
+  ClipCommand,  // command fetch -> geometry front end: clip-space commands
+  Screen,    // geometry front end -> primitive assembly: screen-space triangles
   Triangle,  // primitive assembly -> setup: assembled triangles
   Setup,     // setup -> coarse raster: set-up triangles (plus setup's pipeline slots)
   Tile,      // coarse raster -> fine raster: tiles (or scanline spans)
@@ -107,6 +128,8 @@ struct FifoInfo {
 
 inline constexpr std::array kFifos = {
     FifoInfo{FifoId::Command, "command_fifo", LinkKind::Fifo, StageId::CommandFetch, StageId::PrimAssembly},
+    FifoInfo{FifoId::ClipCommand, "clip_command_fifo", LinkKind::Fifo, StageId::CommandFetch, StageId::FrontEnd},
+    FifoInfo{FifoId::Screen, "screen_fifo", LinkKind::Fifo, StageId::FrontEnd, StageId::PrimAssembly},
     FifoInfo{FifoId::Triangle, "triangle_fifo", LinkKind::Fifo, StageId::PrimAssembly, StageId::TriSetup},
     FifoInfo{FifoId::Setup, "setup_fifo", LinkKind::Fifo, StageId::TriSetup, StageId::CoarseRaster},
     FifoInfo{FifoId::Tile, "tile_fifo", LinkKind::Fifo, StageId::CoarseRaster, StageId::FineRaster},
@@ -136,8 +159,11 @@ constexpr bool tables_in_order() {
     if (fifo_index(kFifos[k].id) != k) return false;
   for (const StageInfo& s : kStages)  // fill order runs downstream only
     if (stage_index(s.fed_by) > stage_index(s.id)) return false;
+  for (size_t a = 0; a < kStageCount; ++a)  // every stage its own stall stream
+    for (size_t b = a + 1; b < kStageCount; ++b)
+      if (kStages[a].stall_stream == kStages[b].stall_stream) return false;
   return true;
 }
-static_assert(tables_in_order(), "kStages / kFifos rows must follow their enumerators' order");
+static_assert(tables_in_order(), "kStages / kFifos rows must follow their enumerators' order, stall streams distinct");
 
 }  // namespace rastsim

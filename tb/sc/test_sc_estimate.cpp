@@ -15,6 +15,8 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <random>
+#include <string>
 
 #include "common/random_2d_trace.h"
 #include "estimate/estimate.h"
@@ -137,6 +139,43 @@ TEST(ScEstimate, RandomScenesWithSamples) {
         sets.push_back("display.height=" + std::to_string(std::max(128, v->height)));
       }
     EXPECT_TRUE(check_against_systemc(scene, make_config(sets)));
+  }
+}
+
+// A scene the geometry front end bounds (clip_cube is the ROP's): n small clip-space
+// triangles, as single tri4 commands (every third with a vertex behind the near plane:
+// two new vertices, two triangles out) or as one strip zigzagging across the viewport
+// (every fifth vertex behind the near plane).
+std::string small_clip_triangles(uint64_t seed, int n, bool strip) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> centre(-0.9, 0.9), jitter(-0.05, 0.05), depth(0.1, 0.9);
+  const auto v4 = [](double x, double y, double z) {
+    return std::to_string(x) + " " + std::to_string(y) + " " + std::to_string(z) + " 1";
+  };
+  std::string out;
+  if (strip) {
+    out = "strip\n";
+    for (int i = 0; i < n + 2; ++i)
+      out += "v4 " + v4(-0.9 + 1.8 * i / (n + 2), (i % 2 ? 0.05 : -0.05) + jitter(rng), i % 5 ? depth(rng) : -0.3) + "\n";
+    return out + "end\n";
+  }
+  for (int i = 0; i < n; ++i) {
+    const double cx = centre(rng), cy = centre(rng);
+    out += "tri4";
+    for (int k = 0; k < 3; ++k) out += "  " + v4(cx + jitter(rng), cy + jitter(rng), (i % 3 || k) ? depth(rng) : -0.3);
+    out += "\n";
+  }
+  return out;
+}
+
+TEST(ScEstimate, FrontEndBoundClipSpaceScenes) {
+  for (const bool strip : {true, false}) {
+    const Scene scene = parse_trace(small_clip_triangles(0xfe, 150, strip), "small_clip");
+    SCOPED_TRACE(strip ? "one strip" : "tri4 commands");
+    EXPECT_TRUE(check_against_systemc(scene, make_config({})));
+    EXPECT_TRUE(check_against_systemc(
+        scene, make_config({"fifo.clip_command_depth=1", "fifo.screen_depth=1", "fifo.command_depth=1",
+                            "front_end.clip_cycles_per_vertex=9", "front_end.latency_cycles=11"})));
   }
 }
 

@@ -74,5 +74,19 @@ TEST(ScLockstep, DecoupledEqualsLockstepOn2dScenes) {
   }
 }
 
+TEST(ScLockstep, DecoupledEqualsLockstepOnClipSpace) {
+  // The geometry front end's side path (two more Links) and the markers assembly waits
+  // on: the clipped cube, then one-entry FIFOs with stalls.
+  const Scene scene = load_trace(std::string(RASTSIM_SOURCE_DIR) + "/traces/3d/clip_cube.trace");
+  expect_lockstep_equal(scene, make_config({}), {});
+  sc::SimOptions o;
+  o.stall_seed = 9;
+  o.stall_probability = 0.3;
+  expect_lockstep_equal(scene,
+                        make_config({"fifo.command_depth=1", "fifo.clip_command_depth=1", "fifo.screen_depth=1",
+                                     "fifo.triangle_depth=1", "front_end.latency_cycles=0"}),
+                        o);
+}
+
 }  // namespace
 }  // namespace rastsim::sctest

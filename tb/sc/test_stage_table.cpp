@@ -34,14 +34,15 @@ Scene one_triangle() {
 
 // The fills, worked by hand from the cost terms (docs/microarchitecture.md): fetch's
 // header, then one issue cycle a stage, plus setup's pipeline (latency - interval) behind
-// setup and the interpolation latency behind interpolation; the 2D stages wait for the
-// header alone.
+// setup and the interpolation latency behind interpolation; the 2D stages and the
+// geometry front end wait for the header alone.
 TEST(StageTable, FillCyclesAreTheHandWorkedSums) {
   const TimingParams t = ArchParams::resolve(test_config()).timing;
   const uint64_t f = t.fetch_cycles_per_command, setup = t.setup_latency - t.setup_interval, il = t.interp_latency;
   ASSERT_GT(setup, 0u);
   EXPECT_EQ(t.stage_fill_cycles(StageId::CommandFetch), 0u);
-  EXPECT_EQ(t.stage_fill_cycles(StageId::PrimAssembly), f);
+  EXPECT_EQ(t.stage_fill_cycles(StageId::FrontEnd), f);      // beside the triangle path
+  EXPECT_EQ(t.stage_fill_cycles(StageId::PrimAssembly), f);  // the front end not counted: bypassed
   EXPECT_EQ(t.stage_fill_cycles(StageId::TriSetup), f + 1);
   EXPECT_EQ(t.stage_fill_cycles(StageId::CoarseRaster), f + 2 + setup);
   EXPECT_EQ(t.stage_fill_cycles(StageId::FineRaster), f + 3 + setup);
