@@ -17,7 +17,7 @@
 // pipeline, front end included): corners (x, y, z, w) = (-1, 1, 0.5, 1), (1, 1, 0.5, 1)
 // at the bottom of a 64 x 64 viewport and (-r, -r, 0.5 r, r), (r, -r, 0.5 r, r) at its
 // top (NDC y = -1 is the top row), so it covers the viewport exactly; the four corners
-// are coplanar (y = (1 + r - (1 + r) w) / (r - 1) ... affine in w), a floor seen from
+// are coplanar (y = (2 r - (1 + r) w) / (r - 1) at each, x free), a floor seen from
 // above whose far edge is r times as deep as its near edge (r -> infinity: the horizon).
 // s runs 0..1 left to right, t 0..1 near to far, colour 0..255 near to far in red.
 #include <gtest/gtest.h>
