@@ -43,9 +43,11 @@ void print_table(std::ostream& os, const AreaReport& r) {
 
 void run_area_command(const AreaCommandOptions& o) {
   const Config cfg = load_config(o.config);
-  const RtlParams p = rtl_params(ArchParams::resolve(cfg));
+  const ArchParams arch = ArchParams::resolve(cfg);
+  const RtlParams p = rtl_params(arch);
   AreaOptions ao;
   ao.top = o.top;
+  ao.root_parameters = root_rtl_params(o.top, arch);
   ao.use_cache = !o.no_cache;
   ao.split = !o.one_process;
   ao.jobs = o.jobs;
@@ -79,7 +81,8 @@ void register_area(CLI::App& app) {
   cmd->add_option("--top", o.top,
                   "Synthesise one module only: rast_top (the raster pipeline), rast_engine2d, a binary32 unit of "
                   "the front end (rast_fp32_mul, rast_fp32_add, rast_fp32_recip, rast_front_end_xform), the "
-                  "reciprocal unit of perspective-correct interpolation (rast_recip) or a stage "
+                  "reciprocal unit of perspective-correct interpolation (rast_recip, built with interp.recip_seed_bits and "
+                  "interp.recip_iterations) or a stage "
                   "module under rast_top such as rast_fine_raster (default: rast_top and rast_engine2d)");
   cmd->add_flag("--one-process", o.one_process,
                 "Synthesise rast_top's whole hierarchy in one Yosys process (default: one process a module, its "

@@ -26,6 +26,7 @@ int main(int argc, char** argv) {
   rastsim::app::register_scanout(app), rastsim::app::register_monitor(app);
   rastsim::app::register_fit(app);
   rastsim::app::register_coverage_error(app);
+  rastsim::app::register_recip_grid(app);
   rastsim::install_interrupt_handler();  // Ctrl-C: children stopped, temporaries removed
   try {
     app.parse(argc, argv);

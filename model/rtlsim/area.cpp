@@ -40,7 +40,8 @@ constexpr const char* kMethodVersion = "rastsim-area-1";
 // The Yosys script of one run (kRead, then kSynth). @DIR@ is the run's directory
 // (sources, rast_params.vh), @WORK@ where this process writes (the run's directory, or a
 // module's subdirectory in a split run), @FILES@ the sources, @ROOT@ the hierarchy's top (rast_top or rast_engine2d), @RETOP@
-// empty or the lines that make one module under rast_top the top.
+// empty or the lines that make one module under rast_top the top. A standalone root's
+// parameters (AreaOptions::root_parameters) follow `hierarchy -top @ROOT@` (synth_run).
 // - synth's coarse steps (proc, fsm, wreduce, alumacc, share, memory), hierarchy kept
 //   for the per-module stat; then its fine steps with `opt -fast` where synth runs
 //   `opt -full` after memory_map: on rast_top that loop alone ran over 10 CPU minutes
@@ -272,14 +273,16 @@ struct RunDir {
 // `stage` (optional) a module under it to synthesise alone, with the parameters rast_top
 // gives it.
 AreaReport synth_run(const std::string& yosys, const std::string& params_vh, const std::string& root,
-                     const std::string& stage, bool split_children,
+                     const std::string& stage, const std::string& chparam, bool split_children,
                      const std::function<void(const std::string&)>& progress) {
   const RunDir run(params_vh);
   const std::string retop =
       stage.empty() ? "" : "setattr -mod -unset top " + root + "\nsetattr -mod -set top 1 *" + stage + "\nhierarchy\n";
   const std::string label = stage.empty() ? root : stage;
   YosysUsage usage;
-  const nlohmann::json stat = run.run(yosys, replace_all(kScript, "@RETOP@", retop), root, label, progress, usage);
+  const std::string script =
+      replace_all(replace_all(kScript, "@RETOP@", retop), "hierarchy -top @ROOT@\n", "hierarchy -top @ROOT@" + chparam + "\n");
+  const nlohmann::json stat = run.run(yosys, script, root, label, progress, usage);
   AreaReport rep = area_from_yosys_stat(stat, label);
   if (!split_children) rep.stages = {{label, rep.total}};
   rep.cpu_seconds = usage.cpu_seconds;
@@ -652,10 +655,11 @@ std::vector<std::pair<std::string, std::string>> instance_sites(const std::strin
   return out;
 }
 
-// Hierarchies synthesised apart from rast_top, each its own root with no config
-// parameter: the 2D engine, the front end's binary32 units (docs/rtl.md, "Binary32
-// units of the front end") and the reciprocal unit at its default parameters (docs/rtl.md,
-// "Reciprocal unit"), which rast_top does not instantiate.
+// Hierarchies synthesised apart from rast_top, each its own root: the 2D engine and the
+// front end's binary32 units (docs/rtl.md, "Binary32 units of the front end"), with no
+// config parameter, and the reciprocal unit (docs/rtl.md, "Reciprocal unit"), which
+// rast_top does not instantiate, with the config's seed bits and iterations
+// (root_rtl_params, AreaOptions::root_parameters).
 const std::vector<std::string>& standalone_roots() {
   static const std::vector<std::string> roots{"rast_engine2d", "rast_fp32_mul", "rast_fp32_add", "rast_fp32_recip",
                                               "rast_front_end_xform", "rast_recip"};
@@ -733,6 +737,13 @@ std::vector<Part> parts_of(const AreaOptions& o) {
   return {{"rast_top", o.top, false}};  // a module under rast_top, with the parameters rast_top derives
 }
 
+// " -chparam NAME VALUE" for each parameter, the arguments of Yosys' `hierarchy`.
+std::string chparam_args(const std::vector<std::pair<std::string, int>>& params) {
+  std::string out;
+  for (const auto& [name, value] : params) out += " -chparam " + name + " " + std::to_string(value);
+  return out;
+}
+
 // A part in one Yosys process, or from its cache entry (named `key`).
 AreaReport synth_whole_part(const std::string& yosys, const std::string& yosys_ver, const std::string& params_vh,
                             const Part& part, const fs::path& dir, const AreaOptions& o, std::string& key) {
@@ -742,6 +753,8 @@ AreaReport synth_whole_part(const std::string& yosys, const std::string& yosys_v
   h.add(part.stage);
   h.add(part.split ? "split" : "whole");
   h.add(part.root == "rast_top" ? params_vh : "");
+  const std::string chparam = chparam_args(o.root_parameters);
+  if (!chparam.empty()) h.add(chparam);  // none: the module's defaults, keyed as before parameters existed
   key = h.hex();
   const fs::path cache = dir / (key + ".json");
   AreaReport got;
@@ -757,7 +770,7 @@ AreaReport synth_whole_part(const std::string& yosys, const std::string& yosys_v
   }
   if (!hit) {
     const auto t0 = std::chrono::steady_clock::now();
-    got = synth_run(yosys, params_vh, part.root, part.stage, part.split, o.progress);
+    got = synth_run(yosys, params_vh, part.root, part.stage, chparam, part.split, o.progress);
     got.synth_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     got.yosys_version = yosys_ver;
     got.top = part.stage.empty() ? part.root : part.stage;
@@ -795,11 +808,17 @@ void add_part(AreaReport& r, const AreaReport& got) {
 
 AreaReport synthesize_area(const RtlParams& p, const AreaOptions& o) {
   if (!o.top.empty()) check_top(o.top);
+  const std::vector<std::string> takes = root_rtl_param_names(o.top);
+  for (const auto& [name, value] : o.root_parameters)
+    if (std::find(takes.begin(), takes.end(), name) == takes.end())
+      throw std::runtime_error("area: " + (o.top.empty() ? std::string("the whole design") : o.top) +
+                               " takes no parameter " + name + " from the config (a standalone root's parameters: "
+                               "rast_recip's SEED_BITS and ITERATIONS)");
   if (o.jobs < 1) throw std::runtime_error("area: jobs must be at least 1, not " + std::to_string(o.jobs));
   const std::string yosys = find_yosys();
   AreaReport r;
   r.top = o.top;
-  r.parameters = rtl_params_named(p);
+  r.parameters = o.root_parameters.empty() ? rtl_params_named(p) : o.root_parameters;
   r.yosys_version = yosys_version(yosys);
   // The header's banner names no file, so two configs with the same parameters share a key.
   const std::string params_vh = rtl_params_verilog(p, "rastsim area");

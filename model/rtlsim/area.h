@@ -60,6 +60,9 @@ struct AreaReport {
 
 struct AreaOptions {
   std::string top;        // "" (whole design), "rast_top", "rast_engine2d" or a module under rast_top
+  // A standalone root's parameters (root_rtl_params: rast_recip's SEED_BITS, ITERATIONS),
+  // set at elaboration (Yosys `hierarchy -chparam`); empty: the module's defaults.
+  std::vector<std::pair<std::string, int>> root_parameters;
   std::string cache_dir;  // "" = area_cache_dir()
   bool use_cache = true;
   // rast_top one Yosys process a derived module (submodules as blackboxes), the sums

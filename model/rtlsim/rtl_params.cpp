@@ -83,6 +83,13 @@ constexpr ParamField<Engine2dRtlParams> kEngine2dFields[] = {
     {"LanesMax", &Engine2dRtlParams::lanes_max, "largest engine2d.fill_pixels_per_cycle"},
 };
 
+// The reciprocal unit synthesised as a root of its own (`rastsim area --top rast_recip`):
+// its parameters from the config (rast_recip's names).
+constexpr ParamField<RecipRtlParams> kRecipFields[] = {
+    {"SEED_BITS", &RecipRtlParams::seed_bits, "interp.recip_seed_bits"},
+    {"ITERATIONS", &RecipRtlParams::iterations, "interp.recip_iterations"},
+};
+
 // Bits of the 2D engine's signed pixel indices: a 2D command's coordinates, clipped or
 // not (a line's far end, a blit's source), with room above the largest framebuffer.
 constexpr int kEngine2dIndexBits = 20;
@@ -105,6 +112,21 @@ bool engine2d_rtl_params_compatible(const Engine2dRtlParams& built, const Engine
     return false;
   }
   return true;
+}
+
+std::vector<std::string> root_rtl_param_names(const std::string& root) {
+  std::vector<std::string> out;
+  if (root == "rast_recip")
+    for (const auto& f : kRecipFields) out.emplace_back(f.name);
+  return out;
+}
+
+std::vector<std::pair<std::string, int>> root_rtl_params(const std::string& root, const ArchParams& arch) {
+  std::vector<std::pair<std::string, int>> out;
+  if (root != "rast_recip") return out;
+  const RecipRtlParams p{arch.raster.recip_seed_bits, arch.raster.recip_iterations};
+  for (const auto& f : kRecipFields) out.emplace_back(f.name, p.*f.member);
+  return out;
 }
 
 ScanoutRtlParams scanout_rtl_params(const ArchParams& arch, const DisplayParams& display) {

@@ -105,6 +105,20 @@ const Engine2dRtlParams& engine2d_rtl_params();
 bool engine2d_rtl_params_compatible(const Engine2dRtlParams& built, const Engine2dRtlParams& wanted,
                                     std::string* why = nullptr);
 
+// The reciprocal unit (rtl/rast_recip.sv), which `rastsim area --top rast_recip`
+// synthesises as a root of its own.
+struct RecipRtlParams {
+  int seed_bits = 0;   // SEED_BITS: interp.recip_seed_bits, index bits of the seed table
+  int iterations = 0;  // ITERATIONS: interp.recip_iterations, Newton-Raphson steps
+};
+
+// The parameters a standalone area root (area.h) takes from the config, as (its Verilog
+// name, value) in its table's order: rast_recip's SEED_BITS and ITERATIONS; none for a
+// root without config parameters (rast_engine2d, the binary32 units) or another name.
+std::vector<std::pair<std::string, int>> root_rtl_params(const std::string& root, const ArchParams& arch);
+// Their names alone (what the root can be given), in the same order.
+std::vector<std::string> root_rtl_param_names(const std::string& root);
+
 // The Verilog header of the scan-out: "parameter int Name = value, // comment" lines,
 // the body of the scan-out top's parameter port list (rtl/scanout_cosim_top.sv).
 std::string scanout_rtl_params_verilog(const ScanoutRtlParams& p, const std::string& source);
