@@ -285,10 +285,15 @@ module rast_interpolate #(
                          ((ZNumW + 2)'(in_area2_i) << (DepthW + 1)));
       num_z = (lo[3] || hi[3]) ? '0 : DepthNumW'(snum_z);
       for (int c = 0; c < 2; c++) begin
-        lo[4 + c] = snum_t[c][TNumW-1];
-        hi[4 + c] = !lo[4 + c] && (((TNumW + 2)'(snum_t[c]) << 1) + (TNumW + 2)'(in_area2_i) >=
-                                   ((TNumW + 2)'(in_area2_i) << (TexW + 1)));
-        num_t[c] = (lo[4 + c] || hi[4 + c]) ? '0 : TexNumW'(snum_t[c]);
+        lo[4 + c] = 1'b0;
+        hi[4 + c] = 1'b0;
+        num_t[c] = '0;
+        if (tlive) begin  // else the dividers idle (flat s, t or another path)
+          lo[4 + c] = snum_t[c][TNumW-1];
+          hi[4 + c] = !lo[4 + c] && (((TNumW + 2)'(snum_t[c]) << 1) + (TNumW + 2)'(in_area2_i) >=
+                                     ((TNumW + 2)'(in_area2_i) << (TexW + 1)));
+          num_t[c] = (lo[4 + c] || hi[4 + c]) ? '0 : TexNumW'(snum_t[c]);
+        end
       end
     end
     assign lane_clamp[j*ClampW +: ClampW] = {hi, lo};

@@ -20,10 +20,9 @@
 // - Latency from valid_i to the outputs: 1 + 2 Iterations + OutLatency enabled cycles.
 //   rast_interpolate makes OutLatency = interp.latency_cycles + 1: the reciprocal unit
 //   adds 2 + 2 Iterations to the interpolator's pipeline (TimingParams::interp_recip_latency).
-// - Static pipeline: everything advances with en_i. rast_recip's valid is tied high, so
-//   its stages fill within its first 1 + 2 Iterations cycles after reset and from then on
-//   advance exactly when en_i (its out_ready_i) is high; en_i cannot be low before, as the
-//   interpolator's output holds no beat until its whole latency has passed.
+// - Static pipeline: everything advances with en_i, rast_recip too (STATIC = 1: its
+//   out_ready_i is the enable, bubbles included). Idle (no valid pixel), the lane's
+//   products are not computed (0): the verilated model skips them.
 `default_nettype none
 
 module rast_interpolate_persp #(
@@ -73,16 +72,21 @@ module rast_interpolate_persp #(
   logic signed [DW-1:0]  d_raw, d_sum;
   always_comb begin
     d_raw = '0;
-    for (int k = 0; k < 3; k++) begin
-      e_raw[k] = '0;
-      if (valid_i) e_raw[k] = EkW'($signed(w_i[k*EdgeW +: EdgeW])) * $signed({1'b0, q_i[k*QBits +: QBits]});
-      d_raw = d_raw + DW'(e_raw[k]);
-    end
-    // Q_k > 0: e_k < 0 exactly when w_k < 0.
     d_sum = '0;
     for (int k = 0; k < 3; k++) begin
-      e[k] = (d_raw <= 0 && e_raw[k] < 0) ? '0 : e_raw[k];
-      d_sum = d_sum + DW'(e[k]);
+      e_raw[k] = '0;
+      e[k] = '0;
+    end
+    if (valid_i) begin
+      for (int k = 0; k < 3; k++) begin
+        e_raw[k] = EkW'($signed(w_i[k*EdgeW +: EdgeW])) * $signed({1'b0, q_i[k*QBits +: QBits]});
+        d_raw = d_raw + DW'(e_raw[k]);
+      end
+      // Q_k > 0: e_k < 0 exactly when w_k < 0.
+      for (int k = 0; k < 3; k++) begin
+        e[k] = (d_raw <= 0 && e_raw[k] < 0) ? '0 : e_raw[k];
+        d_sum = d_sum + DW'(e[k]);
+      end
     end
   end
 
@@ -103,9 +107,12 @@ module rast_interpolate_persp #(
   logic                np_busy;
   always_comb begin
     len = '0;
-    for (int b = 0; b < DW; b++)
-      if (d_sum[b]) len = LW'(b + 1);
-    d = F'({d_sum, {F{1'b0}}} >> len);
+    d = '0;
+    if (valid_i) begin
+      for (int b = 0; b < DW; b++)
+        if (d_sum[b]) len = LW'(b + 1);
+      d = F'({d_sum, {F{1'b0}}} >> len);
+    end
   end
   always_comb begin
     logic signed [NaW-1:0] num;
@@ -129,10 +136,11 @@ module rast_interpolate_persp #(
   // ---- The reciprocal ----
   logic [YW-1:0] y;
   logic          recip_ready, recip_valid;
-  rast_recip #(.SEED_BITS(SeedBits), .ITERATIONS(Iterations)) u_recip (
-    .clk_i, .rst_ni, .in_valid_i(1'b1), .in_ready_o(recip_ready), .d_i(d), .out_valid_o(recip_valid),
+  rast_recip #(.SEED_BITS(SeedBits), .ITERATIONS(Iterations), .STATIC(1)) u_recip (
+    .clk_i, .rst_ni, .in_valid_i(valid_i), .in_ready_o(recip_ready), .d_i(d), .out_valid_o(recip_valid),
     .out_ready_i(en_i), .y_o(y));
-  wire unused_ok = &{1'b0, recip_ready, recip_valid};  // static pipeline: see the header
+  // Static pipeline: the unit's ready is en_i, and its valid is the n' delay line's.
+  wire unused_ok = &{1'b0, recip_ready, recip_valid};
 
   // ---- a = (n' y + 2^79) >> 80, saturated, clamped ----
   logic [OutW-1:0] out_in, out_q;
