@@ -1,14 +1,26 @@
 // SPDX-License-Identifier: Apache-2.0
-// rast_interpolate: colour and depth of each covered pixel (ref: model/ref/interpolate.cpp;
-// model: model/sc/interpolate.cpp).
+// rast_interpolate: colour, depth and texture coordinates of each covered pixel (ref:
+// model/ref/interpolate.cpp; model: model/sc/interpolate.cpp).
 //
 // - Takes a tile's coverage mask and walks its set bits in order (row-major within
 //   the tile), FragmentsPerCycle pixels a cycle: a mask of N pixels takes
-//   ceil(N / FragmentsPerCycle) cycles, a marker one.
+//   ceil(N / FragmentsPerCycle) cycles, a marker one. A perspective-correct triangle
+//   (Perspective and in_affine_i low) is walked PerspLanes pixels a cycle (the lanes
+//   with a reciprocal unit, min(interp.fragments_per_cycle, recip.lanes)):
+//   ceil(N / PerspLanes) cycles (TimingParams::interp_batch_cycles).
 // - Per pixel: the barycentric weights are the edge values at the pixel centre,
 //   w0 = E1, w1 = E2, w2 = E0 (signed EdgeW bits, sum area2); each attribute is
 //   round_half_up((w0 a0 + w1 a1 + w2 a2) / area2), one rast_divider per attribute and
 //   lane (quotient 8 bits colour, DepthW depth; numerators ColorNumW / DepthNumW).
+// - Texture coordinates s, t (signed TexW bits) of an affine triangle: the same rational
+//   on the vertex values offset by 2^(TexW-1) (unsigned, so the divider and the clamp
+//   are the colour's: round_half_up(x + k) = round_half_up(x) + k for an integer k), the
+//   offset taken off at the output. s and t the same at the three vertices (every
+//   untextured scene) are that value at every point (the weights sum to area2): the
+//   side pipe carries it, and the dividers idle.
+// - Perspective-correct colour and texture coordinates (not affine; Perspective):
+//   rast_interpolate_persp on the first PerspLanes lanes, from the same weights and the
+//   vertices' Q_k (docs/clip-space.md); depth stays the affine divider's.
 // - Multisampling (msaa): a pixel with a covered sample but its centre outside the
 //   triangle has a negative weight, and the rational may leave the attribute's range:
 //   the result is clamped to [0, 2^bits - 1] as ref interpolate_plane_at does. The signed
@@ -17,8 +29,10 @@
 //   otherwise the divider gets it (then < 2^bits area2, as before). The flags ride the
 //   side pipe. With one sample every weight is >= 0 and no flag is ever set.
 // - Each fragment carries its pixel's sample mask (in_smask_i, MaxSamples bits a pixel).
-// - Latency register stages (interp.latency_cycles) from a pixel's pick to its
-//   fragment; the whole pipeline stalls while the output is not taken.
+// - Latency + RecipLatency register stages (interp.latency_cycles, plus the reciprocal
+//   unit's 2 + 2 RecipIterations when Perspective: TimingParams::interp_pipeline_latency)
+//   from a pixel's pick to its fragment, for every triangle (a static pipeline); the
+//   whole pipeline stalls while the output is not taken.
 // - The input is popped in the cycle that picks its last pixels.
 `default_nettype none
 
@@ -37,6 +51,12 @@ module rast_interpolate #(
   parameter int FragmentsPerCycle = 4,   // pixels interpolated per cycle
   parameter int Latency           = 6,   // pick-to-fragment register stages
   parameter int MaxSamples        = 16,  // sample mask bits a pixel (a power of two >= 2)
+  parameter int TexW              = 28,  // texture coordinate: 1 + I + F of interp.texcoord_format, signed
+  parameter int Perspective       = 1,   // interp.perspective: build the reciprocal lanes
+  parameter int PerspLanes        = 4,   // lanes with a reciprocal: min(FragmentsPerCycle, recip.lanes)
+  parameter int RecipSeedBits     = 8,   // interp.recip_seed_bits
+  parameter int RecipIterations   = 2,   // interp.recip_iterations
+  parameter int RecipLatency      = 6,   // the unit's stages: 2 + 2 RecipIterations, 0 without it
   localparam int MaskW = 1 << (2 * TileLog2Max),  // derived: coverage mask bits
   localparam int SMaskW = MaskW * MaxSamples,     // derived: sample mask bits
   localparam int Lanes = FragmentsPerCycle        // derived
@@ -57,6 +77,10 @@ module rast_interpolate #(
   input  wire logic [AreaW-1:0]          in_area2_i,    // doubled area, > 0
   input  wire logic [3*DepthW-1:0]       in_z_i,        // vertex k depth at [k*DepthW +: DepthW]
   input  wire logic [3*24-1:0]           in_rgb_i,      // vertex k colour {b, g, r} at [k*24 +: 24]
+  input  wire logic [3*TexW-1:0]         in_s_i,        // vertex k s at [k*TexW +: TexW], signed
+  input  wire logic [3*TexW-1:0]         in_t_i,        // vertex k t, signed
+  input  wire logic [3*24-1:0]           in_q_i,        // vertex k perspective weight Q_k at [k*24 +: 24]
+  input  wire logic                      in_affine_i,   // no reciprocal needed (tri_setup's affine)
   output      logic                      out_valid_o,   // a beat of fragments or a marker
   input  wire logic                      out_ready_i,   // taken this cycle
   output      logic                      out_marker_o,  // the beat is a marker
@@ -66,14 +90,33 @@ module rast_interpolate #(
   output      logic [Lanes*PixelW-1:0]   out_y_o,       // lane j pixel y
   output      logic [Lanes*DepthW-1:0]   out_z_o,       // lane j depth
   output      logic [Lanes*24-1:0]       out_rgb_o,     // lane j colour {b, g, r}
+  output      logic [Lanes*TexW-1:0]     out_s_o,       // lane j s, signed
+  output      logic [Lanes*TexW-1:0]     out_t_o,       // lane j t, signed
   output      logic [Lanes*MaxSamples-1:0] out_smask_o, // lane j sample mask
   output      logic                      busy_o         // a mask half done or a beat in the pipeline
 );
+  // Elaboration-time checks: the reciprocal lanes and the latency the export computed
+  // (TimingParams::interp_recip_latency) are this structure's.
+  if (Perspective != 0 && (PerspLanes < 1 || PerspLanes > FragmentsPerCycle)) begin : g_check_persp_lanes
+    $error("rast_interpolate: PerspLanes (%0d) must be in 1..FragmentsPerCycle (%0d)", PerspLanes, FragmentsPerCycle);
+  end
+  if (RecipLatency != (Perspective != 0 ? 2 + 2 * RecipIterations : 0)) begin : g_check_recip_latency
+    $error("rast_interpolate: RecipLatency (%0d) must be %0d (Perspective %0d, RecipIterations %0d)", RecipLatency,
+           Perspective != 0 ? 2 + 2 * RecipIterations : 0, Perspective, RecipIterations);
+  end
+  if (Perspective == 0) begin : g_no_recip
+    wire unused_q = &{1'b0, in_q_i};  // Q_k matter only to the reciprocal lanes
+  end
   localparam int IdxW  = 2 * TileLog2Max;              // derived: mask index bits
   localparam int SIdxW = $clog2(MaxSamples);           // derived: sample index bits
-  localparam int ClampW = 2 * 4;                       // derived: {lo, hi} flags of 4 dividers
-  localparam int SideW = 3 + Lanes * (1 + 2 * PixelW + MaxSamples + ClampW);  // derived: side data bits
+  localparam int Divs  = 6;                            // dividers a lane: r, g, b, z, s, t
+  localparam int ClampW = 2 * Divs;                    // derived: {lo, hi} flags of the dividers
+  localparam int BeatW = 2 + 2 * TexW;                 // derived: {perspective, flat s t, s, t} of a beat
+  localparam int SideW = 3 + BeatW + Lanes * (1 + 2 * PixelW + MaxSamples + ClampW);  // derived: side data bits
   localparam int CNumW = ColorNumW + 3;                // derived: signed colour numerator
+  localparam int TexNumW = AreaW + TexW;               // derived: texture numerator (offset, unsigned)
+  localparam int TNumW = TexNumW + 3;                  // derived: signed texture numerator
+  localparam int PipeLatency = Latency + RecipLatency; // derived: pick to fragment
   localparam int ZNumW = DepthNumW + 3;                // derived: signed depth numerator
   // The depth products e z as two half products, z = z_hi 2^ZLoW + z_lo: each sum of three
   // (|e| < 2^(EdgeW-1), a half below 2^ZHiW) fits ZPW signed bits, one machine word in the
@@ -92,6 +135,11 @@ module rast_interpolate #(
   // pos_q is {row, bit in row} (RowIW bits each), zero-extended to 32 bits for the scan's
   // compares with its int loop index (no int'() cast: Yosys 0.23 rejects it).
   logic [31:0] pos_row, pos_bit;
+  // The beat's triangle needs the reciprocal: at most PerspLanes pixels a beat.
+  logic        persp;
+  logic [31:0] beat_lanes;
+  assign persp = Perspective != 0 && !in_affine_i;
+  assign beat_lanes = persp ? PerspLanes : Lanes;
   assign pos_row = {{(32 - IdxW){1'b0}}, pos_q} >> RowIW;
   assign pos_bit = {{(32 - IdxW){1'b0}}, pos_q} & (RowW - 1);
   logic [IdxW-1:0]  idx [Lanes];
@@ -116,10 +164,10 @@ module rast_interpolate #(
       row = in_mask_i[r*RowW +: RowW];
       if (r < pos_row) row = '0;
       else if (r == pos_row) row = row & ({RowW{1'b1}} << pos_bit);
-      if (k <= Lanes && row != '0) begin
+      if (k <= beat_lanes && row != '0) begin
         for (int b = 0; b < RowW; b++) begin
           if (row[b]) begin
-            if (k < Lanes) begin
+            if (k < beat_lanes) begin
               idx[k]  = IdxW'(r * RowW + b);
               pick[k] = 1'b1;
             end else begin
@@ -135,11 +183,21 @@ module rast_interpolate #(
   assign en         = !(out_valid_o && !out_ready_i);
   assign in_ready_o = en && in_valid_i && (in_marker_i || last_beat);
 
-  // Not the last beat: all Lanes lanes picked, and the next beat starts after the last.
+  // Not the last beat: all beat_lanes lanes picked, and the next beat starts after the last.
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) pos_q <= '0;
-    else if (en && in_valid_i && !in_marker_i) pos_q <= last_beat ? '0 : idx[Lanes-1] + 1'b1;
+    else if (en && in_valid_i && !in_marker_i) pos_q <= last_beat ? '0 : (persp ? idx[PerspLanes-1] : idx[Lanes-1]) + 1'b1;
   end
+
+  // s and t flat (equal at the three vertices): the vertex value at every point.
+  logic tex_flat;
+  assign tex_flat = in_s_i[0 +: TexW] == in_s_i[TexW +: TexW] && in_s_i[0 +: TexW] == in_s_i[2*TexW +: TexW] &&
+                    in_t_i[0 +: TexW] == in_t_i[TexW +: TexW] && in_t_i[0 +: TexW] == in_t_i[2*TexW +: TexW];
+  logic [BeatW-1:0] beat_in, beat_out;  // {persp, tex_flat, s0, t0}
+  assign beat_in = {persp, tex_flat, in_s_i[0 +: TexW], in_t_i[0 +: TexW]};
+  logic out_persp, out_tex_flat;
+  logic [TexW-1:0] out_s0, out_t0;
+  assign {out_persp, out_tex_flat, out_s0, out_t0} = beat_out;
 
   // ---- Per lane: pixel, weights, numerators, dividers ----
   logic [Lanes*PixelW-1:0] lane_x, lane_y;
@@ -147,19 +205,27 @@ module rast_interpolate #(
   logic [Lanes*ClampW-1:0] lane_clamp, out_clamp;
   logic [Lanes*DepthW-1:0] div_z;
   logic [Lanes*24-1:0]     div_rgb;
+  logic [Lanes*2*TexW-1:0] div_st;   // lane j {s, t}, offset by 2^(TexW-1)
+  logic [Lanes-1:0]        persp_busy;
   for (genvar j = 0; j < Lanes; j++) begin : g_lane
     logic [PixelW-1:0]     px, py;
     logic [CoordW-1:0]     sx, sy;
     logic signed [EdgeW-1:0] e [3];
     logic signed [CNumW-1:0] snum_c [3];
+    logic signed [TNumW-1:0] snum_t [2];  // s, t
+    logic [TexNumW-1:0]    num_t [2];
     logic signed [ZNumW-1:0] snum_z;
     logic signed [ZPW-1:0]   zsum_lo, zsum_hi;  // sum of e z_lo, of e z_hi
     logic [ColorNumW-1:0]  num_c [3];
     logic [DepthNumW-1:0]  num_z;
-    logic [3:0]            lo, hi;  // per divider (r, g, b, z): clamp to 0 / to the maximum
+    logic [Divs-1:0]       lo, hi;  // per divider (r, g, b, z, s, t): clamp to 0 / to the maximum
     logic [IdxW-1:0]       mask_lx, lx, ly;
     logic                  live;   // the lane holds a picked pixel this cycle
+    logic                  alive;  // ... of an affine triangle: the colour dividers' pixel
+    logic                  tlive;  // ... whose s, t vary: the texture dividers' pixel
     assign live = in_valid_i && !in_marker_i && pick[j];
+    assign alive = live && !persp;
+    assign tlive = alive && !tex_flat;
     assign mask_lx = ~({IdxW{1'b1}} << tile_log2_i);
     assign lx = idx[j] & mask_lx;
     assign ly = idx[j] >> tile_log2_i;
@@ -183,7 +249,7 @@ module rast_interpolate #(
     always_comb begin
       for (int ch = 0; ch < 3; ch++) begin
         snum_c[ch] = '0;
-        if (live)
+        if (alive)
           for (int v = 0; v < 3; v++)
             snum_c[ch] = snum_c[ch] + CNumW'(e[(v+1)%3]) * $signed({{(CNumW - 8){1'b0}}, in_rgb_i[v*24 + ch*8 +: 8]});
       end
@@ -195,6 +261,16 @@ module rast_interpolate #(
           zsum_hi = zsum_hi + ZPW'(e[(v+1)%3]) * $signed({{(ZPW - ZHiW){1'b0}}, in_z_i[v*DepthW + ZLoW +: ZHiW]});
         end
       snum_z = (ZNumW'(zsum_hi) <<< ZLoW) + ZNumW'(zsum_lo);
+      // s (c = 0), t (c = 1), each vertex value offset by 2^(TexW-1): its sign bit flipped.
+      snum_t[0] = '0;
+      snum_t[1] = '0;
+      if (tlive)
+        for (int v = 0; v < 3; v++) begin
+          snum_t[0] = snum_t[0] + TNumW'(e[(v+1)%3]) *
+                      $signed({{(TNumW - TexW){1'b0}}, ~in_s_i[v*TexW + TexW - 1], in_s_i[v*TexW +: TexW-1]});
+          snum_t[1] = snum_t[1] + TNumW'(e[(v+1)%3]) *
+                      $signed({{(TNumW - TexW){1'b0}}, ~in_t_i[v*TexW + TexW - 1], in_t_i[v*TexW +: TexW-1]});
+        end
     end
     // Clamp flags: negative numerator, or 2 num + area2 >= 2^(bits+1) area2.
     always_comb begin
@@ -208,31 +284,71 @@ module rast_interpolate #(
       hi[3] = !lo[3] && (((ZNumW + 2)'(snum_z) << 1) + (ZNumW + 2)'(in_area2_i) >=
                          ((ZNumW + 2)'(in_area2_i) << (DepthW + 1)));
       num_z = (lo[3] || hi[3]) ? '0 : DepthNumW'(snum_z);
+      for (int c = 0; c < 2; c++) begin
+        lo[4 + c] = 1'b0;
+        hi[4 + c] = 1'b0;
+        num_t[c] = '0;
+        if (tlive) begin  // else the dividers idle (flat s, t or another path)
+          lo[4 + c] = snum_t[c][TNumW-1];
+          hi[4 + c] = !lo[4 + c] && (((TNumW + 2)'(snum_t[c]) << 1) + (TNumW + 2)'(in_area2_i) >=
+                                     ((TNumW + 2)'(in_area2_i) << (TexW + 1)));
+          num_t[c] = (lo[4 + c] || hi[4 + c]) ? '0 : TexNumW'(snum_t[c]);
+        end
+      end
     end
     assign lane_clamp[j*ClampW +: ClampW] = {hi, lo};
+    // Perspective-correct colour and s, t (the first PerspLanes lanes).
+    logic [23:0]     persp_rgb;
+    logic [TexW-1:0] persp_s, persp_t;
+    if (Perspective != 0 && j < PerspLanes) begin : g_persp
+      logic [3*EdgeW-1:0] w;  // weight of vertex v: edge (v+1)%3
+      for (genvar v = 0; v < 3; v++) begin : g_w
+        assign w[v*EdgeW +: EdgeW] = e[(v+1)%3];
+      end
+      rast_interpolate_persp #(.EdgeW(EdgeW), .TexW(TexW), .SeedBits(RecipSeedBits), .Iterations(RecipIterations),
+                               .OutLatency(Latency + 1)) u_persp (
+        .clk_i, .rst_ni, .en_i(en), .valid_i(live && persp), .w_i(w), .q_i(in_q_i), .rgb_i(in_rgb_i), .s_i(in_s_i),
+        .t_i(in_t_i), .rgb_o(persp_rgb), .s_o(persp_s), .t_o(persp_t), .busy_o(persp_busy[j]));
+    end else begin : g_affine_only  // never picked for a perspective-correct triangle
+      assign {persp_rgb, persp_s, persp_t} = '0;
+      assign persp_busy[j] = 1'b0;
+    end
     for (genvar ch = 0; ch < 3; ch++) begin : g_color
-      rast_divider #(.NumW(ColorNumW), .DenW(AreaW), .QW(8), .Latency(Latency)) u_div (
-        .clk_i, .en_i(en), .valid_i(live), .num_i(num_c[ch]), .den_i(in_area2_i), .q_o(div_rgb[j*24 + ch*8 +: 8]));
+      rast_divider #(.NumW(ColorNumW), .DenW(AreaW), .QW(8), .Latency(PipeLatency)) u_div (
+        .clk_i, .en_i(en), .valid_i(alive), .num_i(num_c[ch]), .den_i(in_area2_i), .q_o(div_rgb[j*24 + ch*8 +: 8]));
       // The clamp at the divider's output (flags delayed like it).
-      assign out_rgb_o[j*24 + ch*8 +: 8] = out_clamp[j*ClampW + 4 + ch] ? 8'hff :
+      assign out_rgb_o[j*24 + ch*8 +: 8] = out_persp ? persp_rgb[ch*8 +: 8] :
+                                           out_clamp[j*ClampW + Divs + ch] ? 8'hff :
                                            out_clamp[j*ClampW + ch] ? 8'h00 : div_rgb[j*24 + ch*8 +: 8];
     end
-    rast_divider #(.NumW(DepthNumW), .DenW(AreaW), .QW(DepthW), .Latency(Latency)) u_div_z (
+    rast_divider #(.NumW(DepthNumW), .DenW(AreaW), .QW(DepthW), .Latency(PipeLatency)) u_div_z (
       .clk_i, .en_i(en), .valid_i(live), .num_i(num_z), .den_i(in_area2_i), .q_o(div_z[j*DepthW +: DepthW]));
-    assign out_z_o[j*DepthW +: DepthW] = out_clamp[j*ClampW + 7] ? {DepthW{1'b1}} :
+    assign out_z_o[j*DepthW +: DepthW] = out_clamp[j*ClampW + Divs + 3] ? {DepthW{1'b1}} :
                                          out_clamp[j*ClampW + 3] ? '0 : div_z[j*DepthW +: DepthW];
+    for (genvar c = 0; c < 2; c++) begin : g_tex
+      logic [TexW-1:0] q, clamped;
+      rast_divider #(.NumW(TexNumW), .DenW(AreaW), .QW(TexW), .Latency(PipeLatency)) u_div (
+        .clk_i, .en_i(en), .valid_i(tlive), .num_i(num_t[c]), .den_i(in_area2_i), .q_o(q));
+      assign clamped = out_clamp[j*ClampW + Divs + 4 + c] ? {TexW{1'b1}} : out_clamp[j*ClampW + 4 + c] ? '0 : q;
+      assign div_st[(j*2+c)*TexW +: TexW] = {~clamped[TexW-1], clamped[TexW-2:0]};  // the offset taken off
+    end
+    assign out_s_o[j*TexW +: TexW] = out_persp ? persp_s : out_tex_flat ? out_s0 : div_st[(j*2)*TexW +: TexW];
+    assign out_t_o[j*TexW +: TexW] = out_persp ? persp_t : out_tex_flat ? out_t0 : div_st[(j*2+1)*TexW +: TexW];
   end
 
-  // ---- Side data: valid, marker, last, lanes and pixels, delayed like the dividers ----
+  // ---- Side data: valid, marker, last, the beat's triangle, lanes and pixels, delayed like
+  // the dividers ----
   logic             beat, side_occupied;
   logic [SideW-1:0] side_out;
   assign beat = in_valid_i && (in_marker_i || pick[0]);
-  rast_pipe #(.Width(SideW), .Latency(Latency)) u_side (
+  rast_pipe #(.Width(SideW), .Latency(PipeLatency)) u_side (
     .clk_i, .rst_ni, .en_i(en),
-    .d_i({beat, in_marker_i, last_beat && !in_marker_i, in_marker_i ? '0 : pick, lane_x, lane_y, lane_smask, lane_clamp}),
+    .d_i({beat, in_marker_i, last_beat && !in_marker_i, beat_in, in_marker_i ? '0 : pick, lane_x, lane_y, lane_smask,
+          lane_clamp}),
     .q_o(side_out), .occupied_o(side_occupied));
-  assign {out_valid_o, out_marker_o, out_last_o, out_lanes_o, out_x_o, out_y_o, out_smask_o, out_clamp} = side_out;
-  assign busy_o = (pos_q != '0) || side_occupied;
+  assign {out_valid_o, out_marker_o, out_last_o, beat_out, out_lanes_o, out_x_o, out_y_o, out_smask_o, out_clamp} =
+      side_out;
+  assign busy_o = (pos_q != '0) || side_occupied || (|persp_busy);
 endmodule
 
 `default_nettype wire

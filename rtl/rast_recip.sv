@@ -17,13 +17,19 @@
 // - Pipeline: one register stage for the table look-up, then two a step (the first
 //   multiply with the subtraction, the second multiply): latency 1 + 2 * ITERATIONS
 //   cycles (5 at the default 8 bits, 2 steps), one result a cycle. The stages advance
-//   together while the output is taken or empty: in_ready_o = out_ready_i || !out_valid_o.
+//   together while the output is taken or empty: in_ready_o = out_ready_i || !out_valid_o;
+//   with STATIC = 1 (a stage of a static pipeline: rast_interpolate_persp) only while
+//   out_ready_i, its enable, is high, bubbles included, so a result leaves exactly
+//   1 + 2 ITERATIONS enabled cycles after its divisor entered.
+// - A step's products are computed only while its stage holds a divisor (the verilated
+//   model then skips an idle unit's multiplies; the data mean something only with valid).
 // - Units: the table (a multiplexer of constants) and 2 * ITERATIONS multipliers.
 `default_nettype none
 
 module rast_recip #(
   parameter int SEED_BITS  = 8,  // interp.recip_seed_bits: index bits of the seed table (1..16)
-  parameter int ITERATIONS = 2   // interp.recip_iterations: Newton-Raphson steps (0..4)
+  parameter int ITERATIONS = 2,  // interp.recip_iterations: Newton-Raphson steps (0..4)
+  parameter int STATIC     = 0   // 1: the stages advance only with out_ready_i (see above)
 ) (
   input  wire logic        clk_i,        // core clock
   input  wire logic        rst_ni,       // asynchronous reset, active low
@@ -64,7 +70,7 @@ module rast_recip #(
   // ---- The valid bits: stage s holds a divisor (reset to empty) ----
   logic              advance;  // every stage moves on this cycle
   logic [Stages-1:0] v_q;      // bit s: stage s holds a divisor
-  assign advance = out_ready_i || !v_q[Stages-1];
+  assign advance = out_ready_i || (STATIC == 0 && !v_q[Stages-1]);
   assign in_ready_o = advance;
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) v_q <= '0;
@@ -116,9 +122,16 @@ module rast_recip #(
       logic [YW-1:0] y2_q;            // after the second (stage 2k + 2)
       assign d = d_bus[k*F +: F];
       assign y = y_bus[k*YW +: YW];
-      assign p = YW'((82'(d) * 82'(y)) >> F);
-      assign c = (YW'(2) << F) - p;
-      assign y_next = YW'((84'(y1_q) * 84'(c1_q)) >> F);
+      always_comb begin
+        p = '0;
+        c = '0;
+        y_next = '0;
+        if (v_q[2*k]) begin
+          p = YW'((82'(d) * 82'(y)) >> F);
+          c = (YW'(2) << F) - p;
+        end
+        if (v_q[2*k+1]) y_next = YW'((84'(y1_q) * 84'(c1_q)) >> F);
+      end
       always_ff @(posedge clk_i) begin
         if (advance) begin
           if (v_q[2*k]) {y1_q, c1_q} <= {y, c};

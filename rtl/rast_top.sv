@@ -14,12 +14,16 @@
 // - The raster state is run-time input, held constant while the pipeline is busy: the
 //   tile size 2^tile_log2_i with 1 <= tile_log2_i <= TileLog2Max; fill rule, cull mode
 //   and front face (encoded as model/ref/raster_state.h's enums, see rast_tri_setup);
+//   the perspective datapath (interp.perspective, the newton reciprocal's seed bits and
+//   steps, recip.lanes) is built from parameters.
 //   multisampling: 2^samples_log2_i samples a pixel (1 .. MaxSamples) at the offsets
 //   sample_dx_i / sample_dy_i from the pixel centre (raw s.I.F, signed SampleOffW bits;
 //   sample 0's offset is 0 with one sample), whose bounding box widens setup's box and
 //   moves the coarse raster's corners; fragments carry their pixel's sample mask.
 // - Triangles arrive snapped (s.I.F raw, relative to the origin), with the clip
-//   rectangle and origin of the state they were drawn in; a marker (a state command in
+//   rectangle and origin of the state they were drawn in, their vertices' depth, colour,
+//   texture coordinates (interp.texcoord_format) and perspective weights Q_k, and the
+//   affine flag of ref tri_setup (the testbench's front end divides clip space by w); a marker (a state command in
 //   order with the triangles) travels through every stage and leaves as a marker beat.
 // - Fragments leave FragmentsPerCycle lanes a beat, a tile's last beat flagged: the
 //   ROP (depth test, framebuffer) is the testbench's memory model.
@@ -52,6 +56,10 @@ module rast_top #(
   input  wire logic [23:0]                           tri_rgb0_i,      // vertex 0 colour {b, g, r}
   input  wire logic [23:0]                           tri_rgb1_i,      // vertex 1 colour
   input  wire logic [23:0]                           tri_rgb2_i,      // vertex 2 colour
+  input  wire logic [3*TexW-1:0]                     tri_s_i,         // vertex k texture coordinate s at [k*TexW +: TexW], raw signed
+  input  wire logic [3*TexW-1:0]                     tri_t_i,         // vertex k t
+  input  wire logic [3*24-1:0]                       tri_q_i,         // vertex k perspective weight Q_k at [k*24 +: 24] (docs/clip-space.md)
+  input  wire logic                                  tri_affine_i,    // interpolation needs no reciprocal (ref tri_setup's affine)
   input  wire logic [PixelW-1:0]                     tri_clip_x0_i,   // clip rect, half-open px
   input  wire logic [PixelW-1:0]                     tri_clip_y0_i,   //
   input  wire logic [PixelW-1:0]                     tri_clip_x1_i,   //
@@ -67,6 +75,8 @@ module rast_top #(
   output      logic [InterpFragmentsPerCycle*PixelW-1:0] frag_y_o,    // lane j y
   output      logic [InterpFragmentsPerCycle*DepthW-1:0] frag_z_o,    // lane j depth
   output      logic [InterpFragmentsPerCycle*24-1:0]     frag_rgb_o,  // lane j colour {b, g, r}
+  output      logic [InterpFragmentsPerCycle*TexW-1:0]   frag_s_o,    // lane j texture coordinate s, raw signed
+  output      logic [InterpFragmentsPerCycle*TexW-1:0]   frag_t_o,    // lane j t
   output      logic [InterpFragmentsPerCycle*MaxSamples-1:0] frag_mask_o,  // lane j sample mask (bit s: sample s)
   output      logic                                  idle_o,          // no work anywhere, the interpolator pipeline drained
   // Stage handshake observation for the co-simulation's per-stage statistics (bit s:
@@ -83,8 +93,12 @@ module rast_top #(
   // derived from its bundle ($bits of a signal of its type: Yosys 0.23 takes $bits of a
   // signal, not of a type). Per-vertex and per-edge fields are {2, 1, 0}.
   typedef struct packed {
-    logic [3*DepthW-1:0] z;    // depth, unorm
-    logic [3*24-1:0]     rgb;  // colour {b, g, r}
+    logic [3*DepthW-1:0] z;       // depth, unorm
+    logic [3*24-1:0]     rgb;     // colour {b, g, r}
+    logic [3*TexW-1:0]   s;       // texture coordinate, raw signed
+    logic [3*TexW-1:0]   t;
+    logic [3*24-1:0]     q;       // perspective weights Q_k
+    logic                affine;  // no reciprocal needed
   } attr_t;
   // A set-up triangle's edge functions E(x, y) = a x + b y + c (rast_tri_setup).
   typedef struct packed {
@@ -206,6 +220,10 @@ module rast_top #(
   assign t_push.origin = {tri_origin_y_i, tri_origin_x_i};
   assign t_push.attr.z = {tri_z2_i, tri_z1_i, tri_z0_i};
   assign t_push.attr.rgb = {tri_rgb2_i, tri_rgb1_i, tri_rgb0_i};
+  assign t_push.attr.s = tri_s_i;
+  assign t_push.attr.t = tri_t_i;
+  assign t_push.attr.q = tri_q_i;
+  assign t_push.attr.affine = tri_affine_i;
   rast_fifo #(.Width(TriW), .Depth(TriangleFifoDepth)) u_triangle_fifo (
     .clk_i, .rst_ni, .in_valid_i(tri_valid_i), .in_ready_o(tri_ready_o), .in_data_i(t_push),
     .out_valid_o(t_valid), .out_ready_i(t_ready), .out_data_o(t_in), .empty_o(t_empty));
@@ -334,15 +352,17 @@ module rast_top #(
     .CoordW(CoordW), .CoordFrac(CoordFrac), .CoefW(CoefW), .EdgeW(EdgeW), .AreaW(AreaW),
     .ColorNumW(ColorNumW), .DepthNumW(DepthNumW), .DepthW(DepthW), .PixelW(PixelW),
     .TileLog2Max(TileLog2Max), .TileLog2W(TileLog2W), .FragmentsPerCycle(InterpFragmentsPerCycle), .Latency(InterpLatency),
-    .MaxSamples(MaxSamples)
+    .MaxSamples(MaxSamples), .TexW(TexW), .Perspective(InterpPerspective), .PerspLanes(InterpPerspLanes),
+    .RecipSeedBits(RecipSeedBits), .RecipIterations(RecipIterations), .RecipLatency(InterpRecipLatency)
   ) u_interpolate (
     .clk_i, .rst_ni, .tile_log2_i(tile_log2_q), .in_valid_i(p_valid), .in_ready_o(p_ready), .in_marker_i(p_in.marker),
     .in_mask_i(p_in.mask), .in_smask_i(p_in.smask), .in_tile_i(p_in.tile), .in_a_i(p_in.a), .in_b_i(p_in.b),
     .in_c_i(p_in.c), .in_origin_i(p_in.origin), .in_area2_i(p_in.area2), .in_z_i(p_in.attr.z),
-    .in_rgb_i(p_in.attr.rgb),
+    .in_rgb_i(p_in.attr.rgb), .in_s_i(p_in.attr.s), .in_t_i(p_in.attr.t), .in_q_i(p_in.attr.q),
+    .in_affine_i(p_in.attr.affine),
     .out_valid_o(frag_valid_o), .out_ready_i(frag_ready_i), .out_marker_o(frag_marker_o),
     .out_last_o(frag_last_o), .out_lanes_o(frag_lanes_o), .out_x_o(frag_x_o), .out_y_o(frag_y_o),
-    .out_z_o(frag_z_o), .out_rgb_o(frag_rgb_o), .out_smask_o(frag_mask_o), .busy_o(p_busy));
+    .out_z_o(frag_z_o), .out_rgb_o(frag_rgb_o), .out_s_o(frag_s_o), .out_t_o(frag_t_o), .out_smask_o(frag_mask_o), .busy_o(p_busy));
 
   // ---- Stage observation (debug ports): setup holds a triangle from the FIFO head or
   // its hold registers; the others hold their rast_hold's transaction. The

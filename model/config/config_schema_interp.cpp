@@ -20,9 +20,10 @@ void add_interp_params(std::vector<ParamDef>& s) {
   s.push_back({"interp.perspective", T::Bool, true, "", 1, 0, {},
                "Interpolate colour and texture coordinates perspective-correctly (a/w and 1/w planes, a reciprocal "
                "a pixel); false: affine in screen space. Screen-space input has 1/w = 1: the same either way"});
-  s.push_back({"interp.recip", T::Enum, std::string("exact"), "", 1, 0, {"exact", "newton"},
-               "The per-pixel reciprocal of perspective-correct interpolation: exact (a rational rounded once, the "
-               "golden) or newton (a seed table and Newton-Raphson steps in fixed point)"});
+  s.push_back({"interp.recip", T::Enum, std::string("newton"), "", 1, 0, {"exact", "newton"},
+               "The per-pixel reciprocal of perspective-correct interpolation: newton (a seed table and Newton-Raphson "
+               "steps in fixed point, what the RTL builds: rtl/rast_recip.sv) or exact (a rational rounded once, the "
+               "golden the others are measured against)"});
   s.push_back({"interp.recip_seed_bits", T::Int, int64_t{8}, "bits", 1, 16, {},
                "Index bits of the newton reciprocal's seed table (2^bits entries)"});
   s.push_back({"interp.recip_iterations", T::Int, int64_t{2}, "", 0, 4, {},
@@ -31,6 +32,11 @@ void add_interp_params(std::vector<ParamDef>& s) {
                "Interpolated texture coordinate format s<I>.<F> in repeats: I bits of repeat range, F bits of position "
                "within a repeat (a 2^k-texel texture keeps F - k sub-texel bits for bilinear weights)",
                is_fixed_format, "of form s<I>.<F> with I >= 0, F >= 1, I + F <= 31"});
+  // The reciprocal unit's throughput (docs/clip-space.md, "Timing"; TimingParams::interp_lanes).
+  s.push_back({"recip.lanes", T::Int, int64_t{4}, "reciprocals/cycle", 1, 1024, {},
+               "Reciprocals the interpolator computes per cycle: a perspective-correct (non-affine) triangle's "
+               "pixels are interpolated min(interp.fragments_per_cycle, recip.lanes) a cycle (interp.perspective = "
+               "true only; affine triangles keep interp.fragments_per_cycle)"});
 }
 
 }  // namespace rastsim

@@ -29,6 +29,9 @@ TimingParams TimingParams::from_config(const Config& cfg) {
   p.fine_span_pixels_per_cycle = u("fine.span_pixels_per_cycle");
   p.interp_fragments_per_cycle = u("interp.fragments_per_cycle");
   p.interp_latency = u("interp.latency_cycles");
+  p.interp_perspective = cfg.get_bool("interp.perspective");
+  p.recip_iterations = u("interp.recip_iterations");
+  p.recip_lanes = u("recip.lanes");
   p.rop_pixels_per_cycle = u("rop.pixels_per_cycle");
   p.rop_clear_pixels_per_cycle = u("rop.clear_pixels_per_cycle");
   p.rop_resolve_bytes_per_cycle = u("rop.resolve_bytes_per_cycle");
@@ -60,7 +63,7 @@ uint64_t TimingParams::stage_pass_cycles(StagePass pass) const {
     case StagePass::FetchHeader: return fetch_cycles_per_command;
     case StagePass::IssueCycle: return state_pass_cycles();  // every cost is >= 1 cycle (schema minimums)
     case StagePass::IssueSetupLatency: return state_pass_cycles() + setup_pipeline_latency();
-    case StagePass::IssueInterpLatency: return state_pass_cycles() + interp_latency;
+    case StagePass::IssueInterpLatency: return state_pass_cycles() + interp_pipeline_latency();
     case StagePass::IssueFrontEndLatency: return state_pass_cycles() + front_end_pipeline_latency();
   }
   return 0;

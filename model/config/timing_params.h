@@ -31,6 +31,10 @@ struct TimingParams {
   uint64_t fine_samples_per_cycle = 0, fine_accepted_tile_cycles = 0;
   uint64_t coarse_scanline_setup = 0, fine_span_setup = 0, fine_span_pixels_per_cycle = 0;
   uint64_t interp_fragments_per_cycle = 0, interp_latency = 0;
+  // The reciprocal unit of perspective-correct interpolation (docs/clip-space.md, "Timing"):
+  // present when interp.perspective is true; interp.recip_iterations steps; recip.lanes.
+  bool interp_perspective = false;
+  uint64_t recip_iterations = 0, recip_lanes = 0;
   uint64_t rop_pixels_per_cycle = 0, rop_clear_pixels_per_cycle = 0, rop_resolve_bytes_per_cycle = 0;
   uint64_t setup2d_ops_per_cycle = 0;
   uint64_t engine2d_fill_pixels_per_cycle = 0, engine2d_span_setup = 0, engine2d_rmw = 0;
@@ -43,8 +47,22 @@ struct TimingParams {
   // the transactions in flight inside the stage's pipeline (its pipeline registers),
   // so that latency costs time but not throughput.
   int setup_fifo_entries() const { return fifo_setup + int(ceil_div(setup_latency - setup_interval, setup_interval)); }
-  int fragment_fifo_entries() const { return fifo_fragment + int(interp_latency); }
+  int fragment_fifo_entries() const { return fifo_fragment + int(interp_pipeline_latency()); }
   int screen_fifo_entries() const { return fifo_screen + int(front_end_latency); }
+
+  // The interpolator's reciprocal unit (rtl/rast_recip.sv inside rtl/rast_interpolate.sv)
+  // sits in its pipeline whenever interp.perspective is true, for every triangle (a static
+  // pipeline: an affine triangle's fragments wait as long): the seed look-up (1 stage), 2
+  // stages a Newton-Raphson step, and 1 stage for the product n' y. 0 without the unit.
+  uint64_t interp_recip_latency() const { return interp_perspective ? 2 + 2 * recip_iterations : 0; }
+  // Cycles from a fragment's pick to its leaving the interpolator beyond its issue cycle:
+  // the divider pipeline (interp.latency_cycles) plus the reciprocal unit's.
+  uint64_t interp_pipeline_latency() const { return interp_latency + interp_recip_latency(); }
+  // Pixels interpolated a cycle: interp.fragments_per_cycle, and for a triangle that
+  // needs the reciprocal (not affine) no more than the unit's recip.lanes.
+  uint64_t interp_lanes(bool affine) const {
+    return affine || !interp_perspective ? interp_fragments_per_cycle : std::min(interp_fragments_per_cycle, recip_lanes);
+  }
 
   // The stages' cost equations (docs/microarchitecture.md), in cycles. The SystemC
   // stages and the RTL testbench's stages (model/rtlsim) both call these.
@@ -102,7 +120,10 @@ struct TimingParams {
   // Fine raster of an accepted footprint (a full mask, no tests), any size.
   uint64_t fine_accepted_cycles() const { return fine_accepted_tile_cycles; }
   // Interpolation of a batch of n fragments (one tile's or span's), excluding its latency.
-  uint64_t interp_batch_cycles(uint64_t fragments) const { return ceil_div(fragments, interp_fragments_per_cycle); }
+  // A perspective-correct (non-affine) triangle's batch at interp_lanes(false) a cycle.
+  uint64_t interp_batch_cycles(uint64_t fragments, bool affine = true) const {
+    return ceil_div(fragments, interp_lanes(affine));
+  }
   // ROP: a batch of fragments; a clear (colour or depth) of the whole framebuffer at the
   // fast-clear rate; any other state command passes in one cycle.
   // With raster.samples = S > 1 the ROP's unit of work is an access, not a fragment

@@ -131,7 +131,7 @@ class Walker {
   // then `rop_cycles` in the ROP (which writes a port grant only for a 2D marker).
   void marker(uint64_t rop_cycles, bool is_2d) {
     for (StageId s : {StageId::PrimAssembly, StageId::TriSetup, StageId::CoarseRaster, StageId::FineRaster, StageId::Interpolate}) work(s, TimingParams::state_pass_cycles());
-    r_.latency_waits += p_.setup_pipeline_latency() + p_.interp_latency;
+    r_.latency_waits += p_.setup_pipeline_latency() + p_.interp_pipeline_latency();
     stage(StageId::Rop).busy += rop_cycles;
     if (is_2d) emit(StageId::Rop);
   }
@@ -242,8 +242,8 @@ class Walker {
     stage(StageId::FineRaster).busy += cost;
     if (n == 0) return;  // an empty tile leaves nothing
     emit(StageId::FineRaster);
-    work(StageId::Interpolate, p_.interp_batch_cycles(shaded));
-    r_.latency_waits += p_.interp_latency;
+    work(StageId::Interpolate, p_.interp_batch_cycles(shaded, t.affine));
+    r_.latency_waits += p_.interp_pipeline_latency();
     stage(StageId::Rop).busy += p_.rop_fragment_cycles(acc);
   }
 

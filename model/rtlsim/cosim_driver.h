@@ -145,6 +145,14 @@ class VerilatedRast final : public RastPorts {
     top_->tri_clip_y1_i = it->clip[3];
     top_->tri_origin_x_i = it->origin[0];
     top_->tri_origin_y_i = it->origin[1];
+    const int tw = params_.tex_w;
+    const uint64_t tex_mask = (uint64_t{1} << tw) - 1;
+    for (int v = 0; v < 3; ++v) {
+      set_port_bits(top_->tri_s_i, v * tw, tw, uint64_t(int64_t(it->s[v])) & tex_mask);
+      set_port_bits(top_->tri_t_i, v * tw, tw, uint64_t(int64_t(it->t[v])) & tex_mask);
+      set_port_bits(top_->tri_q_i, v * 24, 24, it->q[v]);
+    }
+    top_->tri_affine_i = it->affine;
   }
   bool triangle_ready() const override { return top_->tri_ready_o; }
   void drive_fragment_ready(bool ready) override { top_->frag_ready_i = ready; }
@@ -161,6 +169,11 @@ class VerilatedRast final : public RastPorts {
     f.g = static_cast<uint8_t>(port_bits(top_->frag_rgb_o, j * 24 + 8, 8));
     f.b = static_cast<uint8_t>(port_bits(top_->frag_rgb_o, j * 24 + 16, 8));
     f.mask = static_cast<uint16_t>(port_bits(top_->frag_mask_o, j * params_.max_samples, params_.max_samples));
+    // s, t: signed tex_w bits, sign-extended.
+    const int tw = params_.tex_w;
+    const auto tex = [tw](uint64_t raw) { return static_cast<int32_t>(int64_t(raw << (64 - tw)) >> (64 - tw)); };
+    f.s = tex(port_bits(top_->frag_s_o, j * tw, tw));
+    f.t = tex(port_bits(top_->frag_t_o, j * tw, tw));
     return f;
   }
   bool idle() const override { return top_->idle_o; }

@@ -54,7 +54,7 @@ class StreamBuilder {
   void state_marker(const Command& cmd, bool clear);
   void draw2d(const Command& cmd, const CmdDraw2d& d2);
   void primitives(const Command& cmd, const CmdPrimitives& prims);
-  void triangle(const Command& cmd, const CmdPrimitives& prims, size_t k);
+  void triangle(const Command& cmd, const CmdPrimitives& prims, size_t k, const ScreenTriangle& verts);
 
   TbSetup& setup_;
   const TimingParams& timing_;
@@ -62,6 +62,7 @@ class StreamBuilder {
   const int tile_size_;
   Framebuffer fb_{1, 1};  // state commands need one; the testbench ROP keeps no pixels
   TraversalCounters counters_;
+  FrontEndStats front_end_;  // the testbench's front end (for_each_triangle) counts here, unread
 };
 
 // A state command travels as a marker: fetched as a header, 1 ROP cycle (a clear: the
@@ -90,22 +91,25 @@ void StreamBuilder::draw2d(const Command& cmd, const CmdDraw2d& d2) {
   setup_.items.push_back(m);
 }
 
-// A primitive command: a triangle item each (an empty one: a header-only item).
+// A primitive command: a triangle item each (an empty one: a header-only item). A
+// clip-space command goes through the reference's front end here, in the testbench
+// (clipping, the divide by w and the viewport map; docs/rtl.md says why), and each
+// screen triangle out of it is one fetched triangle, as the SystemC model's command fetch
+// costs it (sc/command_fetch.cpp).
 void StreamBuilder::primitives(const Command& cmd, const CmdPrimitives& prims) {
-  reject_clip_space(prims, cmd.loc);  // no front end in the testbench yet
-  const size_t n = triangle_count(prims);
-  if (n == 0) {
+  size_t k = 0;
+  for_each_triangle(prims, state_, cmd.loc, front_end_, [&](const ScreenTriangle& v) { triangle(cmd, prims, k++, v); });
+  if (k == 0) {
     TbItem e;
     e.kind = TbItem::Null;
-    e.fetch_cost = timing_.fetch_cycles_per_command;
+    e.fetch_cost = timing_.fetch_header_cycles();
     setup_.items.push_back(e);
   }
-  for (size_t k = 0; k < n; ++k) triangle(cmd, prims, k);
 }
 
-// Triangle k of a primitive command, snapped by the reference's setup, and its expected
-// fragments.
-void StreamBuilder::triangle(const Command& cmd, const CmdPrimitives& prims, size_t k) {
+// Triangle k of a primitive command (vertices verts), snapped by the reference's setup, and
+// its expected fragments.
+void StreamBuilder::triangle(const Command& cmd, const CmdPrimitives& prims, size_t k, const ScreenTriangle& verts) {
   TbItem it;
   const uint64_t new_vertices = (k == 0 || prims.topology == Topology::List) ? 3 : 1;
   it.fetch_cost = timing_.fetch_triangle_cycles(k == 0, new_vertices);
@@ -113,7 +117,7 @@ void StreamBuilder::triangle(const Command& cmd, const CmdPrimitives& prims, siz
   it.tri = static_cast<int>(setup_.tri_names.size());
   setup_.tri_names.push_back(cmd.loc.str() + " triangle " + std::to_string(k));
   SetupTriangle t;
-  const SetupOutcome o = setup_triangle(assemble_triangle(prims, k), state_, cmd.loc, t);
+  const SetupOutcome o = setup_triangle(verts, state_, cmd.loc, t);
   // CulledOutOfRange: nothing the RTL can represent; a zero-area triangle (all vertices
   // 0) costs setup the same.
   if (o != SetupOutcome::CulledOutOfRange) {
@@ -122,7 +126,17 @@ void StreamBuilder::triangle(const Command& cmd, const CmdPrimitives& prims, siz
       it.y[v] = t.y[v];
       it.z[v] = t.z[v];
       it.rgb[v] = uint32_t(t.rgb[v][0]) | uint32_t(t.rgb[v][1]) << 8 | uint32_t(t.rgb[v][2]) << 16;
+      it.s[v] = t.tex_s[size_t(v)];
+      it.t[v] = t.tex_t[size_t(v)];
+      it.q[v] = t.persp_q[size_t(v)];
     }
+    it.affine = t.affine;
+    // The RTL builds the newton reciprocal (rtl/rast_recip.sv): a triangle that needs a
+    // reciprocal under interp.recip = exact would be compared against another divider.
+    if (!t.affine && t.recip != RecipMethod::Newton)
+      throw SceneError(cmd.loc.str() + ": a perspective-correct triangle needs the reciprocal unit, and the RTL "
+                       "builds interp.recip = \"newton\" (rtl/rast_recip.sv): co-simulate with interp.recip = "
+                       "\"newton\" (the default) or interp.perspective = false");
   }
   const PixelRect clip = state_.clip_rect();
   it.clip[0] = clip.x0;

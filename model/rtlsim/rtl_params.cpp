@@ -56,6 +56,12 @@ constexpr ParamField<RtlParams> kFields[] = {
     {"FineAcceptedTileCycles", &RtlParams::fine_accepted_tile_cycles, "fine.accepted_tile_cycles"},
     {"InterpFragmentsPerCycle", &RtlParams::interp_fragments_per_cycle, "interp.fragments_per_cycle"},
     {"InterpLatency", &RtlParams::interp_latency, "interp.latency_cycles"},
+    {"TexW", &RtlParams::tex_w, "texture coordinate s, t: 1 + I + F of interp.texcoord_format, signed"},
+    {"InterpPerspective", &RtlParams::interp_perspective, "interp.perspective: 1 builds the reciprocal lanes"},
+    {"InterpPerspLanes", &RtlParams::interp_persp_lanes, "lanes with a reciprocal: min(interp.fragments_per_cycle, recip.lanes)"},
+    {"RecipSeedBits", &RtlParams::recip_seed_bits, "interp.recip_seed_bits"},
+    {"RecipIterations", &RtlParams::recip_iterations, "interp.recip_iterations"},
+    {"InterpRecipLatency", &RtlParams::interp_recip_latency, "the reciprocal unit's stages: 2 + 2 RecipIterations, 0 without it"},
     {"TriangleFifoDepth", &RtlParams::fifo_triangle, "fifo.triangle_depth"},
     {"SetupFifoEntries", &RtlParams::setup_fifo_entries, "fifo.setup_depth + setup latency slots"},
     {"TileFifoDepth", &RtlParams::fifo_tile, "fifo.tile_depth"},
@@ -192,6 +198,12 @@ RtlParams rtl_params(const ArchParams& arch) {
   p.fine_accepted_tile_cycles = static_cast<int>(t.fine_accepted_tile_cycles);
   p.interp_fragments_per_cycle = static_cast<int>(t.interp_fragments_per_cycle);
   p.interp_latency = static_cast<int>(t.interp_latency);
+  p.tex_w = st.texcoord_format.total_bits();
+  p.interp_perspective = t.interp_perspective ? 1 : 0;
+  p.interp_persp_lanes = static_cast<int>(t.interp_lanes(false));
+  p.recip_seed_bits = st.recip_seed_bits;
+  p.recip_iterations = st.recip_iterations;
+  p.interp_recip_latency = static_cast<int>(t.interp_recip_latency());
   p.fifo_triangle = t.fifo_triangle;
   p.setup_fifo_entries = t.setup_fifo_entries();
   p.fifo_tile = t.fifo_tile;

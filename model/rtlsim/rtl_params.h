@@ -50,6 +50,12 @@ struct RtlParams {
   int coarse_tiles_per_cycle = 0;
   int fine_samples_per_cycle = 0, fine_accepted_tile_cycles = 0;
   int interp_fragments_per_cycle = 0, interp_latency = 0;
+  // Texture coordinates and the perspective datapath (docs/clip-space.md).
+  int tex_w = 0;                 // s, t: 1 + I + F of interp.texcoord_format, signed
+  int interp_perspective = 0;    // interp.perspective: the reciprocal lanes are built
+  int interp_persp_lanes = 0;    // lanes with a reciprocal: TimingParams::interp_lanes(false)
+  int recip_seed_bits = 0, recip_iterations = 0;  // interp.recip_seed_bits, interp.recip_iterations
+  int interp_recip_latency = 0;  // TimingParams::interp_recip_latency (the RTL checks its structure against it)
   int fifo_triangle = 0, fifo_tile = 0, fifo_pixel = 0;
   int setup_fifo_entries = 0;  // fifo.setup_depth + setup's latency slots (TimingParams)
 

@@ -32,6 +32,9 @@ struct TbItem {
   int64_t x[3] = {}, y[3] = {};  // snapped raw coordinates
   uint32_t z[3] = {};
   uint32_t rgb[3] = {};        // {b, g, r} packed as the RTL port
+  int32_t s[3] = {}, t[3] = {};  // texture coordinates, raw interp.texcoord_format
+  uint32_t q[3] = {1, 1, 1};   // perspective weights Q_k (24 bits)
+  bool affine = true;          // interpolation needs no reciprocal (ref tri_setup)
   int clip[4] = {};            // x0, y0, x1, y1
   int origin[2] = {};          // x, y
   int tri = -1;                // triangle index (names in TbSetup::tri_names)

@@ -8,7 +8,7 @@ namespace rastsim::sc {
 void Interpolate::body() {
   for (;;) {
     const PixelItem in = read(in_);
-    if (pass_state(in, out_, p_.interp_latency)) continue;
+    if (pass_state(in, out_, p_.interp_pipeline_latency())) continue;
     const PixelBatch& batch = *in.work;
     const SetupTriangle& tri = *batch.tri;
     LocalPtr<FragmentBatch> frags = fragments_.take();
@@ -45,8 +45,13 @@ void Interpolate::body() {
     frags->count = size_t(out - first);
     ctx_.render.fragments_shaded += frags->count;
     if (frags->count != 0) attribute_to(first->x, first->y);  // the batch's tile
-    busy(p_.interp_batch_cycles(frags->count));
-    write(out_, FragmentItem{nullptr, std::move(frags)}, p_.interp_latency);
+    const uint64_t cycles = p_.interp_batch_cycles(frags->count, tri.affine);
+    if (!tri.affine) {  // a reciprocal a fragment (docs/clip-space.md, "Timing")
+      ctx_.recip_reciprocals += frags->count;
+      ctx_.recip_busy_cycles += cycles;
+    }
+    busy(cycles);
+    write(out_, FragmentItem{nullptr, std::move(frags)}, p_.interp_pipeline_latency());
   }
 }
 

@@ -4,9 +4,14 @@
 //
 // - Each pixel gives its fragments by shade_pixel: one (one sample, or msaa: centre-
 //   shaded, carrying the pixel's mask), or one per covered sample (ssaa).
-// - A batch shading N fragments takes ceil(N / interp.fragments_per_cycle) cycles; its
-//   fragments are ready for the ROP interp.latency_cycles later (divider pipeline).
-// - Counts fragments_shaded.
+// - A batch shading N fragments takes ceil(N / interp.fragments_per_cycle) cycles, a
+//   perspective-correct (non-affine) triangle's ceil(N / min(interp.fragments_per_cycle,
+//   recip.lanes)) (TimingParams::interp_batch_cycles); its fragments are ready for the
+//   ROP TimingParams::interp_pipeline_latency() later: the divider pipeline
+//   (interp.latency_cycles) plus, with interp.perspective, the reciprocal unit's stages,
+//   for every triangle (docs/clip-space.md, "Timing").
+// - Counts fragments_shaded, and the reciprocal unit's work (SimContext::recip_reciprocals,
+//   one a fragment of a non-affine triangle; recip_busy_cycles, its batches' cycles).
 // - Every fragment leaving here goes to the fragment sink, in order: the same stream
 //   (ref/pipeline.h: fragment_trace_line) as the reference model's.
 // - A one-sample triangle shaded by plane equations goes run by run through

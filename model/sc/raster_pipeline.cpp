@@ -284,6 +284,8 @@ SimResult simulate_commands(CommandSource source, const ArchParams& params, cons
   r.rop_accesses = ctx.rop_accesses;
   r.framebuffer_bytes = ctx.framebuffer_bytes;
   r.resolve_cycles = ctx.resolve_cycles;
+  r.recip_reciprocals = ctx.recip_reciprocals;
+  r.recip_busy_cycles = ctx.recip_busy_cycles;
   r.fb = std::move(top->rop.framebuffer());  // moved, not copied: one framebuffer
   r.render.framebuffer_crc32 = r.fb.color_crc32();
   r.sim_wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -303,6 +305,8 @@ nlohmann::json SimResult::to_json() const {
   j["rop_accesses"] = rop_accesses;
   j["framebuffer_bytes"] = framebuffer_bytes;
   j["resolve_cycles"] = resolve_cycles;
+  j["recip_reciprocals"] = recip_reciprocals;
+  j["recip_busy_cycles"] = recip_busy_cycles;
   for (const StageReport& s : stages)
     j["stages"][s.name] = {{"busy", s.busy},
                            {"stalled", s.stalled},

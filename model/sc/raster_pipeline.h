@@ -70,6 +70,8 @@ struct SimResult {
   // depth bytes) + clears + resolve_bytes), and the resolve pass's cycles (0 for one
   // sample), which are the ROP's busy cycles at the end of the frame.
   uint64_t rop_accesses = 0, framebuffer_bytes = 0, resolve_cycles = 0;
+  // The interpolator's reciprocal unit (sc/interpolate.h): reciprocals, busy cycles.
+  uint64_t recip_reciprocals = 0, recip_busy_cycles = 0;
   uint64_t cycles = 0;               // first command to the end of the last transaction
   uint64_t cycles_lower_bound = 0;   // max over stages of fill latency + busy cycles
   std::vector<StageReport> stages;   // in pipeline order
@@ -83,8 +85,9 @@ struct SimResult {
 
   // RenderStats::to_json plus cycles, cycles_lower_bound, simulated_seconds,
   // sim_wall_seconds, simulated_cycles_per_second, rop_accesses, framebuffer_bytes,
-  // resolve_cycles, stages.<name>.{busy,...} (stages.front_end also the front end's
-  // counters, when a clip-space primitive was drawn), fifos.<name>.
+  // resolve_cycles, recip_reciprocals, recip_busy_cycles, stages.<name>.{busy,...}
+  // (stages.front_end also the front end's counters, when a clip-space primitive was
+  // drawn), fifos.<name>.
   nlohmann::json to_json() const;
 };
 

@@ -48,6 +48,8 @@ struct SimContext {
   // (TimingParams::rop_accesses summed over every fragment), bytes moved, and the cycles
   // of the frame-end resolve pass.
   uint64_t rop_accesses = 0, framebuffer_bytes = 0, resolve_cycles = 0;
+  // The interpolator's reciprocal unit (sc/interpolate.h): reciprocals computed, cycles busy.
+  uint64_t recip_reciprocals = 0, recip_busy_cycles = 0;
   // The end-of-frame marker: with raster.samples > 1 command fetch sends it after the
   // last command, down the triangle path like a state command; the ROP resolves on it.
   // Identified by address; its body is never applied.

@@ -13,14 +13,22 @@
 // - Stress on every valid/ready input of the RTL (frag_ready_i backpressure, gaps in
 //   tri_valid_i and the 2D engine's in_valid_i; seeded, the seed printed): the same
 //   fragments and image as without, in more cycles; the same seed replays the same run.
+// - 120 random clip-space triangles (tri4 with colour and texture coordinates, near-plane
+//   crossings, 1/w spread over up to 2^8) with every shipped config, one and four samples
+//   (msaa: extrapolated centres, D <= 0 and clamping) and backpressure: the perspective-
+//   correct interpolator (rtl/rast_interpolate_persp.sv) and the affine texture
+//   coordinates against the reference with interp.recip = newton, fragment for fragment.
+//   interp.recip = exact with a perspective-correct triangle is refused, naming the line.
 // - The shipped scenes with each shipped config run as the ctests cosim.cycles.* through
 //   `rastsim cosim` (fragments and the cycle comparison with the SystemC model).
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
+#include <sstream>
 
 #include "rtlsim/cosim.h"
+#include "scene/scene_io.h"
 #include "timing/stage_table.h"
 #include "cosim_test_util.h"
 
@@ -171,6 +179,75 @@ TEST(StressCosim, ValidGapsAndBackpressureKeepEveryFragment) {
   EXPECT_GT(stage(gaps, StageId::Engine2d).busy, stage(calm, StageId::Engine2d).busy);
   // The seed replays the run, cycle for cycle.
   EXPECT_EQ(run_cosim(scene, ArchParams::resolve(cfg), o).cycles_rtl, gaps.cycles_rtl);
+}
+
+// `n` random clip-space triangles in a 64 x 64 viewport, one tri4 a line: w in [0.05, 8]
+// (1/w spread over up to 2^8), x and y within +-1.5 w (the view volume's edges cross
+// them), z in [-0.2 w, 1.1 w] (near- and far-plane crossings), random colours, s and t
+// in [-100, 100] repeats (most of s7.20's range), some triangles with flat s, t.
+std::string random_clip_trace(uint64_t seed, int n) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  std::ostringstream os;
+  os << "viewport 64 64\nclear 0 0 0\ncleardepth 1\n";
+  for (int k = 0; k < n; ++k) {
+    const bool flat_tex = k % 5 == 0;
+    const float s0 = u(rng) * 200 - 100, t0 = u(rng) * 200 - 100;
+    os << "tri4";
+    for (int v = 0; v < 3; ++v) {
+      const float w = 0.05f + 8.0f * u(rng) * u(rng);
+      os << ' ' << (u(rng) * 3 - 1.5f) * w << ' ' << (u(rng) * 3 - 1.5f) * w << ' ' << (u(rng) * 1.3f - 0.2f) * w
+         << ' ' << w << ' ' << rng() % 256 << ' ' << rng() % 256 << ' ' << rng() % 256 << ' '
+         << (flat_tex ? s0 : u(rng) * 200 - 100) << ' ' << (flat_tex ? t0 : u(rng) * 200 - 100);
+    }
+    os << '\n';
+  }
+  return os.str();
+}
+
+struct ClipCase {
+  const char* config;
+  int samples;
+};
+class ClipSpaceCosim : public ::testing::TestWithParam<ClipCase> {};
+
+TEST_P(ClipSpaceCosim, RandomPerspectiveTrianglesMatch) {
+  Config cfg = load_shipped_config(GetParam().config);
+  cfg.apply_override("raster.samples=" + std::to_string(GetParam().samples));
+  const uint64_t seed = 0xc11b0000u + uint64_t(GetParam().samples);
+  std::cout << "seed " << seed << "\n";
+  const Scene scene = parse_trace(random_clip_trace(seed, 120), "random_clip");
+  CosimOptions o;
+  o.backpressure = 0.3;
+  o.valid_gaps = 0.3;
+  o.stress_seed = seed;
+  const CosimResult r = run_cosim(scene, ArchParams::resolve(cfg), o);
+  std::cout << r.fragments_compared << " fragments, " << r.triangles << " triangles, " << r.cycles_rtl << " cycles\n";
+  expect_clean(r);
+  EXPECT_EQ(r.crc_rtl, r.crc_ref);
+  EXPECT_GT(r.fragments_compared, 2000u);
+}
+
+INSTANTIATE_TEST_SUITE_P(Configs, ClipSpaceCosim,
+                         ::testing::Values(ClipCase{"default", 1}, ClipCase{"default", 4}, ClipCase{"d3d11", 1},
+                                           ClipCase{"embedded", 1}, ClipCase{"desktop", 1}),
+                         [](const auto& info) {
+                           return std::string(info.param.config) + "Samples" + std::to_string(info.param.samples);
+                         });
+
+TEST(ClipSpaceCosimRefusal, ExactReciprocalWithAPerspectiveTriangleNamesTheLine) {
+  Config cfg = load_shipped_config("default");
+  cfg.apply_override("interp.recip=exact");
+  const Scene scene = parse_trace("viewport 64 64\ntri4 -1 -1 0.5 1  1 -1 0.5 2  0 1 0.5 4\n", "persp");
+  try {
+    run_cosim(scene, ArchParams::resolve(cfg));
+    ADD_FAILURE() << "interp.recip = exact with a perspective-correct triangle was co-simulated";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("persp:2: a perspective-correct triangle needs the reciprocal unit"),
+              std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("interp.recip = \"newton\""), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

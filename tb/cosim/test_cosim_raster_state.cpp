@@ -212,27 +212,3 @@ TEST(BackFaceCull, NoFragmentsAndCostOfACulledTriangle) {
 
 }  // namespace
 }  // namespace rastsim::rtlsim
-
-namespace rastsim::rtlsim {
-namespace {
-
-// The testbench has no geometry front end yet: a clip-space command is a scene error
-// naming its line, before any model is clocked, not a command that draws nothing.
-TEST(ClipSpaceCosim, IsASceneErrorNamingItsLine) {
-  Scene scene;
-  scene.source = "c.trace";
-  CmdPrimitives p;
-  p.clip_vertices.assign(3, ClipVertex{});
-  scene.commands.push_back(Command{p, SourceLoc{"c.trace", 4}});
-  try {
-    run_cosim(scene, ArchParams::resolve(Config{}));
-    FAIL() << "no error";
-  } catch (const SceneError& e) {
-    EXPECT_EQ(std::string(e.what()).rfind("c.trace:4: clip-space primitives (tri4, v4) are not modelled at this level yet", 0),
-              0u)
-        << e.what();
-  }
-}
-
-}  // namespace
-}  // namespace rastsim::rtlsim

@@ -12,6 +12,8 @@
 //   end and engine work: nine stages, busy within 2 %, equal transactions (so
 //   --trace-diff's CSVs have equal rows: the ROP's 2D marker is one transaction on both
 //   sides).
+// - The same on every clip-space scene (traces/3d/*.trace) per shipped config, with the
+//   SystemC model's CRC equal to the RTL's and its cycles within 2 % of them.
 // - --trace-diff: two RTL runs, one with the testbench ROP slowed by 7 cycles on one
 //   transaction (CosimOptions::perturb_rop_*): the CSVs have equal row counts, and the
 //   first difference is that transaction, its start equal and its end 7 cycles later.
@@ -41,13 +43,16 @@ nlohmann::json records_json(const std::vector<StageRecord>& v) {
   return j;
 }
 
-// The SystemC model's stages on `scene`, in a child (one elaboration per process).
-std::vector<StageRecord> model_stages(const Scene& scene, const Config& cfg, uint64_t& cycles) {
+// The SystemC model's stages on `scene`, in a child (one elaboration per process); its
+// cycles and framebuffer CRC.
+std::vector<StageRecord> model_stages(const Scene& scene, const Config& cfg, uint64_t& cycles, uint32_t* crc = nullptr) {
   const nlohmann::json j = fidelity::run_in_child([&] {
     const sc::SimResult m = sc::simulate_scene(scene, ArchParams::resolve(cfg));
-    return nlohmann::json{{"cycles", m.cycles}, {"stages", records_json(stage_records(m.stages))}};
+    return nlohmann::json{{"cycles", m.cycles}, {"crc", m.render.framebuffer_crc32},
+                          {"stages", records_json(stage_records(m.stages))}};
   });
   cycles = j.at("cycles").get<uint64_t>();
+  if (crc) *crc = j.at("crc").get<uint32_t>();
   std::vector<StageRecord> v;
   for (const auto& s : j.at("stages"))
     v.push_back(StageRecord{s.at("name").get<std::string>(), s.at("busy").get<uint64_t>(),
@@ -62,12 +67,21 @@ std::string name_of(StageId id) { return std::string(stage_name(id)); }
 // Every stage's figures agree on `scene`: busy within `bound` (with `busy_nonzero` the
 // stages that must have worked), the three states add up to each side's cycles, and
 // both sides take the same number of transactions.
+// With `same_image`, the SystemC model's framebuffer CRC equals the RTL's and the
+// reference's, and its cycles are within `bound` of the RTL's.
 void expect_stages_agree(const Scene& scene, const Config& cfg, const std::set<std::string>& busy_nonzero,
-                         const std::set<std::string>& idle) {
+                         const std::set<std::string>& idle, bool same_image = false) {
   const CosimResult r = run_cosim(scene, ArchParams::resolve(cfg));
   expect_clean(r);
   uint64_t cycles_model = 0;
-  const std::vector<StageRecord> model = model_stages(scene, cfg, cycles_model);
+  uint32_t crc_model = 0;
+  const std::vector<StageRecord> model = model_stages(scene, cfg, cycles_model, &crc_model);
+  if (same_image) {
+    EXPECT_EQ(r.crc_rtl, r.crc_ref);
+    EXPECT_EQ(crc_model, r.crc_rtl);
+    EXPECT_LE(std::abs(double(cycles_model) - double(r.cycles_rtl)), 0.02 * double(r.cycles_rtl))
+        << "cycles: model " << cycles_model << ", RTL " << r.cycles_rtl;
+  }
   const std::vector<StageAgreement> a = compare_stages(model, r.stages);
   ASSERT_EQ(a.size(), kStageCount) << "every stage of the table is counted by the RTL co-simulation and the SystemC model";
   for (size_t k = 0; k < a.size(); ++k) {
@@ -117,6 +131,24 @@ TEST_P(StageAgreementTest, TwoDScenesBusyWithinTwoPercent) {
                         {});
   }
   EXPECT_GT(scenes, 0) << "no 2D scene in " << dir;
+}
+
+// The clip-space scenes (traces/3d: the testbench runs the reference front end, the RTL
+// interpolates perspective-correctly): stages within 2 %, the RTL's fragments (texture
+// coordinates included) the reference's, and the SystemC model's image and cycles the RTL's.
+TEST_P(StageAgreementTest, ClipSpaceScenesBusyWithinTwoPercent) {
+  const Config cfg = load_shipped_config(GetParam());
+  const std::filesystem::path dir = std::filesystem::path(RASTSIM_SOURCE_DIR) / "traces" / "3d";
+  int scenes = 0;
+  std::set<std::string> triangle, two_d;
+  for (const StageInfo& st : kStages) (st.path == StagePath::TwoD ? two_d : triangle).insert(std::string(st.name));
+  for (const auto& e : std::filesystem::directory_iterator(dir)) {
+    if (e.path().extension() != ".trace") continue;
+    SCOPED_TRACE(e.path().string());
+    ++scenes;
+    expect_stages_agree(load_trace(e.path().string()), cfg, triangle, two_d, true);
+  }
+  EXPECT_GT(scenes, 0) << "no clip-space scene in " << dir;
 }
 
 INSTANTIATE_TEST_SUITE_P(ShippedConfigs, StageAgreementTest,

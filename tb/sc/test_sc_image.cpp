@@ -128,13 +128,14 @@ TEST_P(ScInterpDda, RandomScenesMatchReference) {
 INSTANTIATE_TEST_SUITE_P(Arith, ScInterpDda, ::testing::Values("f32", "fixed"));
 
 TEST(ScFifo, DepthOneNeverLosesOrReorders) {
-  // Every FIFO one entry deep (and no pipeline latency slots): maximal backpressure. Link::read checks the sequence
-  // numbers and simulate_scene checks writes == reads; the fragment stream must match.
+  // Every FIFO one entry deep (and no pipeline latency slots: no reciprocal unit either): maximal backpressure.
+  // Link::read checks the sequence numbers and simulate_scene checks writes == reads; the fragment stream must match.
   const Config cfg = make_config({"fifo.command_depth=1", "fifo.triangle_depth=1", "fifo.setup_depth=1",
                                   "fifo.tile_depth=1", "fifo.pixel_depth=1", "fifo.fragment_depth=1",
                                   "fifo.draw2d_depth=1", "fifo.op2d_depth=1", "fifo.clip_command_depth=1",
                                   "fifo.screen_depth=1", "front_end.latency_cycles=0",
-                                  "raster.tile_size=8", "setup.latency_cycles=2", "interp.latency_cycles=0"});
+                                  "raster.tile_size=8", "setup.latency_cycles=2", "interp.latency_cycles=0",
+                                  "interp.perspective=false"});
   const Scene scene = random_scene(11, 128, 128, 80);
   const auto r = run_isolated([&] { return compare_with_reference(scene, cfg); });
   expect_matches_reference(r);

@@ -75,9 +75,12 @@ TEST(ScTiming, BottleneckStageSetsThroughput) {
   const uint64_t rop_busy = s["stages"]["rop"]["busy"];
   EXPECT_GE(c, s["cycles_lower_bound"].get<uint64_t>());
   EXPECT_LE(double(c), 1.1 * double(rop_busy));
-  // The ROP's fill: fetch, 5 stages, and the setup and interpolation pipeline latencies.
+  // The ROP's fill: fetch, 5 stages, and the setup and interpolation pipeline latencies
+  // (interp.perspective is on: the reciprocal unit's 1 + 2 steps + 1 stages too).
   const TimingParams p = TimingParams::from_config(cfg);
-  const uint64_t rop_fill = p.fetch_cycles_per_command + 5 + (p.setup_latency - p.setup_interval) + p.interp_latency;
+  ASSERT_TRUE(p.interp_perspective);
+  const uint64_t rop_fill = p.fetch_cycles_per_command + 5 + (p.setup_latency - p.setup_interval) + p.interp_latency +
+                            2 + 2 * p.recip_iterations;
   EXPECT_EQ(rop_busy, s["cycles_lower_bound"].get<uint64_t>() - rop_fill);
 }
 

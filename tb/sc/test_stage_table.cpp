@@ -38,7 +38,11 @@ Scene one_triangle() {
 // geometry front end wait for the header alone.
 TEST(StageTable, FillCyclesAreTheHandWorkedSums) {
   const TimingParams t = ArchParams::resolve(test_config()).timing;
-  const uint64_t f = t.fetch_cycles_per_command, setup = t.setup_latency - t.setup_interval, il = t.interp_latency;
+  // Interpolation's latency: the dividers' and (interp.perspective on) the reciprocal
+  // unit's, 1 + 2 steps + 1 stages.
+  ASSERT_TRUE(t.interp_perspective);
+  const uint64_t f = t.fetch_cycles_per_command, setup = t.setup_latency - t.setup_interval,
+                 il = t.interp_latency + 2 + 2 * t.recip_iterations;
   ASSERT_GT(setup, 0u);
   EXPECT_EQ(t.stage_fill_cycles(StageId::CommandFetch), 0u);
   EXPECT_EQ(t.stage_fill_cycles(StageId::FrontEnd), f);      // beside the triangle path
