@@ -110,7 +110,20 @@ TEST(ScSampled, IntervalCoversTheFullRun) {
               all.trials, 100.0 * all.covered / all.trials, all.sampled);
   EXPECT_GE(all.covered, 0.95 * all.trials) << all.covered << "/" << all.trials;
   const int sampled_covered = all.covered - (all.trials - all.sampled);  // the others are exact
-  EXPECT_GE(sampled_covered, 0.95 * all.sampled) << sampled_covered << "/" << all.sampled << " sampled trials";
+  // A 95 % interval covers a trial with probability 0.95, so the covered count of n
+  // trials is binomial(n, 0.95): expecting >= 0.95 n would fail a sound method about
+  // half the time. The test rejects the method when so few covered would happen with
+  // probability under 1 % (a one-sided binomial test): n = 50 allows 43.
+  double p_at_most = 0;
+  for (int k = 0; k <= sampled_covered; ++k) {
+    // C(n, k) 0.95^k 0.05^(n - k), through logarithms.
+    const double term = std::exp(std::lgamma(all.sampled + 1.0) - std::lgamma(k + 1.0) - std::lgamma(all.sampled - k + 1.0) +
+                    k * std::log(0.95) + (all.sampled - k) * std::log(0.05));
+    p_at_most += term;
+  }
+  std::printf("sampled trials covered %d/%d: P(at most that many | 95 %% coverage) = %.4f\n", sampled_covered,
+              all.sampled, p_at_most);
+  EXPECT_GE(p_at_most, 0.01) << sampled_covered << "/" << all.sampled << " sampled trials";
 }
 
 
