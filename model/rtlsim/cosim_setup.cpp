@@ -54,6 +54,7 @@ class StreamBuilder {
   void state_marker(const Command& cmd, bool clear);
   void draw2d(const Command& cmd, const CmdDraw2d& d2);
   void primitives(const Command& cmd, const CmdPrimitives& prims);
+  void clip_space(const Command& cmd, const CmdPrimitives& prims);
   void triangle(const Command& cmd, const CmdPrimitives& prims, size_t k, const ScreenTriangle& verts);
 
   TbSetup& setup_;
@@ -62,7 +63,7 @@ class StreamBuilder {
   const int tile_size_;
   Framebuffer fb_{1, 1};  // state commands need one; the testbench ROP keeps no pixels
   TraversalCounters counters_;
-  FrontEndStats front_end_;  // the testbench's front end (for_each_triangle) counts here, unread
+  FrontEndStats front_end_;  // the testbench's front end counts here (its steps' costs)
 };
 
 // A state command travels as a marker: fetched as a header, 1 ROP cycle (a clear: the
@@ -91,12 +92,13 @@ void StreamBuilder::draw2d(const Command& cmd, const CmdDraw2d& d2) {
   setup_.items.push_back(m);
 }
 
-// A primitive command: a triangle item each (an empty one: a header-only item). A
-// clip-space command goes through the reference's front end here, in the testbench
-// (clipping, the divide by w and the viewport map; docs/rtl.md says why), and each
-// screen triangle out of it is one fetched triangle, as the SystemC model's command fetch
-// costs it (sc/command_fetch.cpp).
+// A primitive command: a triangle item each (an empty one: a header-only item),
+// fetched as the SystemC model's command fetch costs it (sc/command_fetch.cpp).
 void StreamBuilder::primitives(const Command& cmd, const CmdPrimitives& prims) {
+  if (prims.clip_space()) {
+    clip_space(cmd, prims);
+    return;
+  }
   size_t k = 0;
   for_each_triangle(prims, state_, cmd.loc, front_end_, [&](const ScreenTriangle& v) { triangle(cmd, prims, k++, v); });
   if (k == 0) {
@@ -105,6 +107,31 @@ void StreamBuilder::primitives(const Command& cmd, const CmdPrimitives& prims) {
     e.fetch_cost = timing_.fetch_header_cycles();
     setup_.items.push_back(e);
   }
+}
+
+// A clip-space command goes through the reference's front end here, in the testbench
+// (clipping, the divide by w and the viewport map; docs/rtl.md says why), timed as the
+// SystemC model's geometry front end (sc/front_end.cpp): fetched whole, then a step a
+// triangle out charged what the front end did since the previous one, and a last step
+// for the primitives after the last triangle, ending the command.
+void StreamBuilder::clip_space(const Command& cmd, const CmdPrimitives& prims) {
+  const size_t job = setup_.items.size();
+  TbItem c;
+  c.kind = TbItem::ClipCommand;
+  c.fetch_cost = timing_.fetch_whole_command_cycles(prims.clip_vertices.size());
+  c.first_step = setup_.front_end_steps.size();
+  setup_.items.push_back(c);
+  FrontEndStats last = front_end_;  // the counters at the last step charged
+  size_t k = 0;
+  front_end(prims, state_, cmd.loc, front_end_, [&](const ScreenTriangle& v) {
+    const uint64_t cycles = timing_.front_end_step_cycles(last, front_end_, true);
+    last = front_end_;
+    setup_.front_end_steps.push_back(TbFrontEndStep{cycles, int64_t(setup_.items.size())});
+    triangle(cmd, prims, k++, v);
+    setup_.items.back().from_front_end = true;
+  });
+  setup_.front_end_steps.push_back(TbFrontEndStep{timing_.front_end_step_cycles(last, front_end_, false), -1});
+  setup_.items[job].steps = setup_.front_end_steps.size() - setup_.items[job].first_step;
 }
 
 // Triangle k of a primitive command (vertices verts), snapped by the reference's setup, and
@@ -233,7 +260,8 @@ void cosim_setup(const Scene& scene, const ArchParams& arch, const CosimOptions&
   s.reference = render_scene(scene, s.arch, ref_stats);
   build(scene, arch, tile, s);
   r.fragments_expected = s.expected.size();
-  for (const TbItem& it : s.items) (it.kind == TbItem::Marker ? r.markers : r.triangles) += it.kind != TbItem::Null;
+  for (const TbItem& it : s.items)
+    (it.kind == TbItem::Marker ? r.markers : r.triangles) += it.kind == TbItem::Marker || it.kind == TbItem::Triangle;
   r.commands_2d = s.work2d.size();
   if (s.arch.samples > 1) r.resolve_cycles = s.items.back().rop_cost;
 }

@@ -6,15 +6,15 @@
 // model's): a stage that takes an item in cycle u and needs n cycles offers its result
 // in cycle u + n - 1; a FIFO entry pushed in cycle v is visible in cycle v + 1 (SystemC
 // time v + 1); a push into a full FIFO succeeds when the reader pops in the same cycle.
-// The testbench stages below follow model/sc/command_fetch.cpp, prim_assembly.cpp and
-// rop.cpp exactly, with the cost equations of TimingParams; the cycle count is the
+// The testbench stages below follow model/sc/command_fetch.cpp, front_end.cpp,
+// prim_assembly.cpp and rop.cpp exactly, with the cost equations of TimingParams; the cycle count is the
 // ROP's last busy cycle + 1, as the model's.
 //
 // Stage statistics (docs/microarchitecture.md "Stage statistics"): every cycle each
 // stage is busy, stalled or starved, as the SystemC Stage accounts it. The testbench
-// stages (and the 2D front end and engine) count their own cycles; setup, coarse raster,
-// fine raster and interpolation are classified from rast_top's dbg_has_o / dbg_done_o /
-// dbg_blocked_o handshake ports.
+// stages (the geometry front end, the 2D front end and engine too) count their own
+// cycles; setup, coarse raster, fine raster and interpolation are classified from
+// rast_top's dbg_has_o / dbg_done_o / dbg_blocked_o handshake ports.
 //
 // Stress (CosimOptions): random backpressure on frag_ready_i and random gaps in
 // tri_valid_i and the 2D engine's in_valid_i, each from its own generator seeded by
@@ -57,6 +57,12 @@ struct Entry {
   size_t item;
   uint64_t pushed;
 };
+// A screen-FIFO entry: a triangle item (-1: its command's end), visible to assembly
+// from cycle `visible` (after the push and the front end's pipeline latency).
+struct ScreenEntry {
+  int64_t item;
+  uint64_t visible;
+};
 // A fragment-FIFO entry: a tile's fragments or a marker, visible to the ROP from the
 // cycle after its push.
 struct Batch {
@@ -89,7 +95,8 @@ std::mt19937_64 port_rng(uint64_t seed, uint32_t port) {
 }
 
 // One co-simulation run: the verilated rast_top between the testbench's front end
-// (command fetch, command FIFO, primitive assembly) and its back end (fragment
+// (command fetch, command FIFO, the geometry front end with its clip-command and screen
+// FIFOs, primitive assembly) and its back end (fragment
 // staging, fragment FIFO, the ROP as a memory model). Each cycle: the back end and
 // assembly act on what is visible (ROP, staging, assembly take), the triangle port is
 // driven, the clock falls, the fragment port is read, assembly and fetch advance, the
@@ -104,9 +111,13 @@ class Testbench {
         cmd_depth_(size_t(setup.timing.fifo_entries(FifoId::Command))),
         frag_depth_(size_t(setup.timing.fifo_entries(FifoId::Fragment))),
         draw2d_depth_(size_t(setup.timing.fifo_entries(FifoId::Draw2d))),
-        op2d_depth_(size_t(setup.timing.fifo_entries(FifoId::Op2d))), rop_state_(setup.arch),
+        op2d_depth_(size_t(setup.timing.fifo_entries(FifoId::Op2d))),
+        clip_depth_(size_t(setup.timing.fifo_entries(FifoId::ClipCommand))),
+        screen_depth_(size_t(setup.timing.fifo_entries(FifoId::Screen))), rop_state_(setup.arch),
         fb_(setup.arch.fb_width, setup.arch.fb_height, setup.samples) {
     fb_.clear_depth(static_cast<uint32_t>((uint64_t{1} << rop_state_.depth_bits) - 1));  // as render_scene
+    for (size_t i = 0; i < setup.items.size(); ++i)
+      if (!setup.items[i].from_front_end) fetched_.push_back(i);
   }
 
   void run();
@@ -131,6 +142,10 @@ class Testbench {
   void engine_write(uint64_t t, int x, int y);
   void front_end_take(uint64_t t);
   void front_end_step(uint64_t t);
+  // The geometry front end (model/sc/front_end.cpp).
+  void geometry_take(uint64_t t);
+  void geometry_step(uint64_t t);
+  bool geometry_push(uint64_t t, Cyc& state);
   // Front end: command fetch and primitive assembly (model/sc/command_fetch.cpp, prim_assembly.cpp).
   void assembly_take(uint64_t t);
   void assembly_step(uint64_t t, bool tri_taken);
@@ -157,6 +172,7 @@ class Testbench {
   PortStress frag_ready_stress_, tri_valid_stress_, op_valid_stress_;
   const size_t cmd_depth_, frag_depth_;  // command FIFO; fragment FIFO with the interpolator's latency slots
   const size_t draw2d_depth_, op2d_depth_;  // the 2D command and operation FIFOs
+  const size_t clip_depth_, screen_depth_;  // the clip-command FIFO; the screen FIFO with the front end's latency slots
 
   std::deque<Entry> cmd_fifo_;
   std::deque<Batch> frag_fifo_;
@@ -164,7 +180,8 @@ class Testbench {
   Batch staging_;                         // the batch the interpolator is filling
   bool staging_blocked_ = false;          // completed, waiting for fragment-FIFO room
   TbStage fetch_, assembly_;
-  size_t next_item_ = 0;
+  std::vector<size_t> fetched_;           // the items fetch takes, in order (not the front end's triangles)
+  size_t next_item_ = 0;                  // next of fetched_
   uint64_t rop_left_ = 0;                 // ROP busy cycles left
   uint64_t last_busy_ = 0;                // last cycle any stage worked
   size_t next_expected_ = 0;
@@ -175,7 +192,7 @@ class Testbench {
   TbStage front_end_;                     // the 2D front end
   bool front_end_blocked_ = false;        // the front end waited for op2d FIFO room
   bool fetch_blocked_ = false;            // fetch waited for command or 2D FIFO room
-  bool fetch_2d_pushed_ = false;          // fetch pushed its 2D command, the marker still to go
+  bool fetch_job_pushed_ = false;         // fetch pushed its 2D or clip-space job, the marker still to go
   int engine_work_ = -1;                  // the batch the engine holds (work2d index)
   bool engine_busy_ = false;              // executing `engine_work_` (the port is lent)
   bool engine_worked_ = false;            // the engine is busy in this cycle (stage statistics)
@@ -190,6 +207,14 @@ class Testbench {
   std::array<Meter, kStageCount> meter_{};
   std::array<bool, kObservedStages.size()> rtl_blocked_{};  // observed stage s was stalled on its output last cycle
   bool assembly_offered_ = false;         // assembly offered its triangle in an earlier cycle
+  bool assembly_clip_ = false;            // assembly takes a clip-space command's triangles from the screen FIFO
+  // The geometry front end: clip-space jobs (items) from fetch, triangles to assembly.
+  std::deque<Entry> clip_fifo_;
+  std::deque<ScreenEntry> screen_fifo_;
+  TbStage geometry_;                      // item: the ClipCommand; left: the current step's cycles
+  size_t geometry_next_step_ = 0, geometry_end_step_ = 0;  // the current step, the job's end (front_end_steps)
+  bool geometry_blocked_ = false;         // the step's push waits for screen-FIFO room
+  uint64_t geometry_attempt_ = 0;         // the cycle of that push's first attempt (its latency counts from it)
 };
 
 void Testbench::run() {
@@ -252,14 +277,12 @@ bool Testbench::cycle(uint64_t t) {
   ports_.clock_edge(false);
   const bool tri_taken = tri_valid && ports_.triangle_ready();
   observe_rtl_stages(t);
-  // The geometry front end's meter: the testbench takes no clip-space command
-  // (cosim_setup.cpp rejects one), so the stage is starved every cycle, as in SystemC.
-  count(StageId::FrontEnd, Cyc::Starved);
   const FragmentBeat beat = ports_.fragment_beat();
   if (!ports_.idle() || beat.valid || fetch_.active || assembly_.active) last_busy_ = std::max(last_busy_, t);
   if (beat.valid && frag_ready) take_beat(t, beat);
   engine_memory_and_handshake(t, op_valid);
   assembly_step(t, tri_taken);
+  geometry_step(t);
   fetch_step(t);
   ports_.clock_edge(true);
   return done();
@@ -476,16 +499,97 @@ void Testbench::front_end_step(uint64_t t) {
   count(StageId::Draw2dSetup, state);
 }
 
+// ---- The geometry front end (model/sc/front_end.cpp) ----
+
+// The front end takes a visible clip-space job: its first step.
+void Testbench::geometry_take(uint64_t t) {
+  if (geometry_.active || clip_fifo_.empty() || clip_fifo_.front().pushed >= t) return;
+  const TbItem& c = setup_.items[clip_fifo_.front().item];
+  geometry_next_step_ = c.first_step;
+  geometry_end_step_ = c.first_step + c.steps;
+  geometry_ = TbStage{true, setup_.front_end_steps[c.first_step].cycles, clip_fifo_.front().item};
+  clip_fifo_.pop_front();
+  tx_begin(StageId::FrontEnd, t);
+}
+// Each step is busy its cycles and pushes its entry in the last (a step of no cycles,
+// the end after the last triangle: in the cycle of the previous push), counted as the
+// 2D front end's (front_end_step): busy, stalled for a retried push; after a push that
+// waited, the next step or job starts in the same cycle.
+void Testbench::geometry_step(uint64_t t) {
+  Cyc state = Cyc::Starved;
+  for (;;) {
+    geometry_take(t);
+    if (!geometry_.active) break;
+    last_busy_ = std::max(last_busy_, t);
+    if (geometry_.left > 1) {
+      --geometry_.left;
+      state = Cyc::Busy;
+      break;
+    }
+    if (geometry_.left == 1 && !geometry_blocked_) state = Cyc::Busy;
+    if (!geometry_push(t, state)) break;
+  }
+  count(StageId::FrontEnd, state);
+}
+// The step's entry into the screen FIFO, ready front_end.latency_cycles after its first
+// attempt's cycle (the model's write: ready from the cycle the work ended). True when the
+// stage goes on in this cycle: a step of no cycles next, or a push that waited.
+bool Testbench::geometry_push(uint64_t t, Cyc& state) {
+  if (screen_fifo_.size() >= screen_depth_) {
+    if (geometry_blocked_) state = Cyc::Stalled;
+    else geometry_attempt_ = t;
+    geometry_blocked_ = true;
+    return false;
+  }
+  const uint64_t attempt = geometry_blocked_ ? geometry_attempt_ : t;
+  const TbFrontEndStep& step = setup_.front_end_steps[geometry_next_step_];
+  const uint64_t ready = attempt + 1 + setup_.timing.front_end_pipeline_latency();
+  screen_fifo_.push_back(ScreenEntry{step.item, std::max(t + 1, ready)});
+  const bool was_blocked = geometry_blocked_;
+  geometry_blocked_ = false;
+  geometry_.left = 0;
+  if (++geometry_next_step_ == geometry_end_step_) {
+    geometry_.active = false;
+    tx_end(StageId::FrontEnd, was_blocked ? t : t + 1);
+    return was_blocked;
+  }
+  geometry_.left = setup_.front_end_steps[geometry_next_step_].cycles;
+  return was_blocked || geometry_.left == 0;
+}
+
 // ---- Front end: command fetch and primitive assembly (model/sc/command_fetch.cpp,
 // prim_assembly.cpp) ----
 
-// Assembly takes a visible command.
+// Assembly takes a visible command; on a clip-space command's marker, the front end's
+// triangles from the screen FIFO to the command's end. Each take is a transaction, as
+// the model's reads; the marker's and the end's take no cycle (transactions of none).
 void Testbench::assembly_take(uint64_t t) {
-  if (!assembly_.active && !cmd_fifo_.empty() && cmd_fifo_.front().pushed < t) {
-    assembly_ = TbStage{true, setup_.items[cmd_fifo_.front().item].assembly_cost, cmd_fifo_.front().item};
-    cmd_fifo_.pop_front();
+  while (!assembly_.active) {
+    size_t item = 0;
+    if (assembly_clip_) {
+      if (screen_fifo_.empty() || screen_fifo_.front().visible > t) return;
+      const int64_t tri = screen_fifo_.front().item;
+      screen_fifo_.pop_front();
+      tx_begin(StageId::PrimAssembly, t);
+      assembly_clip_ = tri >= 0;
+      if (tri < 0) {
+        tx_end(StageId::PrimAssembly, t);
+        continue;
+      }
+      item = size_t(tri);
+    } else {
+      if (cmd_fifo_.empty() || cmd_fifo_.front().pushed >= t) return;
+      item = cmd_fifo_.front().item;
+      cmd_fifo_.pop_front();
+      tx_begin(StageId::PrimAssembly, t);
+      assembly_clip_ = setup_.items[item].kind == TbItem::ClipCommand;
+      if (assembly_clip_) {
+        tx_end(StageId::PrimAssembly, t);
+        continue;
+      }
+    }
+    assembly_ = TbStage{true, setup_.items[item].assembly_cost, item};
     assembly_offered_ = false;
-    tx_begin(StageId::PrimAssembly, t);
   }
 }
 // Assembly counts its busy cycle and hands over on a taken offer. Its last busy cycle
@@ -519,8 +623,9 @@ void Testbench::assembly_step(uint64_t t, bool tri_taken) {
 void Testbench::fetch_step(uint64_t t) {
   Cyc state = Cyc::Starved;
   for (;;) {
-    if (!fetch_.active && next_item_ < setup_.items.size()) {
-      fetch_ = TbStage{true, setup_.items[next_item_].fetch_cost, next_item_++};
+    if (!fetch_.active && next_item_ < fetched_.size()) {
+      const size_t item = fetched_[next_item_++];
+      fetch_ = TbStage{true, setup_.items[item].fetch_cost, item};
       tx_begin(StageId::CommandFetch, t);
     }
     if (!fetch_.active) break;
@@ -540,19 +645,21 @@ void Testbench::fetch_step(uint64_t t) {
   }
   count(StageId::CommandFetch, state);
 }
-// Fetch's last cycle: its 2D command into the 2D FIFO (once), then the item into the
-// command FIFO. True when fetch goes on to its next item in this cycle (it pushed after
-// waiting for room).
+// Fetch's last cycle: its job into the 2D FIFO (a 2D command) or the clip-command FIFO
+// (a clip-space command) once, then the item into the command FIFO. True when fetch
+// goes on to its next item in this cycle (it pushed after waiting for room).
 bool Testbench::fetch_push(uint64_t t, Cyc& state) {
-  const int w2 = setup_.items[fetch_.item].work2d;
-  if (w2 >= 0 && !fetch_2d_pushed_) {
-    if (draw2d_fifo_.size() >= draw2d_depth_) {
+  const TbItem& it = setup_.items[fetch_.item];
+  const bool clip = it.kind == TbItem::ClipCommand;
+  if ((it.work2d >= 0 || clip) && !fetch_job_pushed_) {
+    std::deque<Entry>& jobs = clip ? clip_fifo_ : draw2d_fifo_;
+    if (jobs.size() >= (clip ? clip_depth_ : draw2d_depth_)) {
       if (fetch_blocked_) state = Cyc::Stalled;
       fetch_blocked_ = true;
       return false;
     }
-    draw2d_fifo_.push_back(Entry{size_t(w2), t});
-    fetch_2d_pushed_ = true;
+    jobs.push_back(Entry{clip ? fetch_.item : size_t(it.work2d), t});
+    fetch_job_pushed_ = true;
   }
   if (cmd_fifo_.size() >= cmd_depth_) {
     if (fetch_blocked_) state = Cyc::Stalled;
@@ -561,7 +668,7 @@ bool Testbench::fetch_push(uint64_t t, Cyc& state) {
   }
   cmd_fifo_.push_back(Entry{fetch_.item, t});
   fetch_.active = false;
-  fetch_2d_pushed_ = false;
+  fetch_job_pushed_ = false;
   const bool was_blocked = fetch_blocked_;
   fetch_blocked_ = false;
   tx_end(StageId::CommandFetch, was_blocked ? t : t + 1);
@@ -644,7 +751,8 @@ void Testbench::compare(const Fragment& f) {
 // Nothing left anywhere but the ROP's countdown: scene fetched, FIFOs and stages
 // empty, the RTL idle (its idle_o covers the interpolator's pipeline) with no beat out.
 bool Testbench::done_but_rop() const {
-  return next_item_ >= setup_.items.size() && !fetch_.active && cmd_fifo_.empty() && !assembly_.active &&
+  return next_item_ >= fetched_.size() && !fetch_.active && cmd_fifo_.empty() && !assembly_.active &&
+         clip_fifo_.empty() && !geometry_.active && screen_fifo_.empty() && !assembly_clip_ &&
          ports_.idle() && !ports_.fragment_beat().valid && !staging_blocked_ && staging_.fragments == 0 &&
          !staging_.marker && frag_fifo_.empty() && draw2d_fifo_.empty() && !front_end_.active &&
          op2d_fifo_.empty() && engine_work_ < 0 && !engine_busy_ && !rop_wait_2d_;

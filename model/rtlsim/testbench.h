@@ -25,7 +25,10 @@ namespace rastsim::rtlsim {
 
 // One transaction of the testbench's command stream.
 struct TbItem {
-  enum Kind { Triangle, Marker, Null } kind = Triangle;
+  // ClipCommand: a clip-space command, fetched whole into the geometry front end (its
+  // job: front_end_steps) with a marker down the command FIFO; its triangles follow it
+  // in `items`, out of the front end (from_front_end: fetch skips them).
+  enum Kind { Triangle, Marker, Null, ClipCommand } kind = Triangle;
   uint64_t fetch_cost = 1;     // command fetch cycles (header + vertices)
   uint64_t assembly_cost = 1;  // primitive assembly cycles (1 for a marker)
   uint64_t rop_cost = 1;       // markers: ROP cycles (a clear's fast-clear time, else 1)
@@ -40,6 +43,15 @@ struct TbItem {
   int tri = -1;                // triangle index (names in TbSetup::tri_names)
   const Command* cmd = nullptr;  // markers: the state or 2D command (none: the end-of-frame marker)
   int work2d = -1;             // 2D markers: index in TbSetup::work2d
+  bool from_front_end = false; // a clip-space command's triangle: the front end hands it to assembly
+  size_t first_step = 0, steps = 0;  // ClipCommand: its steps in TbSetup::front_end_steps
+};
+// One step of the geometry front end on a clip-space command (sc/front_end.cpp): busy
+// `cycles` (TimingParams::front_end_step_cycles), then a screen-FIFO entry: triangle
+// `item` (an index in TbSetup::items), or the command's end (-1).
+struct TbFrontEndStep {
+  uint64_t cycles = 0;
+  int64_t item = -1;
 };
 // A 2D command's engine operations (ref/draw2d.h) and its front-end cost.
 struct TbWork2d {
@@ -67,6 +79,7 @@ struct TbSetup {
   std::vector<Expected> expected;
   std::vector<std::string> tri_names;   // "file:line triangle k"
   std::vector<TbWork2d> work2d;         // the 2D commands, in order
+  std::vector<TbFrontEndStep> front_end_steps;  // the clip-space commands' steps, in order
   RasterState arch;                     // the config's state: the testbench ROP applies state commands to it
   Framebuffer reference;                // the reference model's image of the scene
   TimingParams timing;                  // of the config being simulated: FIFO depths, ROP cost

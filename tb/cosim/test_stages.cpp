@@ -151,6 +151,53 @@ TEST_P(StageAgreementTest, ClipSpaceScenesBusyWithinTwoPercent) {
   EXPECT_GT(scenes, 0) << "no clip-space scene in " << dir;
 }
 
+// The testbench's geometry front end against a hand-worked schedule: a viewport, then
+// one clip-space fan of two unclipped triangles (4 vertices, w = 1), with front_end.
+// cycles_per_primitive = 2, vertices_per_cycle = 1, latency_cycles = 4 and 3 vertices a
+// fetch cycle. Fetch: the viewport's header in cycle 0, the command whole in cycles 1-3
+// (header + ceil(4 / 3)), pushed in cycle 3. The front end takes it in cycle 4 and charges
+// each triangle (a fan triangle is a primitive: 3 vertices) 2 + 3 = 5 cycles (cycles 4-8
+// and 9-13), the end 0; the first triangle,
+// pushed in cycle 8, reaches assembly 1 + 4 cycles later, in cycle 13. Assembly: the
+// viewport (1 cycle), the marker, the two triangles (1 cycle each), the end.
+TEST(TestbenchFrontEnd, ClipSpaceCommandFollowsTheHandWorkedSchedule) {
+  Config cfg = load_shipped_config("default");
+  for (const char* kv : {"front_end.cycles_per_primitive=2", "front_end.clip_cycles_per_vertex=2",
+                         "front_end.vertices_per_cycle=1", "front_end.latency_cycles=4", "fetch.cycles_per_command=1",
+                         "fetch.vertices_per_cycle=3", "assembly.cycles_per_triangle=1"})
+    cfg.apply_override(kv);
+  const Scene scene = parse_trace(
+      "viewport 64 64\n"
+      "fan\n"
+      "v4 -0.5 -0.5 0.5 1 255 0 0\nv4 0.5 -0.5 0.5 1 0 255 0\nv4 0.5 0.5 0.5 1 0 0 255\n"
+      "v4 -0.5 0.5 0.5 1 255 255 0\n"
+      "end\n",
+      "two.trace");
+  CosimOptions o;
+  o.record_transactions = true;
+  const CosimResult r = run_cosim(scene, ArchParams::resolve(cfg), o);
+  expect_clean(r);
+  const auto stage = [&](StageId id) {
+    for (const StageRecord& s : r.stages)
+      if (s.name == stage_name(id)) return s;
+    throw std::runtime_error("no stage " + name_of(id));
+  };
+  const StageRecord fetch = stage(StageId::CommandFetch), fe = stage(StageId::FrontEnd),
+                    pa = stage(StageId::PrimAssembly);
+  EXPECT_EQ(fetch.busy, 4u);
+  EXPECT_EQ(fetch.transactions, 2u);
+  EXPECT_EQ(fe.busy, 10u);
+  EXPECT_EQ(fe.transactions, 1u);
+  ASSERT_EQ(fe.spans.size(), 1u);
+  EXPECT_EQ(fe.spans[0].start, 4u);
+  EXPECT_EQ(fe.spans[0].end, 14u);
+  EXPECT_EQ(pa.busy, 3u);
+  EXPECT_EQ(pa.transactions, 5u);  // viewport, marker, 2 triangles, end
+  ASSERT_EQ(pa.spans.size(), 5u);
+  EXPECT_EQ(pa.spans[2].start, 13u);  // the first triangle
+  EXPECT_EQ(pa.spans[3].start, 18u);  // the second: pushed in cycle 13, + 1 + 4
+}
+
 INSTANTIATE_TEST_SUITE_P(ShippedConfigs, StageAgreementTest,
                          ::testing::Values("default", "d3d11", "embedded", "desktop"),
                          [](const auto& info) { return std::string(info.param); });
