@@ -26,9 +26,13 @@ set(RAST_VERILATOR_ARGS -Wall -O3 --x-assign fast --x-initial fast)
 # The C++ compiler's options for the generated code, in every build type:
 # - -g0: no debug info (Vrast_desktop__Trace__0.cpp compiles in 11 s without it and
 #   142 s with it, measured on 2 cores; CI builds every model);
-# - -O3 (the default RelWithDebInfo is -O2): 1.06-1.14x faster models (desktop and
-#   d3d11, scripts/bench_rtl; docs/results.md "RTL simulation speed", round 3).
-set(RAST_VERILATED_CXX_OPTIONS -Wno-unused-parameter -g0 -O3)
+# - RASTSIM_VERILATED_OPT, by default -O3 (the default RelWithDebInfo is -O2): 1.06-1.14x
+#   faster models (desktop and d3d11, scripts/bench_rtl; docs/results.md "RTL simulation
+#   speed", round 3); -O1 (scripts/test) compiles in half the CPU for 0.8x the speed.
+if(NOT RASTSIM_VERILATED_OPT)
+  set(RASTSIM_VERILATED_OPT -O3)
+endif()
+set(RAST_VERILATED_CXX_OPTIONS -Wno-unused-parameter -g0 ${RASTSIM_VERILATED_OPT})
 # ... except the code Verilator marks slow (its *__Slow.cpp and *__Syms.cpp: constructors,
 # the initial settle and the trace set-up, run once a simulation), at -O0: a third of the
 # models' compile CPU at -O3 (283 of 624 s in a full build), and Vrast_desktop__Trace__0__Slow.cpp

@@ -90,7 +90,7 @@ std::string project_cmake(const RtlBuildInfo& b) {
          "target_include_directories(rast_runner PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})\n"
          "# The embedded testbench headers (project_path) before the build tree's include paths.\n"
          "target_include_directories(rast_runner BEFORE PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/include)\n"
-         "# As rastsim_verilated (rast_verilate.cmake: -g0 -O3).\n"
+         "# As rastsim_verilated (rast_verilate.cmake: -g0, RASTSIM_VERILATED_OPT).\n"
          "target_compile_options(rast_runner PRIVATE ${RAST_VERILATED_CXX_OPTIONS})\n"
          "target_link_libraries(rast_runner PRIVATE rastsim_rtl_bench rastsim_scene ZLIB::ZLIB)\n";
 }
@@ -164,7 +164,7 @@ void write_project(const fs::path& src, const RtlParams& build, const std::strin
 std::vector<std::string> configure_argv(const RtlBuildInfo& b, const fs::path& src, const fs::path& bld) {
   std::vector<std::string> argv = {b.cmake, "-S", src.string(), "-B", bld.string(), "-G", b.generator,
                                    "-DCMAKE_BUILD_TYPE=" + b.build_type, "-DCMAKE_CXX_COMPILER=" + b.cxx_compiler,
-                                   "-Dverilator_DIR=" + b.verilator_dir};
+                                   "-Dverilator_DIR=" + b.verilator_dir, "-DRASTSIM_VERILATED_OPT=" + b.verilated_opt};
   if (!b.make_program.empty()) argv.push_back("-DCMAKE_MAKE_PROGRAM=" + b.make_program);
   if (!b.cxx_launcher.empty()) argv.push_back("-DCMAKE_CXX_COMPILER_LAUNCHER=" + b.cxx_launcher);
   return argv;
@@ -355,7 +355,9 @@ std::string compute_build_inputs() {
     const RtlBuildInfo& b = rtl_build_info();
     Fnv64 h;
     h.add(kMethodVersion);
-    for (const std::string* s : {&b.cxx_compiler, &b.cxx_compiler_id, &b.build_type, &b.verilator_version}) h.add(*s);
+    for (const std::string* s :
+         {&b.cxx_compiler, &b.cxx_compiler_id, &b.build_type, &b.verilator_version, &b.verilated_opt})
+      h.add(*s);
     for (const auto& s : rtl_sources()) h.add(s.name), h.add(s.text);
     for (const auto& s : rtl_build_files()) h.add(s.name), h.add(s.text);
     // The libraries' content: a changed reference model or testbench is a new model.
