@@ -49,6 +49,7 @@ const std::vector<DramIntKey>& dram_int_keys() {
       {"trrd_s", "clocks", 1000, "tRRD_S: activate to activate, other bank group", &P::tRRD_S},
       {"trrd_l", "clocks", 1000, "tRRD_L: activate to activate, same bank group", &P::tRRD_L},
       {"tfaw", "clocks", 10000, "tFAW: window holding at most four activates", &P::tFAW},
+      {"t32aw", "clocks", 100000, "t32AW (GDDR): window holding at most 32 activates", &P::t32AW},
       {"twr", "clocks", 1000, "tWR: end of write data to precharge", &P::tWR},
       {"twtr_s", "clocks", 1000, "tWTR_S: end of write data to read, other bank group", &P::tWTR_S},
       {"twtr_l", "clocks", 1000, "tWTR_L: end of write data to read, same bank group", &P::tWTR_L},

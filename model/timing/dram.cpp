@@ -72,8 +72,8 @@ std::string DramParams::check() const {
   if (columns < burst_length) return "a row must hold at least one burst";
   if (queue_depth < 1) return "the queue depth must be at least 1";
   if (address_map.size() != std::size(kFieldNames)) return "the address map must name every field once";
-  for (int64_t t : {tCL, tCWL, tRCD, tRCD_WR, tRP, tRAS, tRC, tCCD_S, tCCD_L, tRRD_S, tRRD_L, tFAW, tWR, tWTR_S,
-                    tWTR_L, tRTP, tRFC})
+  for (int64_t t : {tCL, tCWL, tRCD, tRCD_WR, tRP, tRAS, tRC, tCCD_S, tCCD_L, tRRD_S, tRRD_L, tFAW, t32AW, tWR,
+                    tWTR_S, tWTR_L, tRTP, tRFC})
     if (t < 1) return "every timing parameter must be at least 1 clock";
   if (tREFI <= tRFC) return "tREFI must exceed tRFC";
   return {};
@@ -124,7 +124,7 @@ DramModel::DramModel(DramParams params) : p_(std::move(params)) {
     ch.last_act.assign(size_t(p_.bank_groups), kNever);
     ch.last_read.assign(size_t(p_.bank_groups), kNever);
     ch.last_write.assign(size_t(p_.bank_groups), kNever);
-    ch.faw.fill(kNever);
+    ch.acts.fill(kNever);
     ch.next_refresh = p_.tREFI;
   }
 }
@@ -205,7 +205,7 @@ int64_t DramModel::earliest(const Channel& ch, const Burst& b, Cmd cmd) const {
   }
   switch (cmd) {
     case Cmd::Pre: return std::max(t, bank.pre_ok);
-    case Cmd::Act: return std::max({t, bank.act_ok, ch.faw[0] + p_.tFAW});
+    case Cmd::Act: return std::max({t, bank.act_ok, ch.acts[28] + p_.tFAW, ch.acts[0] + p_.t32AW});
     case Cmd::Read: return std::max(t, bank.read_ok);
     case Cmd::Write: return std::max(t, bank.write_ok);
   }
@@ -257,8 +257,8 @@ void DramModel::issue(Channel& ch, const Choice& c) {
       bank.pre_ok = std::max(bank.pre_ok, c.at + p_.tRAS);
       bank.act_ok = std::max(bank.act_ok, c.at + p_.tRC);
       ch.last_act[size_t(b.at.bank_group)] = c.at;
-      std::rotate(ch.faw.begin(), ch.faw.begin() + 1, ch.faw.end());
-      ch.faw.back() = c.at;
+      std::rotate(ch.acts.begin(), ch.acts.begin() + 1, ch.acts.end());
+      ch.acts.back() = c.at;
       b.activated = true;
       ++stats_.activates;
       return;

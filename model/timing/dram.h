@@ -45,6 +45,7 @@ struct DramParams {
   std::vector<DramField> address_map;
   int64_t tCL = 0, tCWL = 0, tRCD = 0, tRCD_WR = 0, tRP = 0, tRAS = 0, tRC = 0;
   int64_t tCCD_S = 0, tCCD_L = 0, tRRD_S = 0, tRRD_L = 0, tFAW = 0;
+  int64_t t32AW = 0;  // GDDR: at most 32 activates in it (implied by tFAW when <= 7 tFAW)
   int64_t tWR = 0, tWTR_S = 0, tWTR_L = 0, tRTP = 0, tREFI = 0, tRFC = 0;
 
   int banks() const { return bank_groups * banks_per_group; }
@@ -161,7 +162,7 @@ class DramModel {
     std::deque<Burst> backlog;   // waiting for a queue slot, in arrival order
     int64_t last_cmd = -1;       // the command bus carries one command a clock
     std::vector<int64_t> last_act, last_read, last_write;  // a bank group's last
-    std::array<int64_t, 4> faw{};  // the last four activates, oldest first
+    std::array<int64_t, 32> acts{};  // the last 32 activates, oldest first (tFAW: the last 4)
     int64_t next_refresh = 0;
   };
   struct Pending {  // a request with bursts outstanding

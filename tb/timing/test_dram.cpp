@@ -26,7 +26,7 @@ DramParams test_params() {
   p.queue_depth = 32;
   p.address_map = parse_address_map("ro:ba:co:bg:ch");
   p.tCL = 11, p.tCWL = 9, p.tRCD = 13, p.tRCD_WR = 13, p.tRP = 17, p.tRAS = 30, p.tRC = 47;
-  p.tCCD_S = 4, p.tCCD_L = 6, p.tRRD_S = 5, p.tRRD_L = 7, p.tFAW = 30;
+  p.tCCD_S = 4, p.tCCD_L = 6, p.tRRD_S = 5, p.tRRD_L = 7, p.tFAW = 30, p.t32AW = 30;
   p.tWR = 15, p.tWTR_S = 3, p.tWTR_L = 8, p.tRTP = 7, p.tREFI = 1'000'000, p.tRFC = 300;
   return p;
 }
@@ -159,11 +159,9 @@ TEST(Dram, ClosedPageMakesEveryAccessAMiss) {
   EXPECT_EQ(m.stats().activates, 16u);
 }
 
-// Random reads (every one a miss or a conflict): no five activates inside tFAW, and
-// consecutive activates tRRD_S apart (other group) or tRRD_L (same group). With tFAW = 30
-// > 4 * tRRD_S = 20 and 8 banks, tFAW is the binding limit: some window is exactly full.
-TEST(Dram, TfawAndTrrdBoundRandomActivates) {
-  DramModel m(test_params());
+// The activates of 3000 random reads (every one a miss or a conflict), in order.
+std::vector<DramCommand> random_activates(const DramParams& p) {
+  DramModel m(p);
   std::vector<DramCommand> log;
   m.log_commands(&log);
   uint64_t seed = 12345, x = seed;
@@ -179,16 +177,39 @@ TEST(Dram, TfawAndTrrdBoundRandomActivates) {
   std::vector<DramCommand> acts;
   std::copy_if(log.begin(), log.end(), std::back_inserter(acts),
                [](const DramCommand& c) { return c.kind == DramCommand::Activate; });
-  ASSERT_GT(acts.size(), 2000u);
-  int64_t tightest_window = INT64_MAX, tightest_pair = INT64_MAX;
+  EXPECT_GT(acts.size(), 2000u);
+  return acts;
+}
+
+// The shortest span of `n` + 1 consecutive activates.
+int64_t tightest(const std::vector<DramCommand>& acts, size_t n) {
+  int64_t t = INT64_MAX;
+  for (size_t i = 0; i + n < acts.size(); ++i) t = std::min(t, acts[i + n].clock - acts[i].clock);
+  return t;
+}
+
+// Consecutive activates are tRRD_S apart (other group) or tRRD_L (same group); no five
+// inside tFAW. With tFAW = 30 > 4 * tRRD_S = 20 and 8 banks, tFAW is the binding limit:
+// some window is exactly full.
+TEST(Dram, TfawAndTrrdBoundRandomActivates) {
+  const std::vector<DramCommand> acts = random_activates(test_params());
+  int64_t tightest_pair = INT64_MAX;
   for (size_t i = 0; i + 1 < acts.size(); ++i) {
     const int64_t gap = acts[i + 1].clock - acts[i].clock;
     EXPECT_GE(gap, acts[i + 1].bank_group == acts[i].bank_group ? 7 : 5) << "activate " << i;
     if (acts[i + 1].bank_group != acts[i].bank_group) tightest_pair = std::min(tightest_pair, gap);
-    if (i + 4 < acts.size()) tightest_window = std::min(tightest_window, acts[i + 4].clock - acts[i].clock);
   }
-  EXPECT_EQ(tightest_window, 30);  // five activates span at least tFAW; some exactly
+  EXPECT_EQ(tightest(acts, 4), 30);  // five activates span at least tFAW; some exactly
   EXPECT_EQ(tightest_pair, 5);
+}
+
+// GDDR6's t32AW: with 400 clocks > 7 tFAW, no 33 activates inside it, some exactly.
+TEST(Dram, T32awBoundsRandomActivates) {
+  DramParams p = test_params();
+  p.t32AW = 400;
+  const std::vector<DramCommand> acts = random_activates(p);
+  EXPECT_EQ(tightest(acts, 32), 400);
+  EXPECT_GE(tightest(acts, 4), 30);
 }
 
 // A long sequential read stream on DDR4-2400 (JESD79-4B: CL 17, tRCD 17, tRP 17, tRAS 39,
@@ -199,7 +220,7 @@ TEST(Dram, SequentialStreamReachesPeakLessRefresh) {
   DramParams p = test_params();
   p.rows = 65536;
   p.tCL = 17, p.tCWL = 12, p.tRCD = p.tRCD_WR = 17, p.tRP = 17, p.tRAS = 39, p.tRC = 55;
-  p.tCCD_S = 4, p.tCCD_L = 6, p.tRRD_S = 7, p.tRRD_L = 8, p.tFAW = 36, p.tWR = 18, p.tWTR_S = 3, p.tWTR_L = 9;
+  p.tCCD_S = 4, p.tCCD_L = 6, p.tRRD_S = 7, p.tRRD_L = 8, p.tFAW = 36, p.t32AW = 36, p.tWR = 18, p.tWTR_S = 3, p.tWTR_L = 9;
   p.tRTP = 9, p.tREFI = 9360, p.tRFC = 420;
   DramModel m(p);
   const int kBursts = 100'000;  // 6.4 MB, 42 refresh intervals
