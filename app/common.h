@@ -144,5 +144,6 @@ void register_fit(CLI::App& app);
 void register_estimate(CLI::App& app);
 void register_coverage_error(CLI::App& app);  // model/aa: masks against exact area coverage
 void register_recip_grid(CLI::App& app);  // ref/study/recip_grid: newton reciprocal settings against exact
+void register_dram_replay(CLI::App& app);  // timing/dram: a DRAMsim3-format trace through the DRAM model
 
 }  // namespace rastsim::app

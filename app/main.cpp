@@ -27,6 +27,7 @@ int main(int argc, char** argv) {
   rastsim::app::register_fit(app);
   rastsim::app::register_coverage_error(app);
   rastsim::app::register_recip_grid(app);
+  rastsim::app::register_dram_replay(app);
   rastsim::install_interrupt_handler();  // Ctrl-C: children stopped, temporaries removed
   try {
     app.parse(argc, argv);

@@ -10,6 +10,7 @@ ArchParams ArchParams::resolve(const Config& cfg) {
   a.config = cfg;
   a.raster = raster_state_from_config(cfg);
   a.timing = TimingParams::from_config(cfg);
+  a.dram = dram_params_from_config(cfg);
   a.rtl_max_samples = static_cast<int>(cfg.get_int("raster.max_samples"));
   a.placement = obj_placement_from_config(cfg);
   return a;

@@ -12,6 +12,7 @@
 
 #include "config/config.h"
 #include "config/dac_config.h"
+#include "config/dram_config.h"
 #include "config/obj_placement.h"
 #include "config/timing_params.h"
 #include "config/video_timing.h"
@@ -27,6 +28,7 @@ struct ArchParams {
   TimingParams timing;     // every stage's cost terms and FIFO depths (timing_params.h)
   int rtl_max_samples = 0; // raster.max_samples: the RTL's build-time sample maximum
   ObjPlacement placement;  // scene.obj_* and the display size (obj_placement.h)
+  DramParams dram;         // memory.preset, dram.* and the core clock (dram_config.h)
 
   // Reads and cross-checks every key above; throws ConfigError naming the key.
   static ArchParams resolve(const Config& cfg);

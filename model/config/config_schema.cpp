@@ -60,6 +60,7 @@ std::vector<ParamDef> make_schema() {
   add_2d_params(s);
   add_interp_params(s);
   add_clip_params(s);
+  add_dram_params(s);
   return s;
 }
 

@@ -26,6 +26,8 @@ void add_2d_params(std::vector<ParamDef>& schema);  // config_schema_2d.cpp
 void add_interp_params(std::vector<ParamDef>& schema);  // config_schema_interp.cpp
 // Keys of the geometry front end (clip method, guard band).
 void add_clip_params(std::vector<ParamDef>& schema);  // config_schema_clip.cpp
+// Keys of the DRAM model (memory.preset, dram.*).
+void add_dram_params(std::vector<ParamDef>& schema);  // config_schema_dram.cpp
 // A string key's check: of form s<I>.<F> (FixedFormat::parse accepts it).
 bool is_fixed_format(const ParamValue& v);
 

@@ -60,7 +60,7 @@ commands="$("$BIN" --help | sed -n '/^Subcommands:/,$p' | awk 'NR > 1 && NF {pri
 for c in $commands; do
   "$BIN" $c --help | grep -q -- "--stats" || continue
   case $c in
-    render|simulate|estimate|cosim|fit|scanout|monitor|coverage-error|area) pass ;;
+    render|simulate|estimate|cosim|fit|scanout|monitor|coverage-error|area|dram-replay) pass ;;
     *) fail "$c has --stats but no check in test_cli_stdout.sh" ;;
   esac
 done
@@ -81,6 +81,8 @@ stats_stdout scanout scanout --config "$EMB" --scene "$SCENE" -o "$TMP/so.png"
 stats_stdout "scanout --timed" scanout --config "$EMB" --scene "$SCENE" -o "$TMP/so.png" --timed
 stats_stdout monitor monitor --config "$EMB" --signal "$TMP/sig.vcd" -o "$TMP/mon.png"
 stats_stdout coverage-error coverage-error --scene "$SRC/traces/aa/thin.trace" --samples 1,4
+stats_stdout dram-replay dram-replay "$SRC/tb/timing/data/stream4.memtrace"
+grep -q "^dram-replay: " "$TMP/err.txt" && pass || fail "dram-replay: the summary did not go to stderr"
 stats_stdout cosim cosim --config "$EMB" --scene "$SRC/traces/primitives.trace"
 grep -q "^cosim: " "$TMP/err.txt" && pass || fail "cosim: the summary did not go to stderr"
 stats_stdout "cosim --no-model" cosim --config "$EMB" --scene "$SRC/traces/primitives.trace" --no-model
@@ -104,6 +106,8 @@ is_json "fit -q --stats FILE" "$TMP/q.json"
 quiet scanout scanout --config "$EMB" --scene "$SCENE" -o "$TMP/so.png"
 quiet monitor monitor --config "$EMB" --signal "$TMP/sig.vcd" -o "$TMP/mon.png"
 quiet coverage-error coverage-error --scene "$SRC/traces/aa/thin.trace" --samples 1,4
+quiet dram-replay dram-replay "$SRC/tb/timing/data/stream4.memtrace" --stats "$TMP/q.json"
+is_json "dram-replay -q --stats FILE" "$TMP/q.json"
 quiet cosim cosim --config "$EMB" --scene "$SRC/traces/primitives.trace" --stats "$TMP/q.json"
 is_json "cosim -q --stats FILE" "$TMP/q.json"
 quiet "cosim --rtl-build-only" cosim --config "$EMB" --rtl-build-only

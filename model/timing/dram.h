@@ -1,0 +1,200 @@
+// SPDX-License-Identifier: Apache-2.0
+// The DRAM timing model every memory client shares (docs/memory.md): channels, bank
+// groups, banks, rows and columns; open- or closed-page; a request queue a channel with
+// FR-FCFS command scheduling; the JEDEC timing constraints in DRAM clocks; all-bank
+// refresh. Event-driven: the caller enqueues requests at core cycles and advances the
+// model to the next event, never ticking an idle cycle. Deterministic.
+//
+// Units: a request's arrival and completion are core cycles; everything inside is DRAM
+// clocks (the command clock CK). A core cycle c maps to the DRAM clock ceil(c * f_dram /
+// f_core) (the first DRAM edge at or after the core edge), a DRAM clock d back to the
+// core cycle ceil(d * f_core / f_dram); both clocks are whole kHz, so the ratio is exact.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <deque>
+#include <string>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+namespace rastsim {
+
+enum class PagePolicy { Open, Closed };
+
+// The fields of a DRAM address, from the burst offset upward (address_map).
+enum class DramField { Row, Channel, Bank, BankGroup, Column };
+
+// Every parameter of the model; times in DRAM clocks unless named otherwise. Built from
+// the config's memory.preset and dram.* keys (config/dram_config.h); no defaults here.
+struct DramParams {
+  std::string preset;             // the preset these came from, for the stats
+  uint64_t core_khz = 0;          // clock.core_mhz, whole kHz
+  uint64_t dram_khz = 0;          // the command clock CK, whole kHz
+  int channels = 0, bank_groups = 0, banks_per_group = 0;  // powers of two
+  int64_t rows = 0;               // rows a bank (power of two)
+  int64_t columns = 0;            // column addresses a row, each bus_bits wide (power of two)
+  int bus_bits = 0;               // data bus width of one channel
+  int burst_length = 0;           // BL: transfers a column access
+  int transfers_per_clock = 0;    // data transfers a CK a pin (2: DDR; 8: GDDR6 QDR on WCK = 2 CK)
+  PagePolicy page_policy = PagePolicy::Open;
+  int queue_depth = 0;            // bursts a channel's scheduler sees at once
+  // MSB first, e.g. {Row, Bank, Column, BankGroup, Channel}; each field once. The low
+  // log2(burst_bytes()) address bits are the offset within a burst and are dropped.
+  std::vector<DramField> address_map;
+  int64_t tCL = 0, tCWL = 0, tRCD = 0, tRCD_WR = 0, tRP = 0, tRAS = 0, tRC = 0;
+  int64_t tCCD_S = 0, tCCD_L = 0, tRRD_S = 0, tRRD_L = 0, tFAW = 0;
+  int64_t t32AW = 0;  // GDDR: at most 32 activates in it (implied by tFAW when <= 7 tFAW)
+  int64_t tWR = 0, tWTR_S = 0, tWTR_L = 0, tRTP = 0, tREFI = 0, tRFC = 0;
+
+  int banks() const { return bank_groups * banks_per_group; }
+  uint64_t burst_bytes() const { return uint64_t(bus_bits) / 8 * uint64_t(burst_length); }
+  int64_t burst_clocks() const { return burst_length / transfers_per_clock; }  // data bus per burst
+  uint64_t row_bytes() const { return uint64_t(columns) * uint64_t(bus_bits) / 8; }
+  // The peak data rate of every channel together, bytes a second.
+  double peak_bytes_per_second() const {
+    return double(channels) * bus_bits / 8 * transfers_per_clock * double(dram_khz) * 1e3;
+  }
+  // Empty when the parameters are usable, else what is wrong (the config layer names
+  // the key).
+  std::string check() const;
+};
+
+// Parses "ro:ba:co:bg:ch" (row, bank, column, bank group, channel; MSB first, each once).
+// Throws std::invalid_argument naming the allowed fields.
+std::vector<DramField> parse_address_map(const std::string& text);
+std::string address_map_name(const std::vector<DramField>& map);
+
+// Where a byte address lands.
+struct DramAddress {
+  int channel = 0, bank_group = 0, bank = 0;  // bank: within its group
+  int64_t row = 0, column = 0;                // column in bursts
+};
+DramAddress decode_address(const DramParams& p, uint64_t address);
+
+struct DramRequest {
+  uint64_t address = 0;  // bytes
+  bool write = false;
+  uint32_t bytes = 0;    // split into the bursts it touches
+  int client = 0;        // index into the stats' clients
+  uint64_t tag = 0;      // returned with the completion
+};
+
+// A request is complete when the data of its last burst has crossed the bus (a read's
+// last beat arrives, a write's last beat is driven).
+struct DramCompletion {
+  uint64_t cycle = 0;  // core cycle
+  uint64_t tag = 0;
+  int client = 0;
+};
+
+// Counts of one client (row hits etc. count bursts).
+struct DramClientStats {
+  uint64_t bytes_read = 0, bytes_written = 0, bursts_read = 0, bursts_written = 0;
+  uint64_t row_hits = 0, row_misses = 0, row_conflicts = 0;  // open row / closed bank / other row open
+  uint64_t data_bus_clocks = 0;                               // DRAM clocks of its data on the bus
+  uint64_t requests_read = 0, read_latency_cycles = 0;        // core cycles, arrival to completion
+  double row_hit_rate() const;
+};
+
+struct DramStats {
+  std::vector<DramClientStats> clients;
+  uint64_t activates = 0, precharges = 0, refreshes = 0;
+  DramClientStats total() const;
+};
+
+// One DRAM command, for tests and traces of the schedule (DramModel::log_commands).
+struct DramCommand {
+  enum Kind : char { Activate = 'A', Precharge = 'P', Read = 'R', Write = 'W', Refresh = 'F' };
+  int64_t clock = 0;  // DRAM clock it issues at (a refresh: its REF; auto-precharges are not listed)
+  Kind kind = Activate;
+  int channel = 0, bank_group = 0, bank = 0;  // a refresh: every bank of the channel
+  int64_t row = 0;
+};
+
+class DramModel {
+ public:
+  explicit DramModel(DramParams params);  // throws std::invalid_argument when check() fails
+
+  // A request arriving at core cycle `cycle`; cycles must not decrease from call to call
+  // and must not be below the last advance_to(). It may be decided on from DRAM clock
+  // to_dram(cycle).
+  void enqueue(const DramRequest& request, uint64_t cycle);
+  // The next core cycle at which advance_to() has something to do (a command to issue or
+  // a completion to report), assuming no further requests; kNoEvent when idle.
+  uint64_t next_event() const;
+  // Issues every command before DRAM clock to_dram(cycle) (every command a request
+  // arriving at `cycle` could not have competed for) and the refreshes due before it.
+  void advance_to(uint64_t cycle);
+  // The completions at or before the last advance_to() cycle, by cycle then arrival.
+  std::vector<DramCompletion> take_completions();
+
+  // Appends every command issued from now on to *log (nullptr: stop).
+  void log_commands(std::vector<DramCommand>* log) { log_ = log; }
+
+  const DramParams& params() const { return p_; }
+  const DramStats& stats() const { return stats_; }
+  // Data bus busy clocks over the DRAM clocks of `elapsed_cycles` core cycles times
+  // the channels.
+  double bandwidth_utilisation(uint64_t busy_clocks, uint64_t elapsed_cycles) const;
+  uint64_t to_dram(uint64_t core_cycle) const;  // ceil(core_cycle * f_dram / f_core)
+  uint64_t to_core(uint64_t dram_clock) const;  // ceil(dram_clock * f_core / f_dram)
+
+  static constexpr uint64_t kNoEvent = ~uint64_t{0};
+
+ private:
+  enum class Cmd { Act, Pre, Read, Write };
+  struct Burst {
+    uint64_t seq = 0;  // arrival order: the FCFS key
+    size_t request = 0;
+    DramAddress at;
+    int64_t eligible = 0;  // DRAM clock
+    bool write = false, precharged = false, activated = false;
+  };
+  struct Bank {
+    int64_t open_row = -1;
+    int64_t act_ok = 0, pre_ok = 0, read_ok = 0, write_ok = 0;
+  };
+  struct Channel {
+    std::vector<Bank> banks;
+    std::vector<Burst> queue;    // at most queue_depth
+    std::deque<Burst> backlog;   // waiting for a queue slot, in arrival order
+    int64_t last_cmd = -1;       // the command bus carries one command a clock
+    std::vector<int64_t> last_act, last_read, last_write;  // a bank group's last
+    std::array<int64_t, 32> acts{};  // the last 32 activates, oldest first (tFAW: the last 4)
+    int64_t next_refresh = 0;
+  };
+  struct Pending {  // a request with bursts outstanding
+    DramRequest req;
+    uint64_t arrival = 0;
+    int bursts_left = 0;
+    int64_t end = 0;  // DRAM clock its last data beat ends so far
+  };
+  struct Choice {
+    int64_t at = -1;
+    size_t index = 0;
+    Cmd cmd = Cmd::Act;
+  };
+
+  Choice choose(const Channel& ch) const;
+  int64_t earliest(const Channel& ch, const Burst& b, Cmd cmd) const;
+  Cmd next_cmd(const Channel& ch, const Burst& b) const;
+  bool row_wanted(const Channel& ch, int bank, int64_t row) const;
+  void issue(Channel& ch, const Choice& c);
+  void issue_column(Channel& ch, Burst b, int64_t at);
+  void refresh(Channel& ch);
+  void admit(Channel& ch, int64_t at);
+  void note(const Channel& ch, int64_t at, DramCommand::Kind kind, const DramAddress& a);
+  int bank_index(const DramAddress& a) const { return a.bank_group * p_.banks_per_group + a.bank; }
+
+  DramParams p_;
+  std::vector<Channel> channels_;
+  std::unordered_map<size_t, Pending> pending_;        // by request number
+  std::vector<std::pair<uint64_t, DramCompletion>> done_;  // (request number, completion), not yet taken
+  uint64_t next_seq_ = 0, next_request_ = 0, last_arrival_ = 0, advanced_ = 0;
+  DramStats stats_;
+  std::vector<DramCommand>* log_ = nullptr;
+};
+
+}  // namespace rastsim
