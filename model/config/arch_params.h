@@ -15,6 +15,7 @@
 #include "config/obj_placement.h"
 #include "config/timing_params.h"
 #include "config/video_timing.h"
+#include "ref/memory/memory_params.h"
 #include "ref/raster_state.h"
 
 namespace rastsim {
@@ -27,6 +28,7 @@ struct ArchParams {
   TimingParams timing;     // every stage's cost terms and FIFO depths (timing_params.h)
   int rtl_max_samples = 0; // raster.max_samples: the RTL's build-time sample maximum
   ObjPlacement placement;  // scene.obj_* and the display size (obj_placement.h)
+  MemoryParams memory;     // memory.* and the ROP's caches (memory_config.h)
 
   // Reads and cross-checks every key above; throws ConfigError naming the key.
   static ArchParams resolve(const Config& cfg);

@@ -26,6 +26,10 @@ void add_2d_params(std::vector<ParamDef>& schema);  // config_schema_2d.cpp
 void add_interp_params(std::vector<ParamDef>& schema);  // config_schema_interp.cpp
 // Keys of the geometry front end (clip method, guard band).
 void add_clip_params(std::vector<ParamDef>& schema);  // config_schema_clip.cpp
+// Keys of the functional memory system (layout, ROP caches, fast clear, compression).
+void add_memory_params(std::vector<ParamDef>& schema);  // config_schema_memory.cpp
+// An integer key's check: a power of two (config_schema.cpp).
+bool is_power_of_two(const ParamValue& v);
 // A string key's check: of form s<I>.<F> (FixedFormat::parse accepts it).
 bool is_fixed_format(const ParamValue& v);
 
