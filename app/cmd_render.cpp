@@ -32,7 +32,7 @@ void run_render_command(const RenderOptions& o) {
   }
   // The scene streamed in bounded batches (scene_io.h): memory does not grow with the file.
   const int threads = o.threads > 0 ? o.threads : int(std::max(1u, std::thread::hardware_concurrency()));
-  SceneRenderer renderer(arch, stats, sink, Framebuffer::kDefaultTileLog2, threads);
+  SceneRenderer renderer(arch, stats, sink, Framebuffer::kDefaultTileLog2, threads, params.memory);
   uint64_t done = 0;
   bool drawing = false;  // an error of the pipeline itself, not of the reader, passes unchanged
   try {

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "config/arch_params.h"
 
+#include "config/memory_config.h"
 #include "config/raster_state_config.h"
 
 namespace rastsim {
@@ -13,6 +14,7 @@ ArchParams ArchParams::resolve(const Config& cfg) {
   a.dram = dram_params_from_config(cfg);
   a.rtl_max_samples = static_cast<int>(cfg.get_int("raster.max_samples"));
   a.placement = obj_placement_from_config(cfg);
+  a.memory = memory_params_from_config(cfg);
   return a;
 }
 

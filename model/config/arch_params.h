@@ -16,6 +16,7 @@
 #include "config/obj_placement.h"
 #include "config/timing_params.h"
 #include "config/video_timing.h"
+#include "ref/memory/memory_params.h"
 #include "ref/raster_state.h"
 
 namespace rastsim {
@@ -29,6 +30,7 @@ struct ArchParams {
   int rtl_max_samples = 0; // raster.max_samples: the RTL's build-time sample maximum
   ObjPlacement placement;  // scene.obj_* and the display size (obj_placement.h)
   DramParams dram;         // memory.preset, dram.* and the core clock (dram_config.h)
+  MemoryParams memory;     // memory.* and the ROP's caches (memory_config.h)
 
   // Reads and cross-checks every key above; throws ConfigError naming the key.
   static ArchParams resolve(const Config& cfg);

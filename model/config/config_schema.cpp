@@ -12,13 +12,12 @@
 
 namespace rastsim {
 
-namespace {
-
 bool is_power_of_two(const ParamValue& v) {
   const int64_t n = std::get<int64_t>(v);
   return n > 0 && (n & (n - 1)) == 0;
 }
 
+namespace {
 
 std::vector<ParamDef> make_schema() {
   using T = ParamType;
@@ -61,6 +60,7 @@ std::vector<ParamDef> make_schema() {
   add_interp_params(s);
   add_clip_params(s);
   add_dram_params(s);
+  add_memory_params(s);
   return s;
 }
 

@@ -28,6 +28,10 @@ void add_interp_params(std::vector<ParamDef>& schema);  // config_schema_interp.
 void add_clip_params(std::vector<ParamDef>& schema);  // config_schema_clip.cpp
 // Keys of the DRAM model (memory.preset, dram.*).
 void add_dram_params(std::vector<ParamDef>& schema);  // config_schema_dram.cpp
+// Keys of the functional memory system (layout, ROP caches, fast clear, compression).
+void add_memory_params(std::vector<ParamDef>& schema);  // config_schema_memory.cpp
+// An integer key's check: a power of two (config_schema.cpp).
+bool is_power_of_two(const ParamValue& v);
 // A string key's check: of form s<I>.<F> (FixedFormat::parse accepts it).
 bool is_fixed_format(const ParamValue& v);
 

@@ -49,7 +49,7 @@ void apply_viewport(const CmdViewport& c, const SourceLoc& loc, RasterState& st)
 }
 }  // namespace
 
-bool apply_state_command(const Command& cmd, RasterState& st, Framebuffer& fb) {
+bool apply_state_command(const Command& cmd, RasterState& st, Framebuffer& fb, RopMemory* mem) {
   return visit_command(cmd, Overloaded{
       [&](const CmdViewport& c) {
         apply_viewport(c, cmd.loc, st);
@@ -57,12 +57,14 @@ bool apply_state_command(const Command& cmd, RasterState& st, Framebuffer& fb) {
       },
       [&](const CmdClear& c) {
         fb.clear_color(c.r, c.g, c.b);
+        if (mem) mem->clear_color();
         return true;
       },
       [&](const CmdClearDepth& c) {
         const auto z = quantize_unorm(c.z, st.depth_bits);
         if (!z) throw SceneError(cmd.loc.str() + ": clear depth must be in [0, 1]");
         fb.clear_depth(*z);
+        if (mem) mem->clear_depth();
         return true;
       },
       [&](const CmdScissor& c) {
@@ -137,7 +139,7 @@ struct SceneRenderer::Impl {
     void operator()(int px, int py, uint32_t mask) { span(py, px, px + 1, mask); }
     void span(int py, int x0, int x1, uint32_t) {
       const uint32_t n = shader.shade_run(py, x0, [&](auto&& frag) {
-        return rop_write_run(m.fb, py, x0, x1, frag, m.st.depth_func, m.st.depth_write);
+        return rop_write_run(m.fb, py, x0, x1, frag, m.st.depth_func, m.st.depth_write, m.mem_ptr());
       });
       s.fragments_shaded += uint64_t(x1 - x0);
       s.fragments_passed += n;
@@ -161,8 +163,12 @@ struct SceneRenderer::Impl {
   std::vector<SetupOutcome> outcomes;
   std::vector<std::pair<ScreenTriangle, const SourceLoc*>> chunk;  // assembled triangles of a run of primitives
   std::vector<std::vector<uint32_t>> bins;              // per region: indices into tris, in order
+  std::optional<RopMemory> mem;  // the functional memory system, when on
 
-  Impl(const RasterState& arch, RenderStats& s, const FragmentSink& sink, int fb_tile_log2, int n_threads)
+  RopMemory* mem_ptr() { return mem ? &*mem : nullptr; }
+
+  Impl(const RasterState& arch, RenderStats& s, const FragmentSink& sink, int fb_tile_log2, int n_threads,
+       const MemoryParams& memory)
       : st(arch), stats(s), on_fragment(sink), fb(st.fb_width, st.fb_height, st.samples, fb_tile_log2),
         F(st.coord_format.frac_bits), tp(traversal_params(st)),
         grid(st.fb_width, st.fb_height,
@@ -170,12 +176,17 @@ struct SceneRenderer::Impl {
               tp.method == Traversal::Hierarchical && !tp.hier_levels.empty() ? tp.hier_levels[0] : 1,
               fb.tile_size()}) {
     count_multisample_footprint(st, stats);
+    if (memory.enabled) mem.emplace(memory, fb, st.depth_bits);
+    // The frame starts with depth cleared to 1.0 (a clear the memory system sees); the
+    // colour buffer's initial black is taken to be in memory already.
     fb.clear_depth(static_cast<uint32_t>((uint64_t{1} << st.depth_bits) - 1));
+    if (mem) mem->clear_depth();
     stats.traversal_method = tp.method;
     if (!traversal_is_exact(tp.method)) check.emplace(st.fb_width, st.fb_height);
     // One thread where the result depends on the order of the whole walk: the fragment
-    // stream (pipeline order) and the coverage check of an inexact method (per triangle).
-    threads = (on_fragment || check) ? 1 : std::max(1, n_threads);
+    // stream (pipeline order), the coverage check of an inexact method (per triangle) and
+    // the memory system's access stream.
+    threads = (on_fragment || check || mem) ? 1 : std::max(1, n_threads);
     if (threads > 1) bins.resize(size_t(grid.count()));
   }
   void run(const Command& cmd);
@@ -202,7 +213,7 @@ struct SceneRenderer::Impl {
         if (tri.interp_method != InterpMethod::Plane) count_interp_error(f, interpolate_plane(tri, px, py, F), s);
         ++s.fragments_shaded;
         if (on_fragment) on_fragment(f);
-        if (rop_write(fb, f, st.depth_func, st.depth_write, &s.samples_passed)) ++s.fragments_passed;
+        if (rop_write(fb, f, st.depth_func, st.depth_write, &s.samples_passed, mem_ptr())) ++s.fragments_passed;
       };
       shader.shade(px, py, mask, write);
     });
@@ -210,10 +221,10 @@ struct SceneRenderer::Impl {
 };
 
 SceneRenderer::SceneRenderer(const RasterState& arch, RenderStats& stats, const FragmentSink& on_fragment,
-                             int fb_tile_log2, int threads)
+                             int fb_tile_log2, int threads, const MemoryParams& memory)
     : impl_(nullptr) {
   const auto t0 = std::chrono::steady_clock::now();
-  impl_ = std::make_unique<Impl>(arch, stats, on_fragment, fb_tile_log2, threads);
+  impl_ = std::make_unique<Impl>(arch, stats, on_fragment, fb_tile_log2, threads, memory);
   impl_->seconds += seconds_since(t0);
 }
 
@@ -230,7 +241,7 @@ void SceneRenderer::run(std::span<const Command> commands) {
 }
 
 void SceneRenderer::Impl::run(const Command& cmd) {
-  const auto state = [&] { apply_state_command(cmd, st, fb); };
+  const auto state = [&] { apply_state_command(cmd, st, fb, mem_ptr()); };
   visit_command(cmd, Overloaded{
       state_commands(state),
       [&](const CmdPrimitives& prims) { draw_triangles(cmd, prims); },
@@ -251,7 +262,7 @@ void SceneRenderer::Impl::draw_triangles(const Command& cmd, const CmdPrimitives
     draw_homogeneous(prims, st, cmd.loc, stats.front_end, stats.traversal, setup_done, [&](const Fragment& f) {
       ++stats.fragments_shaded;
       if (on_fragment) on_fragment(f);
-      if (rop_write(fb, f, st.depth_func, st.depth_write, &stats.samples_passed)) ++stats.fragments_passed;
+      if (rop_write(fb, f, st.depth_func, st.depth_write, &stats.samples_passed, mem_ptr())) ++stats.fragments_passed;
     });
     return;
   }
@@ -359,6 +370,10 @@ Framebuffer SceneRenderer::finish() {
   const auto t0 = std::chrono::steady_clock::now();
   Impl& m = *impl_;
   if (m.check) m.check->finish(m.stats.coverage);
+  if (m.mem) {  // the resolve's reads, the caches' flush, the resolved image's writes
+    m.mem->finish();
+    m.stats.memory = m.mem->stats();
+  }
   if (m.fb.samples > 1) m.fb = m.fb.resolve();  // the frame-end resolve pass
   m.stats.framebuffer_crc32 = m.fb.color_crc32();
   m.stats.wall_seconds = m.seconds + seconds_since(t0);
@@ -366,8 +381,9 @@ Framebuffer SceneRenderer::finish() {
 }
 
 Framebuffer render_scene(const Scene& scene, const RasterState& arch, RenderStats& stats,
-                         const FragmentSink& on_fragment, int fb_tile_log2, int threads) {
-  SceneRenderer r(arch, stats, on_fragment, fb_tile_log2, threads);
+                         const FragmentSink& on_fragment, int fb_tile_log2, int threads,
+                         const MemoryParams& memory) {
+  SceneRenderer r(arch, stats, on_fragment, fb_tile_log2, threads, memory);
   r.run(scene.commands);
   return r.finish();
 }

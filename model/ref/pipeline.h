@@ -14,6 +14,7 @@
 #include "ref/framebuffer.h"
 #include "ref/front_end.h"
 #include "ref/interpolate.h"
+#include "ref/memory/rop_memory.h"
 #include "ref/raster_state.h"
 #include "ref/scene.h"
 #include "ref/coarse_raster.h"
@@ -49,12 +50,15 @@ struct RenderStats {
   uint64_t resolve_bytes = 0;           // the resolve pass: W H S 4 read + W H 4 written; 0 for S = 1
   uint32_t framebuffer_crc32 = 0;
   double wall_seconds = 0;
+  // The functional memory system's counts (memory.model != fixed; docs/memory.md).
+  MemoryStats memory;
 };
 
 // Applies a scene's state command (viewport, scissor, clears) to the state and
 // framebuffer; returns false for a primitives command (not state). Throws SceneError
-// naming the command's file:line for a viewport that does not fit.
-bool apply_state_command(const Command& cmd, RasterState& st, Framebuffer& fb);
+// naming the command's file:line for a viewport that does not fit. `mem`, if given,
+// sees the clears (RopMemory::clear_color, clear_depth).
+bool apply_state_command(const Command& cmd, RasterState& st, Framebuffer& fb, RopMemory* mem = nullptr);
 
 // The state commands' handlers of a walk that treats them alike (visit_command,
 // ref/scene.h): each of viewport, clear, clear depth and scissor returns state(). Named
@@ -97,10 +101,11 @@ using FragmentSink = std::function<void(const Fragment&)>;
 // Renders a whole scene into a new framebuffer of the display size.
 // `on_fragment`, if set, sees every fragment leaving interpolation, in pipeline order.
 // `fb_tile_log2`: the framebuffer's storage tiles (Framebuffer; no effect on the result).
-// `threads`: see SceneRenderer (no effect on the result).
+// `threads`: see SceneRenderer (no effect on the result). `memory`: the functional memory
+// system (stats.memory; no effect on the result).
 Framebuffer render_scene(const Scene& scene, const RasterState& arch, RenderStats& stats,
                          const FragmentSink& on_fragment = {}, int fb_tile_log2 = Framebuffer::kDefaultTileLog2,
-                         int threads = 1);
+                         int threads = 1, const MemoryParams& memory = {});
 
 // The same pipeline fed a batch of commands at a time (a scene streamed in batches,
 // scene_io.h stream_scene): run() each batch in order, then finish() (coverage check,
@@ -114,10 +119,14 @@ Framebuffer render_scene(const Scene& scene, const RasterState& arch, RenderStat
 // framebuffer, its CRC and every stat equal the one-thread run's (docs/framebuffer.md,
 // "Threads"). A fragment sink (pipeline order) or an inexact traversal (its coverage
 // check is per triangle) keeps one thread; threads() says how many run.
+//
+// `memory.enabled` (memory.model != fixed): every ROP access and clear goes through the
+// functional memory system (ref/memory/rop_memory.h), whose counts land in stats.memory
+// at finish(); the access stream is in pipeline order, so it keeps one thread too.
 class SceneRenderer {
  public:
   SceneRenderer(const RasterState& arch, RenderStats& stats, const FragmentSink& on_fragment = {},
-                int fb_tile_log2 = Framebuffer::kDefaultTileLog2, int threads = 1);
+                int fb_tile_log2 = Framebuffer::kDefaultTileLog2, int threads = 1, const MemoryParams& memory = {});
   ~SceneRenderer();
   SceneRenderer(const SceneRenderer&) = delete;
   SceneRenderer& operator=(const SceneRenderer&) = delete;

@@ -9,9 +9,14 @@
 
 #include "ref/framebuffer.h"
 #include "ref/interpolate.h"
+#include "ref/memory/rop_memory.h"
 #include "ref/raster_state.h"
 
 namespace rastsim {
+
+// True when the depth function looks at the stored depth: every one but always and never,
+// so only these read the depth surface (RopMemory::depth_read).
+inline bool depth_test_reads(DepthFunc func) { return func != DepthFunc::Always && func != DepthFunc::Never; }
 
 // True when func(fragment_z, stored_z) passes.
 inline bool depth_test(DepthFunc func, uint32_t z, uint32_t stored) {
@@ -31,19 +36,26 @@ inline bool depth_test(DepthFunc func, uint32_t z, uint32_t stored) {
 // Tests and writes one fragment; returns true when it was written (any sample). With a
 // multisampled framebuffer the fragment's depth is tested against, and its colour and
 // depth written to, each sample of f.mask separately; `samples_passed`, if given, counts
-// the samples written. Inline: it runs once a fragment (a call was a fifth of a render
-// of small triangles).
+// the samples written. `mem`, if given, sees each sample's accesses in order: the depth
+// read (depth_test_reads), then on a pass the depth write (depth_write) and the colour
+// write. Inline: it runs once a fragment (a call was a fifth of a render of small
+// triangles).
 inline bool rop_write(Framebuffer& fb, const Fragment& f, DepthFunc func, bool depth_write,
-                      uint64_t* samples_passed = nullptr) {
+                      uint64_t* samples_passed = nullptr, RopMemory* mem = nullptr) {
   uint32_t n = 0;
   const int samples = fb.samples;
   const uint32_t mask = samples == 1 ? 1u : f.mask;
   for (int s = 0; s < samples; ++s) {
     if (!((mask >> s) & 1)) continue;
+    if (mem && depth_test_reads(func)) mem->depth_read(f.x, f.y, s);
     if (!depth_test(func, f.z, std::as_const(fb).depth_at(f.x, f.y, s))) continue;
-    if (depth_write) fb.set_depth(f.x, f.y, s, f.z);
+    if (depth_write) {
+      fb.set_depth(f.x, f.y, s, f.z);
+      if (mem) mem->depth_write(f.x, f.y, s);
+    }
     const uint8_t rgba[4] = {f.r, f.g, f.b, 255};
     std::memcpy(fb.sample(f.x, f.y, s), rgba, 4);
+    if (mem) mem->color_write(f.x, f.y, s);
     ++n;
   }
   if (samples_passed) *samples_passed += n;
@@ -54,7 +66,8 @@ namespace rop_detail {
 
 // rop_write_run, with the depth function's test left out when it is `always` (kAlways).
 template <bool kAlways, class FragAt>
-inline uint32_t write_run(Framebuffer& fb, int y, int x0, int x1, FragAt& frag, DepthFunc func, bool depth_write) {
+inline uint32_t write_run(Framebuffer& fb, int y, int x0, int x1, FragAt& frag, DepthFunc func, bool depth_write,
+                          RopMemory* mem) {
   uint32_t n = 0;
   for (int xa = x0; xa < x1;) {
     const int xb = std::min(x1, fb.tile_end_x(xa));
@@ -69,15 +82,18 @@ inline uint32_t write_run(Framebuffer& fb, int y, int x0, int x1, FragAt& frag, 
       const Fragment f = frag(x);
       const int i = x - xa;
       if constexpr (!kAlways) {
+        if (mem && depth_test_reads(func)) mem->depth_read(x, y, 0);
         if (!depth_test(func, f.z, zr ? zr[i] : zclear)) continue;
       }
       if (depth_write) {
         if (!zw) zr = zw = fb.depth_run(xa, y);
         zw[i] = f.z;
+        if (mem) mem->depth_write(x, y, 0);
       }
       if (!cw) cw = fb.color_run(xa, y);
       const uint8_t rgba[4] = {f.r, f.g, f.b, 255};
       std::memcpy(cw + size_t(i) * 4, rgba, 4);
+      if (mem) mem->color_write(x, y, 0);
       ++n;
     }
     xa = xb;
@@ -92,13 +108,13 @@ inline uint32_t write_run(Framebuffer& fb, int y, int x0, int x1, FragAt& frag, 
 // rop_write on each in turn (tb/test_run_paths.cpp), with the tile lookups done once per
 // storage tile the run crosses rather than once a pixel (the pipeline's runs,
 // pipeline.cpp). frag(x) returns the Fragment of pixel (x, y); it is called for every
-// pixel, in order, whatever the test decides. Returns the fragments written (= samples
-// written).
+// pixel, in order, whatever the test decides. `mem`, if given, sees the same accesses
+// as from rop_write. Returns the fragments written (= samples written).
 template <class FragAt>
 inline uint32_t rop_write_run(Framebuffer& fb, int y, int x0, int x1, FragAt&& frag, DepthFunc func,
-                              bool depth_write) {
-  if (func == DepthFunc::Always) return rop_detail::write_run<true>(fb, y, x0, x1, frag, func, depth_write);
-  return rop_detail::write_run<false>(fb, y, x0, x1, frag, func, depth_write);
+                              bool depth_write, RopMemory* mem = nullptr) {
+  if (func == DepthFunc::Always) return rop_detail::write_run<true>(fb, y, x0, x1, frag, func, depth_write, mem);
+  return rop_detail::write_run<false>(fb, y, x0, x1, frag, func, depth_write, mem);
 }
 
 }  // namespace rastsim

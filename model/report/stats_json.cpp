@@ -51,6 +51,32 @@ void add_front_end(nlohmann::json& j, const FrontEndStats& f) {
   for (const auto& [key, n] : keys) j[key] = n;
 }
 
+namespace {
+nlohmann::json client_json(const MemoryClientStats& c) {
+  return {{"accesses", c.accesses},           {"hits", c.hits},
+          {"misses", c.misses},               {"evictions", c.evictions},
+          {"writebacks", c.writebacks},       {"bytes_read", c.bytes_read},
+          {"bytes_written", c.bytes_written}, {"fast_clear_blocks", c.fast_clear_blocks},
+          {"clear_fill_bytes", c.clear_fill_bytes}, {"compressed_blocks", c.compressed_blocks},
+          {"compressed_bytes", c.compressed_bytes}};
+}
+}  // namespace
+
+void add_memory(nlohmann::json& j, const MemoryStats& m) {
+  const MemoryClientStats& c = m.rop_color;
+  const MemoryClientStats& d = m.rop_depth;
+  j["dram_bytes_read"] = c.bytes_read + d.bytes_read;
+  j["dram_bytes_written"] = c.bytes_written + d.bytes_written;
+  j["rop_color_cache_hits"] = c.hits;
+  j["rop_color_cache_misses"] = c.misses;
+  j["rop_depth_cache_hits"] = d.hits;
+  j["rop_depth_cache_misses"] = d.misses;
+  j["fast_clear_blocks"] = c.fast_clear_blocks + d.fast_clear_blocks;
+  j["depth_compressed_bytes"] = d.compressed_bytes;
+  j["memory"]["clients"][kRopColorClient] = client_json(c);
+  j["memory"]["clients"][kRopDepthClient] = client_json(d);
+}
+
 nlohmann::json to_json(const RenderStats& s) {
   nlohmann::json j = {
       {"triangles_in", s.triangles_in},
@@ -94,6 +120,9 @@ nlohmann::json to_json(const RenderStats& s) {
   // The geometry front end's keys only where a clip-space primitive was drawn, so that a
   // screen-space scene's stats are the same as before clip space existed.
   if (s.front_end.any()) add_front_end(j, s.front_end);
+  // The memory system's keys only when it ran, so that memory.model = fixed's stats are
+  // the same as before it existed.
+  if (s.memory.enabled) add_memory(j, s.memory);
   if (s.coverage.measured) {
     j["pixels_wrong"] = s.coverage.pixels_wrong;
     j["cracks"] = s.coverage.cracks;

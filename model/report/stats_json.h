@@ -24,6 +24,11 @@ std::string triangles_summary(const RenderStats& s);
 // The geometry front end's counters under their public names (docs/stats.md), into `j`.
 void add_front_end(nlohmann::json& j, const FrontEndStats& f);
 
+// The memory system's counters under their public names (docs/stats.md): the totals
+// dram_bytes_read / _written, rop_*_cache_hits / _misses, fast_clear_blocks,
+// depth_compressed_bytes, and each client's set under memory.clients.<name>.
+void add_memory(nlohmann::json& j, const MemoryStats& m);
+
 // Every stat under its public name; framebuffer_crc32 as crc32_hex.
 nlohmann::json to_json(const RenderStats& s);
 

@@ -1,0 +1,145 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "ref/memory/surface_client.h"
+
+#include <algorithm>
+#include <utility>
+
+#include "ref/framebuffer.h"
+#include "ref/memory/depth_compression.h"
+
+namespace rastsim {
+
+SurfaceClient::SurfaceClient(const SurfaceLayout& layout, const CacheParams& cache, bool fast_clear, int block_width,
+                             int block_height)
+    : layout_(layout), fast_clear_(fast_clear), block_w_(block_width), block_h_(block_height),
+      blocks_x_((layout.width() + block_width - 1) / block_width),
+      blocks_y_((layout.height() + block_height - 1) / block_height),
+      flagged_(size_t(blocks_x_) * size_t(blocks_y_), 0) {
+  if (cache.bytes > 0) cache_.emplace(cache);
+}
+
+void SurfaceClient::compress_planes(const Framebuffer* fb, int depth_bits) {
+  fb_ = fb;
+  depth_bits_ = depth_bits;
+  plane_stored_.assign(flagged_.size(), 0);
+}
+
+uint64_t SurfaceClient::block_bytes(size_t block) const {
+  const int x0 = int(block % size_t(blocks_x_)) * block_w_, y0 = int(block / size_t(blocks_x_)) * block_h_;
+  const uint64_t w = uint64_t(std::min(block_w_, layout_.width() - x0)), h = uint64_t(std::min(block_h_, layout_.height() - y0));
+  return w * h * uint64_t(layout_.samples()) * uint64_t(layout_.bytes_per_sample());
+}
+
+void SurfaceClient::cached_access(uint64_t offset, bool write) {
+  const uint64_t line = offset / uint64_t(cache_->line_bytes());
+  SetAssocCache::Victim victim;
+  if (cache_->access(line, write, victim)) {
+    ++stats_.hits;
+    return;
+  }
+  ++stats_.misses;
+  if (victim.valid) ++stats_.evictions;
+  if (victim.dirty) {
+    ++stats_.writebacks;
+    if (fb_) write_back_block(victim.line);
+    else write_back_range(victim.line * uint64_t(cache_->line_bytes()), uint64_t(cache_->line_bytes()));
+  }
+  if (fb_) {  // a compressed surface's line is one block
+    if (!flagged_[line]) stats_.bytes_read += plane_stored_[line] ? plane_block_bytes(block_w_, block_h_, layout_.samples(), depth_bits_) : uint64_t(cache_->line_bytes());
+  } else {
+    stats_.bytes_read += fill_range_bytes(line * uint64_t(cache_->line_bytes()), uint64_t(cache_->line_bytes()));
+  }
+}
+
+bool SurfaceClient::range_all_flagged(uint64_t offset, uint64_t len) const {
+  const uint64_t step = uint64_t(layout_.bytes_per_sample());
+  for (uint64_t o = offset; o < offset + len; o += step) {
+    int x, y, s;
+    if (layout_.sample_at(o, x, y, s) && !flagged_[block_of(x, y)]) return false;
+  }
+  return true;
+}
+
+uint64_t SurfaceClient::fill_range_bytes(uint64_t offset, uint64_t len) const {
+  return n_flagged_ > 0 && range_all_flagged(offset, len) ? 0 : len;
+}
+
+void SurfaceClient::write_back_range(uint64_t offset, uint64_t len) {
+  stats_.bytes_written += len;
+  if (n_flagged_ == 0) return;
+  // The flagged blocks the range touches, with the bytes of each inside the range.
+  std::vector<std::pair<size_t, uint64_t>> touched;
+  const uint64_t step = uint64_t(layout_.bytes_per_sample());
+  for (uint64_t o = offset; o < offset + len; o += step) {
+    int x, y, s;
+    if (!layout_.sample_at(o, x, y, s)) continue;
+    const size_t b = block_of(x, y);
+    if (!flagged_[b]) continue;
+    auto it = std::find_if(touched.begin(), touched.end(), [&](const auto& t) { return t.first == b; });
+    if (it == touched.end()) touched.push_back({b, step});
+    else it->second += step;
+  }
+  for (const auto& [b, inside] : touched) {
+    flagged_[b] = 0;
+    --n_flagged_;
+    const uint64_t fill = block_bytes(b) - inside;
+    stats_.bytes_written += fill;
+    stats_.clear_fill_bytes += fill;
+  }
+}
+
+void SurfaceClient::write_back_block(uint64_t block) {
+  if (flagged_[block]) {  // the line is the whole block: nothing else to materialise
+    flagged_[block] = 0;
+    --n_flagged_;
+  }
+  const int x0 = int(block % uint64_t(blocks_x_)) * block_w_, y0 = int(block / uint64_t(blocks_x_)) * block_h_;
+  const int w = std::min(block_w_, layout_.width() - x0), h = std::min(block_h_, layout_.height() - y0);
+  const uint64_t plane = plane_block_bytes(block_w_, block_h_, layout_.samples(), depth_bits_);
+  const bool fits = plane < uint64_t(cache_->line_bytes()) &&
+                    fits_plane(w, h, layout_.samples(), [&](int i, int j, int s) { return fb_->depth_at(x0 + i, y0 + j, s); });
+  plane_stored_[block] = fits;
+  if (!fits) {
+    stats_.bytes_written += uint64_t(cache_->line_bytes());
+    return;
+  }
+  stats_.bytes_written += plane;
+  stats_.compressed_bytes += plane;
+  ++stats_.compressed_blocks;
+}
+
+void SurfaceClient::clear() {
+  if (cache_) cache_->invalidate_all();
+  const uint64_t blocks = flagged_.size();
+  if (fast_clear_) {
+    std::fill(flagged_.begin(), flagged_.end(), 1);
+    n_flagged_ = blocks;
+    stats_.fast_clear_blocks += blocks;
+    return;
+  }
+  std::fill(flagged_.begin(), flagged_.end(), 0);
+  n_flagged_ = 0;
+  // A constant surface: each block a plane with zero slopes and residuals, when smaller.
+  const uint64_t plane = fb_ ? plane_block_bytes(block_w_, block_h_, layout_.samples(), depth_bits_) : 0;
+  if (fb_ && plane < uint64_t(cache_->line_bytes())) {
+    std::fill(plane_stored_.begin(), plane_stored_.end(), 1);
+    stats_.bytes_written += blocks * plane;
+    stats_.compressed_bytes += blocks * plane;
+    stats_.compressed_blocks += blocks;
+    return;
+  }
+  if (fb_) std::fill(plane_stored_.begin(), plane_stored_.end(), 0);
+  stats_.bytes_written += uint64_t(layout_.width()) * uint64_t(layout_.height()) * uint64_t(layout_.samples()) *
+                          uint64_t(layout_.bytes_per_sample());
+}
+
+void SurfaceClient::write_back_all() {
+  if (!cache_) return;
+  cache_->write_back_all([&](uint64_t line) {
+    ++stats_.writebacks;
+    if (fb_) write_back_block(line);
+    else write_back_range(line * uint64_t(cache_->line_bytes()), uint64_t(cache_->line_bytes()));
+  });
+}
+
+}  // namespace rastsim
