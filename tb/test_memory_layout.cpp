@@ -1,8 +1,11 @@
 // SPDX-License-Identifier: Apache-2.0
 // The framebuffer's surface layout in memory (ref/memory/surface_layout.h): addresses of a
 // few pixels worked by hand, linear and tiled, and sample_at inverting address_of over
-// whole surfaces (edge tiles' padding included).
+// whole surfaces (edge tiles' padding included), and for_each_sample's runs against it.
 #include <gtest/gtest.h>
+
+#include <array>
+#include <vector>
 
 #include "ref/memory/surface_layout.h"
 
@@ -55,6 +58,28 @@ TEST(MemoryLayout, SampleAtInvertsAddressOf) {
         ASSERT_EQ(x2 * 100 + y2 * 10 + s2, x * 100 + y * 10 + s);
       }
       EXPECT_EQ(stored, 13 * 7 * samples);  // every sample once, padding skipped
+    }
+}
+
+// for_each_sample's runs against sample_at on each sample of every range of a few
+// lengths and offsets (rows, tile rows and padding crossed).
+TEST(MemoryLayout, ForEachSampleVisitsWhatSampleAtFinds) {
+  for (FbLayout layout : {FbLayout::Linear, FbLayout::Tiled})
+    for (int samples : {1, 2}) {
+      const SurfaceLayout l(layout, 4, 2, 0, 13, 7, samples, 4);
+      for (uint64_t len : {4u, 16u, 64u, 100u})
+        for (uint64_t off = 0; off < l.footprint_bytes(); off += 12) {
+          std::vector<std::array<int, 3>> want, got;
+          for (uint64_t o = off - off % 4; o < off + len; o += 4) {
+            int x, y, s;
+            if (l.sample_at(o, x, y, s)) want.push_back({x, y, s});
+          }
+          l.for_each_sample(off, len, [&](int x, int y, int s) {
+            got.push_back({x, y, s});
+            return true;
+          });
+          ASSERT_EQ(got, want) << "offset " << off << " length " << len;
+        }
     }
 }
 

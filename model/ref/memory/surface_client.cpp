@@ -52,12 +52,9 @@ void SurfaceClient::cached_access(uint64_t offset, bool write) {
 }
 
 bool SurfaceClient::range_all_flagged(uint64_t offset, uint64_t len) const {
-  const uint64_t step = uint64_t(layout_.bytes_per_sample());
-  for (uint64_t o = offset; o < offset + len; o += step) {
-    int x, y, s;
-    if (layout_.sample_at(o, x, y, s) && !flagged_[block_of(x, y)]) return false;
-  }
-  return true;
+  bool all = true;
+  layout_.for_each_sample(offset, len, [&](int x, int y, int) { return all = flagged_[block_of(x, y)] != 0; });
+  return all;
 }
 
 uint64_t SurfaceClient::fill_range_bytes(uint64_t offset, uint64_t len) const {
@@ -68,17 +65,20 @@ void SurfaceClient::write_back_range(uint64_t offset, uint64_t len) {
   stats_.bytes_written += len;
   if (n_flagged_ == 0) return;
   // The flagged blocks the range touches, with the bytes of each inside the range.
-  std::vector<std::pair<size_t, uint64_t>> touched;
+  std::vector<std::pair<size_t, uint64_t>>& touched = touched_;
+  touched.clear();
   const uint64_t step = uint64_t(layout_.bytes_per_sample());
-  for (uint64_t o = offset; o < offset + len; o += step) {
-    int x, y, s;
-    if (!layout_.sample_at(o, x, y, s)) continue;
+  layout_.for_each_sample(offset, len, [&](int x, int y, int) {
     const size_t b = block_of(x, y);
-    if (!flagged_[b]) continue;
-    auto it = std::find_if(touched.begin(), touched.end(), [&](const auto& t) { return t.first == b; });
-    if (it == touched.end()) touched.push_back({b, step});
-    else it->second += step;
-  }
+    if (!flagged_[b]) return true;
+    if (!touched.empty() && touched.back().first == b) touched.back().second += step;
+    else {
+      auto it = std::find_if(touched.begin(), touched.end(), [&](const auto& t) { return t.first == b; });
+      if (it == touched.end()) touched.push_back({b, step});
+      else it->second += step;
+    }
+    return true;
+  });
   for (const auto& [b, inside] : touched) {
     flagged_[b] = 0;
     --n_flagged_;

@@ -17,6 +17,7 @@
 #include <cstdint>
 #include <functional>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "ref/memory/cache.h"
@@ -92,6 +93,7 @@ class SurfaceClient {
   const Framebuffer* fb_ = nullptr;
   int depth_bits_ = 0;
   std::vector<uint8_t> plane_stored_;
+  std::vector<std::pair<size_t, uint64_t>> touched_;  // write_back_range's scratch: block, bytes in the range
   MemoryClientStats stats_;
 };
 

@@ -13,6 +13,7 @@
 //     address = base + (((ty tiles_x + tx) tw th + (y mod th) tw + (x mod tw)) S + s) B
 #pragma once
 
+#include <algorithm>
 #include <bit>
 #include <cstdint>
 #include <stdexcept>
@@ -60,6 +61,34 @@ class SurfaceLayout {
   // The pixel and sample stored at byte offset `offset` (any byte of the sample); false
   // for padding (a tiled surface's edge tiles beyond the surface, or past its end).
   bool sample_at(uint64_t offset, int& x, int& y, int& s) const;
+
+  // f(x, y, s) for every sample stored in the bytes [offset, offset + len), in address
+  // order, padding skipped; stops early when f returns false. One sample_at a run of
+  // pixels along a row (a fill's or write-back's line), not one a sample.
+  template <class F>
+  void for_each_sample(uint64_t offset, uint64_t len, F&& f) const {
+    const uint64_t bpp = uint64_t(bytes_per_sample_);
+    uint64_t k = offset / bpp;
+    const uint64_t k_end = (offset + len + bpp - 1) / bpp;
+    while (k < k_end) {
+      int x, y, s;
+      if (!sample_at(k * bpp, x, y, s)) {
+        ++k;
+        continue;
+      }
+      // Pixels follow one another along the row up to the row's (linear) or the tile row's
+      // (tiled) end, or the surface's right edge.
+      const int run_end = layout_ == FbLayout::Linear ? width_ : std::min(width_, (x | ((1 << tw_log2_) - 1)) + 1);
+      while (k < k_end) {
+        if (!f(x, y, s)) return;
+        ++k;
+        if (++s == samples_) {
+          s = 0;
+          if (++x == run_end) break;
+        }
+      }
+    }
+  }
 
   uint64_t base() const { return base_; }
   // Bytes from base to the end of the last stored sample (padding included).
