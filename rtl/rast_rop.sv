@@ -140,7 +140,7 @@ module rast_rop #(
   } wreq_t;
 
   // ---- State ----
-  logic [Cap*AccW-1:0] buf_q;       // the access buffer, a ring: entry e at [e AccW +: AccW]
+  logic [AccW-1:0] buf_q [Cap];     // the access buffer, a ring
   logic [CapW-1:0] head_q;          // oldest access
   logic [CapW:0]   count_q;         // accesses held
   logic            q_valid_q;       // a group's read taken, its response not yet in
@@ -200,7 +200,7 @@ module rast_rop #(
     upto = '0;
     for (int k = 0; k < P; k++) begin
       e = head_q + CapW'(k);
-      g = buf_q[e*AccW +: AccW];
+      g = buf_q[e];
       grp[k*AccW +: AccW] = g;
       if (!ended && (CapW + 1)'(k) < count_q) begin
         upto = (CapW + 1)'(k + 1);
@@ -222,7 +222,8 @@ module rast_rop #(
     /* verilator lint_off UNUSEDSIGNAL */
     logic [AccW-1:0]  a;  // its last flag is the group's (q_last_q)
     /* verilator lint_on UNUSEDSIGNAL */
-    logic             pass;
+    logic [MaxSamples-1:0]   pass;      // the access's words that pass the test
+    logic [MaxSamples*4-1:0] cbe, zbe;  // their colour and depth byte enables
     resp_w = '0;
     for (int k = 0; k < P; k++) begin
       a = q_acc_q[k*AccW +: AccW];
@@ -234,14 +235,18 @@ module rast_rop #(
       resp_w.len[(P + k)*LenW +: LenW] = len;
       resp_w.data[k*32 +: 32] = {8'hff, a[AccRgb +: 24]};
       resp_w.data[(P + k)*32 +: 32] = 32'(a[AccZ +: DepthW]);
+      // Per word into narrow variables, then one store a lane into the wide request
+      // (Verilator stores into a wide vector a field at a time).
       for (int i = 0; i < MaxSamples; i++) begin
-        pass = q_lanes_q[k] && LenW'(i) < len &&
-               depth_pass(depth_func_q, a[AccZ +: DepthW], rd_rdata_i[(k*MaxSamples + i)*32 +: DepthW]);
-        resp_w.be[(k*MaxSamples + i)*4 +: 4] = pass ? 4'hf : 4'h0;
-        resp_w.be[((P + k)*MaxSamples + i)*4 +: 4] = pass && depth_write_q ? DepthBe : 4'h0;
-        if (pass) resp_w.lanes[k] = 1'b1;
-        if (pass && depth_write_q) resp_w.lanes[P + k] = 1'b1;
+        pass[i] = q_lanes_q[k] && LenW'(i) < len &&
+                  depth_pass(depth_func_q, a[AccZ +: DepthW], rd_rdata_i[(k*MaxSamples + i)*32 +: DepthW]);
+        cbe[i*4 +: 4] = pass[i] ? 4'hf : 4'h0;
+        zbe[i*4 +: 4] = pass[i] && depth_write_q ? DepthBe : 4'h0;
       end
+      resp_w.be[k*MaxSamples*4 +: MaxSamples*4] = cbe;
+      resp_w.be[(P + k)*MaxSamples*4 +: MaxSamples*4] = zbe;
+      resp_w.lanes[k] = |pass;
+      resp_w.lanes[P + k] = |pass && depth_write_q;
     end
     resp_any = |resp_w.lanes;
   end
@@ -305,33 +310,30 @@ module rast_rop #(
   assign beat_take = in_valid_i && !in_marker_i && in_ready_o;
 
   // ---- The beat's accesses, in lane and sample order ----
-  logic [(1 << NewIdxW)*AccW-1:0] new_acc;  // access i at [i AccW +: AccW]
+  // An array, not a flat vector: Verilator writes an element at a variable index as a
+  // word copy, a variable part-select of a wide vector bit by bit (17x slower at 16 lanes
+  // and 16 samples).
+  logic [AccW-1:0]  new_acc [1 << NewIdxW];
   logic [NewIdxW:0] new_n;
   always_comb begin
     logic [MaxSamples-1:0] full_mask, mask;
-    logic [AccW-1:0] a;
+    logic [AccW-AccRgb-1:0] f;  // the lane's fields above s0: {x, y, z, rgb}
     full_mask = MaxSamples'(((MaxSamples + 1)'(1) << s_count) - 1'b1);
     new_n = '0;
-    for (int i = 0; i < (1 << NewIdxW); i++) new_acc[i*AccW +: AccW] = '0;
+    for (int i = 0; i < (1 << NewIdxW); i++) new_acc[i] = '0;
     for (int j = 0; j < Lanes; j++) begin
-      a[AccX +: PixelW] = in_x_i[j*PixelW +: PixelW];
-      a[AccY +: PixelW] = in_y_i[j*PixelW +: PixelW];
-      a[AccZ +: DepthW] = in_z_i[j*DepthW +: DepthW];
-      a[AccRgb +: 24] = in_rgb_i[j*24 +: 24];
-      a[AccS0 +: SBits] = '0;
-      a[AccLast] = 1'b0;
+      // Whole-word stores in the field order of the Acc* offsets (a store of one field
+      // into a wide word costs Verilator as much as the word).
+      f = {in_x_i[j*PixelW +: PixelW], in_y_i[j*PixelW +: PixelW], in_z_i[j*DepthW +: DepthW], in_rgb_i[j*24 +: 24]};
       mask = slog2 == '0 ? MaxSamples'(1) : in_mask_i[j*MaxSamples +: MaxSamples] & full_mask;
-      if (in_lanes_i[j]) begin
+      if (in_valid_i && !in_marker_i && in_lanes_i[j]) begin  // (no work while nothing is offered)
         if (mask == full_mask) begin
-          a[AccFull] = 1'b1;
-          new_acc[new_n[NewIdxW-1:0]*AccW +: AccW] = a;
+          new_acc[new_n[NewIdxW-1:0]] = {f, SBits'(0), 1'b1, 1'b0};  // s0, full, last
           new_n = new_n + 1'b1;
         end else begin
-          a[AccFull] = 1'b0;
           for (int s = 0; s < MaxSamples; s++) begin
             if (mask[s]) begin
-              a[AccS0 +: SBits] = SBits'(s);
-              new_acc[new_n[NewIdxW-1:0]*AccW +: AccW] = a;
+              new_acc[new_n[NewIdxW-1:0]] = {f, SBits'(s), 1'b0, 1'b0};
               new_n = new_n + 1'b1;
             end
           end
@@ -339,7 +341,7 @@ module rast_rop #(
       end
     end
     for (int i = 0; i < (1 << NewIdxW); i++)
-      if (in_last_i && (NewIdxW + 1)'(i + 1) == new_n) new_acc[i*AccW + AccLast] = 1'b1;
+      if (in_last_i && (NewIdxW + 1)'(i + 1) == new_n) new_acc[i][AccLast] = 1'b1;
   end
 
   // ---- Registers ----
@@ -398,7 +400,7 @@ module rast_rop #(
     logic [CapW-1:0] i;
     assign i = CapW'(e) - tail;
     always_ff @(posedge clk_i) begin
-      if (beat_take && (CapW + 1)'(i) < (CapW + 1)'(new_n)) buf_q[e*AccW +: AccW] <= new_acc[NewIdxW'(i)*AccW +: AccW];
+      if (beat_take && (CapW + 1)'(i) < (CapW + 1)'(new_n)) buf_q[e] <= new_acc[NewIdxW'(i)];
     end
   end
 
