@@ -77,7 +77,7 @@ module rast_rop #(
   // Commands, one a marker in stream order.
   input  wire logic                                   cmd_valid_i,    // a command
   output      logic                                   cmd_ready_o,    // taken (with its marker)
-  input  wire logic [1:0]                             cmd_op_i,       // 0 pass, 1 clear colour, 2 clear depth
+  input  wire logic [1:0]                             cmd_op_i,       // 0 pass, 1 clear colour, 2 clear depth, 3 pass
   input  wire logic [31:0]                            cmd_value_i,    // clear word: colour {a, b, g, r}, or depth
   // Memory reads: depth.
   output      logic                                   rd_valid_o,     // a read request
@@ -270,6 +270,7 @@ module rast_rop #(
   logic w_done;       // the held write is taken
   logic free;         // no group in flight after this cycle
   logic rd_take, beat_take, marker_take;
+  logic cmd_clear;    // the command is a clear (op 1 or 2; 0 and 3 pass)
   assign resp_now = q_valid_q && rd_rvalid_i;
   assign resp_done = resp_now && (!resp_any || wr_ready_i);
   assign w_done = w_valid_q && wr_ready_i;
@@ -308,6 +309,7 @@ module rast_rop #(
   assign cmd_ready_o = in_valid_i && in_marker_i && quiet;
   assign marker_take = in_valid_i && in_marker_i && quiet && cmd_valid_i;
   assign beat_take = in_valid_i && !in_marker_i && in_ready_o;
+  assign cmd_clear = cmd_op_i == 2'd1 || cmd_op_i == 2'd2;
 
   // ---- The beat's accesses, in lane and sample order ----
   // An array, not a flat vector: Verilator writes an element at a variable index as a
@@ -363,7 +365,7 @@ module rast_rop #(
       if (resp_now && resp_any && !wr_ready_i) w_valid_q <= 1'b1;
       else if (w_done) w_valid_q <= 1'b0;
       if (marker_take) begin
-        clr_active_q <= cmd_op_i != 2'd0 && fb_width_i != '0 && fb_height_i != '0;
+        clr_active_q <= cmd_clear && fb_width_i != '0 && fb_height_i != '0;
       end else if (clr_active_q && wr_ready_i && clr_left_q <= (2 * PixelW + 1)'(ClearPixelsPerCycle)) begin
         clr_active_q <= 1'b0;
       end
@@ -408,7 +410,7 @@ module rast_rop #(
   assign idle_o = count_q == '0 && !q_valid_q && !w_valid_q && !clr_active_q;
   assign dbg_has_o = !idle_o || marker_take;
   assign dbg_done_o = (resp_done && q_last_q) || (w_done && w_last_q) ||
-                      (marker_take && cmd_op_i == 2'd0) ||
+                      (marker_take && !cmd_clear) ||
                       (clr_active_q && wr_ready_i && clr_left_q <= (2 * PixelW + 1)'(ClearPixelsPerCycle));
   assign dbg_blocked_o = (rd_valid_o && !rd_ready_i) || (wr_valid_o && !wr_ready_i);
 endmodule

@@ -2,8 +2,8 @@
 // The ROP (rtl/rast_rop.sv) against the reference's rop_write (model/ref/rop.h) at each
 // verilated parameter set (rop_sets.h), with a byte-addressed memory in C++ behind its
 // port. A run streams random tile batches (distinct pixels, depths from a few values so
-// that ties happen, full and partial sample masks) and markers (pass, colour and depth
-// clears) through the ROP and the same stream through rop_write and Framebuffer's
+// that ties happen, full and partial sample masks) and markers (both pass codes, colour
+// and depth clears) through the ROP and the same stream through rop_write and Framebuffer's
 // clears; at the end every sample's colour and depth word in memory must equal the
 // reference framebuffer's. Every depth function, depth write on and off, one, two and
 // the set's MaxSamples samples a pixel.
@@ -87,7 +87,7 @@ struct Beat {
   std::vector<std::optional<Fragment>> lanes;
   bool last = false;
   bool marker = false;
-  int op = 0;          // 0 pass, 1 clear colour, 2 clear depth
+  int op = 0;          // 0 pass, 1 clear colour, 2 clear depth, 3 pass
   uint32_t value = 0;  // the clear's word
 };
 
@@ -121,7 +121,7 @@ Stream make_stream(const RopSet& set, const Run& run, Framebuffer& fb, std::mt19
     if (rng() % 6 == 0) {  // a marker
       Beat m;
       m.marker = true;
-      m.op = int(rng() % 3);
+      m.op = int(rng() % 4);
       if (m.op == 1) {
         const uint8_t r = uint8_t(rng()), g = uint8_t(rng()), bl = uint8_t(rng());
         m.value = 0xff000000u | uint32_t(bl) << 16 | uint32_t(g) << 8 | r;
@@ -130,7 +130,7 @@ Stream make_stream(const RopSet& set, const Run& run, Framebuffer& fb, std::mt19
         m.value = z_of();
         fb.clear_depth(m.value);
       }
-      st.clears += m.op != 0;
+      st.clears += m.op == 1 || m.op == 2;
       st.beats.push_back(m);
       continue;
     }
