@@ -12,6 +12,9 @@
 //   w0 = E1, w1 = E2, w2 = E0 (signed EdgeW bits, sum area2); each attribute is
 //   round_half_up((w0 a0 + w1 a1 + w2 a2) / area2), one rast_divider per attribute and
 //   lane (quotient 8 bits colour, DepthW depth; numerators ColorNumW / DepthNumW).
+// - Colour: vertex values unsigned 8.ColorFrac (interp.color_frac_bits), the colour
+//   round_half_up((w0 c0 + w1 c1 + w2 c2) / (area2 2^ColorFrac)): the divider's
+//   denominator is area2 shifted, so the quotient is RGB8, rounded once.
 // - Texture coordinates s, t (signed TexW bits) of an affine triangle: the same rational
 //   on the vertex values offset by 2^(TexW-1) (unsigned, so the divider and the clamp
 //   are the colour's: round_half_up(x + k) = round_half_up(x) + k for an integer k), the
@@ -42,7 +45,8 @@ module rast_interpolate #(
   parameter int CoefW             = 25,  // N + 2
   parameter int EdgeW             = 49,  // 2N + 3
   parameter int AreaW             = 48,  // 2N + 2
-  parameter int ColorNumW         = 56,  // 2N + 10
+  parameter int ColorNumW         = 64,  // 2N + 10 + ColorFrac
+  parameter int ColorFrac         = 8,   // interp.color_frac_bits: a vertex colour is unsigned 8.ColorFrac
   parameter int DepthNumW         = 72,  // 2N + 2 + D
   parameter int DepthW            = 24,  // D
   parameter int PixelW            = 14,  // pixel index bits
@@ -59,7 +63,8 @@ module rast_interpolate #(
   parameter int RecipLatency      = 6,   // the unit's stages: 2 + 2 RecipIterations, 0 without it
   localparam int MaskW = 1 << (2 * TileLog2Max),  // derived: coverage mask bits
   localparam int SMaskW = MaskW * MaxSamples,     // derived: sample mask bits
-  localparam int Lanes = FragmentsPerCycle        // derived
+  localparam int Lanes = FragmentsPerCycle,       // derived
+  localparam int ColorW = 8 + ColorFrac           // derived: a vertex colour channel
 ) (
   input  wire logic                      clk_i,         // core clock
   input  wire logic                      rst_ni,        // asynchronous reset, active low
@@ -76,7 +81,7 @@ module rast_interpolate #(
   input  wire logic [2*PixelW-1:0]       in_origin_i,   // pixel of raw (0, 0): {y, x}
   input  wire logic [AreaW-1:0]          in_area2_i,    // doubled area, > 0
   input  wire logic [3*DepthW-1:0]       in_z_i,        // vertex k depth at [k*DepthW +: DepthW]
-  input  wire logic [3*24-1:0]           in_rgb_i,      // vertex k colour {b, g, r} at [k*24 +: 24]
+  input  wire logic [9*ColorW-1:0]       in_rgb_i,      // vertex k colour {b, g, r} at [k*3*ColorW +: 3*ColorW]
   input  wire logic [3*TexW-1:0]         in_s_i,        // vertex k s at [k*TexW +: TexW], signed
   input  wire logic [3*TexW-1:0]         in_t_i,        // vertex k t, signed
   input  wire logic [3*24-1:0]           in_q_i,        // vertex k perspective weight Q_k at [k*24 +: 24]
@@ -114,6 +119,7 @@ module rast_interpolate #(
   localparam int BeatW = 2 + 2 * TexW;                 // derived: {perspective, flat s t, s, t} of a beat
   localparam int SideW = 3 + BeatW + Lanes * (1 + 2 * PixelW + MaxSamples + ClampW);  // derived: side data bits
   localparam int CNumW = ColorNumW + 3;                // derived: signed colour numerator
+  localparam int CDenW = AreaW + ColorFrac;            // derived: the colour divider's area2 2^ColorFrac
   localparam int TexNumW = AreaW + TexW;               // derived: texture numerator (offset, unsigned)
   localparam int TNumW = TexNumW + 3;                  // derived: signed texture numerator
   localparam int PipeLatency = Latency + RecipLatency; // derived: pick to fragment
@@ -251,7 +257,8 @@ module rast_interpolate #(
         snum_c[ch] = '0;
         if (alive)
           for (int v = 0; v < 3; v++)
-            snum_c[ch] = snum_c[ch] + CNumW'(e[(v+1)%3]) * $signed({{(CNumW - 8){1'b0}}, in_rgb_i[v*24 + ch*8 +: 8]});
+            snum_c[ch] = snum_c[ch] + CNumW'(e[(v+1)%3]) *
+                         $signed({{(CNumW - ColorW){1'b0}}, in_rgb_i[(v*3 + ch)*ColorW +: ColorW]});
       end
       zsum_lo = '0;
       zsum_hi = '0;
@@ -272,12 +279,13 @@ module rast_interpolate #(
                       $signed({{(TNumW - TexW){1'b0}}, ~in_t_i[v*TexW + TexW - 1], in_t_i[v*TexW +: TexW-1]});
         end
     end
-    // Clamp flags: negative numerator, or 2 num + area2 >= 2^(bits+1) area2.
+    // Clamp flags: negative numerator, or 2 num + den >= 2^(bits+1) den (colour: den =
+    // area2 2^ColorFrac).
     always_comb begin
       for (int ch = 0; ch < 3; ch++) begin
         lo[ch] = snum_c[ch][CNumW-1];
-        hi[ch] = !lo[ch] && (((CNumW + 2)'(snum_c[ch]) << 1) + (CNumW + 2)'(in_area2_i) >=
-                             ((CNumW + 2)'(in_area2_i) << 9));
+        hi[ch] = !lo[ch] && (((CNumW + 2)'(snum_c[ch]) << 1) + ((CNumW + 2)'(in_area2_i) << ColorFrac) >=
+                             ((CNumW + 2)'(in_area2_i) << (9 + ColorFrac)));
         num_c[ch] = (lo[ch] || hi[ch]) ? '0 : ColorNumW'(snum_c[ch]);
       end
       lo[3] = snum_z[ZNumW-1];
@@ -305,7 +313,7 @@ module rast_interpolate #(
       for (genvar v = 0; v < 3; v++) begin : g_w
         assign w[v*EdgeW +: EdgeW] = e[(v+1)%3];
       end
-      rast_interpolate_persp #(.EdgeW(EdgeW), .TexW(TexW), .SeedBits(RecipSeedBits), .Iterations(RecipIterations),
+      rast_interpolate_persp #(.EdgeW(EdgeW), .TexW(TexW), .ColorFrac(ColorFrac), .SeedBits(RecipSeedBits), .Iterations(RecipIterations),
                                .OutLatency(Latency + 1)) u_persp (
         .clk_i, .rst_ni, .en_i(en), .valid_i(live && persp), .w_i(w), .q_i(in_q_i), .rgb_i(in_rgb_i), .s_i(in_s_i),
         .t_i(in_t_i), .rgb_o(persp_rgb), .s_o(persp_s), .t_o(persp_t), .busy_o(persp_busy[j]));
@@ -314,8 +322,9 @@ module rast_interpolate #(
       assign persp_busy[j] = 1'b0;
     end
     for (genvar ch = 0; ch < 3; ch++) begin : g_color
-      rast_divider #(.NumW(ColorNumW), .DenW(AreaW), .QW(8), .Latency(PipeLatency)) u_div (
-        .clk_i, .en_i(en), .valid_i(alive), .num_i(num_c[ch]), .den_i(in_area2_i), .q_o(div_rgb[j*24 + ch*8 +: 8]));
+      rast_divider #(.NumW(ColorNumW), .DenW(CDenW), .QW(8), .Latency(PipeLatency)) u_div (
+        .clk_i, .en_i(en), .valid_i(alive), .num_i(num_c[ch]), .den_i(CDenW'(in_area2_i) << ColorFrac),
+        .q_o(div_rgb[j*24 + ch*8 +: 8]));
       // The clamp at the divider's output (flags delayed like it).
       assign out_rgb_o[j*24 + ch*8 +: 8] = out_persp ? persp_rgb[ch*8 +: 8] :
                                            out_clamp[j*ClampW + Divs + ch] ? 8'hff :

@@ -8,13 +8,14 @@
 //   bits) and the perspective weights Q_k (24 bits unsigned, 1 <= Q_k < 2^24):
 //     e_k = w_k Q_k                      EkW = EdgeW + 24 bits signed
 //     D   = e_0 + e_1 + e_2              (D <= 0, only outside the triangle: w_k < 0 taken as 0)
-//     N_a = e_0 a_0 + e_1 a_1 + e_2 a_2  a: r, g, b (8 bits) and s, t (TexW bits, signed)
+//     N_a = e_0 a_0 + e_1 a_1 + e_2 a_2  a: r, g, b (unsigned 8.ColorFrac) and s, t (TexW bits, signed)
 //   the bit length L of D (a leading-one search), the divisor d = floor(D 2^(40 - L)) in
 //   [2^39, 2^40) into rast_recip, the numerators n' = floor(N_a 2^(40 - L)) (an arithmetic
 //   shift) into a delay line beside it, with a flag when |n'| >= 2^84 (85 bits signed: a
 //   quotient beyond 2^43, extrapolated far outside the triangle).
 // - rast_recip (SeedBits, Iterations): y ~ 2^80 / d, 1 + 2 Iterations stages.
-// - Then a = (n' y + 2^79) >> 80 (round half up; 85 x 43-bit signed product), +-2^43 when
+// - Then a = (n' y + 2^79) >> 80 (round half up; 85 x 43-bit signed product; colour:
+//   (n' y + 2^(79 + ColorFrac)) >> (80 + ColorFrac), its fraction bits rounded off once), +-2^43 when
 //   flagged, clamped to the attribute's range ([0, 255] colour; the signed TexW-bit range
 //   for s, t), through OutLatency register stages.
 // - Latency from valid_i to the outputs: 1 + 2 Iterations + OutLatency enabled cycles.
@@ -28,6 +29,7 @@
 module rast_interpolate_persp #(
   parameter int EdgeW      = 49,  // weights w_k: 2N + 3 bits, signed
   parameter int TexW       = 28,  // texture coordinate: 1 + I + F of interp.texcoord_format
+  parameter int ColorFrac  = 8,   // interp.color_frac_bits: a vertex colour is unsigned 8.ColorFrac
   parameter int SeedBits   = 8,   // interp.recip_seed_bits
   parameter int Iterations = 2,   // interp.recip_iterations
   parameter int OutLatency = 7    // register stages after the reciprocal (>= 1)
@@ -38,7 +40,7 @@ module rast_interpolate_persp #(
   input  wire logic                  valid_i,  // a picked pixel of a perspective-correct triangle
   input  wire logic [3*EdgeW-1:0]    w_i,      // weight of vertex k at [k*EdgeW +: EdgeW], signed
   input  wire logic [3*24-1:0]       q_i,      // Q_k at [k*24 +: 24]
-  input  wire logic [3*24-1:0]       rgb_i,    // vertex k colour {b, g, r} at [k*24 +: 24]
+  input  wire logic [9*(8+ColorFrac)-1:0] rgb_i,  // vertex k colour {b, g, r} at [k*3*(8+ColorFrac) +: 3*(8+ColorFrac)]
   input  wire logic [3*TexW-1:0]     s_i,      // vertex k s at [k*TexW +: TexW], signed
   input  wire logic [3*TexW-1:0]     t_i,      // vertex k t, signed
   output      logic [23:0]           rgb_o,    // {b, g, r}
@@ -51,7 +53,8 @@ module rast_interpolate_persp #(
   localparam int YW    = 42;                       // y
   localparam int EkW   = EdgeW + QBits;            // derived: e_k, signed
   localparam int DW    = EkW + 2;                  // derived: D, signed
-  localparam int AW    = TexW > 9 ? TexW : 9;      // derived: an attribute, signed
+  localparam int CW    = 8 + ColorFrac;            // derived: a vertex colour channel, unsigned
+  localparam int AW    = TexW > CW + 1 ? TexW : CW + 1;  // derived: an attribute, signed
   localparam int NaW   = EkW + AW + 2;             // derived: N_a, signed
   localparam int NpW   = 85;                       // n', signed: |n'| < 2^84
   localparam int XW    = (NaW + F > NpW) ? NaW + F : NpW + 1;  // derived: N_a 2^40, signed
@@ -94,7 +97,7 @@ module rast_interpolate_persp #(
   logic [Attrs*3*AW-1:0] a_flat;
   for (genvar k = 0; k < 3; k++) begin : g_vertex
     for (genvar ch = 0; ch < 3; ch++) begin : g_color
-      assign a_flat[(ch*3+k)*AW +: AW] = {{(AW - 8){1'b0}}, rgb_i[k*24 + ch*8 +: 8]};
+      assign a_flat[(ch*3+k)*AW +: AW] = {{(AW - CW){1'b0}}, rgb_i[(k*3 + ch)*CW +: CW]};
     end
     assign a_flat[(3*3+k)*AW +: AW] = AW'($signed(s_i[k*TexW +: TexW]));
     assign a_flat[(4*3+k)*AW +: AW] = AW'($signed(t_i[k*TexW +: TexW]));
@@ -159,7 +162,8 @@ module rast_interpolate_persp #(
       for (int i = 0; i < Attrs; i++) begin
         {flag, np} = np_out[i*(NpW+1) +: NpW+1];
         prod = PW'(np) * $signed({1'b0, y});
-        qv = QW'((prod + (PW'(1) <<< (2 * F - 1))) >>> (2 * F));
+        if (i < 3) qv = QW'((prod + (PW'(1) <<< (2 * F + ColorFrac - 1))) >>> (2 * F + ColorFrac));
+        else qv = QW'((prod + (PW'(1) <<< (2 * F - 1))) >>> (2 * F));
         if (flag) qv = np < 0 ? -(QW'(1) <<< 43) : (QW'(1) <<< 43);
         lo = i < 3 ? '0 : -(QW'(1) <<< (TexW - 1));
         hi = i < 3 ? QW'(255) : (QW'(1) <<< (TexW - 1)) - 1;

@@ -53,9 +53,9 @@ module rast_top #(
   input  wire logic [DepthW-1:0]                     tri_z0_i,        // vertex 0 depth, unorm
   input  wire logic [DepthW-1:0]                     tri_z1_i,        // vertex 1 depth
   input  wire logic [DepthW-1:0]                     tri_z2_i,        // vertex 2 depth
-  input  wire logic [23:0]                           tri_rgb0_i,      // vertex 0 colour {b, g, r}
-  input  wire logic [23:0]                           tri_rgb1_i,      // vertex 1 colour
-  input  wire logic [23:0]                           tri_rgb2_i,      // vertex 2 colour
+  input  wire logic [3*(8+ColorFrac)-1:0]            tri_rgb0_i,      // vertex 0 colour {b, g, r}, unsigned 8.ColorFrac a channel
+  input  wire logic [3*(8+ColorFrac)-1:0]            tri_rgb1_i,      // vertex 1 colour
+  input  wire logic [3*(8+ColorFrac)-1:0]            tri_rgb2_i,      // vertex 2 colour
   input  wire logic [3*TexW-1:0]                     tri_s_i,         // vertex k texture coordinate s at [k*TexW +: TexW], raw signed
   input  wire logic [3*TexW-1:0]                     tri_t_i,         // vertex k t
   input  wire logic [3*24-1:0]                       tri_q_i,         // vertex k perspective weight Q_k at [k*24 +: 24] (docs/clip-space.md)
@@ -88,13 +88,14 @@ module rast_top #(
 );
   localparam int MaskW = 1 << (2 * TileLog2Max);      // derived: coverage mask bits
   localparam int SMaskW = MaskW * MaxSamples;         // derived: sample mask bits of a tile
+  localparam int ColorW = 8 + ColorFrac;              // derived: a vertex colour channel, unsigned 8.ColorFrac
 
   // ---- Transaction bundles: what each FIFO holds, one field a line. A FIFO's width is
   // derived from its bundle ($bits of a signal of its type: Yosys 0.23 takes $bits of a
   // signal, not of a type). Per-vertex and per-edge fields are {2, 1, 0}.
   typedef struct packed {
     logic [3*DepthW-1:0] z;       // depth, unorm
-    logic [3*24-1:0]     rgb;     // colour {b, g, r}
+    logic [9*ColorW-1:0] rgb;     // colour {b, g, r} a vertex, ColorW bits a channel
     logic [3*TexW-1:0]   s;       // texture coordinate, raw signed
     logic [3*TexW-1:0]   t;
     logic [3*24-1:0]     q;       // perspective weights Q_k
@@ -352,7 +353,7 @@ module rast_top #(
     .CoordW(CoordW), .CoordFrac(CoordFrac), .CoefW(CoefW), .EdgeW(EdgeW), .AreaW(AreaW),
     .ColorNumW(ColorNumW), .DepthNumW(DepthNumW), .DepthW(DepthW), .PixelW(PixelW),
     .TileLog2Max(TileLog2Max), .TileLog2W(TileLog2W), .FragmentsPerCycle(InterpFragmentsPerCycle), .Latency(InterpLatency),
-    .MaxSamples(MaxSamples), .TexW(TexW), .Perspective(InterpPerspective), .PerspLanes(InterpPerspLanes),
+    .MaxSamples(MaxSamples), .TexW(TexW), .ColorFrac(ColorFrac), .Perspective(InterpPerspective), .PerspLanes(InterpPerspLanes),
     .RecipSeedBits(RecipSeedBits), .RecipIterations(RecipIterations), .RecipLatency(InterpRecipLatency)
   ) u_interpolate (
     .clk_i, .rst_ni, .tile_log2_i(tile_log2_q), .in_valid_i(p_valid), .in_ready_o(p_ready), .in_marker_i(p_in.marker),

@@ -17,6 +17,7 @@
 #include <utility>
 #include <vector>
 
+#include "config/config.h"
 #include "config/raster_state_config.h"
 #include "ref/front_end.h"
 #include "ref/pipeline.h"
@@ -71,7 +72,7 @@ using testing_common::sphere_mesh;
 TEST(FrontEnd, DivideAndViewportExact) {
   const RasterState st = state(64, 64);
   SceneVertex s;
-  ASSERT_TRUE(to_screen(cv(1, -1, 0.5f, 2), viewport_map(ClipState{}, st), s));
+  ASSERT_TRUE(to_screen(cv(1, -1, 0.5f, 2), viewport_map(ClipState{}, st), st.color_frac_bits, s));
   EXPECT_EQ(s.x.to_double(), 48.0);
   EXPECT_EQ(s.y.to_double(), 16.0);
   EXPECT_EQ(s.z, 0.25);
@@ -83,7 +84,7 @@ TEST(FrontEnd, DivideAndViewportExact) {
   c.xform = ViewportXform{false, 8, 4, 16, 8};
   c.depth_near = 0.25f;
   c.depth_far = 0.75f;
-  ASSERT_TRUE(to_screen(cv(1, -1, 0.5f, 2), viewport_map(c, st), s));
+  ASSERT_TRUE(to_screen(cv(1, -1, 0.5f, 2), viewport_map(c, st), st.color_frac_bits, s));
   EXPECT_EQ(s.x.to_double(), 20.0);
   EXPECT_EQ(s.y.to_double(), 6.0);
   EXPECT_EQ(s.z, 0.375);
@@ -94,7 +95,7 @@ TEST(FrontEnd, DivideAndViewportExact) {
 TEST(FrontEnd, DivideRoundsOnceAnOperation) {
   const RasterState st = state(64, 64);
   SceneVertex s;
-  ASSERT_TRUE(to_screen(cv(1, 0, 0, 3), viewport_map(ClipState{}, st), s));
+  ASSERT_TRUE(to_screen(cv(1, 0, 0, 3), viewport_map(ClipState{}, st), st.color_frac_bits, s));
   EXPECT_EQ(s.inv_w, 0x1.555556p-2f);
   EXPECT_EQ(s.x.to_double(), 0x1.555556p+5);
   EXPECT_EQ(s.y.to_double(), 32.0);
@@ -107,7 +108,7 @@ TEST(FrontEnd, DivideRoundsOnceAnOperation) {
 TEST(FrontEnd, NoFusedMultiplyAdd) {
   const RasterState st = state(100, 100);
   SceneVertex s;
-  ASSERT_TRUE(to_screen(cv(-0x1.e24322p-1f, 0, 0, 0x1.46a2cp+0f), viewport_map(ClipState{}, st), s));
+  ASSERT_TRUE(to_screen(cv(-0x1.e24322p-1f, 0, 0, 0x1.46a2cp+0f), viewport_map(ClipState{}, st), st.color_frac_bits, s));
   EXPECT_EQ(s.x.to_double(), 0x1.a2d68p+3);
 }
 
@@ -115,8 +116,10 @@ TEST(FrontEnd, NoFusedMultiplyAdd) {
 // B = (1, 0, 1, 2), C = (0, 1, 1, 2) white in front. Sutherland-Hodgman over A->B, B->C,
 // C->A gives [I_AB, B, C, I_CA]; on A-B (from B, the inside vertex) t = 1 / (1 - -1) =
 // 1/2, so I_AB = (1 - 0.5, 0, 0, 2 - 0.5) = (0.5, 0, 0, 1.5), colour 255 - 127.5 =
-// 127.5, to nearest even 128; likewise I_CA = (0, 0.5, 0, 1.5). Fanned from I_AB:
-// (I_AB, B, C), (I_AB, C, I_CA).
+// 127.5 (binary32, exact); likewise I_CA = (0, 0.5, 0, 1.5). Fanned from I_AB:
+// (I_AB, B, C), (I_AB, C, I_CA). On screen the colour is unsigned 8.F: with F = 8 (the
+// default interp.color_frac_bits) 127.5 exactly, r = 127 and fraction 128/256; with F =
+// 0 (RGB8) 127.5 rounds to nearest even, 128.
 TEST(FrontEnd, NearPlaneClipHandWorked) {
   FrontEndStats stats;
   bool clipped = false;
@@ -125,7 +128,7 @@ TEST(FrontEnd, NearPlaneClipHandWorked) {
   EXPECT_TRUE(clipped);
   EXPECT_EQ(stats.clip_vertices_made, 2u);
   const std::array<std::array<float, 4>, 4> want{{{0.5f, 0, 0, 1.5f}, {1, 0, 1, 2}, {0, 1, 1, 2}, {0, 0.5f, 0, 1.5f}}};
-  const std::array<int, 4> want_rgb{128, 255, 255, 128};
+  const std::array<float, 4> want_rgb{127.5f, 255, 255, 127.5f};
   for (size_t i = 0; i < 4; ++i) {
     EXPECT_EQ(poly[i].x, want[i][0]) << i;
     EXPECT_EQ(poly[i].y, want[i][1]) << i;
@@ -147,6 +150,95 @@ TEST(FrontEnd, NearPlaneClipHandWorked) {
   EXPECT_EQ(tris[0][1].z, 0.5);
   EXPECT_EQ(tris[1][2].x.to_double(), 32.0);  // I_CA: x = 0
   EXPECT_EQ(tris[1][2].y.to_double(), 0x1.555556p+5);
+  ASSERT_EQ(st.color_frac_bits, 8);
+  EXPECT_EQ(tris[0][0].r, 127);
+  EXPECT_EQ(tris[0][0].rgb_frac, (std::array<uint16_t, 3>{128, 128, 128}));
+  EXPECT_EQ(tris[0][1].r, 255);
+  EXPECT_EQ(tris[0][1].rgb_frac, (std::array<uint16_t, 3>{0, 0, 0}));
+  RasterState rgb8 = st;
+  rgb8.color_frac_bits = 0;
+  FrontEndStats f8;
+  const auto t8 = run_front_end(clip_prims(Topology::List, {cv(0, 0, -1, 1, 0), cv(1, 0, 1, 2), cv(0, 1, 1, 2)}), rgb8, f8);
+  ASSERT_EQ(t8.size(), 2u);
+  EXPECT_EQ(t8[0][0].r, 128);
+  EXPECT_EQ(t8[0][0].rgb_frac, (std::array<uint16_t, 3>{0, 0, 0}));
+}
+
+// The llvmpipe comparison's example of a cut triangle (docs/mesa.md, "Found by this
+// comparison", item 2; configs/d3d11.toml at 240 x 160, viewport_xform 42 37 153 57):
+// pixel (107, 90), 90 LSB from every edge. Its exact colour is the clip-space barycentric
+// interpolation of the three input vertices' colours at the pixel centre (b solves
+// sum b_k (x_k - nx w_k) = 0, sum b_k (y_k - ny w_k) = 0, sum b_k = 1, in binary64 here,
+// as the comparison's oracle does): (22.91, 139.52, 110.47). The new vertices' colours
+// carried as unsigned 8.8 give a colour within 1 LSB of it on every channel (rounded to
+// RGB8 as each was made, the front end before interp.color_frac_bits, green was 138).
+std::array<double, 3> exact_colour(const std::array<ClipVertex, 3>& v, double nx, double ny) {
+  // Cramer's rule on the 3 x 3 system above.
+  double m[3][3], rhs[3] = {0, 0, 1};
+  for (int k = 0; k < 3; ++k) {
+    m[0][k] = double(v[size_t(k)].x) - nx * double(v[size_t(k)].w);
+    m[1][k] = double(v[size_t(k)].y) - ny * double(v[size_t(k)].w);
+    m[2][k] = 1.0;
+  }
+  const auto det = [](const double (&a)[3][3]) {
+    return a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) - a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
+           a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
+  };
+  const double d = det(m);
+  std::array<double, 3> rgb{};
+  for (int k = 0; k < 3; ++k) {
+    double mk[3][3];
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) mk[i][j] = j == k ? rhs[i] : m[i][j];
+    const double b = det(mk) / d;
+    rgb[0] += b * v[size_t(k)].r, rgb[1] += b * v[size_t(k)].g, rgb[2] += b * v[size_t(k)].b;
+  }
+  return rgb;
+}
+
+Fragment cut_triangle_pixel(const std::array<ClipVertex, 3>& v, const RasterState& st, int px, int py) {
+  CmdPrimitives p = clip_prims(Topology::List, {v[0], v[1], v[2]});
+  p.clip.xform = ViewportXform{false, 42, 37, 153, 57};
+  FrontEndStats fs;
+  std::vector<Fragment> hits;
+  for (const ScreenTriangle& tri : run_front_end(p, st, fs)) {
+    SetupTriangle t;
+    if (setup_triangle(tri, st, SourceLoc{"test", 1}, t) != SetupOutcome::Accepted) continue;
+    const int F = st.coord_format.frac_bits;
+    const int64_t sx = t.sample_x(px, F), sy = t.sample_y(py, F);
+    if (std::all_of(t.edge.begin(), t.edge.end(), [&](const EdgeEq& e) { return e.eval(sx, sy) + e.bias >= 0; }))
+      hits.push_back(interpolate(t, px, py, F));
+  }
+  EXPECT_EQ(fs.triangles_clipped, 1u);
+  EXPECT_EQ(hits.size(), 1u) << "pixel (" << px << ", " << py << ") covered once";
+  return hits.empty() ? Fragment{} : hits[0];
+}
+
+TEST(FrontEnd, CutTriangleColourWithinOneLsbOfExact) {
+  Config cfg;
+  cfg.load_file(std::string(RASTSIM_SOURCE_DIR) + "/configs/d3d11.toml");
+  cfg.apply_override("display.width=240");
+  cfg.apply_override("display.height=160");
+  const RasterState st = raster_state_from_config(cfg);
+  ASSERT_EQ(st.color_frac_bits, 8);
+  const auto c = [](float x, float y, float z, float w, int r, int g, int b) {
+    ClipVertex v = cv(x, y, z, w);
+    v.r = float(r), v.g = float(g), v.b = float(b);
+    return v;
+  };
+  const std::array<ClipVertex, 3> v{c(-0.218731895f, 0.124569267f, -0.0239124317f, -0.123890437f, 5, 141, 133),
+                                    c(-0.0401831307f, 0.000897531165f, -0.00177233375f, -0.0404226892f, 104, 126, 9),
+                                    c(6.64543486f, -0.0483763404f, 2.3140626f, 8.76124001f, 46, 184, 78)};
+  const int px = 107, py = 90;
+  const std::array<double, 3> want =
+      exact_colour(v, (px + 0.5 - (42 + 153 / 2.0)) / (153 / 2.0), (py + 0.5 - (37 + 57 / 2.0)) / (57 / 2.0));
+  EXPECT_NEAR(want[0], 22.91, 0.005);
+  EXPECT_NEAR(want[1], 139.52, 0.005);
+  EXPECT_NEAR(want[2], 110.47, 0.005);
+  const Fragment f = cut_triangle_pixel(v, st, px, py);
+  EXPECT_LE(std::abs(f.r - want[0]), 1.0) << int(f.r);
+  EXPECT_LE(std::abs(f.g - want[1]), 1.0) << int(f.g);
+  EXPECT_LE(std::abs(f.b - want[2]), 1.0) << int(f.b);
 }
 
 // The far plane: A = (0, 0, 3, 2) lies beyond it (w - z = -1), B = (1, 0, 1, 2) and

@@ -45,7 +45,7 @@ RasterState homogeneous_state(int w, int h) {
 }
 
 // A vertex of red r (green and blue 0).
-ClipVertex cv(float x, float y, float z, float w, uint8_t r = 255) { return ClipVertex{x, y, z, w, r, 0, 0}; }
+ClipVertex cv(float x, float y, float z, float w, uint8_t r = 255) { return ClipVertex{x, y, z, w, float(r), 0, 0}; }
 
 CmdPrimitives tri(std::vector<ClipVertex> v) {
   CmdPrimitives p;

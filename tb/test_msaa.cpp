@@ -73,6 +73,9 @@ RasterState small_state(int samples) {
   return st;
 }
 
+// The vertex colours setup_raw gives its triangles (RGB8).
+constexpr std::array<uint32_t, 3> kRed{40, 140, 240}, kGreen{250, 140, 30}, kBlue{17, 77, 137};
+
 // Sets up the triangle of absolute raw vertices (units 2^-F px from the framebuffer's
 // corner).
 SetupOutcome setup_raw(const std::array<int64_t, 6>& v, const RasterState& st, SetupTriangle& t) {
@@ -81,9 +84,9 @@ SetupOutcome setup_raw(const std::array<int64_t, 6>& v, const RasterState& st, S
     sv[size_t(i)].x = Q64{i128(v[size_t(2 * i)]) << (64 - kF)};
     sv[size_t(i)].y = Q64{i128(v[size_t(2 * i + 1)]) << (64 - kF)};
     sv[size_t(i)].z = 0.25 * i;
-    sv[size_t(i)].r = uint8_t(40 + 100 * i);
-    sv[size_t(i)].g = uint8_t(250 - 110 * i);
-    sv[size_t(i)].b = uint8_t(17 + 60 * i);
+    sv[size_t(i)].r = uint8_t(kRed[size_t(i)]);
+    sv[size_t(i)].g = uint8_t(kGreen[size_t(i)]);
+    sv[size_t(i)].b = uint8_t(kBlue[size_t(i)]);
   }
   return setup_triangle(sv, st, {"test", 1}, t);
 }
@@ -222,8 +225,8 @@ TEST(MsaaShading, CentreExtrapolatedAndSsaaAtEachSample) {
           ++n;
           const int64_t cx = t.sample_x(px, kF), cy = t.sample_y(py, kF);
           EXPECT_EQ(f.mask, mask);
-          EXPECT_EQ(f.r, attribute_by_cross_products(t, cx, cy, {t.rgb[0][0], t.rgb[1][0], t.rgb[2][0]}, 8));
-          EXPECT_EQ(f.b, attribute_by_cross_products(t, cx, cy, {t.rgb[0][2], t.rgb[1][2], t.rgb[2][2]}, 8));
+          EXPECT_EQ(f.r, attribute_by_cross_products(t, cx, cy, kRed, 8));
+          EXPECT_EQ(f.b, attribute_by_cross_products(t, cx, cy, kBlue, 8));
           EXPECT_EQ(f.z, attribute_by_cross_products(t, cx, cy, t.z, t.depth_bits));
           outside_centres += !pixel_covered(t, px, py, kF);
         });
@@ -238,7 +241,7 @@ TEST(MsaaShading, CentreExtrapolatedAndSsaaAtEachSample) {
           EXPECT_GE(s, next);
           next = s + 1;
           const int64_t sx = t.sample_x(px, kF) + p.dx[size_t(s)], sy = t.sample_y(py, kF) + p.dy[size_t(s)];
-          EXPECT_EQ(f.g, attribute_by_cross_products(t, sx, sy, {t.rgb[0][1], t.rgb[1][1], t.rgb[2][1]}, 8));
+          EXPECT_EQ(f.g, attribute_by_cross_products(t, sx, sy, kGreen, 8));
           EXPECT_EQ(f.z, attribute_by_cross_products(t, sx, sy, t.z, t.depth_bits));
           ++ssaa_fragments;
         });

@@ -83,13 +83,16 @@ RefAttrs reference_at(const SetupTriangle& tri, const std::array<int64_t, 3>& q,
   };
   const i128 e[3] = {w[0] * q[0], w[1] * q[1], w[2] * q[2]};
   const i128 den = e[0] + e[1] + e[2];
-  auto persp = [&](int64_t a0, int64_t a1, int64_t a2) {
-    return int64_t(round_half_up(e[0] * a0 + e[1] * a1 + e[2] * a2, den));
+  // frac: fraction bits of the vertex values (a colour's unsigned 8.F), divided out with
+  // the denominator so that the rational is rounded once.
+  auto persp = [&](int64_t a0, int64_t a1, int64_t a2, int frac = 0) {
+    return int64_t(round_half_up(e[0] * a0 + e[1] * a1 + e[2] * a2, den << frac));
   };
+  const int cf = tri.color_frac_bits;
   return {affine(tri.z[0], tri.z[1], tri.z[2]),
-          persp(tri.rgb[0][0], tri.rgb[1][0], tri.rgb[2][0]),
-          persp(tri.rgb[0][1], tri.rgb[1][1], tri.rgb[2][1]),
-          persp(tri.rgb[0][2], tri.rgb[1][2], tri.rgb[2][2]),
+          persp(tri.rgb[0][0], tri.rgb[1][0], tri.rgb[2][0], cf),
+          persp(tri.rgb[0][1], tri.rgb[1][1], tri.rgb[2][1], cf),
+          persp(tri.rgb[0][2], tri.rgb[1][2], tri.rgb[2][2], cf),
           persp(tri.tex_s[0], tri.tex_s[1], tri.tex_s[2]),
           persp(tri.tex_t[0], tri.tex_t[1], tri.tex_t[2])};
 }
@@ -121,6 +124,13 @@ std::array<SceneVertex, 3> random_triangle(const RasterState& st, std::mt19937_6
     x.y = Q64::from_double(py(rng));
     x.z = double(rng() % 1000001) / 1e6;
     x.r = uint8_t(rng()), x.g = uint8_t(rng()), x.b = uint8_t(rng());
+    // Colour fraction bits, as a vertex clipping made has (unsigned 8.F), from a generator
+    // of their own seeded by the RGB8 draws: rng's stream, so the triangles, stay as they were.
+    // A channel of 255 has none (8.F colours are at most 255).
+    std::mt19937_64 frac_rng(uint64_t(x.r) << 16 | uint64_t(x.g) << 8 | x.b);
+    const uint8_t rgb8[3] = {x.r, x.g, x.b};
+    for (size_t c = 0; c < 3; ++c)
+      x.rgb_frac[c] = rgb8[c] == 255 ? 0 : uint16_t(frac_rng() % (1u << st.color_frac_bits));
     // Two draws in a stated order (a call's arguments are evaluated in an unspecified
     // order: GCC and clang differ): the exponent, then the significand.
     const int exponent = -spread(rng);

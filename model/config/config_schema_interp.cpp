@@ -32,6 +32,11 @@ void add_interp_params(std::vector<ParamDef>& s) {
                "Interpolated texture coordinate format s<I>.<F> in repeats: I bits of repeat range, F bits of position "
                "within a repeat (a 2^k-texel texture keeps F - k sub-texel bits for bilinear weights)",
                is_fixed_format, "of form s<I>.<F> with I >= 0, F >= 1, I + F <= 31"});
+  s.push_back({"interp.color_frac_bits", T::Int, int64_t{8}, "bits", 0, 13, {},
+               "Fraction bits of a vertex colour into setup and interpolation (unsigned 8.F a channel): a vertex "
+               "clipping makes keeps its binary32 colour rounded once to 2^-F; the pixel's colour is rounded to RGB8 "
+               "once, at interpolation. 0: new vertices' colours rounded to RGB8 (13: the RTL's 3 x (8 + F)-bit "
+               "colour port fits 64 bits)"});
   // The reciprocal unit's throughput (docs/clip-space.md, "Timing"; TimingParams::interp_lanes).
   s.push_back({"recip.lanes", T::Int, int64_t{4}, "reciprocals/cycle", 1, 1024, {},
                "Reciprocals the interpolator computes per cycle: a perspective-correct (non-affine) triangle's "

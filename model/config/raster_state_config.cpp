@@ -66,6 +66,7 @@ RasterState raster_state_from_config(const Config& cfg) {
   s.recip_seed_bits = static_cast<int>(cfg.get_int("interp.recip_seed_bits"));
   s.recip_iterations = static_cast<int>(cfg.get_int("interp.recip_iterations"));
   s.texcoord_format = FixedFormat::parse(cfg.get_string("interp.texcoord_format"));
+  s.color_frac_bits = static_cast<int>(cfg.get_int("interp.color_frac_bits"));
   s.viewport_width = s.fb_width;
   s.viewport_height = s.fb_height;
   return s;

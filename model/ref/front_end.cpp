@@ -28,7 +28,12 @@ ViewportMap viewport_map(const ClipState& clip, const RasterState& st) {
   return m;
 }
 
-bool to_screen(const ClipVertex& v, const ViewportMap& m, SceneVertex& out) {
+uint32_t round_colour(float c, int color_frac_bits) {
+  const float scaled = std::ldexp(c, color_frac_bits);  // exact: a power-of-two scale of a value <= 255
+  return uint32_t(std::clamp(std::nearbyint(scaled), 0.0f, std::ldexp(255.0f, color_frac_bits)));
+}
+
+bool to_screen(const ClipVertex& v, const ViewportMap& m, int color_frac_bits, SceneVertex& out) {
   if (!(v.w > 0.0f)) return false;
   const float q = 1.0f / v.w;
   const float xw = (v.x * q) * m.half_w + m.centre_x;
@@ -38,9 +43,12 @@ bool to_screen(const ClipVertex& v, const ViewportMap& m, SceneVertex& out) {
   out.x = Q64::from_double(double(xw));
   out.y = Q64::from_double(double(yw));
   out.z = double(std::clamp(zw, m.depth_lo, m.depth_hi));
-  out.r = v.r;
-  out.g = v.g;
-  out.b = v.b;
+  const float rgb[3] = {v.r, v.g, v.b};
+  for (size_t c = 0; c < 3; ++c) {
+    const uint32_t q = round_colour(rgb[c], color_frac_bits);  // unsigned 8.F
+    (c == 0 ? out.r : c == 1 ? out.g : out.b) = uint8_t(q >> color_frac_bits);
+    out.rgb_frac[c] = uint16_t(q & ((1u << color_frac_bits) - 1));
+  }
   out.inv_w = q;
   out.s = v.s;
   out.t = v.t;
@@ -72,18 +80,15 @@ ClipVertex clip_intersection(const ClipVertex& inside, const ClipVertex& outside
   const float d_a = from_in ? d_in : d_out, d_b = from_in ? d_out : d_in;
   const float t = d_a / (d_a - d_b);  // in [0, 1/2]
   const auto lerp = [t](float u, float v) { return u + t * (v - u); };
-  // A colour channel in binary32, then rounded to the nearest RGB8 value (ties to even).
-  const auto lerp8 = [&](uint8_t a, uint8_t b) {
-    return uint8_t(std::clamp(std::nearbyint(lerp(float(a), float(b))), 0.0f, 255.0f));
-  };
   ClipVertex o;
   o.x = lerp(a.x, b.x);
   o.y = lerp(a.y, b.y);
   o.z = lerp(a.z, b.z);
   o.w = lerp(a.w, b.w);
-  o.r = lerp8(a.r, b.r);
-  o.g = lerp8(a.g, b.g);
-  o.b = lerp8(a.b, b.b);
+  // Colour in binary32 too; it is rounded once, to unsigned 8.F, by to_screen.
+  o.r = lerp(a.r, b.r);
+  o.g = lerp(a.g, b.g);
+  o.b = lerp(a.b, b.b);
   o.s = lerp(a.s, b.s);
   o.t = lerp(a.t, b.t);
   // Exactly on the plane (its distance is 0), whatever the rounding above did.
@@ -135,6 +140,7 @@ bool inside_volume(const ClipVertex& v, float guard_band) {
 // One front-end invocation: the command's state and where its triangles go.
 struct FrontEnd {
   const ViewportMap map;
+  const int color_frac_bits;  // interp.color_frac_bits
   const float guard_band;
   const bool front_ccw;
   const ClipState& clip;
@@ -166,7 +172,7 @@ struct FrontEnd {
     }
     std::vector<SceneVertex> s(poly.size());
     for (size_t i = 0; i < poly.size(); ++i)
-      if (!to_screen(poly[i], map, s[i])) {
+      if (!to_screen(poly[i], map, color_frac_bits, s[i])) {
         ++stats.triangles_nonfinite;
         return;
       }
@@ -187,7 +193,7 @@ struct FrontEnd {
   void point(const ClipVertex& v) {
     ++stats.points_in;
     SceneVertex c;
-    if (!inside_volume(v, guard_band) || !to_screen(v, map, c)) {
+    if (!inside_volume(v, guard_band) || !to_screen(v, map, color_frac_bits, c)) {
       ++stats.points_culled;
       return;
     }
@@ -221,7 +227,7 @@ struct FrontEnd {
       else a = clip_intersection(b, a, p, guard_band);
     }
     SceneVertex sa, sb;
-    if (!to_screen(a, map, sa) || !to_screen(b, map, sb)) {
+    if (!to_screen(a, map, color_frac_bits, sa) || !to_screen(b, map, color_frac_bits, sb)) {
       ++stats.lines_culled;
       return;
     }
@@ -268,7 +274,7 @@ void front_end(const CmdPrimitives& p, const RasterState& st, const SourceLoc& l
                                  "render); the other levels draw clip-space triangles with clip.method = \"clip\" "
                                  "(docs/clip-space.md, \"Levels\")");
   check_clip_space_finite(p, loc);
-  FrontEnd fe{viewport_map(p.clip, st), guard_band_of(p.clip.xform, st), st.front_ccw, p.clip, stats, emit};
+  FrontEnd fe{viewport_map(p.clip, st), st.color_frac_bits, guard_band_of(p.clip.xform, st), st.front_ccw, p.clip, stats, emit};
   const auto& v = p.clip_vertices;
   const size_t n = v.size();
   switch (p.topology) {

@@ -53,9 +53,14 @@ struct ViewportMap {
 ViewportMap viewport_map(const ClipState& clip, const RasterState& st);
 
 // Divide by w and viewport transform of a vertex with w > 0; z_w is clamped to the depth
-// range (binary32 rounding can put a clipped vertex an ulp beyond near or far). Returns
-// false when a result is not finite (1/w overflowed).
-bool to_screen(const ClipVertex& v, const ViewportMap& m, SceneVertex& out);
+// range (binary32 rounding can put a clipped vertex an ulp beyond near or far). The
+// binary32 colour is rounded once to unsigned 8.F (F = color_frac_bits,
+// interp.color_frac_bits; round_colour). Returns false when a result is not finite (1/w
+// overflowed).
+bool to_screen(const ClipVertex& v, const ViewportMap& m, int color_frac_bits, SceneVertex& out);
+// A binary32 colour channel c in [0, 255] as unsigned 8.F: c 2^F (exact) rounded to the
+// nearest integer, ties to even, clamped to [0, 255 2^F]. An integer c gives c 2^F.
+uint32_t round_colour(float c, int color_frac_bits);
 
 // The guard-band volume's planes in clipping order, and the signed binary32 distance of
 // a vertex from each (>= 0: inside).

@@ -135,7 +135,7 @@ void take_attributes(const std::array<ClipVertex, 3>& v, const ClipState& clip, 
                      const SourceLoc& loc, HomogeneousTriangle& t) {
   const FixedFormat& f = st.texcoord_format;
   for (size_t k = 0; k < 3; ++k) {
-    t.rgb[k] = {v[k].r, v[k].g, v[k].b};
+    t.rgb[k] = {uint8_t(v[k].r), uint8_t(v[k].g), uint8_t(v[k].b)};  // an input vertex's RGB8, exact in binary32
     const auto s = quantize_texcoord(v[k].s, f), tt = quantize_texcoord(v[k].t, f);
     if (!s || !tt)
       throw SceneError(loc.str() + ": vertex " + std::to_string(k) + " texture coordinate (" + std::to_string(v[k].s) +

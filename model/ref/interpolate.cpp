@@ -17,6 +17,7 @@ float nearest_float(i128 num, i128 den) {
 }
 
 using interp_detail::clamp_attr;
+using interp_detail::div_round_frac;
 using interp_detail::make_fragment;
 using interp_detail::unorm_max;
 
@@ -73,12 +74,12 @@ Fragment interpolate_perspective(const SetupTriangle& t, int px, int py, const i
   }
   const bool newton = t.recip == RecipMethod::Newton;
   const NewtonDivider div = newton ? NewtonDivider(den, t.recip_seed_bits, t.recip_iterations) : NewtonDivider{};
-  const auto depth = [&](int64_t a0, int64_t a1, int64_t a2, int64_t lo, int64_t hi) {
+  const auto depth = [&](int64_t a0, int64_t a1, int64_t a2, int64_t lo, int64_t hi, int) {
     return clamp_attr(div_round(w[0] * a0 + w[1] * a1 + w[2] * a2, t.area2, Rounding::HalfUp), lo, hi);
   };
-  return make_fragment(t, px, py, depth, [&](int64_t a0, int64_t a1, int64_t a2, int64_t lo, int64_t hi) {
+  return make_fragment(t, px, py, depth, [&](int64_t a0, int64_t a1, int64_t a2, int64_t lo, int64_t hi, int frac) {
     const i128 num = e[0] * a0 + e[1] * a1 + e[2] * a2;
-    return clamp_attr(newton ? div.quotient(num) : div_round(num, den, Rounding::HalfUp), lo, hi);
+    return clamp_attr(newton ? div.quotient(num, frac) : div_round_frac(num, den, frac), lo, hi);
   });
 }
 
@@ -107,20 +108,20 @@ Fragment interpolate_plane_at(const SetupTriangle& t, int px, int py, int64_t sx
     const int64_t lim = t.w64_limit;
     if (w[0] <= lim && w[0] >= -lim && w[1] <= lim && w[1] >= -lim && w[2] <= lim && w[2] >= -lim) {
       const int64_t den = static_cast<int64_t>(t.area2);  // < 2^(2N+2) <= 2^62 with edges64
-      return make_fragment(t, px, py, [&](int64_t a0, int64_t a1, int64_t a2, int64_t lo, int64_t hi) {
+      return make_fragment(t, px, py, [&](int64_t a0, int64_t a1, int64_t a2, int64_t lo, int64_t hi, int frac) {
         // A flat attribute is its vertex value (num = a area2 exactly: the weights sum to
         // area2 at every point), without a division: untextured scenes' s, t.
-        if (a0 == a1 && a1 == a2) return a0;
+        if (a0 == a1 && a1 == a2) return frac ? (a0 + (int64_t{1} << (frac - 1))) >> frac : a0;
         const int64_t num = w[0] * a0 + w[1] * a1 + w[2] * a2;
-        return clamp_attr(div_round_in<int64_t>(num, den, Rounding::HalfUp), lo, hi);
+        return clamp_attr(div_round_frac<int64_t>(num, den, frac), lo, hi);
       });
     }
   }
   // Weight of vertex k is the edge opposite it: edge (k+1)%3 runs between the other two.
   const i128 w[3] = {t.edge[1].eval(sx, sy), t.edge[2].eval(sx, sy), t.edge[0].eval(sx, sy)};
-  return make_fragment(t, px, py, [&](int64_t a0, int64_t a1, int64_t a2, int64_t lo, int64_t hi) {
+  return make_fragment(t, px, py, [&](int64_t a0, int64_t a1, int64_t a2, int64_t lo, int64_t hi, int frac) {
     const i128 num = w[0] * a0 + w[1] * a1 + w[2] * a2;
-    return clamp_attr(div_round(num, t.area2, Rounding::HalfUp), lo, hi);
+    return clamp_attr(div_round_frac(num, t.area2, frac), lo, hi);
   });
 }
 
@@ -129,7 +130,7 @@ PlaneStepper::PlaneStepper(const SetupTriangle& t, int frac_bits) : t_(&t), frac
   den_ = static_cast<int64_t>(t.area2);
   int i = 0;
   bool fits = true;
-  make_fragment(t, 0, 0, [&](int64_t a0, int64_t a1, int64_t a2, int64_t, int64_t) {
+  make_fragment(t, 0, 0, [&](int64_t a0, int64_t a1, int64_t a2, int64_t, int64_t, int) {
     a_[i][0] = a0, a_[i][1] = a1, a_[i][2] = a2;
     if (a0 == a1 && a1 == a2) {
       q_[i] = a0;  // flat (see the header): dq_, dr_, r_ stay 0
@@ -181,9 +182,10 @@ Fragment interpolate(const SetupTriangle& t, int px, int py, int frac_bits) {
   // d w_k / d x per pixel: the edge's a coefficient times one pixel (2^F raw units).
   const i128 dw[3] = {i128(t.edge[1].a) << frac_bits, i128(t.edge[2].a) << frac_bits, i128(t.edge[0].a) << frac_bits};
   const int64_t k = px - x0;
-  return make_fragment(t, px, py, [&](int64_t a0, int64_t a1, int64_t a2, int64_t lo, int64_t hi) {
+  // A colour of 8.F vertex values: the same span over area2 2^F (the rational of the colour).
+  return make_fragment(t, px, py, [&](int64_t a0, int64_t a1, int64_t a2, int64_t lo, int64_t hi, int frac) {
     const i128 num0 = w[0] * a0 + w[1] * a1 + w[2] * a2, dnum = dw[0] * a0 + dw[1] * a1 + dw[2] * a2;
-    return dda_span_value_in(num0, dnum, t.area2, k, t.interp_arith, t.interp_frac_bits, lo, hi);
+    return dda_span_value_in(num0, dnum, t.area2 << frac, k, t.interp_arith, t.interp_frac_bits, lo, hi);
   });
 }
 

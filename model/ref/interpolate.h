@@ -170,23 +170,35 @@ inline int64_t clamp_attr(T v, int64_t lo, int64_t hi) {
 }
 inline int64_t unorm_max(int bits) { return (int64_t{1} << bits) - 1; }
 
-// The fragment at pixel (px, py) whose depth is depth_attr(z0, z1, z2, lo, hi) and whose
-// every other attribute is attr(a0, a1, a2, lo, hi) of the three vertex values (int64),
-// lo and hi the attribute's range: [0, 2^raster.depth_bits - 1] for depth, [0, 255] for
-// colour, interp.texcoord_format's raw range for s and t.
+// round_half_up(num / (den 2^frac)), den > 0: the floor quotient with its frac low bits
+// rounded off, floor((floor(num / den) + 2^(frac-1)) / 2^frac), the same value (frac = 0:
+// round_half_up(num / den)). A colour of unsigned 8.F vertex values rounds to RGB8 so.
+template <class T>
+inline T div_round_frac(T num, T den, int frac) {
+  if (frac == 0) return div_round_in<T>(num, den, Rounding::HalfUp);
+  return (div_round_in<T>(num, den, Rounding::Floor) + (T(1) << (frac - 1))) >> frac;
+}
+
+// The fragment at pixel (px, py) whose depth is depth_attr(z0, z1, z2, lo, hi, 0) and whose
+// every other attribute is attr(a0, a1, a2, lo, hi, frac) of the three vertex values
+// (int64), lo and hi the attribute's range: [0, 2^raster.depth_bits - 1] for depth,
+// [0, 255] for colour, interp.texcoord_format's raw range for s and t; frac the fraction
+// bits of the vertex values below the result's LSB (the colour's interp.color_frac_bits,
+// else 0), which the result rounds off once (round half up).
 template <class DepthAttr, class Attr>
 [[gnu::always_inline]] inline Fragment make_fragment(const SetupTriangle& t, int px, int py, DepthAttr&& depth_attr,
                                                      Attr&& attr) {
   Fragment f;
+  const int cf = t.color_frac_bits;
   f.x = px;
   f.y = py;
-  f.z = static_cast<uint32_t>(depth_attr(t.z[0], t.z[1], t.z[2], 0, unorm_max(t.depth_bits)));
-  f.r = static_cast<uint8_t>(attr(t.rgb[0][0], t.rgb[1][0], t.rgb[2][0], 0, 255));
-  f.g = static_cast<uint8_t>(attr(t.rgb[0][1], t.rgb[1][1], t.rgb[2][1], 0, 255));
-  f.b = static_cast<uint8_t>(attr(t.rgb[0][2], t.rgb[1][2], t.rgb[2][2], 0, 255));
+  f.z = static_cast<uint32_t>(depth_attr(t.z[0], t.z[1], t.z[2], 0, unorm_max(t.depth_bits), 0));
+  f.r = static_cast<uint8_t>(attr(t.rgb[0][0], t.rgb[1][0], t.rgb[2][0], 0, 255, cf));
+  f.g = static_cast<uint8_t>(attr(t.rgb[0][1], t.rgb[1][1], t.rgb[2][1], 0, 255, cf));
+  f.b = static_cast<uint8_t>(attr(t.rgb[0][2], t.rgb[1][2], t.rgb[2][2], 0, 255, cf));
   f.samples = static_cast<uint8_t>(t.samples);
-  f.s = static_cast<int32_t>(attr(t.tex_s[0], t.tex_s[1], t.tex_s[2], t.tex_min, t.tex_max));
-  f.t = static_cast<int32_t>(attr(t.tex_t[0], t.tex_t[1], t.tex_t[2], t.tex_min, t.tex_max));
+  f.s = static_cast<int32_t>(attr(t.tex_s[0], t.tex_s[1], t.tex_s[2], t.tex_min, t.tex_max, 0));
+  f.t = static_cast<int32_t>(attr(t.tex_t[0], t.tex_t[1], t.tex_t[2], t.tex_min, t.tex_max, 0));
   return f;
 }
 // Every attribute, depth included, by attr (the affine methods).
@@ -213,11 +225,12 @@ inline Fragment PlaneStepper::at(int px, int py) {
   last_x_ = px;
   last_y_ = py;
   // Round half up from the floor quotient and remainder, as div_round_in does.
+  // Colour (frac > 0): the floor quotient's frac bits rounded off (div_round_frac).
   int i = 0;
-  return interp_detail::make_fragment(*t_, px, py, [&](int64_t, int64_t, int64_t, int64_t lo, int64_t hi) __attribute__((always_inline)) {
+  return interp_detail::make_fragment(*t_, px, py, [&](int64_t, int64_t, int64_t, int64_t lo, int64_t hi, int frac) __attribute__((always_inline)) {
     const int j = i++;
     if (j >= kTexAttr && !tex_varies_) return q_[j];  // flat s, t: the vertex value (r_ = 0)
-    const int64_t v = r_[j] >= den_ - r_[j] ? q_[j] + 1 : q_[j];
+    const int64_t v = frac ? (q_[j] + (int64_t{1} << (frac - 1))) >> frac : r_[j] >= den_ - r_[j] ? q_[j] + 1 : q_[j];
     return interp_detail::clamp_attr(v, lo, hi);
   });
 }

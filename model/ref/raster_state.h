@@ -81,6 +81,7 @@ struct RasterState {
   int recip_seed_bits = 0;      // interp.recip_seed_bits: index bits of the seed table
   int recip_iterations = 0;     // interp.recip_iterations: Newton-Raphson steps
   FixedFormat texcoord_format;  // interp.texcoord_format: s, t out of interpolation
+  int color_frac_bits = 0;      // interp.color_frac_bits: vertex colour unsigned 8.F into setup (0: RGB8)
 
   // Scene state (from commands).
   int viewport_width = 0, viewport_height = 0;

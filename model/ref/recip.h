@@ -53,13 +53,15 @@ struct NewtonDivider {
     const i128 d = shift >= 0 ? den >> shift : den << -shift;
     y = recip_newton(static_cast<uint64_t>(d), seed_bits, iterations);
   }
-  i128 quotient(i128 num) const {
+  // quotient(num, frac): round_half_up(num / (D 2^frac)), the same product rounded
+  // frac bits higher, (num' y + 2^(79 + frac)) >> (80 + frac) (a colour of 8.F vertex values).
+  i128 quotient(i128 num, int frac = 0) const {
     constexpr int kNumBits = 85;  // |num'| < 2^84
     const i128 sat = i128(1) << 43;
     if (shift < 0 && !fits_signed(num, kNumBits + shift)) return num < 0 ? -sat : sat;
     const i128 n = shift >= 0 ? num >> shift : num << -shift;  // >>: floor
     if (!fits_signed(n, kNumBits)) return n < 0 ? -sat : sat;
-    constexpr int F2 = 2 * kRecipFracBits;
+    const int F2 = 2 * kRecipFracBits + frac;
     return (n * i128(y) + (i128(1) << (F2 - 1))) >> F2;
   }
 };

@@ -30,23 +30,28 @@ struct SourceLoc {
 };
 
 // One vertex on screen, as setup snaps it: position in pixels (y down, exact Q64), depth
-// in [0, 1], an RGB8 colour, and what the geometry front end adds to a clip-space vertex
+// in [0, 1], a colour, and what the geometry front end adds to a clip-space vertex
 // (docs/clip-space.md): the binary32 1/w that weights perspective-correct interpolation
 // (1: affine, every screen-space vertex) and the texture coordinate (repeats, binary32).
+// The colour is unsigned 8.F a channel (F = interp.color_frac_bits): the integer part
+// r, g, b and the fraction bits rgb_frac (units 2^-F, 0 for every input vertex; a vertex
+// clipping made has its binary32 colour rounded once into them).
 struct SceneVertex {
   Q64 x, y;
   double z = 0.0;
   uint8_t r = 255, g = 255, b = 255;
+  std::array<uint16_t, 3> rgb_frac{};  // r, g, b fraction bits, < 2^interp.color_frac_bits
   float inv_w = 1.0f;
   float s = 0.0f, t = 0.0f;
 };
 
 // One vertex in clip space, as a vertex stage hands it over (docs/clip-space.md):
 // position in IEEE binary32, each read from its decimal text with one round to nearest
-// even; colour RGB8; texture coordinate (s, t) in repeats, binary32.
+// even; colour r, g, b in binary32 (0..255: an input vertex's RGB8 exactly, a vertex
+// clipping made interpolated); texture coordinate (s, t) in repeats, binary32.
 struct ClipVertex {
   float x = 0.0f, y = 0.0f, z = 0.0f, w = 1.0f;
-  uint8_t r = 255, g = 255, b = 255;
+  float r = 255.0f, g = 255.0f, b = 255.0f;
   float s = 0.0f, t = 0.0f;
 };
 

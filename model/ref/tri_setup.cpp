@@ -112,9 +112,12 @@ void take_attributes(const std::array<SceneVertex, 3>& v, const RasterState& st,
     const auto z = quantize_unorm(v[i].z, st.depth_bits);
     if (!z) throw SceneError(vertex_where(loc, i) + " depth " + std::to_string(v[i].z) + " is outside [0, 1]");
     t.z[i] = *z;
-    t.rgb[i] = {v[i].r, v[i].g, v[i].b};
+    const int F = st.color_frac_bits;
+    t.rgb[i] = {uint32_t(v[i].r) << F | v[i].rgb_frac[0], uint32_t(v[i].g) << F | v[i].rgb_frac[1],
+                uint32_t(v[i].b) << F | v[i].rgb_frac[2]};
   }
-  int64_t attr_max = int64_t((uint64_t{1} << std::max(8, st.depth_bits)) - 1);
+  t.color_frac_bits = st.color_frac_bits;
+  int64_t attr_max = int64_t((uint64_t{1} << std::max(8 + st.color_frac_bits, st.depth_bits)) - 1);
   const float w0 = v[0].inv_w;
   const bool same_w = w0 == v[1].inv_w && w0 == v[2].inv_w;
   const bool untextured = v[0].s == 0.0f && v[1].s == 0.0f && v[2].s == 0.0f && v[0].t == 0.0f &&

@@ -11,7 +11,7 @@
 // - Bounding box of the snapped vertices in pixels, clamped to viewport and scissor:
 //   the pixels whose centre, or with raster.samples > 1 whose sample positions' bounding
 //   box, may be covered.
-// - Per-vertex attributes (RGB8, depth quantised to raster.depth_bits, texture
+// - Per-vertex attributes (colour unsigned 8.F, F = interp.color_frac_bits; depth quantised to raster.depth_bits, texture
 //   coordinates quantised to interp.texcoord_format) and the perspective weights Q_k
 //   of the three 1/w (perspective_weights), with the flag `affine` when interpolation
 //   needs no reciprocal (docs/clip-space.md, "Perspective-correct interpolation").
@@ -73,7 +73,10 @@ struct SetupTriangle {
   bool ccw_on_screen = false;       // winding as the scene gave it, seen on screen
   PixelRect bbox;                   // pixels whose centres may be covered, clipped
   std::array<uint32_t, 3> z{};      // depth, unorm raster.depth_bits
-  std::array<std::array<uint8_t, 3>, 3> rgb{};  // per-vertex colour
+  // Per-vertex colour r, g, b, unsigned 8.F (F = color_frac_bits: the vertex's r << F |
+  // its fraction bits); interpolation rounds the pixel's colour to RGB8 once.
+  std::array<std::array<uint32_t, 3>, 3> rgb{};
+  int color_frac_bits = 0;                      // interp.color_frac_bits
   std::array<int32_t, 3> tex_s{}, tex_t{};      // texture coordinate, raw interp.texcoord_format
   int64_t tex_min = 0, tex_max = 0;             // that format's raw range (clamps extrapolation)
   // Perspective-correct interpolation: the weights Q_k < 2^24 of the vertices' 1/w
@@ -96,9 +99,9 @@ struct SetupTriangle {
   // The 64-bit paths (same results as i128, tb/test_int64_paths.cpp): edges64 when every
   // edge value at a point of the format's range fits int64 (fixed_point.h
   // edges_fit_int64); an interpolation numerator w0 a0 + w1 a1 + w2 a2 (a_k < 2^A, A =
-  // max(8, raster.depth_bits)) fits int64 when every |w_k| <= w64_limit =
-  // floor((2^63 - 1) / (3 M)), M = max(2^A - 1, |s_k|, |t_k|) the largest attribute
-  // magnitude of the triangle, checked per sample point (interpolate.cpp).
+  // max(8 + F, raster.depth_bits), F = interp.color_frac_bits) fits int64 when every
+  // |w_k| <= w64_limit = floor((2^63 - 1) / (3 M)), M = max(2^A - 1, |s_k|, |t_k|) the
+  // largest attribute magnitude of the triangle, checked per sample point (interpolate.cpp).
   bool edges64 = false;
   int64_t w64_limit = 0;
 

@@ -152,7 +152,8 @@ void StreamBuilder::triangle(const Command& cmd, const CmdPrimitives& prims, siz
       it.x[v] = t.x[v];
       it.y[v] = t.y[v];
       it.z[v] = t.z[v];
-      it.rgb[v] = uint32_t(t.rgb[v][0]) | uint32_t(t.rgb[v][1]) << 8 | uint32_t(t.rgb[v][2]) << 16;
+      const int cw = 8 + t.color_frac_bits;  // a channel: unsigned 8.F
+      it.rgb[v] = uint64_t(t.rgb[v][0]) | uint64_t(t.rgb[v][1]) << cw | uint64_t(t.rgb[v][2]) << 2 * cw;
       it.s[v] = t.tex_s[size_t(v)];
       it.t[v] = t.tex_t[size_t(v)];
       it.q[v] = t.persp_q[size_t(v)];

@@ -40,7 +40,8 @@ constexpr ParamField<RtlParams> kFields[] = {
     {"CoefW", &RtlParams::coef_w, "edge a, b: N + 2 bits, signed"},
     {"EdgeW", &RtlParams::edge_w, "edge c, E(x, y), E + bias: 2N + 3 bits, signed"},
     {"AreaW", &RtlParams::area_w, "area2 and weights: 2N + 2 bits, unsigned"},
-    {"ColorNumW", &RtlParams::color_num_w, "colour numerator: 2N + 10 bits, unsigned"},
+    {"ColorNumW", &RtlParams::color_num_w, "colour numerator: 2N + 10 + ColorFrac bits, unsigned"},
+    {"ColorFrac", &RtlParams::color_frac, "interp.color_frac_bits: a vertex colour channel is unsigned 8.ColorFrac"},
     {"DepthNumW", &RtlParams::depth_num_w, "depth numerator: 2N + 2 + D bits, unsigned"},
     {"DepthW", &RtlParams::depth_w, "D = raster.depth_bits"},
     {"PixelW", &RtlParams::pixel_w, "pixel x, y: unsigned, up to the largest display.width/height"},
@@ -173,7 +174,9 @@ RtlParams rtl_params(const ArchParams& arch) {
   p.coef_w = w.coef;
   p.edge_w = w.edge;
   p.area_w = w.area;
-  p.color_num_w = w.color_num;
+  // Vertex colours unsigned 8.F (interp.color_frac_bits): F bits wider than 8-bit c_k.
+  p.color_frac = st.color_frac_bits;
+  p.color_num_w = w.color_num + p.color_frac;
   p.depth_num_w = w.depth_num;
   p.depth_w = st.depth_bits;
   p.tile_log2_max = std::countr_zero(static_cast<unsigned>(st.tile_size));

@@ -35,7 +35,8 @@ struct RtlParams {
   int coef_w = 0;        // edge a, b: N + 2
   int edge_w = 0;        // edge c and E(x, y), E + bias: 2N + 3
   int area_w = 0;        // area2 and barycentric weights, unsigned: 2N + 2
-  int color_num_w = 0;   // colour numerator sum w_k c_k, unsigned: 2N + 10
+  int color_num_w = 0;   // colour numerator sum w_k c_k, unsigned: 2N + 10 + color_frac
+  int color_frac = 0;    // interp.color_frac_bits: a vertex colour channel is unsigned 8.color_frac
   int depth_num_w = 0;   // depth numerator sum w_k z_k, unsigned: 2N + 2 + D
   int depth_w = 0;       // D = raster.depth_bits
   int pixel_w = 0;       // pixel x, y, unsigned: holds the schema's largest display.width/height - 1

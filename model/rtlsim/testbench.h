@@ -34,7 +34,7 @@ struct TbItem {
   uint64_t rop_cost = 1;       // markers: ROP cycles (a clear's fast-clear time, else 1)
   int64_t x[3] = {}, y[3] = {};  // snapped raw coordinates
   uint32_t z[3] = {};
-  uint32_t rgb[3] = {};        // {b, g, r} packed as the RTL port
+  uint64_t rgb[3] = {};        // {b, g, r} packed as the RTL port: 8 + interp.color_frac_bits bits a channel
   int32_t s[3] = {}, t[3] = {};  // texture coordinates, raw interp.texcoord_format
   uint32_t q[3] = {1, 1, 1};   // perspective weights Q_k (24 bits)
   bool affine = true;          // interpolation needs no reciprocal (ref tri_setup)

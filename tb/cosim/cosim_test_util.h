@@ -25,8 +25,10 @@ inline Config load_shipped_config(const std::string& name) {
   return c;
 }
 
-// A vertex at (x, y) px with a random depth in [0, 1] and a random colour.
-inline SceneVertex random_vertex(double x, double y, std::mt19937_64& rng) {
+// A vertex at (x, y) px with a random depth in [0, 1] and a random colour; with
+// color_frac_bits F > 0 the colour is a random unsigned 8.F (as a vertex clipping made:
+// its fraction bits exercise the affine colour dividers' shifted denominator).
+inline SceneVertex random_vertex(double x, double y, std::mt19937_64& rng, int color_frac_bits = 0) {
   std::uniform_int_distribution<int> c8(0, 255);
   std::uniform_real_distribution<double> z(0, 1);
   SceneVertex v;
@@ -36,6 +38,9 @@ inline SceneVertex random_vertex(double x, double y, std::mt19937_64& rng) {
   v.r = uint8_t(c8(rng));
   v.g = uint8_t(c8(rng));
   v.b = uint8_t(c8(rng));
+  const uint8_t rgb8[3] = {v.r, v.g, v.b};  // a channel of 255 has no fraction (8.F is at most 255)
+  for (size_t c = 0; c < 3; ++c)
+    v.rgb_frac[c] = color_frac_bits > 0 && rgb8[c] < 255 ? uint16_t(rng() % (1u << color_frac_bits)) : 0;
   return v;
 }
 
@@ -62,7 +67,8 @@ struct DirectedScene {
 };
 
 // Random triangles over the viewport and its guard band: mostly small, some large,
-// some slivers and some degenerate; now and then a scissor or viewport change.
+// some slivers and some degenerate, colours with the config's interp.color_frac_bits;
+// now and then a scissor or viewport change.
 inline Scene random_scene(const Config& cfg, uint64_t seed, int n) {
   std::mt19937_64 rng(seed);
   const int w = static_cast<int>(cfg.get_int("display.width")), h = static_cast<int>(cfg.get_int("display.height"));
@@ -72,6 +78,7 @@ inline Scene random_scene(const Config& cfg, uint64_t seed, int n) {
   std::uniform_real_distribution<double> u01(0, 1);
   const int frac_steps = 1 << std::min(fmt.frac_bits, 8);
   auto q = [&](double v) { return std::round(v * frac_steps) / frac_steps; };  // often exactly on samples
+  const int cf = static_cast<int>(cfg.get_int("interp.color_frac_bits"));       // colours unsigned 8.cf
   Scene s;
   s.source = "random";
   int line = 0;
@@ -91,10 +98,10 @@ inline Scene random_scene(const Config& cfg, uint64_t seed, int n) {
     const double cx = q(ux(rng)), cy = q(uy(rng));
     const double size = kind < 0.7 ? 6.0 : (kind < 0.9 ? 24.0 : 64.0);
     std::uniform_real_distribution<double> d(-size, size);
-    SceneVertex a = random_vertex(cx, cy, rng), b = random_vertex(q(cx + d(rng)), q(cy + d(rng)), rng),
-                c = random_vertex(q(cx + d(rng)), q(cy + d(rng)), rng);
+    SceneVertex a = random_vertex(cx, cy, rng, cf), b = random_vertex(q(cx + d(rng)), q(cy + d(rng)), rng, cf),
+                c = random_vertex(q(cx + d(rng)), q(cy + d(rng)), rng, cf);
     if (kind > 0.97)
-      c = random_vertex(q(2 * b.x.to_double() - a.x.to_double()), q(2 * b.y.to_double() - a.y.to_double()), rng);
+      c = random_vertex(q(2 * b.x.to_double() - a.x.to_double()), q(2 * b.y.to_double() - a.y.to_double()), rng, cf);
     s.commands.push_back(tri_cmd(a, b, c, "random", line));
   }
   return s;

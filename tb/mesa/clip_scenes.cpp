@@ -190,7 +190,7 @@ std::string describe(const ClipTri& t, const ViewRect& vp) {
   int n = std::snprintf(buf, sizeof buf, "viewport_xform %d %d %d %d\ntri4", vp.x, vp.y, vp.width, vp.height);
   for (const ClipVertex& v : t.v)
     n += std::snprintf(buf + n, sizeof buf - size_t(n), " %.9g %.9g %.9g %.9g %d %d %d", double(v.x), double(v.y),
-                       double(v.z), double(v.w), v.r, v.g, v.b);
+                       double(v.z), double(v.w), int(v.r), int(v.g), int(v.b));
   return buf;
 }
 

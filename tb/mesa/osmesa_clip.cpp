@@ -55,7 +55,7 @@ std::vector<uint32_t> OsMesaClipRenderer::render(const std::vector<ClipTri>& tri
   glBegin(GL_TRIANGLES);
   for (const ClipTri& t : tris)
     for (const ClipVertex& v : t.v) {
-      glColor4ub(v.r, v.g, v.b, 255);
+      glColor4ub(GLubyte(v.r), GLubyte(v.g), GLubyte(v.b), 255);  // input colours: RGB8 integers
       glVertex4f(v.x, v.y, v.z, v.w);
     }
   glEnd();
