@@ -271,8 +271,8 @@ SimResult simulate_commands(CommandSource source, const ArchParams& params, cons
   std::optional<AtomicFile> mem_trace;
   if (params.memory.enabled) {
     memory = new MemorySystem("memory", params.dram);
-    top->rop.attach_memory(*memory, params.memory);
     if (!opts.mem_trace_path.empty()) memory->record_trace(&mem_trace.emplace(opts.mem_trace_path).stream());
+    top->rop.attach_memory(*memory, params.memory);  // its first request: the frame's depth clear
   } else if (!opts.mem_trace_path.empty()) {
     throw std::invalid_argument("--mem-trace needs memory.model = \"dram\" (the DRAM requests it lists)");
   }
