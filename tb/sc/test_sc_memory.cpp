@@ -21,6 +21,7 @@
 #include <fstream>
 
 #include "config/arch_params.h"
+#include "report/stats_json.h"
 #include "ref/pipeline.h"
 #include "scene/scene_io.h"
 #include "sim_harness.h"
@@ -35,7 +36,7 @@ nlohmann::json render_and_simulate(const Scene& scene, const Config& cfg) {
   RenderStats ref;
   render_scene(scene, a.raster, ref, {}, Framebuffer::kDefaultTileLog2, 1, a.memory);
   const sc::SimResult r = sc::simulate_scene(scene, a);
-  nlohmann::json rj = to_json(ref), sj = to_json(r.render);
+  nlohmann::json rj = rastsim::to_json(ref), sj = rastsim::to_json(r.render);
   rj.erase("wall_seconds");
   sj.erase("wall_seconds");
   return {{"ref", rj}, {"sim", sj}, {"stats", r.to_json()}};
