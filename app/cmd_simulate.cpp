@@ -94,7 +94,7 @@ std::vector<std::string> heat_stage_choices() {
 void run_level_mode(const SimulateOptions& o, const ArchParams& arch) {
   const double tol = o.tolerance.empty() ? 0 : parse_tolerance(o.tolerance);
   for (const std::string* p : {&o.out_path, &o.vcd_path, &o.timeline_path, &o.heatmap_path,
-                               &o.heatmap_data_path, &o.frag_path})
+                               &o.heatmap_data_path, &o.frag_path, &o.mem_trace_path})
     if (!p->empty())
       throw std::runtime_error(std::string(o.sample ? "--sample" : "--tolerance") +
                                " makes no image, VCD, timeline, heatmap or fragment stream: drop " + *p);
@@ -134,6 +134,7 @@ sc::SimOptions sim_options(const SimulateOptions& o, std::unique_ptr<AtomicFile>
   }
   sim.vcd_path = o.vcd_path;
   sim.timeline_path = o.timeline_path;
+  sim.mem_trace_path = o.mem_trace_path;
   if (o.timeline_max_events) sim.timeline_max_events = o.timeline_max_events;
   sim.heatmap = !o.heatmap_path.empty() || !o.heatmap_data_path.empty();
   return sim;
@@ -154,7 +155,8 @@ void run_simulate_command(const SimulateOptions& o) {
   std::unique_ptr<AtomicFile> frag_file;
   const sc::SimOptions sim = sim_options(o, frag_file);
   // Fails before a long simulation, not after it, when an output cannot be written.
-  for (const std::string* p : {&o.out_path, &o.stats_path, &o.timeline_path, &o.heatmap_path, &o.heatmap_data_path})
+  for (const std::string* p :
+       {&o.out_path, &o.stats_path, &o.timeline_path, &o.heatmap_path, &o.heatmap_data_path, &o.mem_trace_path})
     check_writable(*p);
   for (const std::string* p : {&o.out_path, &o.heatmap_path})
     if (!p->empty()) check_image_path(*p);
@@ -208,7 +210,9 @@ void register_simulate(CLI::App& app) {
   cmd->add_option("-o,--output", o.out_path, "Image to write: .png or .ppm (bit-identical to `render`)");
   cmd->add_option("--stats", o.stats_path,
                   "Write the stats as JSON ('-' for stdout): render's, plus cycles, cycles_lower_bound, "
-                  "stages.<stage>.{busy,stalled,starved}, sim_wall_seconds, simulated_cycles_per_second");
+                  "stages.<stage>.{busy,stalled,starved}, sim_wall_seconds, simulated_cycles_per_second; with "
+                  "memory.model = \"dram\" also dram_row_hit_rate, dram_bandwidth_utilisation, memory.dram.*, "
+                  "memory.clients.<client>.* (docs/stats.md)");
   cmd->add_option("--vcd", o.vcd_path, "Write a VCD of every FIFO's occupancy and every stage's state "
                                       "(0 starved, 1 busy, 2 stalled); 1 ns = 1 cycle");
   cmd->add_option("--timeline", o.timeline_path,
@@ -224,6 +228,10 @@ void register_simulate(CLI::App& app) {
       ->check(CLI::IsMember(heat_stage_choices()));
   cmd->add_option("--heatmap-data", o.heatmap_data_path,
                   "Write the per-tile busy cycles of every attributed stage as JSON ('-' for stdout)");
+  cmd->add_option("--mem-trace", o.mem_trace_path,
+                  "Write every DRAM request of every memory client in DRAMsim3's trace format "
+                  "('0x<address> READ|WRITE <DRAM clock>', one burst a line; replay with `rastsim dram-replay`, "
+                  "DRAMsim3, DRAMSys or Ramulator); needs memory.model = \"dram\"");
   cmd->add_option("--fragments", o.frag_path,
                   "Write every fragment leaving interpolation, one 'x y z r g b' line each (as `render`)");
   cmd->add_option("--stall-probability", o.stall_probability,

@@ -75,6 +75,7 @@ struct SimulateOptions {
   ConfigOptions config;
   std::string scene_path, out_path, stats_path, vcd_path, frag_path;
   std::string timeline_path;                // trace-event JSON ("" = none)
+  std::string mem_trace_path;               // DRAM requests, DRAMsim3's format ("" = none)
   uint64_t timeline_max_events = 0;  // above it the timeline is quantized (0: sc::SimOptions's)
   std::string heatmap_path, heatmap_data_path;  // PNG and per-tile JSON ("" = none)
   std::string heatmap_stage = "all";        // a tile_heat stage (timing/stage_table.h) or all

@@ -267,6 +267,15 @@ SimResult simulate_commands(CommandSource source, const ArchParams& params, cons
   top = new RasterPipeline("pipeline", ctx, std::move(source), arch, p);
   Recorders rec;
   rec.attach(*top, opts, arch, ctx.tracing);
+  static MemorySystem* memory = nullptr;  // kept, as the top: elaborated once
+  std::optional<AtomicFile> mem_trace;
+  if (params.memory.enabled) {
+    memory = new MemorySystem("memory", params.dram);
+    if (!opts.mem_trace_path.empty()) memory->record_trace(&mem_trace.emplace(opts.mem_trace_path).stream());
+    top->rop.attach_memory(*memory, params.memory);  // its first request: the frame's depth clear
+  } else if (!opts.mem_trace_path.empty()) {
+    throw std::invalid_argument("--mem-trace needs memory.model = \"dram\" (the DRAM requests it lists)");
+  }
 
   sc_core::sc_start();
   if (rec.vcd) sc_core::sc_close_vcd_trace_file(rec.vcd);
@@ -286,6 +295,12 @@ SimResult simulate_commands(CommandSource source, const ArchParams& params, cons
   r.resolve_cycles = ctx.resolve_cycles;
   r.recip_reciprocals = ctx.recip_reciprocals;
   r.recip_busy_cycles = ctx.recip_busy_cycles;
+  if (memory) {  // the frame end's accesses, then every request completed
+    r.render.memory = top->rop.finish_memory(r.cycles);
+    memory->drain();
+    r.memory = memory->report(r.cycles);
+    if (mem_trace) mem_trace->commit();
+  }
   r.fb = std::move(top->rop.framebuffer());  // moved, not copied: one framebuffer
   r.render.framebuffer_crc32 = r.fb.color_crc32();
   r.sim_wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -314,6 +329,7 @@ nlohmann::json SimResult::to_json() const {
                            {"transactions_in", s.transactions_in},
                            {"transactions_out", s.transactions_out}};
   for (const FifoReport& f : fifos) j["fifos"][f.name] = {{"depth", f.depth}, {"transactions", f.writes}};
+  if (memory) add_memory_system_json(j, *memory);
   // The geometry front end's counters under its stage too, beside its cycles.
   if (render.front_end.any()) {
     nlohmann::json counters;

@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -22,6 +23,7 @@
 #include "config/arch_params.h"
 #include "ref/pipeline.h"
 #include "sc/command_fetch.h"
+#include "sc/memory.h"
 #include "scene/scene_io.h"
 #include "config/timing_params.h"
 #include "sc/tile_heat.h"
@@ -46,6 +48,9 @@ struct SimOptions {
   // Stages advance SystemC time in step with their own (SimContext::lockstep; implied by
   // a VCD or a timeline): same cycles and stats, slower; tests compare the two.
   bool lockstep = false;
+  // Every DRAM request in DRAMsim3's format (timing/dram_trace.h; "" = none): needs
+  // memory.model = "dram". Written atomically after a successful run.
+  std::string mem_trace_path;
 };
 
 struct StageReport {
@@ -82,12 +87,15 @@ struct SimResult {
   // --heatmap: busy cycles per tile of coarse_raster, fine_raster, interpolate and rop,
   // in that order (empty when off).
   std::vector<TileHeat> heat;
+  // The timed memory system's figures (memory.model = "dram"; sc/memory.h), else empty.
+  // render.memory holds the functional counts, equal to render's.
+  std::optional<MemorySystemReport> memory;
 
   // RenderStats::to_json plus cycles, cycles_lower_bound, simulated_seconds,
   // sim_wall_seconds, simulated_cycles_per_second, rop_accesses, framebuffer_bytes,
   // resolve_cycles, recip_reciprocals, recip_busy_cycles, stages.<name>.{busy,...}
   // (stages.front_end also the front end's counters, when a clip-space primitive was
-  // drawn), fifos.<name>.
+  // drawn), fifos.<name>, and with the memory system add_memory_system_json's keys.
   nlohmann::json to_json() const;
 };
 

@@ -4,6 +4,7 @@
 #include "ref/pipeline.h"
 #include "ref/rop.h"
 #include "sc/model_error.h"
+#include "timing/memory_timing.h"
 
 namespace rastsim::sc {
 
@@ -16,21 +17,47 @@ Rop::Rop(SimContext& ctx, const RasterState& arch, const TimingParams& p,
   fb_.clear_depth(static_cast<uint32_t>((uint64_t{1} << st_.depth_bits) - 1));
 }
 
+void Rop::attach_memory(MemorySystem& mem, const MemoryParams& p) {
+  mem_ = std::make_unique<RopMemoryPort>(mem, p, fb_, st_.depth_bits);
+  mem_->begin(0);
+  mem_->functional().clear_depth();
+  mem_->cleared(MemClient::RopDepth);
+}
+
+MemoryStats Rop::finish_memory(uint64_t end) {
+  if (!mem_) return {};
+  if (!frame_finished_) {
+    mem_->begin(end);
+    mem_->finish();
+    mem_->end();
+  }
+  return mem_->stats();
+}
+
+uint64_t Rop::transaction_cycles(uint64_t work_cycles) {
+  if (!mem_) return work_cycles;
+  const std::optional<uint64_t> fill = mem_->end();
+  return memory_transaction_cycles(work_cycles, now(), fill.has_value(), fill.value_or(0));
+}
+
 // A command down the triangle path: a 2D command's marker, the end-of-frame marker or a
 // state command (sc/rop.h for the cycles and bytes of each).
 void Rop::command(const CommandPtr& cmd) {
   const uint64_t fb_pixels = uint64_t(fb_.width) * uint64_t(fb_.height);
+  if (mem_) mem_->begin(now());
   if (ctx_.is_end_of_frame(cmd)) {  // the multisample resolve pass
+    if (mem_) mem_->finish();  // reads the samples: before the framebuffer is resolved
+    frame_finished_ = mem_ != nullptr;
     fb_ = fb_.resolve();
     ctx_.resolve_cycles = p_.resolve_cycles(fb_pixels, st_.samples);
     ctx_.framebuffer_bytes += ctx_.render.resolve_bytes;
     attribute_to_no_tile();
-    busy(ctx_.resolve_cycles);
+    busy(transaction_cycles(ctx_.resolve_cycles));
     return;
   }
   // `clear_bytes`: bytes a pixel the command writes over the whole buffer (0: no clear).
   const auto state = [&](uint64_t clear_bytes) {
-    apply_state_command(*cmd, st_, fb_);
+    apply_state_command(*cmd, st_, fb_, functional_memory());
     ctx_.framebuffer_bytes += fb_pixels * clear_bytes;
     attribute_to_no_tile();
     busy(p_.rop_state_cycles(clear_bytes != 0, fb_pixels));
@@ -38,8 +65,14 @@ void Rop::command(const CommandPtr& cmd) {
   visit_command(*cmd, Overloaded{
       [&](const CmdViewport&) { state(0); },
       [&](const CmdScissor&) { state(0); },
-      [&](const CmdClear&) { state(4); },
-      [&](const CmdClearDepth&) { state(depth_bytes_); },
+      [&](const CmdClear&) {
+        state(4);
+        if (mem_) mem_->cleared(MemClient::RopColor);
+      },
+      [&](const CmdClearDepth&) {
+        state(depth_bytes_);
+        if (mem_) mem_->cleared(MemClient::RopDepth);
+      },
       [&](const CmdPrimitives&) {
         throw ModelError("ROP: a primitives command as a state item (fetch sends its triangles)");
       },
@@ -62,6 +95,8 @@ void Rop::body() {
     const FragmentBatch& batch = *in.work;
     const std::span<const Fragment> frags = batch.fragments();
     uint64_t accesses = 0, passed = 0, samples_passed = 0;  // summed locally, added once a batch
+    RopMemory* const mem = functional_memory();
+    if (mem_) mem_->begin(now());
     if (batch.one_per_pixel() && fb_.samples == 1) {
       // A run at a time: the same tests and writes as rop_write on each fragment in turn
       // (ref/rop.h), the storage tile looked up once a run. Each fragment is one access
@@ -69,7 +104,7 @@ void Rop::body() {
       const Fragment* f = frags.data();
       for (const PixelRun& r : batch.pixels->runs) {
         const uint32_t n = rop_write_run(
-            fb_, r.y, r.x0, r.x1, [f, x0 = r.x0](int x) { return f[x - x0]; }, st_.depth_func, st_.depth_write);
+            fb_, r.y, r.x0, r.x1, [f, x0 = r.x0](int x) { return f[x - x0]; }, st_.depth_func, st_.depth_write, mem);
         f += r.x1 - r.x0;
         passed += n;
         samples_passed += n;
@@ -78,7 +113,7 @@ void Rop::body() {
     } else {
       for (const Fragment& f : frags) {
         accesses += TimingParams::rop_accesses(f.mask, fb_.samples);
-        passed += rop_write(fb_, f, st_.depth_func, st_.depth_write, &samples_passed);
+        passed += rop_write(fb_, f, st_.depth_func, st_.depth_write, &samples_passed, mem);
       }
     }
     ctx_.render.fragments_passed += passed;
@@ -86,7 +121,7 @@ void Rop::body() {
     ctx_.rop_accesses += accesses;
     ctx_.framebuffer_bytes += accesses * (4 + depth_bytes_);
     if (!frags.empty()) attribute_to(frags.front().x, frags.front().y);  // the batch's tile
-    busy(p_.rop_fragment_cycles(accesses));
+    busy(transaction_cycles(p_.rop_fragment_cycles(accesses)));
   }
 }
 

@@ -20,11 +20,22 @@
 // - Counts fragments_passed, samples_passed, and the traffic (SimContext::rop_accesses,
 //   framebuffer_bytes, resolve_cycles): framebuffer_bytes = accesses x (4 + depth
 //   bytes) + (W H 4 a colour clear, W H depth bytes a depth clear) + resolve bytes.
+//
+// With the timed memory system (memory.model = "dram", attach_memory; docs/memory.md,
+// "Timed memory system (SystemC)") every access also goes through the reference's
+// functional caches (sc/memory.h: RopMemoryPort), and a batch or the resolve pass lasts
+// timing/memory_timing.h's memory_transaction_cycles: its cycles above, or until its last
+// line fill has arrived plus one cycle, whichever is later; write-backs and clears'
+// writes are posted.
 #pragma once
+
+#include <memory>
+#include <optional>
 
 #include "ref/framebuffer.h"
 #include "sc/engine2d.h"
 #include "sc/interpolate.h"
+#include "sc/memory.h"
 
 namespace rastsim::sc {
 
@@ -35,10 +46,20 @@ class Rop : public Stage {
       Link<FragmentItem>& in, Link<PortGrant>& grant_2d, Link<PortGrant>& done_2d,
     sc_core::sc_module_name name = stage_name(kId).data());
   Framebuffer& framebuffer() { return fb_; }
+  // Before the run: the ROP's accesses go through `mem` (the frame starts with the depth
+  // clear the memory system sees, as render_scene's).
+  void attach_memory(MemorySystem& mem, const MemoryParams& p);
+  // After the run (cycle `end`): the frame end's accesses if the resolve did not make
+  // them, every request drained; the functional counts (disabled without a memory).
+  MemoryStats finish_memory(uint64_t end);
 
  private:
   void body() override;
   void command(const CommandPtr& cmd);
+  // Cycles of a transaction starting now whose own work is `work_cycles`, after its
+  // accesses (with a memory: its fills waited for).
+  uint64_t transaction_cycles(uint64_t work_cycles);
+  RopMemory* functional_memory() { return mem_ ? &mem_->functional() : nullptr; }
   RasterState st_;
   Framebuffer fb_;
   uint64_t depth_bytes_;  // bytes of one depth value: ceil(raster.depth_bits / 8)
@@ -46,6 +67,8 @@ class Rop : public Stage {
   Link<FragmentItem>& in_;
   Link<PortGrant>& grant_2d_;
   Link<PortGrant>& done_2d_;
+  std::unique_ptr<RopMemoryPort> mem_;  // null: memory.model = "fixed"
+  bool frame_finished_ = false;         // the resolve made the frame end's accesses
 };
 
 }  // namespace rastsim::sc

@@ -1,0 +1,133 @@
+// SPDX-License-Identifier: Apache-2.0
+// The timed memory system (memory.model = "dram"; docs/memory.md, "Timed memory system
+// (SystemC)"): one module every memory client goes through, wrapping the shared DRAM
+// model (timing/dram.h) built from ArchParams::dram.
+//
+// Time: like the Links (sc/link.h), the module works in its clients' own time (temporal
+// decoupling): a request carries the core cycle it is made at, and the DRAM model is
+// advanced event by event (DramModel::next_event, never a cycle at a time) only as far
+// as a client needs an answer. A blocking read (wait_reads) returns the core cycle the
+// DRAM's completion arrives; posted writes occupy the DRAM and return nothing.
+//
+// Arbitration: requests enter the DRAM model in arrival-cycle order; requests of one
+// cycle in the order they are made, which within a client is its access order and
+// across clients the fixed order of MemClient. Inside the DRAM model FR-FCFS decides.
+//
+// RopMemoryPort is the ROP's client: it runs the reference's functional memory system
+// (ref/memory/rop_memory.h) on the ROP's own access stream, so hits, misses and bytes
+// equal render's, and turns each access's line fill into a DRAM read and its write-back
+// into a DRAM write of the bytes the functional model counted for it.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+#include <systemc>
+
+#include "ref/memory/cache.h"
+#include "ref/memory/rop_memory.h"
+#include "timing/dram.h"
+
+namespace rastsim::sc {
+
+// The clients, in their arbitration order (requests of one cycle); the stats' names.
+enum class MemClient { RopColor = 0, RopDepth = 1 };
+inline constexpr std::array<const char*, 2> kMemClientNames = {kRopColorClient, kRopDepthClient};
+
+// What simulate reports of the memory system (add_memory_system_json).
+struct MemorySystemReport {
+  DramStats dram;
+  std::string preset;
+  uint64_t dram_end_cycle = 0;   // the last DRAM completion (posted writes included)
+  uint64_t elapsed_cycles = 0;   // max(run cycles, dram_end_cycle): the utilisation's window
+  double bandwidth_utilisation = 0;
+  uint64_t peak_bytes_per_kcycle = 0;  // peak DRAM bytes per 1000 core cycles
+};
+
+class MemorySystem : public sc_core::sc_module {
+ public:
+  MemorySystem(sc_core::sc_module_name name, const DramParams& p);
+
+  // A posted write of `bytes` at `address` made at core cycle `cycle`; split into
+  // requests of at most kMaxRequestBytes.
+  void post_write(MemClient c, uint64_t address, uint64_t bytes, uint64_t cycle);
+  // A read made at `cycle`; its completion is waited for by wait_reads().
+  void issue_read(MemClient c, uint64_t address, uint64_t bytes, uint64_t cycle);
+  // Advances the DRAM until every read issued so far has completed; returns the core
+  // cycle the last one completed, or nullopt when none was outstanding.
+  std::optional<uint64_t> wait_reads();
+  // Every request completed (the frame end): returns the last completion's cycle.
+  uint64_t drain();
+
+  // Writes every request from now on to *out in DRAMsim3's format (timing/dram_trace.h).
+  void record_trace(std::ostream* out) { trace_ = out; }
+
+  MemorySystemReport report(uint64_t run_cycles) const;
+  const DramModel& dram() const { return dram_; }
+
+  static constexpr uint64_t kMaxRequestBytes = 4096;
+
+ private:
+  void enqueue(MemClient c, uint64_t address, uint64_t bytes, bool write, uint64_t cycle);
+  void take_completions();
+
+  DramModel dram_;
+  uint64_t floor_ = 0;  // the latest arrival or advance: no request may arrive before it
+  uint64_t outstanding_reads_ = 0, next_tag_ = 0, last_completion_ = 0;
+  std::optional<uint64_t> last_read_;
+  std::ostream* trace_ = nullptr;
+};
+
+// The ROP's memory clients (rop_color, rop_depth) on the timed memory system.
+class RopMemoryPort {
+ public:
+  RopMemoryPort(MemorySystem& mem, const MemoryParams& p, const Framebuffer& fb, int depth_bits);
+  RopMemoryPort(const RopMemoryPort&) = delete;
+  RopMemoryPort& operator=(const RopMemoryPort&) = delete;
+
+  // The functional model the ROP calls (ref/rop.h's mem argument).
+  RopMemory& functional() { return rop_; }
+  // Accesses from now on are made at core cycle `cycle` (the transaction's start).
+  void begin(uint64_t cycle);
+  // The transaction's accesses are all made: their requests issued, then its fills
+  // waited for; returns the last fill's completion (nullopt: no fill).
+  std::optional<uint64_t> end();
+  // After functional().clear_color() / clear_depth(): the clear's bytes written.
+  void cleared(MemClient c);
+  // The frame end (RopMemory::finish: resolve reads, flush, resolved image), made at
+  // the current cycle; then the stats.
+  void finish();
+  MemoryStats stats() const { return rop_.stats(); }
+
+ private:
+  struct Surface {
+    MemClient client;
+    SurfaceClient* functional;
+    std::optional<SetAssocCache> tags;  // the same tag store as the functional cache: its victims
+    uint64_t line_bytes = 0;
+    uint64_t read_seen = 0, written_seen = 0;  // the functional byte counts already issued
+    // The last access, not yet issued: its line's address (the fill) and the write-back's.
+    bool pending = false;
+    uint64_t fill_address = 0, writeback_address = 0;
+  };
+  void on_access(Surface& s, uint64_t address, bool write);
+  void settle(Surface& s);
+  void settle_flush(Surface& s, const std::vector<uint64_t>& lines);
+
+  MemorySystem& mem_;
+  RopMemory rop_;
+  std::array<Surface, 2> surfaces_;
+  uint64_t cycle_ = 0;
+};
+
+// dram_row_hit_rate, dram_bandwidth_utilisation, memory.dram.* and, per client,
+// memory.clients.<name>.{bursts_read, bursts_written, row_hits, row_misses,
+// row_conflicts, mean_read_latency_cycles} (docs/stats.md).
+void add_memory_system_json(nlohmann::json& j, const MemorySystemReport& r);
+
+}  // namespace rastsim::sc
