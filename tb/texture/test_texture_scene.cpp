@@ -170,6 +170,34 @@ TEST(TextureRender, QuadIsTexelForTexel) {
   EXPECT_EQ(st.texture.helper_pixels, 16u);
 }
 
+// The same 8 x 8-pixel quad over a 32 x 32 texture of uniform 4 x 4 blocks (block (a, b)
+// is (30 a, 30 b, 100)), mipmapped, nearest: ds/dx = 1/8, 4 texels a pixel, lambda = 2
+// exactly: level 2 (8 x 8), whose texel (x, y) is block (x, y) (boxes of equal texels).
+// With texlod_bias 1, level 3 (4 x 4): texel (x >> 1, y >> 1), the box of blocks 2k and
+// 2k + 1 twice: (2 (60k) + 2 (60k + 30) + 2) >> 2 = 60k + 15.
+TEST(TextureRender, QuadLevelOfDetailPicksTheMipLevel) {
+  Scratch s;
+  std::vector<uint8_t> blocks;
+  for (int j = 0; j < 32; ++j)
+    for (int i = 0; i < 32; ++i) blocks.insert(blocks.end(), {uint8_t(30 * (i >> 2)), uint8_t(30 * (j >> 2)), 100, 255});
+  s.put("b.tga", tga(32, 32, blocks));
+  const std::string quad = "strip\ntexcoord 0 0\nv 0 0\ntexcoord 1 0\nv 8 0\ntexcoord 0 1\nv 0 8\ntexcoord 1 1\nv 8 8\nend\n";
+  for (int bias = 0; bias <= 1; ++bias) {
+    const Scene sc = parse_trace("texture 1 b.tga\nbindtexture 1\ntexfilter nearest\ntexenv replace\nmipmap on\n"
+                                 "texlod_bias " + std::to_string(bias) + "\n" + quad,
+                                 (s.dir / "t.trace").string());
+    RenderStats st;
+    const Framebuffer fb = render_scene(sc, default_raster(), st);
+    for (int y = 0; y < 8; ++y)
+      for (int x = 0; x < 8; ++x) {
+        const int want_r = bias ? 60 * (x >> 1) + 15 : 30 * x, want_g = bias ? 60 * (y >> 1) + 15 : 30 * y;
+        ASSERT_EQ(fb.pixel(x, y)[0], want_r) << x << "," << y << " bias " << bias;
+        ASSERT_EQ(fb.pixel(x, y)[1], want_g) << x << "," << y << " bias " << bias;
+        ASSERT_EQ(fb.pixel(x, y)[2], 100);
+      }
+  }
+}
+
 // Triangle (0, 0), (4.2, 0), (0, 4.2): centres with x + y + 1 < 4.2 are covered, 10 pixels
 // in 3 quads (4 + 3 + 3; the quad at (2..3, 2..3) has none): 12 - 10 = 2 helper pixels.
 TEST(TextureRender, HelperPixelsHandCounted) {
