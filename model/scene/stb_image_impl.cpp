@@ -6,6 +6,9 @@
 #define STBI_ONLY_TGA
 #define STBI_ONLY_JPEG
 #define STBI_NO_STDIO
+// A header claiming more texels a side is refused before any allocation.
+#include "scene/texture_file.h"
+#define STBI_MAX_DIMENSIONS rastsim::kMaxTextureExtent
 #include <stb_image.h>
 
 #include "scene/stb_image_impl.h"

@@ -38,6 +38,8 @@ std::shared_ptr<const TextureImage> load_texture_file(const std::string& path, c
   };
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) fail("no such file");
+  if (std::filesystem::file_size(path, ec) > kMaxTextureFileBytes)
+    fail("larger than " + std::to_string(kMaxTextureFileBytes) + " bytes");
   const std::vector<uint8_t> bytes = read_bytes(path);
   if (bytes.empty()) fail("empty file (not a PNG, TGA or JPEG image)");
   if (tga_truncated(bytes)) fail("truncated TGA (the file ends before its last pixel)");

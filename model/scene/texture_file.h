@@ -4,6 +4,7 @@
 // and an MTL's `map_Kd FILE` load through here.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <string>
 
@@ -11,8 +12,10 @@
 
 namespace rastsim {
 
-// The largest texture side accepted, texels.
+// The largest texture side accepted, texels (stb_image refuses a larger header before it
+// allocates), and the largest file read.
 inline constexpr int kMaxTextureExtent = 16384;
+inline constexpr uint64_t kMaxTextureFileBytes = uint64_t{1} << 30;
 
 // Decodes `path`. A file that is missing, truncated or not a PNG, TGA or JPEG image, or
 // larger than kMaxTextureExtent a side, throws SceneError("FILE:LINE: ...") naming

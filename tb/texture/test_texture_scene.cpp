@@ -95,10 +95,12 @@ TEST(TextureFiles, BadFilesNameTheReferringLine) {
     png.assign(std::istreambuf_iterator<char>(in), {});
   }
   s.put("cut.png", png.substr(0, png.size() / 2));
+  s.put("wide.tga", tga(20000, 1, std::vector<uint8_t>(20000 * 4, 9)));  // a side above 16384
   const std::string trace = (s.dir / "t.trace").string();
   for (const auto& [file, phrase] : std::vector<std::pair<std::string, std::string>>{
            {"gone.png", "no such file"}, {"junk.png", "not a readable PNG, TGA or JPEG image"},
-           {"cut.tga", "truncated TGA"}, {"cut.png", "not a readable PNG, TGA or JPEG image"}}) {
+           {"cut.tga", "truncated TGA"}, {"cut.png", "not a readable PNG, TGA or JPEG image"},
+           {"wide.tga", "not a readable PNG, TGA or JPEG image (too large)"}}) {
     SCOPED_TRACE(file);
     EXPECT_TRUE(fails_with([&] { parse_trace("clear 0 0 0\ntexture 3 " + file + "\ntri 0 0 1 0 0 1\n", trace); },
                            trace + ":2:", "texture '" + (s.dir / file).string() + "': " + phrase));
