@@ -19,6 +19,9 @@
 #include "scene/texture_file.h"
 
 namespace rastsim {
+namespace texture_test {
+std::string jpeg_bytes(int w, int h, const std::vector<unsigned char>& rgb);  // stb_image_write_impl.cpp
+}  // namespace texture_test
 namespace {
 
 namespace fs = std::filesystem;
@@ -79,6 +82,23 @@ TEST(TextureFiles, PngAndTgaDecodeTopRowFirst) {
   EXPECT_EQ(a->width, 4);
   EXPECT_EQ(a->rgba, ramp);
   EXPECT_EQ(b->rgba, ramp);
+}
+
+// JPEG is lossy: a uniform image at quality 100 decodes within 2 of its colour.
+TEST(TextureFiles, JpegDecodes) {
+  Scratch s;
+  std::vector<unsigned char> rgb;
+  for (int k = 0; k < 16 * 8; ++k) rgb.insert(rgb.end(), {200, 120, 40});
+  const std::string path = s.put("a.jpg", texture_test::jpeg_bytes(16, 8, rgb));
+  const auto t = load_texture_file(path, "x.trace", 1);
+  ASSERT_EQ(t->width, 16);
+  ASSERT_EQ(t->height, 8);
+  for (size_t k = 0; k < t->rgba.size(); k += 4) {
+    EXPECT_NEAR(t->rgba[k], 200, 2);
+    EXPECT_NEAR(t->rgba[k + 1], 120, 2);
+    EXPECT_NEAR(t->rgba[k + 2], 40, 2);
+    EXPECT_EQ(t->rgba[k + 3], 255);
+  }
 }
 
 TEST(TextureFiles, BadFilesNameTheReferringLine) {
