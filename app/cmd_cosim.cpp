@@ -9,6 +9,7 @@
 
 #include "common.h"
 #include "report/stats_json.h"
+#include "ref/pipeline.h"
 #include "rtlsim/cosim.h"
 #include "rtlsim/rtl_cache.h"
 #include "rtlsim/stage_compare.h"
@@ -144,6 +145,7 @@ void run_cosim_command(CosimCommand& c) {
   if (c.simulate_stats && c.no_model)
     throw std::runtime_error("cosim: --simulate-stats needs the SystemC model (drop --no-model)");
   const Scene scene = load_scene(c.scene_path, arch.placement);
+  reject_textured_commands(scene.commands, "RTL");  // never a silently untextured picture
   if (!c.trace_diff_dir.empty() && c.no_model)
     throw std::runtime_error("--trace-diff needs the SystemC model (drop --no-model)");
   c.run.record_transactions = !c.trace_diff_dir.empty();

@@ -16,6 +16,7 @@ RASTSIM_DEMO_PACKAGES=(
   libsystemc-dev verilator
   libtomlplusplus-dev libcli11-dev nlohmann-json3-dev libpng-dev zlib1g-dev
   libzstd-dev   # zstd-compressed scenes (model/scene/scene_stream.cpp)
+  libstb-dev    # stb_image: texture files, PNG, TGA and JPEG (model/scene/texture_file.cpp)
   libdeflate-dev   # its CRC-32 (carry-less multiply) for the framebuffer CRC (model/ref/framebuffer.cpp)
   libgmp-dev   # GMP's mpq_class: exact area coverage (model/aa, docs/exact-coverage.md)
   python3-matplotlib   # scripts/plot_sweep, scripts/side_by_side

@@ -317,14 +317,14 @@ TEST(ObjStatements, ConfigKeyChoosesSkip) {
 }
 
 TEST(ObjStatements, UnusedStatementsAreCounted) {
-  // Hand count of tb/data/cube.obj and cube.mtl (its vt are used: texture coordinates).
+  // Hand count of tb/data/cube.obj and cube.mtl (its vt and map_Kd are used: textures).
   const StatementCounts want = {{"vn", 2}, {"o", 1}, {"s", 1}, {"g", 1}, {"Ka", 1},
-                                {"Ks", 1}, {"Ns", 1}, {"illum", 1}, {"d", 1}, {"map_Kd", 1}};
+                                {"Ks", 1}, {"Ns", 1}, {"illum", 1}, {"d", 1}};
   testing::internal::CaptureStderr();
   const Scene s = load_obj(kData + "/cube.obj", head_on());
   const std::string err = testing::internal::GetCapturedStderr();
   EXPECT_EQ(s.obj_ignored, want);
-  EXPECT_EQ(err, kData + "/cube.obj: ignored: Ka 1, Ks 1, Ns 1, d 1, g 1, illum 1, map_Kd 1, o 1, s 1, vn 2\n");
+  EXPECT_EQ(err, kData + "/cube.obj: ignored: Ka 1, Ks 1, Ns 1, d 1, g 1, illum 1, o 1, s 1, vn 2\n");
   EXPECT_EQ(obj_ignored_counts(kData + "/cube.obj"), want);
   EXPECT_EQ(obj_ignored_counts(std::string(RASTSIM_SOURCE_DIR) + "/traces/torus.trace"), std::nullopt);
   // Nothing unused: no line on stderr.
@@ -336,7 +336,7 @@ TEST(ObjStatements, UnusedStatementsAreCounted) {
 TEST(ObjStatements, MissingTextureMapNamesTheMtlLine) {
   const auto dir = std::filesystem::temp_directory_path() / ("rastsim_obj_maps_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
-  std::ofstream((dir / "m.mtl").string()) << "newmtl a\nKd 1 1 1\nmap_Kd -s 1 1 1 there.png\nbump gone.png\n";
+  std::ofstream((dir / "m.mtl").string()) << "newmtl a\nKd 1 1 1\nmap_Ks -s 1 1 1 there.png\nbump gone.png\n";
   std::ofstream((dir / "there.png").string()) << "x";
   EXPECT_TRUE(SceneFails([&] { parse_obj("mtllib m.mtl\n", "x.obj", head_on(), dir.string()); },
                          (dir / "m.mtl").string() + ":4:", "'bump' names 'gone.png', which does not exist"));

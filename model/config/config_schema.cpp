@@ -61,6 +61,7 @@ std::vector<ParamDef> make_schema() {
   add_clip_params(s);
   add_dram_params(s);
   add_memory_params(s);
+  add_texture_params(s);
   return s;
 }
 

@@ -30,6 +30,8 @@ void add_clip_params(std::vector<ParamDef>& schema);  // config_schema_clip.cpp
 void add_dram_params(std::vector<ParamDef>& schema);  // config_schema_dram.cpp
 // Keys of the functional memory system (layout, ROP caches, fast clear, compression).
 void add_memory_params(std::vector<ParamDef>& schema);  // config_schema_memory.cpp
+// Keys of the texture unit (texel format, layout, base address, texture cache).
+void add_texture_params(std::vector<ParamDef>& schema);  // config_schema_texture.cpp
 // An integer key's check: a power of two (config_schema.cpp).
 bool is_power_of_two(const ParamValue& v);
 // A string key's check: of form s<I>.<F> (FixedFormat::parse accepts it).

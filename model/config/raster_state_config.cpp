@@ -3,6 +3,7 @@
 // stage reads (model/ref/raster_state.h).
 #include "config/raster_state_config.h"
 
+#include "config/texture_config.h"
 #include "ref/traverse.h"
 
 namespace rastsim {
@@ -67,6 +68,7 @@ RasterState raster_state_from_config(const Config& cfg) {
   s.recip_iterations = static_cast<int>(cfg.get_int("interp.recip_iterations"));
   s.texcoord_format = FixedFormat::parse(cfg.get_string("interp.texcoord_format"));
   s.color_frac_bits = static_cast<int>(cfg.get_int("interp.color_frac_bits"));
+  s.texture = texture_params_from_config(cfg);
   s.viewport_width = s.fb_width;
   s.viewport_height = s.fb_height;
   return s;

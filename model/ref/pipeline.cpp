@@ -5,6 +5,7 @@
 #include <atomic>
 #include <chrono>
 #include <optional>
+#include <unordered_map>
 
 #include "ref/homogeneous.h"
 #include "ref/prim_assembly.h"
@@ -99,6 +100,14 @@ void reject_2d_commands(const Scene& scene, const char* level) {
     if (const auto* d2 = std::get_if<CmdDraw2d>(&cmd.body))
       throw SceneError(cmd.loc.str() + ": '" + d2->keyword + "' (2D drawing) is not supported by the " + level +
                        " level yet; `rastsim render` draws it (docs/2d.md)");
+}
+
+void reject_textured_commands(std::span<const Command> commands, const char* level) {
+  for (const Command& cmd : commands)
+    if (const auto* p = std::get_if<CmdPrimitives>(&cmd.body); p && p->texture.enabled())
+      throw SceneError(cmd.loc.str() + ": drawn with texture '" + p->texture.image->name + "' bound, and the " +
+                       level + " level has no texture stage yet: texturing is modelled by the reference only: use "
+                       "`rastsim render` (docs/texture.md)");
 }
 
 void count_interp_error(const Fragment& got, const Fragment& exact, RenderStats& stats) {
@@ -209,15 +218,26 @@ struct SceneRenderer::Impl {
     }
     traverse(walk, tp, s.traversal, [&](int px, int py, uint32_t mask) {
       if (check) pixels.emplace_back(px, py);
-      const auto write = [&](const Fragment& f) {
-        if (tri.interp_method != InterpMethod::Plane) count_interp_error(f, interpolate_plane(tri, px, py, F), s);
-        ++s.fragments_shaded;
-        if (on_fragment) on_fragment(f);
-        if (rop_write(fb, f, st.depth_func, st.depth_write, &s.samples_passed, mem_ptr())) ++s.fragments_passed;
-      };
-      shader.shade(px, py, mask, write);
+      shader.shade(px, py, mask, [&](const Fragment& f) { write(tri, px, py, f, s, [](const Fragment& g) { return g; }); });
     });
   }
+
+  // One fragment of pixel (px, py) of tri out of interpolation: counted, shown to the
+  // fragment sink, then `texture(f)` (the texture stage, or f itself) tested and written.
+  template <class TextureStage>
+  void write(const SetupTriangle& tri, int px, int py, const Fragment& f, RenderStats& s, TextureStage&& texture) {
+    if (tri.interp_method != InterpMethod::Plane) count_interp_error(f, interpolate_plane(tri, px, py, F), s);
+    ++s.fragments_shaded;
+    if (on_fragment) on_fragment(f);
+    if (rop_write(fb, texture(f), st.depth_func, st.depth_write, &s.samples_passed, mem_ptr())) ++s.fragments_passed;
+  }
+
+  // The texture stage (ref/texture/texture_unit.h, docs/texture.md): created at the first
+  // textured triangle; its quads' derivatives, one triangle's, by quad.
+  std::optional<TextureUnit> tex;
+  std::unordered_map<uint64_t, QuadDerivatives> quads;
+  void draw_textured(const SetupTriangle& tri, const TextureState& ts);
+  const QuadDerivatives& quad_derivatives(const SetupTriangle& tri, int px, int py);
 };
 
 SceneRenderer::SceneRenderer(const RasterState& arch, RenderStats& stats, const FragmentSink& on_fragment,
@@ -254,6 +274,9 @@ void SceneRenderer::Impl::run(const Command& cmd) {
 
 // One primitives command's triangles on this thread, in order.
 void SceneRenderer::Impl::draw_triangles(const Command& cmd, const CmdPrimitives& prims) {
+  if (prims.texture.enabled() && draws_homogeneous(prims, st))
+    throw SceneError(cmd.loc.str() + ": a texture is bound and clip.method = homogeneous: texturing is modelled "
+                     "for clip.method = clip only");
   if (draws_homogeneous(prims, st)) {  // clip.method = homogeneous: no screen-space triangles
     const auto setup_done = [&](SetupOutcome o) {
       ++stats.triangles_in;
@@ -271,9 +294,44 @@ void SceneRenderer::Impl::draw_triangles(const Command& cmd, const CmdPrimitives
     SetupTriangle tri;
     if (!count_setup_outcome(setup_triangle(v, st, cmd.loc, tri), stats)) return;
     pixels.clear();
-    draw(tri, tri, stats);
+    if (prims.texture.enabled()) draw_textured(tri, prims.texture);
+    else draw(tri, tri, stats);
     if (check) check->add_triangle(tri, F, pixels, stats.coverage);
   });
+}
+
+// A textured triangle on this thread: every covered pixel's fragments through the
+// texture stage with the derivatives of its 2x2 quad (pixels 2x..2x+1, 2y..2y+1); the
+// quads' pixels not covered are helper pixels, shaded for the derivatives, never written.
+void SceneRenderer::Impl::draw_textured(const SetupTriangle& tri, const TextureState& ts) {
+  if (!tex) tex.emplace(st.texture);
+  PixelShader shader(tri, F);
+  quads.clear();
+  uint64_t covered = 0;
+  const int tex_frac = st.texcoord_format.frac_bits;
+  traverse(tri, tp, stats.traversal, [&](int px, int py, uint32_t mask) {
+    if (check) pixels.emplace_back(px, py);
+    ++covered;
+    const QuadDerivatives& d = quad_derivatives(tri, px, py);
+    shader.shade(px, py, mask, [&](const Fragment& f) {
+      write(tri, px, py, f, stats, [&](const Fragment& g) { return tex->shade(g, d, ts, tex_frac); });
+    });
+  });
+  tex->stats().helper_pixels += 4 * uint64_t(quads.size()) - covered;
+}
+
+// Coarse derivatives (ref/texture/texture.h): the quad's top-left, top-right and
+// bottom-left pixel centres by plane equations (extrapolated where not covered).
+const QuadDerivatives& SceneRenderer::Impl::quad_derivatives(const SetupTriangle& tri, int px, int py) {
+  const int x0 = px & ~1, y0 = py & ~1;
+  const uint64_t key = (uint64_t(uint32_t(y0)) << 32) | uint32_t(x0);
+  const auto [it, added] = quads.try_emplace(key);
+  if (added) {
+    const Fragment a = interpolate_plane(tri, x0, y0, F), b = interpolate_plane(tri, x0 + 1, y0, F),
+                   c = interpolate_plane(tri, x0, y0 + 1, F);
+    it->second = {int64_t(b.s) - a.s, int64_t(b.t) - a.t, int64_t(c.s) - a.s, int64_t(c.t) - a.t};
+  }
+  return it->second;
 }
 
 // State and 2D commands one by one, in order; each run of primitive commands between
@@ -300,13 +358,15 @@ constexpr size_t kChunkTriangles = 16384, kMinParallelTriangles = 256;
 
 void SceneRenderer::Impl::draw_primitives(std::span<const Command> commands) {
   size_t inputs = 0;  // triangles in (a clip-space command's before clipping): is the run worth the threads?
-  bool homogeneous = false;  // drawn on this thread (ref/homogeneous.h: no screen triangles to bin)
+  // Drawn on this thread: homogeneous (ref/homogeneous.h: no screen triangles to bin) and
+  // textured (the texture cache's access stream is in pipeline order).
+  bool one_thread = false;
   for (const Command& cmd : commands) {
     const auto& p = std::get<CmdPrimitives>(cmd.body);
     inputs += p.clip_space() ? triangle_count(p.topology, p.clip_vertices.size()) : triangle_count(p);
-    homogeneous = homogeneous || draws_homogeneous(p, st);
+    one_thread = one_thread || draws_homogeneous(p, st) || p.texture.enabled();
   }
-  if (inputs < kMinParallelTriangles || homogeneous) {
+  if (inputs < kMinParallelTriangles || one_thread) {
     for (const Command& cmd : commands) run(cmd);
     return;
   }
@@ -374,6 +434,7 @@ Framebuffer SceneRenderer::finish() {
     m.mem->finish();
     m.stats.memory = m.mem->stats();
   }
+  if (m.tex) m.stats.texture = m.tex->stats();
   if (m.fb.samples > 1) m.fb = m.fb.resolve();  // the frame-end resolve pass
   m.stats.framebuffer_crc32 = m.fb.color_crc32();
   m.stats.wall_seconds = m.seconds + seconds_since(t0);

@@ -17,6 +17,7 @@
 #include "ref/memory/rop_memory.h"
 #include "ref/raster_state.h"
 #include "ref/scene.h"
+#include "ref/texture/texture_unit.h"
 #include "ref/coarse_raster.h"
 #include "ref/study/coverage_check.h"
 
@@ -52,6 +53,8 @@ struct RenderStats {
   double wall_seconds = 0;
   // The functional memory system's counts (memory.model != fixed; docs/memory.md).
   MemoryStats memory;
+  // The texture unit's counts (docs/texture.md); all 0 when no texture was bound.
+  TextureStats texture;
 };
 
 // Applies a scene's state command (viewport, scissor, clears) to the state and
@@ -92,6 +95,10 @@ void check_2d_sample_count(const Command& cmd, const RasterState& st);
 // have no 2D stage yet (`level`: "SystemC", "RTL").
 void reject_2d_commands(const Scene& scene, const char* level);
 
+// Throws SceneError naming the first primitives command of `commands` drawn with a
+// texture bound, for the levels that have no texture stage yet (`level`: "SystemC", "RTL").
+void reject_textured_commands(std::span<const Command> commands, const char* level);
+
 // Adds one fragment's attribute error (a method's fragment against interpolate_plane's)
 // to the interpolation error stats (shared with the timed model).
 void count_interp_error(const Fragment& got, const Fragment& exact, RenderStats& stats);
@@ -119,6 +126,11 @@ Framebuffer render_scene(const Scene& scene, const RasterState& arch, RenderStat
 // framebuffer, its CRC and every stat equal the one-thread run's (docs/framebuffer.md,
 // "Threads"). A fragment sink (pipeline order) or an inexact traversal (its coverage
 // check is per triangle) keeps one thread; threads() says how many run.
+//
+// A primitives command with a texture bound (docs/texture.md) goes through the texture
+// stage: whole 2x2 quads for the derivatives, its texel fetches through the texture
+// cache in pipeline order, so it keeps one thread; `on_fragment` sees its fragments as
+// they leave interpolation, before the texture stage.
 //
 // `memory.enabled` (memory.model != fixed): every ROP access and clear goes through the
 // functional memory system (ref/memory/rop_memory.h), whose counts land in stats.memory

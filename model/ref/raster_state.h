@@ -9,6 +9,7 @@
 #include "ref/fixed_point.h"
 #include "ref/2d/line_raster.h"
 #include "ref/2d/polygon_fill.h"
+#include "ref/texture/texture.h"
 
 namespace rastsim {
 
@@ -82,6 +83,7 @@ struct RasterState {
   int recip_iterations = 0;     // interp.recip_iterations: Newton-Raphson steps
   FixedFormat texcoord_format;  // interp.texcoord_format: s, t out of interpolation
   int color_frac_bits = 0;      // interp.color_frac_bits: vertex colour unsigned 8.F into setup (0: RGB8)
+  TextureParams texture;        // texture.*: texel format, layout, base address, cache (docs/texture.md)
 
   // Scene state (from commands).
   int viewport_width = 0, viewport_height = 0;

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "ref/fixed_point.h"
+#include "ref/texture/texture.h"
 
 namespace rastsim {
 
@@ -84,6 +85,7 @@ struct CmdPrimitives {                                    // tri / strip / fan /
   std::vector<SceneVertex> vertices;     // screen-space input (tri, v)
   std::vector<ClipVertex> clip_vertices;  // clip-space input (tri4, v4); vertices then empty
   ClipState clip;                         // the front-end state clip_vertices are drawn with
+  TextureState texture;                   // the texture bound (none: untextured), ref/texture/texture.h
   bool clip_space() const { return !clip_vertices.empty(); }
 };
 

@@ -123,6 +123,16 @@ nlohmann::json to_json(const RenderStats& s) {
   // The memory system's keys only when it ran, so that memory.model = fixed's stats are
   // the same as before it existed.
   if (s.memory.enabled) add_memory(j, s.memory);
+  // The texture unit's keys only where a texture was sampled (docs/texture.md), so that an
+  // untextured scene's stats are the same as before textures existed.
+  if (const TextureStats& t = s.texture; t.total_samples() > 0 || t.helper_pixels > 0) {
+    j["texel_fetches"] = t.texel_fetches;
+    j["texture_cache_hits"] = t.cache_hits;
+    j["texture_cache_misses"] = t.cache_misses;
+    j["texture_dram_bytes"] = t.dram_bytes;
+    j["helper_pixels"] = t.helper_pixels;
+    for (int f = 0; f < kTexFilters; ++f) j["texture_samples"][to_string(TexFilter(f))] = t.samples[f];
+  }
   if (s.coverage.measured) {
     j["pixels_wrong"] = s.coverage.pixels_wrong;
     j["cracks"] = s.coverage.cracks;

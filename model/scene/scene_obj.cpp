@@ -13,7 +13,8 @@
 //   orthographically so the bounding sphere spans `fill` of the smaller viewport side, y
 //   down on screen, depth 0 (near) .. 1 (far) over the sphere, or (scene.camera =
 //   perspective) into binary32 clip space (obj_camera.h) for the geometry front end.
-// - Texture coordinates: a corner's `vt u v` travels with it as s = u, t = 1 - v.
+// - Texture coordinates: a corner's `vt u v` travels with it as s = u, t = 1 - v; a
+//   material's `map_Kd` is the texture of its faces (modulating their shaded colour).
 // - Shade: colour (vertex colour, else material Kd, else white) times a headlight
 //   Lambert term 0.25 + 0.75 * max(0, n_z) of the face's view-space normal.
 // - Triangulate (face_triangulate.h) on the corners snapped to raster.coord_format (in
@@ -39,6 +40,7 @@
 #include "scene/obj_camera.h"
 #include "scene/scene_text.h"
 #include "scene/scene_io.h"
+#include "scene/texture_file.h"
 
 namespace rastsim {
 
@@ -71,6 +73,7 @@ struct ObjFace {
   std::vector<size_t> v;   // 0-based vertex indices
   std::vector<size_t> vt;  // 0-based texture coordinate index of each corner, or kNoTexcoord
   std::optional<Rgb> kd;   // material in force at the face
+  std::shared_ptr<const TextureImage> texture;  // its map_Kd, if any (faces only)
 };
 
 // Statements that carry nothing a flat-shaded triangle rasteriser uses: counted.
@@ -238,6 +241,7 @@ class ObjParser {
     ObjFace f;
     f.line = line_;
     f.kd = material_;
+    f.texture = material_texture_;
     for (size_t k = 1; k < t.size(); ++k) {
       const std::string label = "face vertex " + std::to_string(k) + " ";
       corner(t[k], label, f);
@@ -264,20 +268,26 @@ class ObjParser {
     }
   }
 
-  // MTL: `newmtl NAME` starts a material, `Kd r [g b]` sets its diffuse colour; every
-  // other statement (Ka, Ks, Ns, d, illum, map_*, PBR extensions) is counted as ignored,
+  // MTL: `newmtl NAME` starts a material, `Kd r [g b]` sets its diffuse colour, `map_Kd
+  // FILE` its texture (decoded now, FILE relative to the MTL's directory); every other
+  // statement (Ka, Ks, Ns, d, illum, other map_*, PBR extensions) is counted as ignored,
   // and a texture map's file must exist beside the MTL. A material without Kd is white;
   // a later `newmtl` of the same name replaces the earlier one.
   void parse_mtl(const std::string& text, const std::string& path) {
     std::string current;
     scene_text::for_each_line(text, path, [&](int n, const Tokens& t) {
       auto mtl_fail = [&](const std::string& what) { scene_text::fail(path, n, what); };
-      if (t[0] != "newmtl" && t[0] != "Kd") ++ignored[std::string(t[0])];
+      if (t[0] != "newmtl" && t[0] != "Kd" && t[0] != "map_Kd") ++ignored[std::string(t[0])];
       if (texture_map_statement(t[0])) check_map_file(t, path, mtl_fail);
+      if (t[0] == "map_Kd") {
+        if (current.empty()) mtl_fail("'map_Kd' before any 'newmtl'");
+        textures_[current] = load_texture_file(map_file(t, path).string(), path, n);
+      }
       if (t[0] == "newmtl") {
         if (t.size() < 2) mtl_fail("'newmtl' needs a material name");
         current = rest_of_line(t);
         materials_[current] = Rgb{1.0, 1.0, 1.0};
+        textures_.erase(current);
       } else if (t[0] == "Kd") {
         if (current.empty()) mtl_fail("'Kd' before any 'newmtl'");
         if (t.size() > 1 && (t[1] == "spectral" || t[1] == "xyz"))
@@ -297,11 +307,13 @@ class ObjParser {
   }
 
   // A texture map's file (the last token), relative to the MTL's directory.
+  static std::filesystem::path map_file(const Tokens& t, const std::string& mtl_path) {
+    return std::filesystem::path(mtl_path).parent_path() / std::filesystem::path(std::string(t.back()));
+  }
   template <class Fail>
   static void check_map_file(const Tokens& t, const std::string& mtl_path, const Fail& mtl_fail) {
     if (t.size() < 2) mtl_fail("'" + std::string(t[0]) + "' needs a file name");
-    const std::filesystem::path file =
-        std::filesystem::path(mtl_path).parent_path() / std::filesystem::path(std::string(t.back()));
+    const std::filesystem::path file = map_file(t, mtl_path);
     std::error_code ec;
     if (!std::filesystem::is_regular_file(file, ec))
       mtl_fail("'" + std::string(t[0]) + "' names " + quote(t.back()) + ", which does not exist (looked for " +
@@ -313,6 +325,8 @@ class ObjParser {
     const auto it = materials_.find(rest_of_line(t));
     if (it == materials_.end()) fail("unknown material " + quote(rest_of_line(t)) + " (no 'newmtl' of that name)");
     material_ = it->second;
+    const auto tex = textures_.find(it->first);
+    material_texture_ = tex == textures_.end() ? nullptr : tex->second;
   }
 
   const std::string& name_;
@@ -323,6 +337,8 @@ class ObjParser {
   size_t vn_count_ = 0;
   std::map<std::string, Rgb> materials_;
   std::optional<Rgb> material_;
+  std::map<std::string, std::shared_ptr<const TextureImage>> textures_;  // material -> map_Kd
+  std::shared_ptr<const TextureImage> material_texture_;                 // usemtl's map_Kd
 };
 
 // The mesh's up axis turned to +y by a proper rotation (determinant +1, so faces keep
@@ -564,9 +580,16 @@ Scene place(ObjParser& obj, const std::string& name, const ObjPlacement& pl) {
       faces_in_command = 0;
       continue;
     }
-    // A new List command every faces_per_command faces, named by its first face's line;
-    // the triangles and their order are the same whatever the grouping.
-    if (faces_in_command == 0) scene.commands.push_back({CmdPrimitives{Topology::List, {}}, SourceLoc{name, f.line}});
+    // A new List command every faces_per_command faces, named by its first face's line,
+    // and where the texture (map_Kd) changes; the triangles and their order are the same
+    // whatever the grouping.
+    if (faces_in_command > 0 && std::get<CmdPrimitives>(scene.commands.back().body).texture.image != f.texture)
+      faces_in_command = 0;
+    if (faces_in_command == 0) {
+      CmdPrimitives p{Topology::List, {}};
+      p.texture.image = f.texture;  // the initial texture state otherwise (docs/texture.md)
+      scene.commands.push_back({std::move(p), SourceLoc{name, f.line}});
+    }
     append_face(std::get<CmdPrimitives>(scene.commands.back().body), f, m);
     if (++faces_in_command == pl.faces_per_command) faces_in_command = 0;
   }

@@ -11,10 +11,17 @@
 //   rounded once from its decimal text (scene_text::parse_float), with the front-end
 //   state (`texcoord`, `viewport_xform`, `depth_range`, `point_size`, `point_sprite`)
 //   carried by each command as its ClipState (docs/clip-space.md).
+// - Texture state (`texture`, `bindtexture`, `texfilter`, `texwrap`, `texenv`, `mipmap`,
+//   `texlod_bias`) is carried by every primitives command as its TextureState
+//   (docs/texture.md); a `texture` line decodes its file when it is read.
 // - Every malformed input ends in a SceneError; nothing here indexes past a token list
 //   or trusts a number's size before checking it.
 #include <algorithm>
+#include <array>
 #include <cctype>
+#include <cmath>
+#include <map>
+#include <memory>
 #include <filesystem>
 #include <optional>
 #include <string_view>
@@ -22,11 +29,13 @@
 
 #include "ref/2d/font.h"
 #include "ref/framebuffer.h"
+#include "ref/pipeline.h"
 #include "ref/2d/rop3.h"
 #include "ref/scene.h"
 #include "scene/scene_text.h"
 #include "scene/scene_io.h"
 #include "scene/scene_stream.h"
+#include "scene/texture_file.h"
 
 namespace rastsim {
 
@@ -92,7 +101,12 @@ class TraceParser {
         {"points", &TraceParser::begin, true},      {"texcoord", &TraceParser::texcoord, false},
         {"viewport_xform", &TraceParser::viewport_xform, true},
         {"depth_range", &TraceParser::depth_range, true},
-        {"point_sprite", &TraceParser::point_sprite, true}};
+        {"point_sprite", &TraceParser::point_sprite, true},
+        // Texture state (docs/texture.md): what a block draws with is fixed at its start.
+        {"texture", &TraceParser::texture, true},   {"bindtexture", &TraceParser::bindtexture, true},
+        {"texfilter", &TraceParser::texfilter, true}, {"texwrap", &TraceParser::texwrap, true},
+        {"texenv", &TraceParser::texenv, true},     {"mipmap", &TraceParser::mipmap, true},
+        {"texlod_bias", &TraceParser::texlod_bias, true}};
     for (const Entry& e : kCommands) {
       if (e.keyword != t[0]) continue;
       if (e.emits && open_)
@@ -269,6 +283,7 @@ class TraceParser {
 
   void emit(CommandBody body, int line) {
     drew_ = drew_ || std::holds_alternative<CmdPrimitives>(body) || std::holds_alternative<CmdDraw2d>(body);
+    if (auto* p = std::get_if<CmdPrimitives>(&body)) p->texture = texture_;
     scene_.commands.push_back({std::move(body), SourceLoc{name_, line}});
   }
 
@@ -373,6 +388,74 @@ class TraceParser {
     args(t, 1, "'on' or 'off'");
     if (t[1] != "on" && t[1] != "off") fail("point_sprite " + quote(t[1]) + " is not 'on' or 'off'");
     clip_.point_sprite = t[1] == "on";
+  }
+
+  // ---- Texture state (docs/texture.md): carried by every primitives command ----
+  // texture ID FILE: FILE (relative to the trace's directory) decoded now; ID 0..65535,
+  // a later `texture` of the same ID replaces it for later binds.
+  void texture(const Tokens& t) {
+    args(t, 2, "ID FILE: an integer 0..65535 and a PNG, TGA or JPEG file");
+    const int id = int(integer(t[1], "texture ID", 0, 65535));
+    const std::filesystem::path file{std::string(t[2])};
+    const std::string path =
+        file.is_absolute() ? file.string() : (std::filesystem::path(name_).parent_path() / file).string();
+    textures_[id] = load_texture_file(path, name_, line_);
+  }
+
+  void bindtexture(const Tokens& t) {
+    args(t, 1, "ID of a loaded texture, or 'none'");
+    if (t[1] == "none") {
+      texture_.image = nullptr;
+      return;
+    }
+    const int id = int(integer(t[1], "texture ID", 0, 65535));
+    const auto it = textures_.find(id);
+    if (it == textures_.end()) fail("texture ID " + std::to_string(id) + " is not loaded (no 'texture " +
+                                    std::to_string(id) + " FILE' before)");
+    texture_.image = it->second;
+  }
+
+  // One keyword of `names` (in the enumerators' order) as that enum.
+  template <class E, size_t N>
+  E keyword(std::string_view tok, const char* what, const std::array<const char*, N>& names) const {
+    std::string allowed;
+    for (size_t k = 0; k < N; ++k) {
+      if (tok == names[k]) return static_cast<E>(k);
+      allowed += std::string(k ? (k + 1 == N ? " or " : ", ") : "") + "'" + names[k] + "'";
+    }
+    fail(std::string(what) + " " + quote(tok) + " is not " + allowed);
+  }
+  static constexpr std::array<const char*, 3> kWrapNames{"repeat", "clamp", "mirror"};
+
+  void texfilter(const Tokens& t) {
+    args(t, 1, "nearest, bilinear or trilinear");
+    texture_.filter = keyword<TexFilter>(t[1], "texfilter", std::array{"nearest", "bilinear", "trilinear"});
+  }
+
+  // texwrap MODE (both axes) or texwrap MODE_S MODE_T.
+  void texwrap(const Tokens& t) {
+    if (t.size() != 3) args(t, 1, "repeat, clamp or mirror; or one for s, then one for t");
+    texture_.wrap_s = keyword<TexWrap>(t[1], "texwrap", kWrapNames);
+    texture_.wrap_t = keyword<TexWrap>(t.back(), "texwrap", kWrapNames);
+  }
+
+  void texenv(const Tokens& t) {
+    args(t, 1, "replace, modulate or decal");
+    texture_.env = keyword<TexEnv>(t[1], "texenv", std::array{"replace", "modulate", "decal"});
+  }
+
+  void mipmap(const Tokens& t) {
+    args(t, 1, "'on' or 'off'");
+    texture_.mipmap = keyword<int>(t[1], "mipmap", std::array{"off", "on"}) == 1;
+  }
+
+  // texlod_bias B: levels in [-16, 16], rounded to the nearest 1/256 (ties away from 0).
+  void texlod_bias(const Tokens& t) {
+    args(t, 1, "B, levels in [-16, 16]");
+    const auto v = is_plain_decimal(t[1]) ? scene_text::parse_double(t[1]) : std::nullopt;
+    if (!v) fail("texlod_bias " + quote(t[1]) + " is not a decimal number");
+    if (!(*v >= -16.0 && *v <= 16.0)) fail("texlod_bias " + quote(t[1]) + " is outside [-16, 16]");
+    texture_.lod_bias = int32_t(std::lround(*v * 256.0));
   }
 
   // Blocks of `v` lines closed by `end`: strip / fan (triangles), quads / quadstrip
@@ -658,9 +741,14 @@ class TraceParser {
   // 2D state: white, black background, solid pattern, PATCOPY, 1-pixel points.
   Style2d style_{{255, 255, 255}, {0, 0, 0}, {}, true, kRopPatCopy, 1};
   TextStyle font_;  // `font 1`: scale 1, regular, fixed spacing, transparent
+  std::map<int, std::shared_ptr<const TextureImage>> textures_;  // `texture ID FILE`
+  TextureState texture_;  // none bound; bilinear, repeat, modulate, mipmap off, bias 0
 };
 
 }  // namespace
+
+// Commands a batch of reject_textured_scene's pass (memory bounded as a render's).
+constexpr size_t kRejectBatchCommands = 4096;
 
 // The parser follows the name without its compression suffix: a.obj.gz is an OBJ.
 bool is_obj_path(const std::string& path) {
@@ -700,6 +788,11 @@ void stream_scene(const std::string& path, const ObjPlacement& placement, size_t
                                         std::ptrdiff_t(std::min(scene.commands.size(), i + std::max<size_t>(batch, 1)))));
     consume(part);
   }
+}
+
+void reject_textured_scene(const std::string& path, const ObjPlacement& placement, const char* level) {
+  stream_scene(path, placement, kRejectBatchCommands,
+               [&](std::vector<Command>& batch) { reject_textured_commands(batch, level); });
 }
 
 Scene load_scene(const std::string& path, const ObjPlacement& placement) {

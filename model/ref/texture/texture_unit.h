@@ -1,0 +1,74 @@
+// SPDX-License-Identifier: Apache-2.0
+// The reference texture unit: a textured fragment's sample (texture.h's arithmetic) with
+// every texel fetch through the texture cache (ref/memory's SetAssocCache: read-only,
+// true LRU), counted (docs/texture.md, "Memory"; docs/stats.md).
+//
+// Memory: the textures a scene binds are placed in order of first use from
+// texture.base, each at a multiple of 4096 bytes with its whole mip chain (also when
+// sampled with `mipmap off`), the levels one after another,
+// each level at a multiple of 256 bytes from the texture's start; a level's texels by
+// texture.layout: linear (row-major), tiled (4 x 4-texel tiles, row-major tiles and
+// texels within a tile; ref/memory/surface_layout.h) or morton (Z order over the level
+// padded to a power-of-two square: x bit k to address bit 2k, y bit k to bit 2k + 1).
+// A fetch is one cache access to line address / line_bytes; a miss reads the whole line
+// from DRAM. Without a cache (texture.cache_bytes = 0) every fetch is a miss reading its
+// own texel's bytes.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "ref/interpolate.h"
+#include "ref/memory/cache.h"
+#include "ref/texture/texture.h"
+
+namespace rastsim {
+
+// Stats keys texel_fetches, texture_cache_hits, texture_cache_misses, texture_dram_bytes,
+// helper_pixels, texture_samples (docs/stats.md).
+struct TextureStats {
+  uint64_t texel_fetches = 0;
+  uint64_t cache_hits = 0, cache_misses = 0;  // texel_fetches = hits + misses
+  uint64_t dram_bytes = 0;                    // line fills (no cache: texel bytes)
+  uint64_t helper_pixels = 0;                 // quad pixels shaded for derivatives only, never written
+  uint64_t samples[kTexFilters] = {};         // textured fragments, by TexFilter
+  uint64_t total_samples() const { return samples[0] + samples[1] + samples[2]; }
+};
+
+// Byte offset of texel (i, j) in a level of w x h texels of `bytes` bytes each, from the
+// level's start, and the level's footprint (bytes from its start past its last texel).
+uint64_t texel_offset(TexLayout layout, int w, int h, int bytes, int i, int j);
+uint64_t level_footprint(TexLayout layout, int w, int h, int bytes);
+
+class TextureUnit {
+ public:
+  explicit TextureUnit(const TextureParams& p);
+
+  // The fragment f textured by state `ts` (enabled) with its quad's derivatives: the
+  // texture colour combined into f's colour; every fetch counted.
+  Fragment shade(const Fragment& f, const QuadDerivatives& d, const TextureState& ts, int frac_bits);
+
+  TextureStats& stats() { return stats_; }
+  const TextureStats& stats() const { return stats_; }
+
+ private:
+  struct Resident {  // one texture in memory, in the configured format
+    std::shared_ptr<const TextureImage> image;  // held, so that its address is never reused
+    std::vector<MipLevel> levels;      // the whole chain (`mipmap off` samples level 0 only)
+    std::vector<uint64_t> level_base;  // byte address of each level
+  };
+  const Resident& resident(const TextureState& ts);
+  Rgba8 sample_level(const Resident& r, int level, const Fragment& f, const TextureState& ts, int frac_bits);
+  void fetch(uint64_t address);
+
+  TextureParams p_;
+  std::optional<SetAssocCache> cache_;
+  std::map<const TextureImage*, Resident> resident_;
+  uint64_t next_base_;
+  TextureStats stats_;
+};
+
+}  // namespace rastsim
