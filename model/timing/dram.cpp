@@ -172,7 +172,7 @@ void DramModel::enqueue(const DramRequest& r, uint64_t cycle) {
 void DramModel::queue_burst(Channel& ch, const Burst& b) {
   Bank& bank = ch.banks[size_t(bank_index(b.at))];
   bank.queue.push_back(b);
-  if (b.at.row == bank.open_row) ++bank.hits;
+  if (b.at.row == bank.open_row) ++bank.hits[b.write];
   ++ch.queued;
   ch.choice_valid = false;
 }
@@ -230,11 +230,12 @@ DramModel::Choice DramModel::choose(const Channel& ch) const {
   for (int k = 0; k < int(ch.banks.size()); ++k) {
     const Bank& bank = ch.banks[size_t(k)];
     if (bank.queue.empty()) continue;
-    if (bank.hits == 0) {  // every burst wants another row (or the bank is closed)
+    if (bank.hits[0] + bank.hits[1] == 0) {  // every burst wants another row (or the bank is closed)
       consider(k, 0, bank.open_row < 0 ? Cmd::Act : Cmd::Pre);
       continue;
     }
-    bool read = false, write = false;  // the oldest read hit and write hit found
+    // The oldest read hit and write hit, as far as there are any.
+    bool read = bank.hits[0] == 0, write = bank.hits[1] == 0;
     for (size_t i = 0; i < bank.queue.size() && !(read && write); ++i) {
       const Burst& b = bank.queue[i];
       if (b.at.row != bank.open_row || (b.write ? write : read)) continue;
@@ -262,15 +263,15 @@ void DramModel::issue(Channel& ch, const Choice& c) {
   switch (c.cmd) {
     case Cmd::Pre:
       bank.open_row = -1;
-      bank.hits = 0;
+      bank.hits = {};
       bank.act_ok = std::max(bank.act_ok, c.at + p_.tRP);
       b.precharged = true;
       ++stats_.precharges;
       return;
     case Cmd::Act:
       bank.open_row = b.at.row;
-      bank.hits = int(std::count_if(bank.queue.begin(), bank.queue.end(),
-                                    [&](const Burst& q) { return q.at.row == bank.open_row; }));
+      for (const Burst& q : bank.queue)
+        if (q.at.row == bank.open_row) ++bank.hits[q.write];
       bank.read_ok = c.at + p_.tRCD;
       bank.write_ok = c.at + p_.tRCD_WR;
       bank.pre_ok = std::max(bank.pre_ok, c.at + p_.tRAS);
@@ -285,7 +286,7 @@ void DramModel::issue(Channel& ch, const Choice& c) {
     case Cmd::Write: {
       const Burst done = b;
       bank.queue.erase(bank.queue.begin() + std::ptrdiff_t(c.index));
-      --bank.hits;
+      --bank.hits[done.write];
       --ch.queued;
       issue_column(ch, done, c.at);
       admit(ch, c.at);
@@ -307,7 +308,7 @@ void DramModel::issue_column(Channel& ch, Burst b, int64_t at) {
   }
   if (p_.page_policy == PagePolicy::Closed) {  // auto-precharge: no command bus slot
     bank.open_row = -1;
-    bank.hits = 0;
+    bank.hits = {};
     bank.act_ok = std::max(bank.act_ok, bank.pre_ok + p_.tRP);
     ++stats_.precharges;
   }
@@ -346,7 +347,7 @@ void DramModel::refresh(Channel& ch) {
     if (bank.open_row >= 0) any_open = true, pre_at = std::max(pre_at, bank.pre_ok);
   int64_t ref_at = any_open ? pre_at + p_.tRP : start;
   for (const Bank& bank : ch.banks) ref_at = std::max(ref_at, bank.act_ok);
-  for (Bank& bank : ch.banks) bank.open_row = -1, bank.hits = 0, bank.act_ok = ref_at + p_.tRFC;
+  for (Bank& bank : ch.banks) bank.open_row = -1, bank.hits = {}, bank.act_ok = ref_at + p_.tRFC;
   ch.last_cmd = ref_at;
   ch.choice_valid = false;
   note(ch, ref_at, DramCommand::Refresh, DramAddress{});
@@ -383,6 +384,7 @@ void DramModel::advance_to(uint64_t cycle) {
 }
 
 std::vector<DramCompletion> DramModel::take_completions() {
+  if (done_.empty()) return {};
   std::vector<std::pair<uint64_t, DramCompletion>> ready;
   auto later = std::stable_partition(done_.begin(), done_.end(),
                                      [&](const auto& d) { return d.second.cycle > advanced_; });

@@ -163,7 +163,7 @@ class DramModel {
     int64_t open_row = -1;
     int64_t act_ok = 0, pre_ok = 0, read_ok = 0, write_ok = 0;
     std::vector<Burst> queue;  // this bank's queued bursts, in arrival order
-    int hits = 0;              // how many of them want open_row (row hits waiting)
+    std::array<int, 2> hits{};  // how many of them want open_row: reads [0], writes [1]
   };
   struct Choice {
     int64_t at = -1;  // DRAM clock; -1: nothing to issue
