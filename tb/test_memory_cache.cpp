@@ -1,16 +1,19 @@
 // SPDX-License-Identifier: Apache-2.0
 // The ROP caches' counts (ref/memory/cache.h, surface_client.h) against
-// - a 2-way cache and a seven-access stream worked by hand;
+// - a 2-way cache and a seven-access stream worked by hand, its counts and the address
+//   and size of every transfer (fills, the write-back at the evicted line, the flush);
 // - an independent brute-force model written here (a list of lines a set, most recently
 //   used first) on random streams and on the access stream of a real scene (the torus,
 //   the reference ROP's accesses recorded through SurfaceClient::on_access), and the
-//   pipeline's own counts of that scene equal to the recorded stream's.
+//   pipeline's own counts of that scene equal to the recorded stream's;
+// - the 2D engine's spans and blits through the colour cache, worked by hand.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <list>
 #include <random>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "config/arch_params.h"
@@ -99,6 +102,28 @@ TEST(MemoryCache, TwoWayStreamByHand) {
   expect_same(c.stats(), want);
 }
 
+TEST(MemoryCache, TransfersNameTheirOwnLinesByHand) {
+  // TwoWayStreamByHand's stream on a surface at base 4096: every fill at its missed line,
+  // the write-back at the evicted line (line 2 = byte 32), the flush line by line in
+  // set order (set 0: way 0 holds line 2, clean; way 1 line 4, dirty; set 1: line 1).
+  SurfaceClient c(SurfaceLayout(FbLayout::Linear, 1, 1, 4096, 32, 2, 1, 4), {64, 2, 16}, false, 8, 8);
+  std::vector<MemoryTransfer> got;
+  c.on_transfer = [&](const MemoryTransfer& t) { got.push_back(t); };
+  const std::pair<int, bool> stream[] = {{0, false}, {2, true}, {0, false}, {4, false}, {1, true}, {2, false}, {4, true}};
+  for (const auto& [line, write] : stream) c.access(4 * line, 0, 0, write);
+  c.write_back_all();
+  const std::vector<std::tuple<uint64_t, uint64_t, bool>> want = {
+      {4096 + 0, 16, false},  {4096 + 32, 16, false}, {4096 + 32, 16, true}, {4096 + 64, 16, false},
+      {4096 + 16, 16, false}, {4096 + 32, 16, false}, {4096 + 64, 16, true}, {4096 + 16, 16, true}};
+  ASSERT_EQ(got.size(), want.size());
+  for (size_t i = 0; i < want.size(); ++i) {
+    SCOPED_TRACE(i);
+    EXPECT_EQ(got[i].address, std::get<0>(want[i]));
+    EXPECT_EQ(got[i].bytes, std::get<1>(want[i]));
+    EXPECT_EQ(got[i].write, std::get<2>(want[i]));
+  }
+}
+
 TEST(MemoryCache, NoCacheMovesEachAccessAtItsOwnSize) {
   SurfaceClient c(SurfaceLayout(FbLayout::Linear, 1, 1, 0, 8, 8, 1, 2), {0, 1, 64}, false, 8, 8);
   for (int i = 0; i < 5; ++i) c.access(i, 0, 0, false);
@@ -178,6 +203,52 @@ TEST(MemoryCache, MatchesBruteForceOnTheTorusStream) {
   // The pipeline's own counts are those of the recorded stream.
   expect_same(stats.memory.rop_color, mem.color.stats());
   expect_same(stats.memory.rop_depth, mem.depth.stats());
+}
+
+// The 2D engine is a client of the colour surface (rop_color): render --stats counts its
+// pixels' accesses. A 64 x 4 framebuffer, linear, 4 bytes a pixel, 64-byte lines (16
+// pixels a line, a row = 4 lines, so row y starts at line 4 y):
+// - `rect 0 1 32 1` (PATCOPY: writes only): 32 writes on lines 4 and 5, two misses that
+//   read 64 bytes each, 30 hits; the frame-end flush writes the two lines back: read 128,
+//   written 128. With DSTINVERT (reads D) each pixel is a read then a write: 64 accesses,
+//   the same two misses and bytes. With no cache each access moves its 4 bytes: PATCOPY
+//   writes 128; DSTINVERT reads 128 and writes 128.
+// - `blit 0 0 0 2 16 1` (SRCCOPY): 16 source reads on line 0, 16 writes on line 8: two
+//   misses (read 128), one dirty line flushed (written 64).
+MemoryClientStats color_stats_2d(const std::string& draw, const std::vector<std::string>& sets) {
+  Config cfg;
+  for (const std::string& kv : sets) cfg.apply_override(kv);
+  for (const char* kv : {"memory.model=dram", "display.width=64", "display.height=4"}) cfg.apply_override(kv);
+  const ArchParams a = ArchParams::resolve(cfg);
+  RenderStats stats;
+  render_scene(parse_trace("viewport 64 4\n" + draw + "\n", "2d.trace"), a.raster, stats, {},
+               Framebuffer::kDefaultTileLog2, 1, a.memory);
+  return stats.memory.rop_color;
+}
+
+TEST(Memory2d, SpanAndBlitBytesByHand) {
+  struct Case {
+    std::string draw;
+    std::vector<std::string> sets;
+    uint64_t accesses, hits, read, written;
+  };
+  const std::vector<std::string> no_cache = {"rop.color_cache_bytes=0"};
+  const Case cases[] = {
+      {"rect 0 1 32 1", {}, 32, 30, 128, 128},
+      {"rop3 55\nrect 0 1 32 1", {}, 64, 62, 128, 128},
+      {"rect 0 1 32 1", no_cache, 32, 0, 0, 128},
+      {"rop3 55\nrect 0 1 32 1", no_cache, 64, 0, 128, 128},
+      {"rop3 CC\nblit 0 0 0 2 16 1", {}, 32, 30, 128, 64},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.draw + (c.sets.empty() ? "" : ", no cache"));
+    const MemoryClientStats s = color_stats_2d(c.draw, c.sets);
+    EXPECT_EQ(s.accesses, c.accesses);
+    EXPECT_EQ(s.hits, c.hits);
+    EXPECT_EQ(s.misses, c.accesses - c.hits);
+    EXPECT_EQ(s.bytes_read, c.read);
+    EXPECT_EQ(s.bytes_written, c.written);
+  }
 }
 
 }  // namespace

@@ -267,7 +267,7 @@ void SceneRenderer::Impl::run(const Command& cmd) {
       [&](const CmdPrimitives& prims) { draw_triangles(cmd, prims); },
       [&](const CmdDraw2d& d2) {
         check_2d_sample_count(cmd, st);
-        draw_2d(d2, cmd.loc, st, fb, stats.draw2d);
+        draw_2d(d2, cmd.loc, st, fb, stats.draw2d, mem ? &mem->color : nullptr);  // through the colour client
       },
   });
 }

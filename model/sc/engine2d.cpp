@@ -2,6 +2,7 @@
 #include "sc/engine2d.h"
 
 #include "sc/model_error.h"
+#include "sc/rop.h"
 
 namespace rastsim::sc {
 
@@ -15,8 +16,10 @@ void Engine2d::body() {
     busy(TimingParams::engine2d_grant_cycles());  // taking the port
     const Draw2dWork& w = *in.work.work;
     for (const Op2d& op : w.ops) {
-      ctx_.render.draw2d.pixels += execute_op2d(fb_, w, op);
-      busy(p_.engine2d_op_cycles(op, w.paint.rop3));
+      if (mem_) mem_->begin(now());
+      ctx_.render.draw2d.pixels += execute_op2d(fb_, w, op, mem_ ? &mem_->functional().color : nullptr);
+      const uint64_t work = p_.engine2d_op_cycles(op, w.paint.rop3);
+      busy(mem_ ? mem_->transaction_cycles(work, now()) : work);
     }
     write(done_, g);
   }

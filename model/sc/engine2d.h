@@ -10,6 +10,9 @@
 // - Cost: 1 cycle to take the port, then per operation TimingParams::engine2d_op_cycles
 //   (docs/2d.md, "Timing"); the RTL (rtl/rast_engine2d.sv) takes its first operation in
 //   that cycle.
+// - With the timed memory system (attach_memory): the pixels' accesses go through the
+//   ROP's colour client (ref/2d/raster2d.h says which), and an operation is a
+//   transaction: its cycles above, or until its last line fill has arrived plus one.
 // - Counts pixels_2d.
 #pragma once
 
@@ -17,6 +20,8 @@
 #include "sc/draw2d_setup.h"
 
 namespace rastsim::sc {
+
+class RopMemoryPort;
 
 // ROP -> engine: the port is yours for this command; engine -> ROP: it is done.
 struct PortGrant {
@@ -30,6 +35,8 @@ class Engine2d : public Stage {
            Link<Op2dItem>& in, Link<PortGrant>& grant, Link<PortGrant>& done,
          sc_core::sc_module_name name = stage_name(kId).data())
       : Stage(name, ctx, kId), p_(p), fb_(fb), in_(in), grant_(grant), done_(done) {}
+  // Before the run: draw through the ROP's memory port (Rop::memory_port; null: none).
+  void attach_memory(RopMemoryPort* mem) { mem_ = mem; }
 
  private:
   void body() override;
@@ -38,6 +45,7 @@ class Engine2d : public Stage {
   Link<Op2dItem>& in_;
   Link<PortGrant>& grant_;
   Link<PortGrant>& done_;
+  RopMemoryPort* mem_ = nullptr;
 };
 
 }  // namespace rastsim::sc

@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <utility>
 
-#include "ref/framebuffer.h"
 #include "sc/model_error.h"
 #include "timing/dram_trace.h"
 
@@ -76,95 +75,6 @@ MemorySystemReport MemorySystem::report(uint64_t run_cycles) const {
   r.peak_bytes_per_kcycle =
       uint64_t(dram_.params().peak_bytes_per_second() / (double(dram_.params().core_khz) * 1e3) * 1000.0);
   return r;
-}
-
-RopMemoryPort::RopMemoryPort(MemorySystem& mem, const MemoryParams& p, const Framebuffer& fb, int depth_bits)
-    : mem_(mem), rop_(p, fb, depth_bits) {
-  const CacheParams caches[2] = {p.color_cache, depth_cache_params(p, fb.samples, depth_bits)};
-  SurfaceClient* clients[2] = {&rop_.color, &rop_.depth};
-  for (size_t k = 0; k < surfaces_.size(); ++k) {
-    Surface& s = surfaces_[k];
-    s.client = MemClient(k);
-    s.functional = clients[k];
-    if (caches[k].bytes > 0) s.tags.emplace(caches[k]);
-    s.line_bytes = uint64_t(caches[k].line_bytes);
-    s.functional->on_access = [this, &s](uint64_t address, bool write) { on_access(s, address, write); };
-  }
-}
-
-// The access before this one is complete in the functional model (its bytes counted):
-// issue it, then note this one's fill and write-back addresses from the tag store.
-void RopMemoryPort::on_access(Surface& s, uint64_t address, bool write) {
-  settle(s);
-  s.pending = true;
-  s.fill_address = s.writeback_address = address;  // no cache: the sample itself
-  if (!s.tags) return;
-  const uint64_t base = s.functional->layout().base();
-  const uint64_t line = (address - base) / s.line_bytes;
-  SetAssocCache::Victim victim;
-  s.tags->access(line, write, victim);
-  s.fill_address = base + line * s.line_bytes;
-  if (victim.dirty) s.writeback_address = base + victim.line * s.line_bytes;
-}
-
-// The last access's bytes, as the functional model counted them: its write-back (and any
-// fast-cleared block it materialised, written from the same address) before its fill.
-void RopMemoryPort::settle(Surface& s) {
-  if (!s.pending) return;
-  s.pending = false;
-  const MemoryClientStats& st = s.functional->stats();
-  if (st.bytes_written > s.written_seen)
-    mem_.post_write(s.client, s.writeback_address, st.bytes_written - s.written_seen, cycle_);
-  if (st.bytes_read > s.read_seen) mem_.issue_read(s.client, s.fill_address, st.bytes_read - s.read_seen, cycle_);
-  s.read_seen = st.bytes_read;
-  s.written_seen = st.bytes_written;
-}
-
-void RopMemoryPort::begin(uint64_t cycle) { cycle_ = cycle; }
-
-std::optional<uint64_t> RopMemoryPort::end() {
-  for (Surface& s : surfaces_) settle(s);
-  return mem_.wait_reads();
-}
-
-void RopMemoryPort::cleared(MemClient c) {
-  Surface& s = surfaces_[size_t(c)];
-  settle(s);
-  if (s.tags) s.tags->invalidate_all();
-  const uint64_t written = s.functional->stats().bytes_written;
-  if (written > s.written_seen) mem_.post_write(s.client, s.functional->layout().base(), written - s.written_seen, cycle_);
-  s.written_seen = written;
-}
-
-// The frame end's bytes after the last access: the resolve's last fill, then the
-// written bytes spread evenly over the flushed lines in flush order (the functional
-// model counts the flush as one total; plane-compressed blocks and the resolved image
-// make line sizes differ, so the addresses are the lines', the sizes the even share).
-void RopMemoryPort::settle_flush(Surface& s, const std::vector<uint64_t>& lines) {
-  const MemoryClientStats& st = s.functional->stats();
-  if (s.pending && st.bytes_read > s.read_seen)
-    mem_.issue_read(s.client, s.fill_address, st.bytes_read - s.read_seen, cycle_);
-  std::vector<uint64_t> targets;
-  if (s.pending && s.writeback_address != s.fill_address) targets.push_back(s.writeback_address);
-  for (uint64_t line : lines) targets.push_back(s.functional->layout().base() + line * s.line_bytes);
-  if (targets.empty()) targets.push_back(s.functional->layout().base());
-  const uint64_t total = st.bytes_written - s.written_seen;
-  for (size_t i = 0; i < targets.size(); ++i) {
-    const uint64_t n = total * (i + 1) / targets.size() - total * i / targets.size();
-    if (n > 0) mem_.post_write(s.client, targets[i], n, cycle_);
-  }
-  s.pending = false;
-  s.read_seen = st.bytes_read;
-  s.written_seen = st.bytes_written;
-}
-
-void RopMemoryPort::finish() {
-  rop_.finish();  // the resolve's accesses pass through on_access
-  for (Surface& s : surfaces_) {
-    std::vector<uint64_t> lines;
-    if (s.tags) s.tags->write_back_all([&](uint64_t line) { lines.push_back(line); });
-    settle_flush(s, lines);
-  }
 }
 
 void add_memory_system_json(nlohmann::json& j, const MemorySystemReport& r) {

@@ -13,10 +13,7 @@
 // cycle in the order they are made, which within a client is its access order and
 // across clients the fixed order of MemClient. Inside the DRAM model FR-FCFS decides.
 //
-// RopMemoryPort is the ROP's client: it runs the reference's functional memory system
-// (ref/memory/rop_memory.h) on the ROP's own access stream, so hits, misses and bytes
-// equal render's, and turns each access's line fill into a DRAM read and its write-back
-// into a DRAM write of the bytes the functional model counted for it.
+// The ROP's client, RopMemoryPort, is in sc/rop.h.
 #pragma once
 
 #include <array>
@@ -29,7 +26,6 @@
 #include <nlohmann/json.hpp>
 #include <systemc>
 
-#include "ref/memory/cache.h"
 #include "ref/memory/rop_memory.h"
 #include "timing/dram.h"
 
@@ -81,48 +77,6 @@ class MemorySystem : public sc_core::sc_module {
   uint64_t outstanding_reads_ = 0, next_tag_ = 0, last_completion_ = 0;
   std::optional<uint64_t> last_read_;
   std::ostream* trace_ = nullptr;
-};
-
-// The ROP's memory clients (rop_color, rop_depth) on the timed memory system.
-class RopMemoryPort {
- public:
-  RopMemoryPort(MemorySystem& mem, const MemoryParams& p, const Framebuffer& fb, int depth_bits);
-  RopMemoryPort(const RopMemoryPort&) = delete;
-  RopMemoryPort& operator=(const RopMemoryPort&) = delete;
-
-  // The functional model the ROP calls (ref/rop.h's mem argument).
-  RopMemory& functional() { return rop_; }
-  // Accesses from now on are made at core cycle `cycle` (the transaction's start).
-  void begin(uint64_t cycle);
-  // The transaction's accesses are all made: their requests issued, then its fills
-  // waited for; returns the last fill's completion (nullopt: no fill).
-  std::optional<uint64_t> end();
-  // After functional().clear_color() / clear_depth(): the clear's bytes written.
-  void cleared(MemClient c);
-  // The frame end (RopMemory::finish: resolve reads, flush, resolved image), made at
-  // the current cycle; then the stats.
-  void finish();
-  MemoryStats stats() const { return rop_.stats(); }
-
- private:
-  struct Surface {
-    MemClient client;
-    SurfaceClient* functional;
-    std::optional<SetAssocCache> tags;  // the same tag store as the functional cache: its victims
-    uint64_t line_bytes = 0;
-    uint64_t read_seen = 0, written_seen = 0;  // the functional byte counts already issued
-    // The last access, not yet issued: its line's address (the fill) and the write-back's.
-    bool pending = false;
-    uint64_t fill_address = 0, writeback_address = 0;
-  };
-  void on_access(Surface& s, uint64_t address, bool write);
-  void settle(Surface& s);
-  void settle_flush(Surface& s, const std::vector<uint64_t>& lines);
-
-  MemorySystem& mem_;
-  RopMemory rop_;
-  std::array<Surface, 2> surfaces_;
-  uint64_t cycle_ = 0;
 };
 
 // dram_row_hit_rate, dram_bandwidth_utilisation, memory.dram.* and, per client,

@@ -273,6 +273,7 @@ SimResult simulate_commands(CommandSource source, const ArchParams& params, cons
     memory = new MemorySystem("memory", params.dram);
     if (!opts.mem_trace_path.empty()) memory->record_trace(&mem_trace.emplace(opts.mem_trace_path).stream());
     top->rop.attach_memory(*memory, params.memory);  // its first request: the frame's depth clear
+    top->engine2d.attach_memory(top->rop.memory_port());  // draws through the ROP's colour client
   } else if (!opts.mem_trace_path.empty()) {
     throw std::invalid_argument("--mem-trace needs memory.model = \"dram\" (the DRAM requests it lists)");
   }

@@ -162,22 +162,19 @@ void DramModel::enqueue(const DramRequest& r, uint64_t cycle) {
     b.eligible = int64_t(to_dram(cycle));
     b.write = r.write;
     Channel& ch = channels_[size_t(b.at.channel)];
-    if (ch.queue.size() < size_t(p_.queue_depth) && ch.backlog.empty())
-      ch.queue.push_back(b);
+    if (ch.queued < size_t(p_.queue_depth) && ch.backlog.empty())
+      queue_burst(ch, b);
     else
       ch.backlog.push_back(b);
   }
 }
 
-bool DramModel::row_wanted(const Channel& ch, int bank, int64_t row) const {
-  return std::any_of(ch.queue.begin(), ch.queue.end(),
-                     [&](const Burst& b) { return bank_index(b.at) == bank && b.at.row == row; });
-}
-
-DramModel::Cmd DramModel::next_cmd(const Channel& ch, const Burst& b) const {
-  const Bank& bank = ch.banks[size_t(bank_index(b.at))];
-  if (bank.open_row == b.at.row) return b.write ? Cmd::Write : Cmd::Read;
-  return bank.open_row < 0 ? Cmd::Act : Cmd::Pre;
+void DramModel::queue_burst(Channel& ch, const Burst& b) {
+  Bank& bank = ch.banks[size_t(bank_index(b.at))];
+  bank.queue.push_back(b);
+  if (b.at.row == bank.open_row) ++bank.hits[b.write];
+  ++ch.queued;
+  ch.choice_valid = false;
 }
 
 // The first clock at which `cmd` for `b` meets every constraint (docs/memory.md, "Timing
@@ -214,21 +211,40 @@ int64_t DramModel::earliest(const Channel& ch, const Burst& b, Cmd cmd) const {
 
 // FR-FCFS: the command that can issue first; at the same clock a column command (a row
 // hit) before an activate or precharge, then the oldest burst. A precharge that would
-// close a row some queued burst still wants waits.
+// close a row some queued burst still wants waits. Each bank offers only the oldest
+// burst of each command it has (dram.h, Bank: the others cannot win); the answer is
+// kept until the channel changes.
 DramModel::Choice DramModel::choose(const Channel& ch) const {
+  if (ch.choice_valid) return ch.choice;
   Choice best;
   uint64_t best_seq = 0;
   bool best_column = false;
-  for (size_t i = 0; i < ch.queue.size(); ++i) {
-    const Burst& b = ch.queue[i];
-    const Cmd cmd = next_cmd(ch, b);
-    if (cmd == Cmd::Pre && row_wanted(ch, bank_index(b.at), ch.banks[size_t(bank_index(b.at))].open_row)) continue;
+  const auto consider = [&](int k, size_t i, Cmd cmd) {
+    const Burst& b = ch.banks[size_t(k)].queue[i];
     const int64_t at = earliest(ch, b, cmd);
     const bool column = cmd == Cmd::Read || cmd == Cmd::Write;
     const bool better = best.at < 0 || at < best.at ||
                         (at == best.at && (column != best_column ? column : b.seq < best_seq));
-    if (better) best = {at, i, cmd}, best_seq = b.seq, best_column = column;
+    if (better) best = {at, k, i, cmd}, best_seq = b.seq, best_column = column;
+  };
+  for (int k = 0; k < int(ch.banks.size()); ++k) {
+    const Bank& bank = ch.banks[size_t(k)];
+    if (bank.queue.empty()) continue;
+    if (bank.hits[0] + bank.hits[1] == 0) {  // every burst wants another row (or the bank is closed)
+      consider(k, 0, bank.open_row < 0 ? Cmd::Act : Cmd::Pre);
+      continue;
+    }
+    // The oldest read hit and write hit, as far as there are any.
+    bool read = bank.hits[0] == 0, write = bank.hits[1] == 0;
+    for (size_t i = 0; i < bank.queue.size() && !(read && write); ++i) {
+      const Burst& b = bank.queue[i];
+      if (b.at.row != bank.open_row || (b.write ? write : read)) continue;
+      (b.write ? write : read) = true;
+      consider(k, i, b.write ? Cmd::Write : Cmd::Read);
+    }
   }
+  ch.choice = best;
+  ch.choice_valid = true;
   return best;
 }
 
@@ -237,21 +253,25 @@ void DramModel::note(const Channel& ch, int64_t at, DramCommand::Kind kind, cons
 }
 
 void DramModel::issue(Channel& ch, const Choice& c) {
-  Burst& b = ch.queue[c.index];
-  Bank& bank = ch.banks[size_t(bank_index(b.at))];
+  Bank& bank = ch.banks[size_t(c.bank)];
+  Burst& b = bank.queue[c.index];
   ch.last_cmd = c.at;
+  ch.choice_valid = false;
   constexpr DramCommand::Kind kKind[] = {DramCommand::Activate, DramCommand::Precharge, DramCommand::Read,
                                          DramCommand::Write};
   note(ch, c.at, kKind[int(c.cmd)], b.at);
   switch (c.cmd) {
     case Cmd::Pre:
       bank.open_row = -1;
+      bank.hits = {};
       bank.act_ok = std::max(bank.act_ok, c.at + p_.tRP);
       b.precharged = true;
       ++stats_.precharges;
       return;
     case Cmd::Act:
       bank.open_row = b.at.row;
+      for (const Burst& q : bank.queue)
+        if (q.at.row == bank.open_row) ++bank.hits[q.write];
       bank.read_ok = c.at + p_.tRCD;
       bank.write_ok = c.at + p_.tRCD_WR;
       bank.pre_ok = std::max(bank.pre_ok, c.at + p_.tRAS);
@@ -265,7 +285,9 @@ void DramModel::issue(Channel& ch, const Choice& c) {
     case Cmd::Read:
     case Cmd::Write: {
       const Burst done = b;
-      ch.queue.erase(ch.queue.begin() + std::ptrdiff_t(c.index));
+      bank.queue.erase(bank.queue.begin() + std::ptrdiff_t(c.index));
+      --bank.hits[done.write];
+      --ch.queued;
       issue_column(ch, done, c.at);
       admit(ch, c.at);
       return;
@@ -286,6 +308,7 @@ void DramModel::issue_column(Channel& ch, Burst b, int64_t at) {
   }
   if (p_.page_policy == PagePolicy::Closed) {  // auto-precharge: no command bus slot
     bank.open_row = -1;
+    bank.hits = {};
     bank.act_ok = std::max(bank.act_ok, bank.pre_ok + p_.tRP);
     ++stats_.precharges;
   }
@@ -305,11 +328,11 @@ void DramModel::issue_column(Channel& ch, Burst b, int64_t at) {
 }
 
 void DramModel::admit(Channel& ch, int64_t at) {
-  while (ch.queue.size() < size_t(p_.queue_depth) && !ch.backlog.empty()) {
+  while (ch.queued < size_t(p_.queue_depth) && !ch.backlog.empty()) {
     Burst b = ch.backlog.front();
     ch.backlog.pop_front();
     b.eligible = std::max(b.eligible, at);
-    ch.queue.push_back(b);
+    queue_burst(ch, b);
   }
 }
 
@@ -324,8 +347,9 @@ void DramModel::refresh(Channel& ch) {
     if (bank.open_row >= 0) any_open = true, pre_at = std::max(pre_at, bank.pre_ok);
   int64_t ref_at = any_open ? pre_at + p_.tRP : start;
   for (const Bank& bank : ch.banks) ref_at = std::max(ref_at, bank.act_ok);
-  for (Bank& bank : ch.banks) bank.open_row = -1, bank.act_ok = ref_at + p_.tRFC;
+  for (Bank& bank : ch.banks) bank.open_row = -1, bank.hits = {}, bank.act_ok = ref_at + p_.tRFC;
   ch.last_cmd = ref_at;
+  ch.choice_valid = false;
   note(ch, ref_at, DramCommand::Refresh, DramAddress{});
   ch.next_refresh += p_.tREFI;
   ++stats_.refreshes;
@@ -360,6 +384,7 @@ void DramModel::advance_to(uint64_t cycle) {
 }
 
 std::vector<DramCompletion> DramModel::take_completions() {
+  if (done_.empty()) return {};
   std::vector<std::pair<uint64_t, DramCompletion>> ready;
   auto later = std::stable_partition(done_.begin(), done_.end(),
                                      [&](const auto& d) { return d.second.cycle > advanced_; });

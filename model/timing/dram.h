@@ -152,14 +152,31 @@ class DramModel {
     int64_t eligible = 0;  // DRAM clock
     bool write = false, precharged = false, activated = false;
   };
+  // The scheduler's queue is kept a bank at a time. Within a channel a burst's eligible
+  // clock never decreases with its arrival order (arrivals come in non-decreasing cycles
+  // at or after the last advance, and a burst admitted from the backlog becomes eligible
+  // at the clock its slot freed, before any later arrival's), so among a bank's bursts
+  // wanting the same command the oldest can issue first and wins the FCFS tie: each
+  // bank offers at most three candidates (its oldest read hit and write hit, or its
+  // oldest burst's ACT or PRE) and a decision costs O(banks), not O(queue^2).
   struct Bank {
     int64_t open_row = -1;
     int64_t act_ok = 0, pre_ok = 0, read_ok = 0, write_ok = 0;
+    std::vector<Burst> queue;  // this bank's queued bursts, in arrival order
+    std::array<int, 2> hits{};  // how many of them want open_row: reads [0], writes [1]
+  };
+  struct Choice {
+    int64_t at = -1;  // DRAM clock; -1: nothing to issue
+    int bank = 0;     // index into Channel::banks
+    size_t index = 0; // into that bank's queue
+    Cmd cmd = Cmd::Act;
   };
   struct Channel {
     std::vector<Bank> banks;
-    std::vector<Burst> queue;    // at most queue_depth
+    size_t queued = 0;           // bursts in the banks' queues together: at most queue_depth
     std::deque<Burst> backlog;   // waiting for a queue slot, in arrival order
+    mutable Choice choice;       // choose()'s answer while choice_valid
+    mutable bool choice_valid = false;
     int64_t last_cmd = -1;       // the command bus carries one command a clock
     std::vector<int64_t> last_act, last_read, last_write;  // a bank group's last
     std::array<int64_t, 32> acts{};  // the last 32 activates, oldest first (tFAW: the last 4)
@@ -171,16 +188,10 @@ class DramModel {
     int bursts_left = 0;
     int64_t end = 0;  // DRAM clock its last data beat ends so far
   };
-  struct Choice {
-    int64_t at = -1;
-    size_t index = 0;
-    Cmd cmd = Cmd::Act;
-  };
 
   Choice choose(const Channel& ch) const;
   int64_t earliest(const Channel& ch, const Burst& b, Cmd cmd) const;
-  Cmd next_cmd(const Channel& ch, const Burst& b) const;
-  bool row_wanted(const Channel& ch, int bank, int64_t row) const;
+  void queue_burst(Channel& ch, const Burst& b);
   void issue(Channel& ch, const Choice& c);
   void issue_column(Channel& ch, Burst b, int64_t at);
   void refresh(Channel& ch);

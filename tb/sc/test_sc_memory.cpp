@@ -4,8 +4,9 @@
 //
 // - with memory.model = dram, simulate's image, every render counter and every cache,
 //   byte and fast-clear count equal render's with the same memory settings, on every
-//   shipped trace and several settings (the functional model is the reference's, fed
-//   the ROP's stream in pipeline order);
+//   shipped trace (the 2D test card too: the 2D engine draws through the ROP's colour
+//   client) and several settings (the functional model is the reference's, fed the
+//   ROP's and the 2D engine's stream in pipeline order);
 // - a scene whose line fills dominate costs more cycles with DRAM than with the fixed
 //   costs (each transaction with a fill lasts at least its fixed cycles and at least
 //   the unloaded row-miss latency), and the DRAM's data bus is never busier than the
@@ -48,7 +49,6 @@ TEST(ScMemory, CountsEqualRenderOnTraces) {
       {"rop.fast_clear=true", "rop.depth_compression=plane", "memory.fb_layout=tiled"},
   };
   for (const std::string& path : shipped_traces()) {
-    if (path.find("/2d/") != std::string::npos) continue;  // the 2D engine is no memory client
     for (const auto& extra : settings) {
       SCOPED_TRACE(path + (extra.empty() ? " defaults" : " fast clear, plane, tiled"));
       std::vector<std::string> kv = {"memory.model=dram", "raster.depth_func=less"};

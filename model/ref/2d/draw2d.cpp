@@ -204,37 +204,38 @@ uint64_t draw2d_vertex_count(const CmdDraw2d& cmd) {
   }, cmd.shape);
 }
 
-uint64_t execute_op2d(Framebuffer& fb, const Draw2dWork& work, const Op2d& op) {
+uint64_t execute_op2d(Framebuffer& fb, const Draw2dWork& work, const Op2d& op, SurfaceClient* mem) {
   uint64_t written = 0;
   auto px = [&](int x, int y) {
-    if (inside(work.clip, x, y)) written += fill_span(fb, work.clip, work.paint, y, x, x + 1);
+    if (inside(work.clip, x, y)) written += fill_span(fb, work.clip, work.paint, y, x, x + 1, mem);
   };
   switch (op.kind) {
     case Op2d::Kind::Span: {
-      if (op.paint == Op2d::Paint::Pattern) return fill_span(fb, work.clip, work.paint, op.y0, op.x0, op.x1);
+      if (op.paint == Op2d::Paint::Pattern) return fill_span(fb, work.clip, work.paint, op.y0, op.x0, op.x1, mem);
       Raster2dState solid = work.paint;
       solid.pattern.solid = true;
       if (op.paint == Op2d::Paint::Background) solid.fg = work.paint.bg;
-      return fill_span(fb, work.clip, solid, op.y0, op.x0, op.x1);
+      return fill_span(fb, work.clip, solid, op.y0, op.x0, op.x1, mem);
     }
     case Op2d::Kind::Pixel: px(op.x0, op.y0); break;
     case Op2d::Kind::Line:
       if (op.midpoint) midpoint_line(op.x0, op.y0, op.x1, op.y1, px);
       else bresenham_line(op.x0, op.y0, op.x1, op.y1, px);
       break;
-    case Op2d::Kind::Blit: return blit_clipped(fb, work.paint, {op.sx, op.sy, op.x0, op.y0, op.w, op.h});
+    case Op2d::Kind::Blit: return blit_clipped(fb, work.paint, {op.sx, op.sy, op.x0, op.y0, op.w, op.h}, mem);
   }
   return written;
 }
 
-void draw_2d(const CmdDraw2d& cmd, const SourceLoc& loc, const RasterState& st, Framebuffer& fb, Draw2dStats& stats) {
+void draw_2d(const CmdDraw2d& cmd, const SourceLoc& loc, const RasterState& st, Framebuffer& fb, Draw2dStats& stats,
+             SurfaceClient* mem) {
   const Draw2dWork work = draw2d_ops(cmd, loc, st);
   if (work.culled) {
     ++stats.primitives_culled;
     return;
   }
   ++stats.primitives;
-  for (const Op2d& op : work.ops) stats.pixels += execute_op2d(fb, work, op);
+  for (const Op2d& op : work.ops) stats.pixels += execute_op2d(fb, work, op, mem);
 }
 
 }  // namespace rastsim

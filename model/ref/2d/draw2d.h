@@ -73,10 +73,12 @@ Draw2dWork draw2d_ops(const CmdDraw2d& cmd, const SourceLoc& loc, const RasterSt
 // command header).
 uint64_t draw2d_vertex_count(const CmdDraw2d& cmd);
 
-// Engine: executes one operation. Returns the pixels written.
-uint64_t execute_op2d(Framebuffer& fb, const Draw2dWork& work, const Op2d& op);
+// Engine: executes one operation. Returns the pixels written. `mem`: the colour
+// surface's memory client its accesses go through (raster2d.h; null: none counted).
+uint64_t execute_op2d(Framebuffer& fb, const Draw2dWork& work, const Op2d& op, SurfaceClient* mem = nullptr);
 
 // Both halves: draws one 2D command and counts it.
-void draw_2d(const CmdDraw2d& cmd, const SourceLoc& loc, const RasterState& st, Framebuffer& fb, Draw2dStats& stats);
+void draw_2d(const CmdDraw2d& cmd, const SourceLoc& loc, const RasterState& st, Framebuffer& fb, Draw2dStats& stats,
+             SurfaceClient* mem = nullptr);
 
 }  // namespace rastsim

@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "ref/2d/rop3.h"
+#include "ref/memory/surface_client.h"
 
 namespace rastsim {
 
@@ -14,6 +15,15 @@ const std::array<uint8_t, 3>& pattern_color(const Raster2dState& st, int x, int 
   return st.pattern.bit(x, y) ? st.fg : st.bg;
 }
 
+// The pixel's accesses of the colour surface before its write (raster2d.h: a source
+// read, a destination read, the write).
+void count_accesses(SurfaceClient* mem, uint8_t code, int x, int y, const BlitRect* src_of = nullptr) {
+  if (!mem) return;
+  if (src_of && rop3_reads_source(code)) mem->access(x - src_of->dx + src_of->sx, y - src_of->dy + src_of->sy, 0, false);
+  if (rop3_reads_destination(code)) mem->access(x, y, 0, false);
+  mem->access(x, y, 0, true);
+}
+
 void write_pixel(uint8_t* d, const std::array<uint8_t, 3>& p, const uint8_t* s, uint8_t code) {
   for (int c = 0; c < 3; ++c) d[c] = rop3(code, p[size_t(c)], s ? s[c] : 0, d[c]);
   d[3] = 255;
@@ -21,10 +31,14 @@ void write_pixel(uint8_t* d, const std::array<uint8_t, 3>& p, const uint8_t* s, 
 
 }  // namespace
 
-uint64_t fill_span(Framebuffer& fb, const PixelRect& clip, const Raster2dState& st, int y, int x0, int x1) {
+uint64_t fill_span(Framebuffer& fb, const PixelRect& clip, const Raster2dState& st, int y, int x0, int x1,
+                   SurfaceClient* mem) {
   const PixelRect r = PixelRect{x0, y, x1, y + 1}.intersect(clip).intersect({0, 0, fb.width, fb.height});
   if (r.empty()) return 0;
-  for (int x = r.x0; x < r.x1; ++x) write_pixel(fb.pixel(x, y), pattern_color(st, x, y), nullptr, st.rop3);
+  for (int x = r.x0; x < r.x1; ++x) {
+    count_accesses(mem, st.rop3, x, y);
+    write_pixel(fb.pixel(x, y), pattern_color(st, x, y), nullptr, st.rop3);
+  }
   return uint64_t(r.x1 - r.x0);
 }
 
@@ -42,7 +56,7 @@ BlitRect clip_blit(int fb_width, int fb_height, const PixelRect& clip, int sx, i
   return {int(r.x0 - ox), int(r.y0 - oy), r.x0, r.y0, r.x1 - r.x0, r.y1 - r.y0};
 }
 
-uint64_t blit_clipped(Framebuffer& fb, const Raster2dState& st, const BlitRect& b) {
+uint64_t blit_clipped(Framebuffer& fb, const Raster2dState& st, const BlitRect& b, SurfaceClient* mem) {
   if (b.empty()) return 0;
   const BlitWalkOrder o = blit_walk_order(b);
   for (int j = 0; j < b.h; ++j) {
@@ -51,6 +65,7 @@ uint64_t blit_clipped(Framebuffer& fb, const Raster2dState& st, const BlitRect& 
       const int x = o.right_to_left ? b.w - 1 - i : i;
       uint8_t s[4];
       std::copy_n(std::as_const(fb).pixel(b.sx + x, b.sy + y), 4, s);  // a read: no tile allocated
+      count_accesses(mem, st.rop3, b.dx + x, b.dy + y, &b);
       write_pixel(fb.pixel(b.dx + x, b.dy + y), pattern_color(st, b.dx + x, b.dy + y), s, st.rop3);
     }
   }

@@ -18,6 +18,10 @@
 //   down, top to bottom otherwise; within a row right to left when the copy moves right
 //   along the same rows, left to right otherwise. Every source pixel is read before the
 //   walk overwrites it, and each destination pixel is written once.
+// - Memory (`mem`, the colour surface's client rop_color when the memory system is on;
+//   docs/memory.md, "The 2D engine"): each pixel makes, in order, a source read (a blit
+//   whose code reads S), a destination read (a code that reads D) and the destination
+//   write, each one access of the pixel's sample 0 (2D draws with one sample).
 #pragma once
 
 #include <array>
@@ -27,6 +31,8 @@
 #include "ref/raster_state.h"
 
 namespace rastsim {
+
+class SurfaceClient;
 
 struct Pattern8x8 {
   std::array<uint8_t, 8> rows{};  // row 0 first, bit 7 = leftmost pixel
@@ -58,11 +64,12 @@ struct BlitWalkOrder {
 inline BlitWalkOrder blit_walk_order(const BlitRect& b) { return {b.dy > b.sy, b.dy == b.sy && b.dx > b.sx}; }
 
 // Copies a clipped blit pixel by pixel in the walk order. Returns pixels written.
-uint64_t blit_clipped(Framebuffer& fb, const Raster2dState& st, const BlitRect& b);
+uint64_t blit_clipped(Framebuffer& fb, const Raster2dState& st, const BlitRect& b, SurfaceClient* mem = nullptr);
 
 // Fills pixels [x0, x1) of row y (clipped to `clip`) with the pattern through ROP3
 // (no source operand: the caller rejects codes that read S). Returns pixels written.
-uint64_t fill_span(Framebuffer& fb, const PixelRect& clip, const Raster2dState& st, int y, int x0, int x1);
+uint64_t fill_span(Framebuffer& fb, const PixelRect& clip, const Raster2dState& st, int y, int x0, int x1,
+                   SurfaceClient* mem = nullptr);
 
 // Copies the w x h rectangle at (sx, sy) to (dx, dy) through ROP3 (S = source pixel,
 // D = destination, P = pattern at the destination). Returns pixels written.

@@ -21,7 +21,10 @@ void RopMemory::finish() {
         for (int s = 0; s < samples_; ++s) color.access(x, y, s, false);
   color.write_back_all();
   depth.write_back_all();
-  if (samples_ > 1) color.count_streamed_write(uint64_t(width_) * uint64_t(height_) * kColorBytesPerSample);
+  // The resolved image goes to the colour surface's base (the one-sample front buffer
+  // over the start of the multisample surface).
+  if (samples_ > 1)
+    color.count_streamed_write(color.layout().base(), uint64_t(width_) * uint64_t(height_) * kColorBytesPerSample);
 }
 
 }  // namespace rastsim

@@ -44,10 +44,13 @@ void SurfaceClient::cached_access(uint64_t offset, bool write) {
     if (fb_) write_back_block(victim.line);
     else write_back_range(victim.line * uint64_t(cache_->line_bytes()), uint64_t(cache_->line_bytes()));
   }
+  const uint64_t line_offset = line * uint64_t(cache_->line_bytes());
   if (fb_) {  // a compressed surface's line is one block
-    if (!flagged_[line]) stats_.bytes_read += plane_stored_[line] ? plane_block_bytes(block_w_, block_h_, layout_.samples(), depth_bits_) : uint64_t(cache_->line_bytes());
+    if (!flagged_[line])
+      fill(line_offset, plane_stored_[line] ? plane_block_bytes(block_w_, block_h_, layout_.samples(), depth_bits_)
+                                            : uint64_t(cache_->line_bytes()));
   } else {
-    stats_.bytes_read += fill_range_bytes(line * uint64_t(cache_->line_bytes()), uint64_t(cache_->line_bytes()));
+    fill(line_offset, fill_range_bytes(line_offset, uint64_t(cache_->line_bytes())));
   }
 }
 
@@ -63,6 +66,7 @@ uint64_t SurfaceClient::fill_range_bytes(uint64_t offset, uint64_t len) const {
 
 void SurfaceClient::write_back_range(uint64_t offset, uint64_t len) {
   stats_.bytes_written += len;
+  transfer(offset, len, true);
   if (n_flagged_ == 0) return;
   // The flagged blocks the range touches, with the bytes of each inside the range.
   std::vector<std::pair<size_t, uint64_t>>& touched = touched_;
@@ -85,6 +89,10 @@ void SurfaceClient::write_back_range(uint64_t offset, uint64_t len) {
     const uint64_t fill = block_bytes(b) - inside;
     stats_.bytes_written += fill;
     stats_.clear_fill_bytes += fill;
+    // Posted from the block's first sample (in a linear layout the block's rows outside
+    // the line are not one range; the model sends them as one write).
+    const int x0 = int(b % size_t(blocks_x_)) * block_w_, y0 = int(b / size_t(blocks_x_)) * block_h_;
+    transfer(layout_.offset_of(x0, y0, 0), fill, true);
   }
 }
 
@@ -99,11 +107,14 @@ void SurfaceClient::write_back_block(uint64_t block) {
   const bool fits = plane < uint64_t(cache_->line_bytes()) &&
                     fits_plane(w, h, layout_.samples(), [&](int i, int j, int s) { return fb_->depth_at(x0 + i, y0 + j, s); });
   plane_stored_[block] = fits;
+  const uint64_t offset = block * uint64_t(cache_->line_bytes());  // the block is the line
   if (!fits) {
     stats_.bytes_written += uint64_t(cache_->line_bytes());
+    transfer(offset, uint64_t(cache_->line_bytes()), true);
     return;
   }
   stats_.bytes_written += plane;
+  transfer(offset, plane, true);
   stats_.compressed_bytes += plane;
   ++stats_.compressed_blocks;
 }
@@ -126,11 +137,14 @@ void SurfaceClient::clear() {
     stats_.bytes_written += blocks * plane;
     stats_.compressed_bytes += blocks * plane;
     stats_.compressed_blocks += blocks;
+    transfer(0, blocks * plane, true);  // the blocks' planes, one stream from the base
     return;
   }
   if (fb_) std::fill(plane_stored_.begin(), plane_stored_.end(), 0);
-  stats_.bytes_written += uint64_t(layout_.width()) * uint64_t(layout_.height()) * uint64_t(layout_.samples()) *
-                          uint64_t(layout_.bytes_per_sample());
+  const uint64_t bytes = uint64_t(layout_.width()) * uint64_t(layout_.height()) * uint64_t(layout_.samples()) *
+                         uint64_t(layout_.bytes_per_sample());
+  stats_.bytes_written += bytes;
+  transfer(0, bytes, true);
 }
 
 void SurfaceClient::write_back_all() {

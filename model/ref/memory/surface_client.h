@@ -40,6 +40,15 @@ struct MemoryClientStats {
   uint64_t compressed_bytes = 0;   // their bytes (in bytes_written)
 };
 
+// One transfer between a surface and DRAM, as the functional model counts it: a line
+// fill (read), a write-back of a line or block, a materialised fast-cleared block's
+// clear value, a whole-surface clear, a streamed write.
+struct MemoryTransfer {
+  uint64_t address = 0;  // byte address of its first byte
+  uint64_t bytes = 0;    // > 0
+  bool write = false;
+};
+
 class SurfaceClient {
  public:
   SurfaceClient(const SurfaceLayout& layout, const CacheParams& cache, bool fast_clear, int block_width,
@@ -58,23 +67,38 @@ class SurfaceClient {
     if (cache_) return cached_access(off, write);
     ++stats_.misses;
     if (write) write_back_range(off, uint64_t(layout_.bytes_per_sample()));
-    else stats_.bytes_read += fill_range_bytes(off, uint64_t(layout_.bytes_per_sample()));
+    else fill(off, fill_range_bytes(off, uint64_t(layout_.bytes_per_sample())));
   }
   // A clear of the whole surface: fast (flags, 0 bytes) or every sample written. The
   // cache's lines are dropped, dirty or not: the clear overwrites them.
   void clear();
   // The frame end: every dirty line written back.
   void write_back_all();
-  // Bytes written by a stream that bypasses the cache (the resolved image).
-  void count_streamed_write(uint64_t bytes) { stats_.bytes_written += bytes; }
+  // Bytes written from `address` by a stream that bypasses the cache (the resolved image).
+  void count_streamed_write(uint64_t address, uint64_t bytes) {
+    stats_.bytes_written += bytes;
+    if (on_transfer && bytes > 0) on_transfer({address, bytes, true});
+  }
 
   const MemoryClientStats& stats() const { return stats_; }
   const SurfaceLayout& layout() const { return layout_; }
   // Sees every access (byte address, write?), in order: for tests and access traces.
   std::function<void(uint64_t address, bool write)> on_access;
+  // Sees every DRAM transfer the counts above are made of, in order (an access's
+  // write-back and any block it materialises before its fill); the bytes of the
+  // transfers sum to bytes_read and bytes_written. The timed model issues them.
+  std::function<void(const MemoryTransfer&)> on_transfer;
 
  private:
   void cached_access(uint64_t offset, bool write);
+  // Counts a transfer at byte offset `offset` of the surface and reports it.
+  void fill(uint64_t offset, uint64_t bytes) {
+    stats_.bytes_read += bytes;
+    transfer(offset, bytes, false);
+  }
+  void transfer(uint64_t offset, uint64_t bytes, bool write) const {
+    if (on_transfer && bytes > 0) on_transfer({layout_.base() + offset, bytes, write});
+  }
   uint64_t fill_range_bytes(uint64_t offset, uint64_t len) const;  // a fill's DRAM reads
   void write_back_range(uint64_t offset, uint64_t len);
   void write_back_block(uint64_t block);  // compressed surface: one line = one block
