@@ -17,9 +17,9 @@ void MemorySystem::enqueue(MemClient c, uint64_t address, uint64_t bytes, bool w
   // others) arrives when the DRAM can still decide on it.
   cycle = std::max(cycle, floor_);
   // The self-timed client's requests due by now enter first, after the completions that
-  // set them.
+  // set them (the DRAM is stepped only while the client may have one due).
   if (timed_ && c != MemClient::Scanout)
-    while (step(cycle)) {}
+    while ((timed_->reads_in_flight() || timed_->next_request_cycle() <= cycle) && step(cycle)) {}
   cycle = std::max(cycle, floor_);
   floor_ = cycle;
   for (uint64_t done = 0; done < bytes;) {

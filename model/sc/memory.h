@@ -62,6 +62,8 @@ class SelfTimedClient {
   virtual void request(uint64_t cycle) = 0;
   // One of its reads completed at core cycle `cycle`.
   virtual void completed(uint64_t cycle) = 0;
+  // Reads of its own are in flight (a completion may set its next request).
+  virtual bool reads_in_flight() const = 0;
 };
 
 // What simulate reports of the memory system (add_memory_system_json).

@@ -146,6 +146,7 @@ class ScanoutFetch : public SelfTimedClient {
   uint64_t next_request_cycle() const override { return next_request_; }
   void request(uint64_t cycle) override;
   void completed(uint64_t cycle) override;
+  bool reads_in_flight() const override { return reads_in_flight_ > 0; }
   const ScanoutFetchReport& report() const { return report_; }
   // D_y: the core cycle active line y is due at.
   uint64_t due_cycle(int y) const;

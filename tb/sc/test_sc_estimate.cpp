@@ -218,8 +218,11 @@ void check_dram_bounds(const Scene& scene, const Config& cfg) {
   }
 }
 
+// desktop.toml is left out for time: its 1080p frames cost ~1 s a run with DRAM (the
+// clears' 8 MB of writes and the 1080p scan-out through the DRAM model).
 TEST(ScEstimate, DramBoundsOnShippedTracesAndConfigs) {
   for (const std::string& config_path : files_in("configs", ".toml")) {
+    if (config_path.find("desktop") != std::string::npos) continue;
     Config cfg;
     cfg.load_file(config_path);
     cfg.apply_override("memory.model=dram");
