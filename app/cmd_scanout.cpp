@@ -192,7 +192,9 @@ void add_scanout_options(CLI::App* cmd, ScanoutOptions& o) {
       ->check(CLI::NonNegativeNumber);
   cmd->add_flag("--timed", o.timed,
                 "Take the raster finish time from the SystemC pipeline on this scene and config (a "
-                "`rastsim simulate` child process), then run the timed scan-out as with --raster-cycles")
+                "`rastsim simulate` child process), then run the timed scan-out as with --raster-cycles (its "
+                "fixed-rate line fetch; with memory.model = \"dram\" the fetch competing with the ROP for "
+                "DRAM runs in `rastsim simulate`: scanout_underrun_lines)")
       ->excludes(cycles_opt);
   add_quiet_flag(cmd, o.quiet, "the summary");
 }
