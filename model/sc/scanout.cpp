@@ -63,6 +63,7 @@ ScanoutModule::ScanoutModule(sc_core::sc_module_name name, const ScanoutParams& 
                              const Scanout* ref, SampleSink sink)
     : sc_module(name), p_(p), line_buffer_("line_buffer", p.line_buffer_lines), ref_(ref), sink_(std::move(sink)) {
   check_sink_has_reference(ref_, sink_);
+  memory_underrun_.assign(size_t(p.timing.v_active), false);
   // Time in ps; the raster finish time is rounded up to the next ps.
   t_ready_ = sc_time(std::ceil(double(raster_finish_cycles) / p.core_hz * 1e12), SC_PS);
   report.frame_time_cycles = raster_finish_cycles;
@@ -71,6 +72,11 @@ ScanoutModule::ScanoutModule(sc_core::sc_module_name name, const ScanoutParams& 
   report.frame_period_s = frame_period_s(p.timing);
   SC_THREAD(fetch_thread);
   SC_THREAD(display_thread);
+}
+
+void ScanoutModule::set_memory_underruns(const std::vector<int>& lines) {
+  for (int y : lines)
+    if (y >= 0 && y < p_.timing.v_active) memory_underrun_[size_t(y)] = true;
 }
 
 sc_time ScanoutModule::line_start(long long line) const {
@@ -111,7 +117,7 @@ void ScanoutModule::display_thread() {
       int got = -1;
       while (line_buffer_.nb_read(got) && got < y) {}
       next_needed_ = y + 1;
-      has_data = got == y;
+      has_data = got == y && !memory_underrun_[size_t(y)];
       if (has_data) {
         ++report.lines_fetched;
       } else {
@@ -133,10 +139,11 @@ void ScanoutModule::display_thread() {
 }
 
 ScanoutReport run_scanout(const ScanoutParams& p, uint64_t raster_finish_cycles, const Scanout* ref,
-                          const SampleSink& sink) {
+                          const SampleSink& sink, const std::vector<int>& memory_underruns) {
   check_sink_has_reference(ref, sink);  // before elaborating anything
   sc_core::sc_report_handler::set_actions(sc_core::SC_INFO, sc_core::SC_DO_NOTHING);  // "stopped by user"
   ScanoutModule m("scanout", p, raster_finish_cycles, ref, sink);
+  m.set_memory_underruns(memory_underruns);
   sc_core::sc_start();
   return m.report;
 }
@@ -164,7 +171,7 @@ nlohmann::json ScanoutFetchReport::to_json() const {
           {"lines_fetched", lines_fetched},   {"underrun_lines", underrun_lines},
           {"underrun_pixels", underrun_pixels}, {"first_underrun_line", first_underrun_line},
           {"last_line_end_cycle", last_line_end}, {"max_line_fetch_cycles", max_line_cycles},
-          {"shown_base", shown_base}};
+          {"shown_base", shown_base}, {"underrun_line_list", underrun_line_list}};
 }
 
 ScanoutFetch::ScanoutFetch(MemorySystem& mem, const ScanoutParams& p, const SurfaceLayout& shown)
@@ -194,6 +201,7 @@ ScanoutFetch* attach_scanout_fetch(MemorySystem& mem, const ArchParams& a) {
 
 void ScanoutFetch::count_underrun() {
   if (report_.first_underrun_line < 0) report_.first_underrun_line = line_;
+  report_.underrun_line_list.push_back(line_);
   ++report_.underrun_lines;
   report_.underrun_pixels += uint64_t(p_.timing.h_active);
 }

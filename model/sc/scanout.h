@@ -23,6 +23,7 @@
 #include <cstdint>
 #include <deque>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 #include <systemc>
@@ -70,6 +71,10 @@ SC_MODULE(ScanoutModule) {
   // std::invalid_argument.
   ScanoutModule(sc_core::sc_module_name name, const ScanoutParams& p, uint64_t raster_finish_cycles,
                 const Scanout* ref = nullptr, SampleSink sink = {});
+  // Active lines the memory system did not deliver in time (simulate's
+  // memory.clients.scanout.underrun_line_list, memory.model = "dram"): sent blank and
+  // counted as underruns too.
+  void set_memory_underruns(const std::vector<int>& lines);
   SC_HAS_PROCESS(ScanoutModule);
   ScanoutReport report;
 
@@ -81,6 +86,7 @@ SC_MODULE(ScanoutModule) {
   sc_core::sc_time t_ready_;
   sc_core::sc_fifo<int> line_buffer_;
   int next_needed_ = 0;  // the active line the display reads next
+  std::vector<bool> memory_underrun_;  // by active line: set_memory_underruns
   const Scanout* ref_;
   SampleSink sink_;
 };
@@ -88,8 +94,9 @@ SC_MODULE(ScanoutModule) {
 // Elaborates one ScanoutModule, simulates one frame and returns its report. SystemC
 // allows one elaboration per process: call once per process. This is the hook for the
 // raster pipeline: pass its `cycles` (SimResult) and `core_mhz`.
+// `memory_underruns`: ScanoutModule::set_memory_underruns.
 ScanoutReport run_scanout(const ScanoutParams& p, uint64_t raster_finish_cycles, const Scanout* ref = nullptr,
-                          const SampleSink& sink = {});
+                          const SampleSink& sink = {}, const std::vector<int>& memory_underruns = {});
 
 // ---- The line fetch as a DRAM client (memory.model = "dram"; docs/scanout.md, "Scan-out
 // as a memory client") ----
@@ -124,6 +131,7 @@ struct ScanoutFetchReport {
   uint64_t last_line_end = 0;     // core cycle the last fetch ended
   uint64_t max_line_cycles = 0;   // longest fetch, start to end
   uint64_t shown_base = 0;        // the shown surface's base address
+  std::vector<int> underrun_line_list;  // the active lines sent blank, ascending
   nlohmann::json to_json() const;
 };
 
