@@ -17,8 +17,8 @@
 // The scan-out's line fetch (sc/scanout.h: ScanoutFetch) is a self-timed client: it
 // makes its requests of its own accord as display time passes, so the module runs it
 // inside its event loop (step): before any other client's request enters at cycle c,
-// every scan-out request due at or before c has entered, and the DRAM has reported
-// every completion at or before c.
+// every scan-out request due at or before c has entered, the DRAM first advanced to c
+// while scan-out reads are in flight (their completions set its next request).
 //
 // RopMemoryPort is the ROP's client: it runs the reference's functional memory system
 // (ref/memory/rop_memory.h) on the ROP's own access stream, so hits, misses and bytes
