@@ -3,6 +3,7 @@
 // per-stage busy cycles from the reference model's geometry, a lower and an upper bound
 // on its cycle count and a point estimate, without event simulation.
 #include <iostream>
+#include <string>
 
 #include "common.h"
 #include "estimate/estimate.h"
@@ -26,7 +27,8 @@ void run_estimate_command(const EstimateOptions& o) {
     if (r.stages[s].busy > r.stages[busiest].busy) busiest = s;
   summary_stream(o.stats_path, o.quiet)
       << "estimate: " << r.cycles_estimate << " cycles (lower bound " << r.cycles_lower_bound << ", upper bound "
-      << r.cycles_upper_bound << ", busiest stage " << kStages[busiest].name << " " << r.stages[busiest].busy << "), "
+      << (r.has_upper_bound() ? std::to_string(r.cycles_upper_bound) : std::string("none with memory.model = dram"))
+      << ", busiest stage " << kStages[busiest].name << " " << r.stages[busiest].busy << "), "
       << triangles_summary(r.render) << ", " << r.render.traversal.tiles_visited << " tiles, "
       << r.render.traversal.fragments << " fragments, " << r.wall_seconds << " s wall\n";
 }
@@ -38,8 +40,11 @@ void register_estimate(CLI::App& app) {
   add_config_options(cmd, o.config);
   add_scene_option(cmd, o.scene_path);
   cmd->add_option("--stats", o.stats_path,
-                  "Write the stats as JSON ('-' for stdout): cycles_lower_bound, cycles_upper_bound, "
-                  "cycles_estimate, wall_seconds, stages.<stage>.busy, and the geometry counters");
+                  "Write the stats as JSON ('-' for stdout): cycles_lower_bound (stage_lower_bound, "
+                  "bandwidth_lower_bound), cycles_upper_bound (null with memory.model = \"dram\"), "
+                  "cycles_estimate, wall_seconds, stages.<stage>.busy, the geometry counters, and with "
+                  "memory.model = \"dram\" dram_bytes_read, dram_bytes_written, dram_peak_bytes_per_cycle, "
+                  "dram_lower_bound (docs/estimate.md)");
   add_quiet_flag(cmd, o.quiet, "the summary line");
   cmd->callback([] { run_estimate_command(o); });
 }

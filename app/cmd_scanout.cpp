@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
+#include <vector>
 
 #include "display/signal_reader.h"
 #include "common.h"
@@ -96,15 +97,20 @@ SignalWindow signal_window(const VideoTiming& t, const std::string& lines_arg, i
 // Scans `scanout` out into `sink`: untimed (two frames at least: a picture lies between
 // two vsync leading edges), or timed from a raster finish time. Returns the timed
 // run's deadline report, null when untimed.
+// `memory_underruns`: the lines the memory system's fetch delivered late in the timed
+// raster run (--timed with memory.model = "dram"), also sent blank.
 nlohmann::json scan_out(const ScanoutOptions& o, const ArchParams& arch, const DisplayParams& display,
-                        int64_t raster_cycles, const Scanout& scanout, const SampleSink& sink) {
+                        int64_t raster_cycles, const Scanout& scanout, const SampleSink& sink,
+                        const std::vector<int>& memory_underruns) {
   if (raster_cycles < 0) {
     scanout.run(std::max(2, o.signal_frames), sink);
     return nullptr;
   }
   // Timed: vertical blanking, then the frame (one vsync pulse each side of it).
   const auto p = sc::scanout_params(display, arch.timing.core_mhz);
-  nlohmann::json deadline = sc::run_scanout(p, static_cast<uint64_t>(raster_cycles), &scanout, sink).to_json();
+  nlohmann::json deadline =
+      sc::run_scanout(p, static_cast<uint64_t>(raster_cycles), &scanout, sink, memory_underruns).to_json();
+  if (arch.memory.enabled && o.timed) deadline["memory_underrun_lines"] = memory_underruns.size();
   deadline["buffering"] = arch.config.get_string("scanout.buffering");
   deadline["core_mhz"] = arch.timing.core_mhz;
   return deadline;
@@ -192,7 +198,9 @@ void add_scanout_options(CLI::App* cmd, ScanoutOptions& o) {
       ->check(CLI::NonNegativeNumber);
   cmd->add_flag("--timed", o.timed,
                 "Take the raster finish time from the SystemC pipeline on this scene and config (a "
-                "`rastsim simulate` child process), then run the timed scan-out as with --raster-cycles")
+                "`rastsim simulate` child process), then run the timed scan-out as with --raster-cycles; with "
+                "memory.model = \"dram\" the lines that child's DRAM line fetch delivered late (competing with "
+                "the ROP; its scanout_underrun_lines) are sent blank too (deadline.memory_underrun_lines)")
       ->excludes(cycles_opt);
   add_quiet_flag(cmd, o.quiet, "the summary");
 }
@@ -217,9 +225,15 @@ void run_scanout_command(const ScanoutOptions& o) {
     if (sig) sig->w->push(s);
   };
   const Scanout scanout(t, dac, fb);
-  const int64_t raster_cycles =
-      o.timed ? simulate_in_child(o.config, o.scene_path).at("cycles").get<int64_t>() : o.raster_cycles;
-  const nlohmann::json deadline = scan_out(o, arch, display, raster_cycles, scanout, sink);
+  int64_t raster_cycles = o.raster_cycles;
+  std::vector<int> memory_underruns;  // with memory.model = "dram": the DRAM fetch's late lines
+  if (o.timed) {
+    const nlohmann::json sim = simulate_in_child(o.config, o.scene_path);
+    raster_cycles = sim.at("cycles").get<int64_t>();
+    const nlohmann::json::json_pointer lines("/memory/clients/scanout/underrun_line_list");
+    if (sim.contains(lines)) memory_underruns = sim.at(lines).get<std::vector<int>>();
+  }
+  const nlohmann::json deadline = scan_out(o, arch, display, raster_cycles, scanout, sink, memory_underruns);
   if (sig) sig->close();
   const MonitorResult r = mon.finish();
   write_image(r.image, o.out_path);

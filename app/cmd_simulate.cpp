@@ -180,7 +180,9 @@ void run_simulate_command(const SimulateOptions& o) {
   // Did the frame finish before scan-out needed it? The analytic deadline of the timed
   // scan-out (model/sc/scanout.h; its simulation agrees with it, tb/scanout), at the
   // configured core and pixel clocks. A second SystemC elaboration is not possible in
-  // this process, so the scan-out module itself runs in `rastsim scanout`.
+  // this process, so the scan-out module itself runs in `rastsim scanout`; with
+  // memory.model = "dram" the line fetch ran in this simulation as a memory client
+  // (scanout_underrun_lines).
   try {
     const sc::ScanoutParams sp = sc::scanout_params(DisplayParams::resolve(arch.config), arch.timing.core_mhz);
     const uint64_t deadline = sc::scanout_deadline_cycles(sp);
@@ -213,7 +215,9 @@ void register_simulate(CLI::App& app) {
                   "Write the stats as JSON ('-' for stdout): render's, plus cycles, cycles_lower_bound, "
                   "stages.<stage>.{busy,stalled,starved}, sim_wall_seconds, simulated_cycles_per_second; with "
                   "memory.model = \"dram\" also dram_row_hit_rate, dram_bandwidth_utilisation, memory.dram.*, "
-                  "memory.clients.<client>.* (docs/stats.md)");
+                  "memory.clients.<client>.*, and the display's line fetch as client scanout, reading the shown "
+                  "frame from the same DRAM during the run: memory.clients.scanout.*, scanout_underrun_lines "
+                  "(docs/stats.md, docs/scanout.md)");
   cmd->add_option("--vcd", o.vcd_path, "Write a VCD of every FIFO's occupancy and every stage's state "
                                       "(0 starved, 1 busy, 2 stalled); 1 ns = 1 cycle");
   cmd->add_option("--timeline", o.timeline_path,

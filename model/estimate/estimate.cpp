@@ -254,6 +254,27 @@ class Walker {
   uint64_t fb_pixels_, depth_bytes_;
 };
 
+// With memory.model = "dram" (docs/estimate.md, "Bandwidth bound"): the reference's DRAM
+// bytes and the bounds they give. Every byte the ROP's line fills read crosses a DRAM
+// data bus before the transaction that waits for it ends (the multisample resolve's fills
+// too), so cycles >= bytes read / peak; posted writes may still be queued at the end, so
+// written bytes bound only the DRAM's last completion. The DRAM moves whole bursts, at
+// least the bytes counted. Floors, so rounding never lifts a bound above the truth.
+void bandwidth_bounds(const Scene& scene, const ArchParams& a, EstimateResult& r) {
+  if (!a.memory.enabled) return;
+  RenderStats rs;
+  render_scene(scene, a.raster, rs, {}, Framebuffer::kDefaultTileLog2, 1, a.memory);
+  const MemoryStats& m = rs.memory;
+  r.dram_bytes_read = m.rop_color.bytes_read + m.rop_depth.bytes_read;
+  r.dram_bytes_written = m.rop_color.bytes_written + m.rop_depth.bytes_written;
+  r.dram_peak_bytes_per_cycle = a.dram.peak_bytes_per_second() / (double(a.dram.core_khz) * 1e3);
+  const auto cycles_for = [&](uint64_t bytes) {
+    return uint64_t(std::floor(double(bytes) / r.dram_peak_bytes_per_cycle));
+  };
+  r.bandwidth_lower_bound = cycles_for(r.dram_bytes_read);
+  r.dram_lower_bound = cycles_for(r.dram_bytes_read + r.dram_bytes_written);
+}
+
 }  // namespace
 
 EstimateResult estimate_scene(const Scene& scene, const ArchParams& params, const EstimateProgress& progress) {
@@ -274,11 +295,16 @@ EstimateResult estimate_scene(const Scene& scene, const ArchParams& params, cons
   for (size_t s = 0; s < r.stages.size(); ++s) {
     busy_sum += r.stages[s].busy;
     if (r.stages[s].busy > 0)
-      r.cycles_lower_bound = std::max(r.cycles_lower_bound, p.stage_fill_cycles(kStages[s].id) + r.stages[s].busy);
+      r.stage_lower_bound = std::max(r.stage_lower_bound, p.stage_fill_cycles(kStages[s].id) + r.stages[s].busy);
   }
-  r.cycles_upper_bound = busy_sum + r.latency_waits;
-  r.cycles_estimate = r.cycles_lower_bound +
-                      uint64_t(std::llround(kEstimateBlend * double(r.cycles_upper_bound - r.cycles_lower_bound)));
+  bandwidth_bounds(scene, params, r);
+  r.cycles_lower_bound = std::max(r.stage_lower_bound, r.bandwidth_lower_bound);
+  // The ROP's busy cycles under DRAM include its fills' waits, which no count bounds.
+  r.cycles_upper_bound = params.memory.enabled ? EstimateResult::kNoUpperBound : busy_sum + r.latency_waits;
+  r.cycles_estimate = r.cycles_lower_bound;
+  if (r.has_upper_bound())
+    r.cycles_estimate +=
+        uint64_t(std::llround(kEstimateBlend * double(r.cycles_upper_bound - r.cycles_lower_bound)));
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;
 }
@@ -286,7 +312,15 @@ EstimateResult estimate_scene(const Scene& scene, const ArchParams& params, cons
 nlohmann::json EstimateResult::to_json() const {
   nlohmann::json j;
   j["cycles_lower_bound"] = cycles_lower_bound;
-  j["cycles_upper_bound"] = cycles_upper_bound;
+  j["stage_lower_bound"] = stage_lower_bound;
+  j["bandwidth_lower_bound"] = bandwidth_lower_bound;
+  j["cycles_upper_bound"] = has_upper_bound() ? nlohmann::json(cycles_upper_bound) : nlohmann::json(nullptr);
+  if (dram_peak_bytes_per_cycle > 0) {
+    j["dram_bytes_read"] = dram_bytes_read;
+    j["dram_bytes_written"] = dram_bytes_written;
+    j["dram_peak_bytes_per_cycle"] = dram_peak_bytes_per_cycle;
+    j["dram_lower_bound"] = dram_lower_bound;
+  }
   j["cycles_estimate"] = cycles_estimate;
   j["latency_wait_cycles"] = latency_waits;
   j["core_mhz"] = core_mhz;

@@ -13,6 +13,9 @@
 // - Upper bound: sum of every stage's busy cycles plus every pipeline-latency wait
 //   (setup's and interpolation's extra latency times the transactions they emit).
 // - Point estimate: lower + kEstimateBlend * (upper - lower).
+// - With memory.model = "dram": a bandwidth bound joins the lower bound (the line fills the
+//   ROP waits for cannot move faster than the DRAM's peak), and there is no upper bound
+//   (the DRAM's latencies under load are not bounded by the counts).
 #pragma once
 
 #include <array>
@@ -48,10 +51,26 @@ struct EstimateResult {
   uint64_t rop_accesses = 0, framebuffer_bytes = 0, resolve_cycles = 0;
   uint64_t latency_waits = 0;  // the upper bound's sum of pipeline-latency waits, cycles
   uint64_t cycles_lower_bound = 0, cycles_upper_bound = 0, cycles_estimate = 0;
+  // The lower bound's two parts: max over stages of fill + busy, and the bandwidth bound
+  // (0 with memory.model = "fixed").
+  uint64_t stage_lower_bound = 0, bandwidth_lower_bound = 0;
+  // memory.model = "dram": no upper bound; cycles_upper_bound is kNoUpperBound.
+  static constexpr uint64_t kNoUpperBound = ~uint64_t{0};
+  bool has_upper_bound() const { return cycles_upper_bound != kNoUpperBound; }
+  // memory.model = "dram": the reference's DRAM bytes (render --stats' dram_bytes_read and
+  // dram_bytes_written), the DRAM's peak bytes a core cycle (channels x bus bytes x
+  // transfers a clock x DRAM clock / core clock) and the bound of the bytes read and
+  // written together, which the DRAM's last completion (simulate's memory.dram.end_cycle)
+  // cannot precede.
+  uint64_t dram_bytes_read = 0, dram_bytes_written = 0;
+  double dram_peak_bytes_per_cycle = 0;
+  uint64_t dram_lower_bound = 0;
   double core_mhz = 0;
   double wall_seconds = 0;
 
-  // cycles_lower_bound, cycles_upper_bound, cycles_estimate, wall_seconds, core_mhz,
+  // cycles_lower_bound (with stage_lower_bound, bandwidth_lower_bound), cycles_upper_bound
+  // (null without one), cycles_estimate, wall_seconds, core_mhz, with memory.model = "dram"
+  // dram_bytes_read, dram_bytes_written, dram_peak_bytes_per_cycle, dram_lower_bound;
   // rop_accesses, framebuffer_bytes, resolve_cycles, stages.<name>.{busy,transactions_out},
   // and the geometry counters (with the multisample ones).
   nlohmann::json to_json() const;

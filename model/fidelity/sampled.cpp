@@ -491,7 +491,8 @@ nlohmann::json SampledResult::to_json() const {
           {"work_fraction_simulated", work_fraction_simulated},
           {"cycles_simulated", cycles_simulated},
           {"cycles_lower_bound", analytic.cycles_lower_bound},
-          {"cycles_upper_bound", analytic.cycles_upper_bound},
+          {"cycles_upper_bound", analytic.has_upper_bound() ? nlohmann::json(analytic.cycles_upper_bound)
+                                                             : nlohmann::json(nullptr)},  // none with DRAM
           {"core_mhz", analytic.core_mhz},
           {"wall_seconds", wall_seconds}};
 }

@@ -15,6 +15,11 @@ void MemorySystem::enqueue(MemClient c, uint64_t address, uint64_t bytes, bool w
   // No request arrives before the DRAM's own time: one that would (a client behind the
   // others) arrives when the DRAM can still decide on it.
   cycle = std::max(cycle, floor_);
+  // The self-timed client's requests due by now enter first, after the completions that
+  // set them (the DRAM is stepped only while the client may have one due).
+  if (timed_ && c != MemClient::Scanout)
+    while ((timed_->reads_in_flight() || timed_->next_request_cycle() <= cycle) && step(cycle)) {}
+  cycle = std::max(cycle, floor_);
   floor_ = cycle;
   for (uint64_t done = 0; done < bytes;) {
     const uint64_t n = std::min(kMaxRequestBytes, bytes - done);
@@ -22,7 +27,7 @@ void MemorySystem::enqueue(MemClient c, uint64_t address, uint64_t bytes, bool w
     const DramRequest r{address + done, write, uint32_t(n), int(c), next_tag_++ * 2 + (write ? 1 : 0)};
     dram_.enqueue(r, cycle);
     if (trace_) write_dram_trace(*trace_, dram_.params(), r, dram_.to_dram(cycle));
-    if (!write) ++outstanding_reads_;
+    if (!write && c != MemClient::Scanout) ++outstanding_reads_;  // the ones wait_reads waits for
     done += n;
   }
 }
@@ -39,29 +44,39 @@ void MemorySystem::take_completions() {
   for (const DramCompletion& d : dram_.take_completions()) {
     last_completion_ = std::max(last_completion_, d.cycle);
     if (d.tag % 2 == 1) continue;  // a posted write
+    if (d.client == int(MemClient::Scanout)) {
+      timed_->completed(d.cycle);
+      continue;
+    }
     --outstanding_reads_;
     last_read_ = std::max(last_read_.value_or(0), d.cycle);
   }
 }
 
-std::optional<uint64_t> MemorySystem::wait_reads() {
-  while (outstanding_reads_ > 0) {
-    const uint64_t e = dram_.next_event();
-    if (e == DramModel::kNoEvent)
-      throw ModelError("memory: " + std::to_string(outstanding_reads_) + " reads outstanding but the DRAM is idle");
-    dram_.advance_to(e);
-    floor_ = std::max(floor_, e);
-    take_completions();
+bool MemorySystem::step(uint64_t limit) {
+  const uint64_t s = timed_ ? timed_->next_request_cycle() : SelfTimedClient::kNoRequest;
+  const uint64_t e = dram_.next_event();
+  const uint64_t first = std::min(s, e);
+  if (first == DramModel::kNoEvent || first > limit) return false;
+  if (s <= e) {
+    timed_->request(std::max(s, floor_));
+    return true;
   }
+  dram_.advance_to(e);
+  floor_ = std::max(floor_, e);
+  take_completions();
+  return true;
+}
+
+std::optional<uint64_t> MemorySystem::wait_reads() {
+  while (outstanding_reads_ > 0)
+    if (!step(DramModel::kNoEvent))
+      throw ModelError("memory: " + std::to_string(outstanding_reads_) + " reads outstanding but the DRAM is idle");
   return std::exchange(last_read_, std::nullopt);
 }
 
 uint64_t MemorySystem::drain() {
-  for (uint64_t e = dram_.next_event(); e != DramModel::kNoEvent; e = dram_.next_event()) {
-    dram_.advance_to(e);
-    floor_ = std::max(floor_, e);
-    take_completions();
-  }
+  while (step(DramModel::kNoEvent)) {}
   return last_completion_;
 }
 

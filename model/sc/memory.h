@@ -11,7 +11,14 @@
 //
 // Arbitration: requests enter the DRAM model in arrival-cycle order; requests of one
 // cycle in the order they are made, which within a client is its access order and
-// across clients the fixed order of MemClient. Inside the DRAM model FR-FCFS decides.
+// across clients scanout first (the display's deadline is hard), then rop_color,
+// rop_depth. Inside the DRAM model FR-FCFS decides, with no client priority.
+//
+// The scan-out's line fetch (sc/scanout.h: ScanoutFetch) is a self-timed client: it
+// makes its requests of its own accord as display time passes, so the module runs it
+// inside its event loop (step): before any other client's request enters at cycle c,
+// every scan-out request due at or before c has entered, the DRAM first advanced to c
+// while scan-out reads are in flight (their completions set its next request).
 //
 // The ROP's client, RopMemoryPort, is in sc/rop.h.
 #pragma once
@@ -31,9 +38,29 @@
 
 namespace rastsim::sc {
 
-// The clients, in their arbitration order (requests of one cycle); the stats' names.
-enum class MemClient { RopColor = 0, RopDepth = 1 };
-inline constexpr std::array<const char*, 2> kMemClientNames = {kRopColorClient, kRopDepthClient};
+// The clients: the index of each one's DRAM stats and its stats name
+// (memory.clients.<name>).
+enum class MemClient { RopColor = 0, RopDepth = 1, Scanout = 2 };
+inline constexpr const char* kScanoutClient = "scanout";
+inline constexpr std::array<const char*, 3> kMemClientNames = {kRopColorClient, kRopDepthClient, kScanoutClient};
+
+// A client that makes its requests of its own accord as time passes (the scan-out's line
+// fetch): the memory system asks it for the cycle of its next request, lets it make them
+// when that cycle comes (before any other client's request of the same cycle) and hands
+// it the completions of its reads.
+class SelfTimedClient {
+ public:
+  static constexpr uint64_t kNoRequest = ~uint64_t{0};
+  virtual ~SelfTimedClient() = default;
+  // The core cycle of its next request; kNoRequest: none before one of its reads completes.
+  virtual uint64_t next_request_cycle() const = 0;
+  // Makes the requests due at `cycle` (issue_read); afterwards next_request_cycle() > cycle.
+  virtual void request(uint64_t cycle) = 0;
+  // One of its reads completed at core cycle `cycle`.
+  virtual void completed(uint64_t cycle) = 0;
+  // Reads of its own are in flight (a completion may set its next request).
+  virtual bool reads_in_flight() const = 0;
+};
 
 // What simulate reports of the memory system (add_memory_system_json).
 struct MemorySystemReport {
@@ -60,6 +87,10 @@ class MemorySystem : public sc_core::sc_module {
   // Every request completed (the frame end): returns the last completion's cycle.
   uint64_t drain();
 
+  // The self-timed client (at most one: the scan-out, requests as MemClient::Scanout);
+  // it must outlive the module's use.
+  void attach(SelfTimedClient& c) { timed_ = &c; }
+
   // Writes every request from now on to *out in DRAMsim3's format (timing/dram_trace.h).
   void record_trace(std::ostream* out) { trace_ = out; }
 
@@ -71,8 +102,13 @@ class MemorySystem : public sc_core::sc_module {
  private:
   void enqueue(MemClient c, uint64_t address, uint64_t bytes, bool write, uint64_t cycle);
   void take_completions();
+  // One event up to core cycle `limit`: the self-timed client's next request or the
+  // DRAM's next event, whichever comes first (the client at equal cycles); false when
+  // neither comes at or before `limit`.
+  bool step(uint64_t limit);
 
   DramModel dram_;
+  SelfTimedClient* timed_ = nullptr;
   uint64_t floor_ = 0;  // the latest arrival or advance: no request may arrive before it
   uint64_t outstanding_reads_ = 0, next_tag_ = 0, last_completion_ = 0;
   std::optional<uint64_t> last_read_;

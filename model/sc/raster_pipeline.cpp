@@ -268,10 +268,12 @@ SimResult simulate_commands(CommandSource source, const ArchParams& params, cons
   Recorders rec;
   rec.attach(*top, opts, arch, ctx.tracing);
   static MemorySystem* memory = nullptr;  // kept, as the top: elaborated once
+  static ScanoutFetch* scanout = nullptr;
   std::optional<AtomicFile> mem_trace;
   if (params.memory.enabled) {
     memory = new MemorySystem("memory", params.dram);
     if (!opts.mem_trace_path.empty()) memory->record_trace(&mem_trace.emplace(opts.mem_trace_path).stream());
+    scanout = attach_scanout_fetch(*memory, params);  // first: its requests at cycle 0 go first
     top->rop.attach_memory(*memory, params.memory);  // its first request: the frame's depth clear
     top->engine2d.attach_memory(top->rop.memory_port());  // draws through the ROP's colour client
   } else if (!opts.mem_trace_path.empty()) {
@@ -297,9 +299,11 @@ SimResult simulate_commands(CommandSource source, const ArchParams& params, cons
   r.recip_reciprocals = ctx.recip_reciprocals;
   r.recip_busy_cycles = ctx.recip_busy_cycles;
   if (memory) {  // the frame end's accesses, then every request completed
+    if (scanout) scanout->raster_done(r.cycles);
     r.render.memory = top->rop.finish_memory(r.cycles);
     memory->drain();
     r.memory = memory->report(r.cycles);
+    if (scanout) r.scanout = scanout->report();
     if (mem_trace) mem_trace->commit();
   }
   r.fb = std::move(top->rop.framebuffer());  // moved, not copied: one framebuffer
@@ -331,6 +335,10 @@ nlohmann::json SimResult::to_json() const {
                            {"transactions_out", s.transactions_out}};
   for (const FifoReport& f : fifos) j["fifos"][f.name] = {{"depth", f.depth}, {"transactions", f.writes}};
   if (memory) add_memory_system_json(j, *memory);
+  if (scanout) {
+    j["memory"]["clients"][kScanoutClient].update(scanout->to_json());
+    j["scanout_underrun_lines"] = scanout->underrun_lines;
+  }
   // The geometry front end's counters under its stage too, beside its cycles.
   if (render.front_end.any()) {
     nlohmann::json counters;

@@ -24,6 +24,7 @@
 #include "ref/pipeline.h"
 #include "sc/command_fetch.h"
 #include "sc/memory.h"
+#include "sc/scanout.h"
 #include "scene/scene_io.h"
 #include "config/timing_params.h"
 #include "sc/tile_heat.h"
@@ -90,6 +91,9 @@ struct SimResult {
   // The timed memory system's figures (memory.model = "dram"; sc/memory.h), else empty.
   // render.memory holds the functional counts, equal to render's.
   std::optional<MemorySystemReport> memory;
+  // The scan-out's line fetch as a memory client (sc/scanout.h: ScanoutFetch), when the
+  // memory system is on and the config's display resolves.
+  std::optional<ScanoutFetchReport> scanout;
 
   // RenderStats::to_json plus cycles, cycles_lower_bound, simulated_seconds,
   // sim_wall_seconds, simulated_cycles_per_second, rop_accesses, framebuffer_bytes,
