@@ -433,24 +433,84 @@ module rast_top #(
   beat_t            r_push, r_in;
   logic             r_fifo_valid, r_fifo_empty, r_fifo_room;
   logic             r_valid, r_ready, r_take, r_first, r_end, w_end;
+  logic             beat_push;
   logic [BatchW-1:0] batches_q;
   logic             in_tile_q;
   logic             rop_idle, rop_has, rop_done, rop_blocked;
   localparam int BeatW = $bits(r_push);  // derived
-  assign r_push.marker = frag_marker_o;
-  assign r_push.last = frag_last_o;
-  assign r_push.lanes = frag_lanes_o;
-  assign r_push.x = frag_x_o;
-  assign r_push.y = frag_y_o;
-  assign r_push.z = frag_z_o;
-  assign r_push.rgb = frag_rgb_o;
-  assign r_push.mask = frag_mask_o;
+
+  // ---- Beat packer: the interpolator's beats (a perspective-correct triangle's carry
+  // InterpPerspLanes fragments, a row's last fewer) packed into beats of Lanes fragments,
+  // so the ROP reads a tile at up to Lanes fragments a cycle (the SystemC ROP's
+  // rop.pixels_per_cycle on a whole batch). A tile's last beat pushes what is held; when
+  // held and new lanes overflow one beat, the rest is pushed the next cycle (flush_q),
+  // in which the packer takes nothing. Lane j of a beat: {x, y, z, rgb, mask}. ----
+  localparam int LaneW = 2 * PixelW + DepthW + 24 + MaxSamples;  // derived
+  localparam int LaneCntW = $clog2(2 * Lanes + 1);               // derived: 0 .. 2 Lanes
+  localparam int LaneIdxW = Lanes > 1 ? $clog2(Lanes) : 1;       // derived: a lane's index
+  logic [LaneW-1:0]    acc_q [Lanes];   // lanes held, 0 .. acc_n_q - 1
+  logic [LaneCntW-1:0] acc_n_q;
+  logic                flush_q;         // the held lanes end a tile: push them, take nothing
+  logic [LaneW-1:0]    pk_out [Lanes];  // the beat pushed
+  logic [LaneW-1:0]    pk_rest [Lanes]; // lanes held after this cycle
+  logic [LaneCntW-1:0] pk_total;        // held + new lanes
+  logic                pk_push, pk_take;
+  always_comb begin
+    logic [LaneCntW-1:0] d;
+    for (int i = 0; i < Lanes; i++) begin
+      pk_out[i] = acc_q[i];
+      pk_rest[i] = '0;
+    end
+    d = acc_n_q;
+    for (int j = 0; j < Lanes; j++) begin
+      if (frag_lanes_o[j] && !flush_q) begin
+        if (d < LaneCntW'(Lanes)) pk_out[LaneIdxW'(d)] = {frag_x_o[j*PixelW +: PixelW], frag_y_o[j*PixelW +: PixelW],
+            frag_z_o[j*DepthW +: DepthW], frag_rgb_o[j*24 +: 24], frag_mask_o[j*MaxSamples +: MaxSamples]};
+        else pk_rest[LaneIdxW'(d - LaneCntW'(Lanes))] = {frag_x_o[j*PixelW +: PixelW], frag_y_o[j*PixelW +: PixelW],
+            frag_z_o[j*DepthW +: DepthW], frag_rgb_o[j*24 +: 24], frag_mask_o[j*MaxSamples +: MaxSamples]};
+        d = d + 1'b1;
+      end
+    end
+    pk_total = d;
+  end
+  // Pushed: the flush; a marker; a full beat; a tile's last beat.
+  assign pk_push = flush_q || (frag_valid_o && (frag_marker_o || frag_last_o || pk_total >= LaneCntW'(Lanes)));
+  assign r_push.marker = !flush_q && frag_marker_o;
+  assign r_push.last = flush_q || (frag_last_o && !frag_marker_o && pk_total <= LaneCntW'(Lanes));
+  for (genvar i = 0; i < Lanes; i++) begin : g_pack
+    assign r_push.lanes[i] = LaneCntW'(i) < (flush_q ? acc_n_q : pk_total);
+    assign {r_push.x[i*PixelW +: PixelW], r_push.y[i*PixelW +: PixelW], r_push.z[i*DepthW +: DepthW],
+            r_push.rgb[i*24 +: 24], r_push.mask[i*MaxSamples +: MaxSamples]} = pk_out[i];
+  end
+  assign pk_take = frag_valid_o && frag_ready_o;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      acc_n_q <= '0;
+      flush_q <= 1'b0;
+    end else if (flush_q) begin
+      if (beat_push) begin
+        acc_n_q <= '0;
+        flush_q <= 1'b0;
+      end
+    end else if (pk_take && !frag_marker_o) begin
+      acc_n_q <= pk_push ? (pk_total >= LaneCntW'(Lanes) ? pk_total - LaneCntW'(Lanes) : '0) : pk_total;
+      flush_q <= frag_last_o && pk_total > LaneCntW'(Lanes);
+    end
+  end
+  always_ff @(posedge clk_i) begin
+    if (flush_q) begin
+      if (beat_push) for (int i = 0; i < Lanes; i++) acc_q[i] <= '0;
+    end else if (pk_take && !frag_marker_o) begin
+      for (int i = 0; i < Lanes; i++) acc_q[i] <= pk_push ? pk_rest[i] : pk_out[i];
+    end
+  end
   assign r_valid = r_fifo_valid && (in_tile_q || batches_q != '0);
   assign r_take = r_valid && r_ready;
   assign r_first = r_take && !in_tile_q;
   assign r_end = r_take && (r_in.marker || r_in.last);
-  assign frag_ready_o = r_fifo_room && (batches_q - BatchW'(r_first)) <= BatchW'(FragmentFifoEntries);
-  assign w_end = frag_valid_o && frag_ready_o && (frag_marker_o || frag_last_o);
+  assign frag_ready_o = !flush_q && (!pk_push || r_fifo_room) &&
+                        (batches_q - BatchW'(r_first)) <= BatchW'(FragmentFifoEntries);
+  assign w_end = beat_push && (r_push.marker || r_push.last);
   // A ring of FragBeats beats (rast_fifo's timing without its latency countdown, whose
   // loop over every entry Verilator cannot schedule at this depth): push and pop in one
   // cycle when full, an entry visible the cycle after its push.
@@ -459,12 +519,11 @@ module rast_top #(
   logic [BeatW-1:0]    beat_mem_q [FragBeats];
   logic [BeatPtrW-1:0] beat_rd_q, beat_wr_q;
   logic [BeatCntW-1:0] beat_count_q;
-  logic                beat_push;
   assign r_fifo_empty = beat_count_q == '0;
   assign r_fifo_valid = !r_fifo_empty;
   assign r_in = beat_mem_q[beat_rd_q];
   assign r_fifo_room = beat_count_q != BeatCntW'(FragBeats) || r_take;
-  assign beat_push = frag_valid_o && frag_ready_o;
+  assign beat_push = flush_q ? r_fifo_room : pk_push && pk_take;
   always_ff @(posedge clk_i) begin
     if (beat_push) beat_mem_q[beat_wr_q] <= r_push;
   end
