@@ -297,7 +297,7 @@ bool Testbench::cycle(uint64_t t) {
   engine_take(t);
   front_end_take(t);
   front_end_step(t);
-  const bool op_valid = engine_drive();
+  bool op_valid = engine_drive();
   assembly_take(t);
   const bool tri_valid = assembly_.offering() && !tri_valid_stress_.low();
   ports_.drive_triangle(tri_valid ? &setup_.items[assembly_.item] : nullptr);
@@ -307,7 +307,15 @@ bool Testbench::cycle(uint64_t t) {
   const FragmentBeat beat = ports_.fragment_beat();
   if (!ports_.idle() || beat.valid || fetch_.active || assembly_.active) last_busy_ = std::max(last_busy_, t);
   if (beat.valid && ports_.fragment_taken()) take_beat(t, beat);
+  const bool granted = rop_wait_2d_;
   rop_serve(t);
+  // A grant made now (the 2D marker waits at the quiet ROP): the engine takes the port and
+  // is offered its first operation in this cycle, as the model's engine reads the grant
+  // the ROP writes (answer_engine_reads evaluates it again).
+  if (!granted && rop_wait_2d_) {
+    engine_take(t);
+    op_valid = engine_drive();
+  }
   engine_memory_and_handshake(t, op_valid);
   assembly_step(t, tri_taken);
   geometry_step(t);
@@ -375,9 +383,9 @@ void Testbench::rop_serve(uint64_t t) {
   if (command_valid_) {
     rop_commands_.pop_front();
     rop_2d_done_ = false;
-    if (!m.cmd) resolve_left_ = m.rop_cost - 1;  // the frame end: its cycle, then the resolve pass
+    if (!m.cmd) resolve_left_ = m.rop_cost;  // the frame end: its marker's cycle, then the resolve pass
   } else if (m.work2d >= 0 && !rop_wait_2d_ && !rop_2d_done_) {
-    rop_wait_2d_ = true;  // the engine takes the port (engine_take)
+    rop_wait_2d_ = true;  // the engine takes the port in this cycle (cycle: engine_take again)
     granted_work_ = m.work2d;
   }
 }
