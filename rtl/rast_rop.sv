@@ -97,9 +97,11 @@ module rast_rop #(
   output      logic [2*PixelsPerCycle*MaxSamples*4-1:0]  wr_be_o,     // lane k word i byte enables
   output      logic [2*PixelsPerCycle*32-1:0]         wr_data_o,      // lane k data word
   output      logic                                   idle_o,         // nothing held, nothing in flight
-  // Stage observation (rast_top's dbg_*_o): holds work, finishes a batch or command,
-  // offers a request that is not taken.
+  // Stage observation (rast_top's dbg_*_o): works this cycle, starts a batch (its first
+  // group's read taken) or command (its marker taken), finishes a batch or clear (a pass
+  // command starts and finishes in its marker's cycle), offers a request that is not taken.
   output      logic                                   dbg_has_o,
+  output      logic                                   dbg_start_o,
   output      logic                                   dbg_done_o,
   output      logic                                   dbg_blocked_o
 );
@@ -152,6 +154,7 @@ module rast_rop #(
   logic [2:0]      depth_func_q;    // depth_func_i, registered (static)
   logic            depth_write_q;   // depth_write_i
   logic            q_last_q;        // the group in flight ends a batch
+  logic            first_q;         // the next group starts a batch
   logic            clr_active_q;    // a clear in progress
   logic            clr_depth_q;     // of the depth surface
   logic [31:0]     clr_value_q;
@@ -356,8 +359,10 @@ module rast_rop #(
       q_valid_q <= 1'b0;
       w_valid_q <= 1'b0;
       clr_active_q <= 1'b0;
+      first_q <= 1'b1;
     end else begin
       head_q <= head_q + drained[CapW-1:0];
+      if (rd_take) first_q <= grp_last;
       count_q <= count_q - drained + (beat_take ? (CapW + 1)'(new_n) : '0);
       // The group in flight: read taken -> response -> write (held until taken).
       if (rd_take) q_valid_q <= 1'b1;
@@ -408,9 +413,12 @@ module rast_rop #(
 
   // ---- Observation ----
   assign idle_o = count_q == '0 && !q_valid_q && !w_valid_q && !clr_active_q;
-  assign dbg_has_o = !idle_o || marker_take;
+  // Works this cycle: issues a group's read, a clear's write or takes a marker, or holds
+  // a write the memory refuses (a batch's last write, taken, is not a cycle of its own:
+  // a batch of A accesses works rop_fragment_cycles(A) cycles, the SystemC model's).
+  assign dbg_has_o = rd_valid_o || clr_active_q || marker_take || w_valid_q || (wr_valid_o && !wr_ready_i);
+  assign dbg_start_o = (rd_take && first_q) || marker_take;
   assign dbg_done_o = (resp_done && q_last_q) || (w_done && w_last_q) ||
-                      (marker_take && !cmd_clear) ||
                       (clr_active_q && wr_ready_i && clr_left_q <= (2 * PixelW + 1)'(ClearPixelsPerCycle));
   assign dbg_blocked_o = (rd_valid_o && !rd_ready_i) || (wr_valid_o && !wr_ready_i);
 endmodule

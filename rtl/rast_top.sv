@@ -2,7 +2,8 @@
 // rast_top: the raster pipeline from snapped triangles to shaded fragments.
 //
 //   triangle FIFO -> rast_tri_setup -> setup FIFO (latency) -> rast_coarse_raster
-//     -> tile FIFO -> rast_fine_raster -> pixel FIFO -> rast_interpolate -> fragments
+//     -> tile FIFO -> rast_fine_raster -> pixel FIFO -> rast_interpolate
+//     -> fragment FIFO -> rast_rop -> memory request/response port
 //
 //   Each FIFO is followed by a rast_hold: a stage pops its transaction in the first
 //   cycle it works on it (the FIFO slot frees at once, as in the SystemC model).
@@ -25,8 +26,15 @@
 //   texture coordinates (interp.texcoord_format) and perspective weights Q_k, and the
 //   affine flag of ref tri_setup (the testbench's front end divides clip space by w); a marker (a state command in
 //   order with the triangles) travels through every stage and leaves as a marker beat.
-// - Fragments leave FragmentsPerCycle lanes a beat, a tile's last beat flagged: the
-//   ROP (depth test, framebuffer) is the testbench's memory model.
+// - Fragments leave the interpolator FragmentsPerCycle lanes a beat, a tile's last beat
+//   flagged (frag_*_o: observation of the beats the fragment FIFO takes), into the
+//   fragment FIFO and the ROP (rast_rop: depth test, colour and depth write, clears), whose
+//   memory port (rd_*, wr_*) and command port (cmd_*: one command a marker, in stream
+//   order) are rast_top's. The fragment FIFO holds FragmentFifoEntries whole tiles (the
+//   SystemC model's fragment FIFO of batches, TimingParams::fragment_fifo_entries): the
+//   ROP starts a tile once its last beat is in (the model's ROP reads whole batches), and
+//   the interpolator's next beat waits while FragmentFifoEntries + 1 complete tiles wait
+//   for the ROP (the model's interpolator blocked in its write).
 `default_nettype none
 
 module rast_top #(
@@ -66,8 +74,14 @@ module rast_top #(
   input  wire logic [PixelW-1:0]                     tri_clip_y1_i,   //
   input  wire logic [PixelW-1:0]                     tri_origin_x_i,  // pixel of raw x = 0
   input  wire logic [PixelW-1:0]                     tri_origin_y_i,  // pixel of raw y = 0
+  input  wire logic [PixelW-1:0]                     fb_width_i,      // framebuffer width, px (static)
+  input  wire logic [PixelW-1:0]                     fb_height_i,     // framebuffer height, px (static)
+  input  wire logic [31:0]                           color_base_i,    // colour surface, byte address (static)
+  input  wire logic [31:0]                           depth_base_i,    // depth surface, byte address (static)
+  input  wire logic [2:0]                            depth_func_i,    // raster.depth_func as ref DepthFunc (static)
+  input  wire logic                                  depth_write_i,   // raster.depth_write (static)
   output      logic                                  frag_valid_o,    // a fragment beat or marker
-  input  wire logic                                  frag_ready_i,    // taken (ROP backpressure)
+  output      logic                                  frag_ready_o,    // taken by the fragment FIFO
   output      logic                                  frag_marker_o,   // the beat is a marker
   output      logic                                  frag_last_o,     // last beat of a tile
   output      logic [InterpFragmentsPerCycle-1:0]    frag_lanes_o,    // lanes holding a fragment
@@ -78,17 +92,48 @@ module rast_top #(
   output      logic [InterpFragmentsPerCycle*TexW-1:0]   frag_s_o,    // lane j texture coordinate s, raw signed
   output      logic [InterpFragmentsPerCycle*TexW-1:0]   frag_t_o,    // lane j t
   output      logic [InterpFragmentsPerCycle*MaxSamples-1:0] frag_mask_o,  // lane j sample mask (bit s: sample s)
-  output      logic                                  idle_o,          // no work anywhere, the interpolator pipeline drained
+  // The ROP's commands, one a marker in stream order (rast_rop's cmd_*).
+  input  wire logic                                  cmd_valid_i,     // a command
+  output      logic                                  cmd_ready_o,     // taken with its marker (high while a marker waits for it)
+  input  wire logic [1:0]                            cmd_op_i,        // 0 pass, 1 clear colour, 2 clear depth
+  input  wire logic [31:0]                           cmd_value_i,     // clear word: colour {a, b, g, r}, or depth
+  // The ROP's memory port (rast_rop's rd_*, wr_*; docs/rtl.md "ROP").
+  output      logic                                  rd_valid_o,
+  input  wire logic                                  rd_ready_i,
+  output      logic [RopPixelsPerCycle-1:0]          rd_lanes_o,
+  output      logic [RopPixelsPerCycle*32-1:0]       rd_addr_o,
+  output      logic [RopPixelsPerCycle*RopLenW-1:0]  rd_len_o,
+  input  wire logic                                  rd_rvalid_i,
+  input  wire logic [RopPixelsPerCycle*MaxSamples*32-1:0] rd_rdata_i,
+  output      logic                                  wr_valid_o,
+  input  wire logic                                  wr_ready_i,
+  output      logic [2*RopPixelsPerCycle-1:0]        wr_lanes_o,
+  output      logic [2*RopPixelsPerCycle*32-1:0]     wr_addr_o,
+  output      logic [2*RopPixelsPerCycle*RopLenW-1:0] wr_len_o,
+  output      logic                                  wr_fill_o,
+  output      logic [2*RopPixelsPerCycle*MaxSamples*4-1:0] wr_be_o,
+  output      logic [2*RopPixelsPerCycle*32-1:0]     wr_data_o,
+  output      logic                                  idle_o,          // no work anywhere: pipeline, fragment FIFO and ROP drained
   // Stage handshake observation for the co-simulation's per-stage statistics (bit s:
-  // 0 setup, 1 coarse raster, 2 fine raster, 3 interpolation; docs/microarchitecture.md
-  // "Stage statistics"). Wires of existing handshakes only: no state, a few gates.
-  output      logic [3:0]                            dbg_has_o,       // stage s holds a transaction
-  output      logic [3:0]                            dbg_done_o,      // stage s finishes its transaction this cycle
-  output      logic [3:0]                            dbg_blocked_o    // stage s offers an output that is not taken
+  // 0 setup, 1 coarse raster, 2 fine raster, 3 interpolation, 4 ROP;
+  // docs/microarchitecture.md "Stage statistics"). Wires of existing handshakes only: no
+  // state, a few gates.
+  output      logic [4:0]                            dbg_has_o,       // stage s holds a transaction (the ROP: works this cycle)
+  output      logic [4:0]                            dbg_done_o,      // stage s finishes its transaction this cycle
+  output      logic [4:0]                            dbg_blocked_o,   // stage s offers an output that is not taken
+  output      logic                                  dbg_rop_start_o  // the ROP starts a batch or command (rast_rop's dbg_start_o)
 );
   localparam int MaskW = 1 << (2 * TileLog2Max);      // derived: coverage mask bits
   localparam int SMaskW = MaskW * MaxSamples;         // derived: sample mask bits of a tile
   localparam int ColorW = 8 + ColorFrac;              // derived: a vertex colour channel, unsigned 8.ColorFrac
+  localparam int Lanes = InterpFragmentsPerCycle;     // derived: fragment lanes a beat
+  // derived: beats of the largest tile at the fewest lanes a beat (a perspective beat
+  // fills InterpPerspLanes), and the fragment FIFO's beats: FragmentFifoEntries tiles
+  // waiting, one more complete tile held back, one being written, one being read.
+  localparam int TileBeats = ((1 << (2 * TileLog2Max)) + (InterpPerspective != 0 ? InterpPerspLanes : Lanes) - 1) /
+                             (InterpPerspective != 0 ? InterpPerspLanes : Lanes);
+  localparam int FragBeats = (FragmentFifoEntries + 3) * TileBeats;
+  localparam int BatchW = $clog2(FragmentFifoEntries + 2);  // derived: complete tiles waiting, 0 .. Entries + 1
 
   // ---- Transaction bundles: what each FIFO holds, one field a line. A FIFO's width is
   // derived from its bundle ($bits of a signal of its type: Yosys 0.23 takes $bits of a
@@ -137,6 +182,17 @@ module rast_top #(
     attr_t               attr;
   } tile_t;
   // Pixel FIFO: one tile's coverage; interpolation needs the edges but not their bias.
+  // Fragment FIFO: one beat of the interpolator, what the ROP reads.
+  typedef struct packed {
+    logic                            marker;
+    logic                            last;   // a tile's last beat
+    logic [Lanes-1:0]                lanes;
+    logic [Lanes*PixelW-1:0]         x;
+    logic [Lanes*PixelW-1:0]         y;
+    logic [Lanes*DepthW-1:0]         z;
+    logic [Lanes*24-1:0]             rgb;    // {b, g, r}
+    logic [Lanes*MaxSamples-1:0]     mask;
+  } beat_t;
   typedef struct packed {
     logic                marker;
     logic [MaskW-1:0]    mask;    // covered pixels
@@ -153,6 +209,9 @@ module rast_top #(
   // Elaboration-time checks of the exported parameters.
   if (SetupLatency < SetupInterval) begin : g_check_setup
     $error("rast_top: SetupLatency (%0d) must be at least SetupInterval (%0d)", SetupLatency, SetupInterval);
+  end
+  if (RopLenW != $clog2(RopClearPixelsPerCycle * MaxSamples + 1)) begin : g_check_rop_len
+    $error("rast_top: RopLenW (%0d) must be clog2(RopClearPixelsPerCycle MaxSamples + 1)", RopLenW);
   end
   if (TileLog2Max < 1 || TileLog2Max > (1 << TileLog2W) - 1) begin : g_check_tile
     $error("rast_top: TileLog2Max (%0d) must be in 1..%0d (the tile_log2_i port)", TileLog2Max, (1 << TileLog2W) - 1);
@@ -361,20 +420,159 @@ module rast_top #(
     .in_c_i(p_in.c), .in_origin_i(p_in.origin), .in_area2_i(p_in.area2), .in_z_i(p_in.attr.z),
     .in_rgb_i(p_in.attr.rgb), .in_s_i(p_in.attr.s), .in_t_i(p_in.attr.t), .in_q_i(p_in.attr.q),
     .in_affine_i(p_in.attr.affine),
-    .out_valid_o(frag_valid_o), .out_ready_i(frag_ready_i), .out_marker_o(frag_marker_o),
+    .out_valid_o(frag_valid_o), .out_ready_i(frag_ready_o), .out_marker_o(frag_marker_o),
     .out_last_o(frag_last_o), .out_lanes_o(frag_lanes_o), .out_x_o(frag_x_o), .out_y_o(frag_y_o),
     .out_z_o(frag_z_o), .out_rgb_o(frag_rgb_o), .out_s_o(frag_s_o), .out_t_o(frag_t_o), .out_smask_o(frag_mask_o), .busy_o(p_busy));
 
+  // ---- Fragment FIFO (beats; whole tiles: FragmentFifoEntries of them waiting) ----
+  // batches_q: complete tiles (a tile's last beat or a marker pushed) whose first beat
+  // the ROP has not taken. The ROP reads a tile's beats only once the tile is complete
+  // (in_tile_q: it took a tile's first beat and not yet its last). The interpolator's
+  // beat is refused while FragmentFifoEntries + 1 tiles are complete and waiting (after
+  // this cycle's take by the ROP).
+  beat_t            r_push, r_in;
+  logic             r_fifo_valid, r_fifo_empty, r_fifo_room;
+  logic             r_valid, r_ready, r_take, r_first, r_end, w_end;
+  logic             beat_push;
+  logic [BatchW-1:0] batches_q;
+  logic             in_tile_q;
+  logic             rop_idle, rop_has, rop_done, rop_blocked;
+  localparam int BeatW = $bits(r_push);  // derived
+
+  // ---- Beat packer: the interpolator's beats (a perspective-correct triangle's carry
+  // InterpPerspLanes fragments, a row's last fewer) packed into beats of Lanes fragments,
+  // so the ROP reads a tile at up to Lanes fragments a cycle (the SystemC ROP's
+  // rop.pixels_per_cycle on a whole batch). A tile's last beat pushes what is held; when
+  // held and new lanes overflow one beat, the rest is pushed the next cycle (flush_q),
+  // in which the packer takes nothing. Lane j of a beat: {x, y, z, rgb, mask}. ----
+  localparam int LaneW = 2 * PixelW + DepthW + 24 + MaxSamples;  // derived
+  localparam int LaneCntW = $clog2(2 * Lanes + 1);               // derived: 0 .. 2 Lanes
+  localparam int LaneIdxW = Lanes > 1 ? $clog2(Lanes) : 1;       // derived: a lane's index
+  logic [LaneW-1:0]    acc_q [Lanes];   // lanes held, 0 .. acc_n_q - 1
+  logic [LaneCntW-1:0] acc_n_q;
+  logic                flush_q;         // the held lanes end a tile: push them, take nothing
+  logic [LaneW-1:0]    pk_out [Lanes];  // the beat pushed
+  logic [LaneW-1:0]    pk_rest [Lanes]; // lanes held after this cycle
+  logic [LaneCntW-1:0] pk_total;        // held + new lanes
+  logic                pk_push, pk_take;
+  always_comb begin
+    logic [LaneCntW-1:0] d;
+    for (int i = 0; i < Lanes; i++) begin
+      pk_out[i] = acc_q[i];
+      pk_rest[i] = '0;
+    end
+    d = acc_n_q;
+    for (int j = 0; j < Lanes; j++) begin
+      if (frag_lanes_o[j] && !flush_q) begin
+        if (d < LaneCntW'(Lanes)) pk_out[LaneIdxW'(d)] = {frag_x_o[j*PixelW +: PixelW], frag_y_o[j*PixelW +: PixelW],
+            frag_z_o[j*DepthW +: DepthW], frag_rgb_o[j*24 +: 24], frag_mask_o[j*MaxSamples +: MaxSamples]};
+        else pk_rest[LaneIdxW'(d - LaneCntW'(Lanes))] = {frag_x_o[j*PixelW +: PixelW], frag_y_o[j*PixelW +: PixelW],
+            frag_z_o[j*DepthW +: DepthW], frag_rgb_o[j*24 +: 24], frag_mask_o[j*MaxSamples +: MaxSamples]};
+        d = d + 1'b1;
+      end
+    end
+    pk_total = d;
+  end
+  // Pushed: the flush; a marker; a full beat; a tile's last beat.
+  assign pk_push = flush_q || (frag_valid_o && (frag_marker_o || frag_last_o || pk_total >= LaneCntW'(Lanes)));
+  assign r_push.marker = !flush_q && frag_marker_o;
+  assign r_push.last = flush_q || (frag_last_o && !frag_marker_o && pk_total <= LaneCntW'(Lanes));
+  for (genvar i = 0; i < Lanes; i++) begin : g_pack
+    assign r_push.lanes[i] = LaneCntW'(i) < (flush_q ? acc_n_q : pk_total);
+    assign {r_push.x[i*PixelW +: PixelW], r_push.y[i*PixelW +: PixelW], r_push.z[i*DepthW +: DepthW],
+            r_push.rgb[i*24 +: 24], r_push.mask[i*MaxSamples +: MaxSamples]} = pk_out[i];
+  end
+  assign pk_take = frag_valid_o && frag_ready_o;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      acc_n_q <= '0;
+      flush_q <= 1'b0;
+    end else if (flush_q) begin
+      if (beat_push) begin
+        acc_n_q <= '0;
+        flush_q <= 1'b0;
+      end
+    end else if (pk_take && !frag_marker_o) begin
+      acc_n_q <= pk_push ? (pk_total >= LaneCntW'(Lanes) ? pk_total - LaneCntW'(Lanes) : '0) : pk_total;
+      flush_q <= frag_last_o && pk_total > LaneCntW'(Lanes);
+    end
+  end
+  always_ff @(posedge clk_i) begin
+    if (flush_q) begin
+      if (beat_push) for (int i = 0; i < Lanes; i++) acc_q[i] <= '0;
+    end else if (pk_take && !frag_marker_o) begin
+      for (int i = 0; i < Lanes; i++) acc_q[i] <= pk_push ? pk_rest[i] : pk_out[i];
+    end
+  end
+  assign r_valid = r_fifo_valid && (in_tile_q || batches_q != '0);
+  assign r_take = r_valid && r_ready;
+  assign r_first = r_take && !in_tile_q;
+  assign r_end = r_take && (r_in.marker || r_in.last);
+  assign frag_ready_o = !flush_q && (!pk_push || r_fifo_room) &&
+                        (batches_q - BatchW'(r_first)) <= BatchW'(FragmentFifoEntries);
+  assign w_end = beat_push && (r_push.marker || r_push.last);
+  // A ring of FragBeats beats (rast_fifo's timing without its latency countdown, whose
+  // loop over every entry Verilator cannot schedule at this depth): push and pop in one
+  // cycle when full, an entry visible the cycle after its push.
+  localparam int BeatPtrW = $clog2(FragBeats);      // derived
+  localparam int BeatCntW = $clog2(FragBeats + 1);  // derived
+  logic [BeatW-1:0]    beat_mem_q [FragBeats];
+  logic [BeatPtrW-1:0] beat_rd_q, beat_wr_q;
+  logic [BeatCntW-1:0] beat_count_q;
+  assign r_fifo_empty = beat_count_q == '0;
+  assign r_fifo_valid = !r_fifo_empty;
+  assign r_in = beat_mem_q[beat_rd_q];
+  assign r_fifo_room = beat_count_q != BeatCntW'(FragBeats) || r_take;
+  assign beat_push = flush_q ? r_fifo_room : pk_push && pk_take;
+  always_ff @(posedge clk_i) begin
+    if (beat_push) beat_mem_q[beat_wr_q] <= r_push;
+  end
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      beat_rd_q <= '0;
+      beat_wr_q <= '0;
+      beat_count_q <= '0;
+      batches_q <= '0;
+      in_tile_q <= 1'b0;
+    end else begin
+      if (beat_push) beat_wr_q <= beat_wr_q == BeatPtrW'(FragBeats - 1) ? '0 : beat_wr_q + 1'b1;
+      if (r_take) beat_rd_q <= beat_rd_q == BeatPtrW'(FragBeats - 1) ? '0 : beat_rd_q + 1'b1;
+      beat_count_q <= beat_count_q + BeatCntW'(beat_push) - BeatCntW'(r_take);
+      batches_q <= batches_q + BatchW'(w_end) - BatchW'(r_first);
+      if (r_take) in_tile_q <= !r_end;
+    end
+  end
+
+  // ---- ROP ----
+  rast_rop #(
+    .PixelW(PixelW), .DepthW(DepthW), .MaxSamples(MaxSamples), .SampleLog2W(SampleLog2W), .Lanes(Lanes),
+    .PixelsPerCycle(RopPixelsPerCycle), .ClearPixelsPerCycle(RopClearPixelsPerCycle), .AddrW(32), .LenW(RopLenW)
+  ) u_rop (
+    .clk_i, .rst_ni, .samples_log2_i(samples_log2_q), .fb_width_i, .fb_height_i, .color_base_i, .depth_base_i,
+    .depth_func_i, .depth_write_i,
+    .in_valid_i(r_valid), .in_ready_o(r_ready), .in_marker_i(r_in.marker), .in_last_i(r_in.last),
+    .in_lanes_i(r_in.lanes), .in_x_i(r_in.x), .in_y_i(r_in.y), .in_z_i(r_in.z), .in_rgb_i(r_in.rgb),
+    .in_mask_i(r_in.mask),
+    .cmd_valid_i, .cmd_ready_o, .cmd_op_i, .cmd_value_i,
+    .rd_valid_o, .rd_ready_i, .rd_lanes_o, .rd_addr_o, .rd_len_o, .rd_rvalid_i, .rd_rdata_i,
+    .wr_valid_o, .wr_ready_i, .wr_lanes_o, .wr_addr_o, .wr_len_o, .wr_fill_o, .wr_be_o, .wr_data_o,
+    .idle_o(rop_idle), .dbg_has_o(rop_has), .dbg_start_o(dbg_rop_start_o), .dbg_done_o(rop_done),
+    .dbg_blocked_o(rop_blocked));
+
   // ---- Stage observation (debug ports): setup holds a triangle from the FIFO head or
   // its hold registers; the others hold their rast_hold's transaction. The
-  // interpolator is blocked when its pipeline is frozen (the fragment port not ready).
-  assign dbg_has_o     = {p_valid, f_valid, c_valid, t_valid || s_busy};
-  assign dbg_done_o    = {p_valid && p_ready, f_valid && f_ready, c_valid && c_ready, s_done};
-  assign dbg_blocked_o = {frag_valid_o && !frag_ready_i, m_valid && !m_ready, k_valid && !k_ready, s_valid && !s_ready};
+  // interpolator is blocked when its pipeline is frozen (the fragment FIFO refuses its
+  // beat). The ROP's bit is its own (rast_rop: works this cycle, finishes a tile or a
+  // clear, a memory request not taken; its transactions' starts on dbg_rop_start_o, as
+  // one may start in the cycle another finishes).
+  assign dbg_has_o     = {rop_has, p_valid, f_valid, c_valid, t_valid || s_busy};
+  assign dbg_done_o    = {rop_done, p_valid && p_ready, f_valid && f_ready, c_valid && c_ready, s_done};
+  assign dbg_blocked_o = {rop_blocked, frag_valid_o && !frag_ready_o, m_valid && !m_ready, k_valid && !k_ready,
+                          s_valid && !s_ready};
 
   // A held transaction shows as valid at the stage's input.
   assign idle_o = t_empty && !s_busy && c_empty && !c_valid && !c_busy && f_empty && !f_valid && !f_busy &&
-                  p_empty && !p_valid && !p_busy;
+                  p_empty && !p_valid && !p_busy && r_fifo_empty && rop_idle;
 endmodule
 
 `default_nettype wire

@@ -5,21 +5,24 @@
 //
 // - The testbench plays the stages the RTL does not have, with the SystemC model's
 //   cost equations (TimingParams, config/timing_params.h): command fetch and primitive
-//   assembly in front of the RTL's triangle FIFO, and the fragment FIFO and ROP (a
-//   memory model) behind its fragment stream. Vertices are snapped by the reference model's setup (the RTL
-//   takes snapped fixed-point vertices); state commands travel as markers.
+//   assembly in front of the RTL's triangle FIFO. Behind the interpolator the RTL's
+//   fragment FIFO and ROP (rtl/rast_rop.sv) work on their own; the testbench feeds the
+//   ROP's command port (one command a marker, in stream order) and serves its memory
+//   port from a framebuffer (memory.model = "fixed": requests taken at once, read data
+//   the next cycle). Vertices are snapped by the reference model's setup (the RTL takes
+//   snapped fixed-point vertices); state commands travel as markers.
 // - Multisampling (raster.samples, msaa): the RTL takes the sample count and the snapped
-//   offsets as run-time inputs; every fragment's sample mask is compared too, the
-//   testbench ROP writes per sample (ref rop_write on a multisampled framebuffer) at
-//   TimingParams::rop_accesses a fragment, and an end-of-frame marker (fetched like a
-//   command header, through the RTL like a state command, as in the SystemC model)
-//   costs the ROP the resolve pass (TimingParams::resolve_cycles); the CRC is of the
-//   resolved image. raster.aa_mode = ssaa has no RTL (an error naming the key).
+//   offsets as run-time inputs; every fragment's sample mask is compared too, the RTL
+//   ROP tests and writes each sample, and an end-of-frame marker (fetched like a command
+//   header, through the RTL like a state command, as in the SystemC model) costs the ROP
+//   the resolve pass, which the testbench plays (TimingParams::resolve_cycles after the
+//   marker's command); the CRC is of the resolved image. raster.aa_mode = ssaa has no
+//   RTL (an error naming the key).
 // - Every fragment is compared bit for bit (x, y, depth, r, g, b, mask) IN ORDER with the
 //   reference model's stream for the same tile size (tiles row-major, pixels row-major
 //   within a tile, triangles in order); the first mismatch is reported with its
 //   triangle (scene file:line and index) and pixel.
-// - Optional random backpressure on the fragment stream and gaps in the triangle and 2D
+// - Optional random backpressure on the ROP's memory port and gaps in the triangle and 2D
 //   operation valids (seeded, replayable), FST waveform.
 #pragma once
 
@@ -41,7 +44,7 @@ struct CosimOptions {
   // Random stress on the RTL's valid/ready inputs, each input its own generator seeded by
   // stress_seed (testbench.cpp): the same seed replays the same run.
   uint64_t stress_seed = 0;
-  double backpressure = 0;         // probability that frag_ready_i is low in a cycle (0 = off)
+  double backpressure = 0;         // probability that the ROP's memory refuses a request (rd_ready_i, wr_ready_i low) in a cycle (0 = off)
   double valid_gaps = 0;           // probability that an offered tri_valid_i or 2D in_valid_i is held low in a cycle
   std::string fst_path;            // write an FST waveform ("" = none)
   uint64_t max_cycles = 2'000'000'000;
@@ -49,8 +52,8 @@ struct CosimOptions {
   // stderr (one updating line on a terminal). Not sent to the runner.
   std::function<void(const std::string&)> progress;
   bool record_transactions = false;  // fill StageRecord::spans (--trace-diff)
-  // Test-only perturbation: the testbench ROP spends this many extra cycles on its
-  // transaction number `perturb_rop_transaction` (0 = off), so a test can check that
+  // Test-only perturbation: the memory returns the first read of the ROP's transaction
+  // number `perturb_rop_transaction` this many cycles late (0 = off), so a test can check that
   // --trace-diff names it as the first difference.
   uint64_t perturb_rop_cycles = 0;
   uint64_t perturb_rop_transaction = 0;

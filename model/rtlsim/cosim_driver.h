@@ -60,6 +60,13 @@ void set_port_bits(T& port, int lsb, int w, uint64_t v) {
   }
 }
 
+// Sets 32-bit word i of a port (an integral port of up to 64 bits, or a VlWide).
+template <class T>
+void set_port_word(T& port, size_t i, uint32_t v) {
+  if constexpr (std::is_integral_v<T>) set_port_bits(port, int(i) * 32, 32, v);
+  else port[i] = v;
+}
+
 // rast_top as class V (Vrast_<config>) and the 2D engine in one Verilator context,
 // with an FST waveform of rast_top when CosimOptions::fst_path names one.
 template <class V>
@@ -92,8 +99,17 @@ class VerilatedRast final : public RastPorts {
       set_port_bits(top_->sample_dx_i, k * w, w, uint64_t(s.sample_dx[size_t(k)]));
       set_port_bits(top_->sample_dy_i, k * w, w, uint64_t(s.sample_dy[size_t(k)]));
     }
+    top_->fb_width_i = static_cast<uint32_t>(s.arch.fb_width);
+    top_->fb_height_i = static_cast<uint32_t>(s.arch.fb_height);
+    top_->color_base_i = 0;
+    top_->depth_base_i = rop_depth_base(s.arch.fb_width, s.arch.fb_height, s.samples);
+    top_->depth_func_i = static_cast<uint8_t>(s.arch.depth_func);
+    top_->depth_write_i = s.arch.depth_write;
     top_->tri_valid_i = 0;
-    top_->frag_ready_i = 0;
+    top_->cmd_valid_i = 0;
+    top_->rd_ready_i = 0;
+    top_->wr_ready_i = 0;
+    top_->rd_rvalid_i = 0;
     top_->rst_ni = 0;
     engine_->lanes_i = static_cast<uint8_t>(s.timing.engine2d_fill_pixels_per_cycle);
     engine_->span_setup_i = static_cast<uint8_t>(s.timing.engine2d_span_setup);
@@ -155,7 +171,7 @@ class VerilatedRast final : public RastPorts {
     top_->tri_affine_i = it->affine;
   }
   bool triangle_ready() const override { return top_->tri_ready_o; }
-  void drive_fragment_ready(bool ready) override { top_->frag_ready_i = ready; }
+  bool fragment_taken() const override { return top_->frag_ready_o; }
   FragmentBeat fragment_beat() const override {
     return {bool(top_->frag_valid_o), bool(top_->frag_marker_o), bool(top_->frag_last_o)};
   }
@@ -177,7 +193,43 @@ class VerilatedRast final : public RastPorts {
     return f;
   }
   bool idle() const override { return top_->idle_o; }
-  RtlStageBits stage_bits() const override { return {top_->dbg_has_o, top_->dbg_done_o, top_->dbg_blocked_o}; }
+  RtlStageBits stage_bits() const override {
+    return {top_->dbg_has_o, top_->dbg_done_o, top_->dbg_blocked_o, bool(top_->dbg_rop_start_o)};
+  }
+
+  // ---- The ROP's command and memory ports (32-bit addresses and data words) ----
+  bool rop_command_wanted() const override { return top_->cmd_ready_o; }
+  void drive_rop_command(bool valid, int op, uint32_t value) override {
+    top_->cmd_valid_i = valid;
+    top_->cmd_op_i = static_cast<uint8_t>(op);
+    top_->cmd_value_i = value;
+  }
+  bool rop_read_valid() const override { return top_->rd_valid_o; }
+  bool rop_read_lane_valid(int k) const override { return port_bits(top_->rd_lanes_o, k, 1) & 1; }
+  RopLane rop_read_lane(int k) const override {
+    const int lw = params_.rop_len_w;
+    return {uint32_t(port_bits(top_->rd_addr_o, k * 32, 32)), uint32_t(port_bits(top_->rd_len_o, k * lw, lw))};
+  }
+  void drive_rop_memory_ready(bool read, bool write) override {
+    top_->rd_ready_i = read;
+    top_->wr_ready_i = write;
+  }
+  void drive_rop_response(bool valid, const std::vector<uint32_t>& words) override {
+    top_->rd_rvalid_i = valid;
+    if (!valid) return;
+    for (size_t i = 0; i < words.size(); ++i) set_port_word(top_->rd_rdata_i, i, words[i]);
+  }
+  bool rop_write_valid() const override { return top_->wr_valid_o; }
+  bool rop_write_fill() const override { return top_->wr_fill_o; }
+  bool rop_write_lane_valid(int k) const override { return port_bits(top_->wr_lanes_o, k, 1) & 1; }
+  RopLane rop_write_lane(int k) const override {
+    const int lw = params_.rop_len_w;
+    return {uint32_t(port_bits(top_->wr_addr_o, k * 32, 32)), uint32_t(port_bits(top_->wr_len_o, k * lw, lw))};
+  }
+  uint32_t rop_write_data(int k) const override { return uint32_t(port_bits(top_->wr_data_o, k * 32, 32)); }
+  uint32_t rop_write_enables(int k, int word) const override {
+    return uint32_t(port_bits(top_->wr_be_o, (k * params_.max_samples + word) * 4, 4));
+  }
 
   // The operation port: indices masked to the engine's Width bits.
   void drive_operation(const Draw2dWork* w, const Op2d* op) override {

@@ -212,6 +212,13 @@ RtlParams cosim_wanted_params(const ArchParams& arch, const CosimOptions& opts) 
     throw ConfigError(cfg.origin("raster.traversal") + ": raster.traversal = " + cfg.get_string("raster.traversal") +
                       " has no RTL; the RTL (rtl/) walks tiles only: co-simulate with raster.traversal = tiled "
                       "(render and simulate run every method)");
+  // The testbench serves the RTL ROP's memory port with fixed costs only (docs/memory.md,
+  // "RTL co-simulation"); comparing against the SystemC model's DRAM timing would only
+  // count the difference.
+  if (arch.memory.enabled)
+    throw ConfigError(cfg.origin("memory.model") + ": memory.model = \"" + cfg.get_string("memory.model") +
+                      "\" has no RTL co-simulation yet (the testbench serves the ROP's memory port with fixed "
+                      "costs): co-simulate with memory.model = \"fixed\" (render and simulate run dram)");
   const int tile = opts.tile_size ? opts.tile_size : arch.raster.tile_size;
   if (tile < 2 || !std::has_single_bit(static_cast<unsigned>(tile)))
     throw std::runtime_error("tile size " + std::to_string(tile) + " is not a power of two >= 2");

@@ -67,6 +67,10 @@ constexpr ParamField<RtlParams> kFields[] = {
     {"SetupFifoEntries", &RtlParams::setup_fifo_entries, "fifo.setup_depth + setup latency slots"},
     {"TileFifoDepth", &RtlParams::fifo_tile, "fifo.tile_depth"},
     {"PixelFifoDepth", &RtlParams::fifo_pixel, "fifo.pixel_depth"},
+    {"FragmentFifoEntries", &RtlParams::fragment_fifo_entries, "fifo.fragment_depth + interpolator latency slots, tiles"},
+    {"RopPixelsPerCycle", &RtlParams::rop_pixels_per_cycle, "rop.pixels_per_cycle: ROP accesses a cycle"},
+    {"RopClearPixelsPerCycle", &RtlParams::rop_clear_pixels_per_cycle, "rop.clear_pixels_per_cycle"},
+    {"RopLenW", &RtlParams::rop_len_w, "ROP burst length bits: clog2(RopClearPixelsPerCycle MaxSamples + 1)"},
 };
 
 constexpr ParamField<ScanoutRtlParams> kScanoutFields[] = {
@@ -211,6 +215,10 @@ RtlParams rtl_params(const ArchParams& arch) {
   p.setup_fifo_entries = t.setup_fifo_entries();
   p.fifo_tile = t.fifo_tile;
   p.fifo_pixel = t.fifo_pixel;
+  p.fragment_fifo_entries = t.fragment_fifo_entries();
+  p.rop_pixels_per_cycle = static_cast<int>(t.rop_pixels_per_cycle);
+  p.rop_clear_pixels_per_cycle = static_cast<int>(t.rop_clear_pixels_per_cycle);
+  p.rop_len_w = std::bit_width(static_cast<unsigned>(p.rop_clear_pixels_per_cycle * p.max_samples));  // clog2(n + 1)
   return p;
 }
 

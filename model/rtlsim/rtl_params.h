@@ -59,6 +59,9 @@ struct RtlParams {
   int interp_recip_latency = 0;  // TimingParams::interp_recip_latency (the RTL checks its structure against it)
   int fifo_triangle = 0, fifo_tile = 0, fifo_pixel = 0;
   int setup_fifo_entries = 0;  // fifo.setup_depth + setup's latency slots (TimingParams)
+  int fragment_fifo_entries = 0;  // fifo.fragment_depth + the interpolator's latency slots (TimingParams), tiles
+  int rop_pixels_per_cycle = 0, rop_clear_pixels_per_cycle = 0;  // rop.pixels_per_cycle, rop.clear_pixels_per_cycle
+  int rop_len_w = 0;  // a ROP burst length in words, up to a clear's: clog2(clear pixels x max_samples + 1) bits
 
   bool operator==(const RtlParams&) const = default;
 };

@@ -6,18 +6,26 @@
 // model's): a stage that takes an item in cycle u and needs n cycles offers its result
 // in cycle u + n - 1; a FIFO entry pushed in cycle v is visible in cycle v + 1 (SystemC
 // time v + 1); a push into a full FIFO succeeds when the reader pops in the same cycle.
-// The testbench stages below follow model/sc/command_fetch.cpp, front_end.cpp,
-// prim_assembly.cpp and rop.cpp exactly, with the cost equations of TimingParams; the cycle count is the
-// ROP's last busy cycle + 1, as the model's.
+// The testbench stages below follow model/sc/command_fetch.cpp, front_end.cpp and
+// prim_assembly.cpp exactly, with the cost equations of TimingParams; the cycle count is
+// the last cycle any stage (the RTL's ROP last) works + 1, as the model's.
+//
+// The ROP is rast_top's (rtl/rast_rop.sv behind the fragment FIFO). The testbench feeds
+// its command port, one command a marker in stream order (a clear's value, else a pass),
+// and serves its memory port from the framebuffer (memory.model = "fixed": every request
+// taken at once, a read's data in the next cycle). What stays the testbench's: the 2D
+// engine's grant of the ROP's port (a 2D marker's command is held back until the engine
+// is done) and the multisample resolve pass (after the end-of-frame marker's command,
+// TimingParams::resolve_cycles counted as ROP busy cycles).
 //
 // Stage statistics (docs/microarchitecture.md "Stage statistics"): every cycle each
 // stage is busy, stalled or starved, as the SystemC Stage accounts it. The testbench
 // stages (the geometry front end, the 2D front end and engine too) count their own
-// cycles; setup, coarse raster, fine raster and interpolation are classified from
-// rast_top's dbg_has_o / dbg_done_o / dbg_blocked_o handshake ports.
+// cycles; setup, coarse raster, fine raster, interpolation and the ROP are classified
+// from rast_top's dbg_has_o / dbg_done_o / dbg_blocked_o handshake ports.
 //
-// Stress (CosimOptions): random backpressure on frag_ready_i and random gaps in
-// tri_valid_i and the 2D engine's in_valid_i, each from its own generator seeded by
+// Stress (CosimOptions): random backpressure on the ROP's memory port (rd_ready_i and
+// wr_ready_i low) and random gaps in tri_valid_i and the 2D engine's in_valid_i, each from its own generator seeded by
 // CosimOptions::stress_seed, drawn only when its probability is above 0 (so a run
 // without stress, or with backpressure only, is the same run as before either existed).
 #include "rtlsim/testbench.h"
@@ -27,9 +35,10 @@
 #include <cstring>
 #include <deque>
 #include <random>
+#include <utility>
 
+#include "ref/fixed_point.h"
 #include "ref/pipeline.h"
-#include "ref/rop.h"
 #include "timing/stage_table.h"
 
 namespace rastsim::rtlsim {
@@ -49,7 +58,8 @@ enum class Cyc : uint8_t { Starved, Busy, Stalled };  // a stage's state in one 
 
 // The RTL stages rast_top's dbg_*_o ports observe, bit s of each port.
 constexpr std::array kObservedStages = {StageId::TriSetup, StageId::CoarseRaster, StageId::FineRaster,
-                                        StageId::Interpolate};
+                                        StageId::Interpolate, StageId::Rop};
+constexpr size_t kRopBit = 4;  // the ROP's bit of rast_top's dbg_*_o
 
 // A FIFO entry, visible to its reader from the cycle after its push: a command-FIFO
 // entry (a scene item) or a 2D FIFO entry (a work2d index).
@@ -63,16 +73,24 @@ struct ScreenEntry {
   int64_t item;
   uint64_t visible;
 };
-// A fragment-FIFO entry: a tile's fragments or a marker, visible to the ROP from the
-// cycle after its push.
-struct Batch {
-  uint64_t fragments = 0;
-  uint64_t accesses = 0;  // ROP accesses (TimingParams::rop_accesses of each fragment's mask)
-  bool marker = false;
-  size_t marker_item = 0;
-  uint64_t pushed = 0;
-  std::vector<Fragment> frags;  // written into the testbench framebuffer by the ROP
+// A marker's command on rast_rop's cmd_op_i / cmd_value_i: 1 clears colour to
+// {a = 255, b, g, r}, 2 clears depth to the unorm value; 0 passes.
+struct RopCommand {
+  int op = 0;
+  uint32_t value = 0;
 };
+RopCommand rop_command(const Command& cmd, int depth_bits) {
+  RopCommand r;
+  visit_command(cmd, Overloaded{
+      [&](const CmdViewport&) {},
+      [&](const CmdScissor&) {},
+      [&](const CmdPrimitives&) {},
+      [&](const CmdDraw2d&) {},
+      [&](const CmdClear& c) { r = {1, uint32_t(c.r) | uint32_t(c.g) << 8 | uint32_t(c.b) << 16 | 0xffu << 24}; },
+      [&](const CmdClearDepth& c) { r = {2, quantize_unorm(c.z, depth_bits).value_or(0)}; },
+  });
+  return r;
+}
 
 // A random low on one valid or ready input, with probability p a cycle (0: never, and
 // no number drawn).
@@ -86,7 +104,7 @@ class PortStress {
   double p_;
   std::bernoulli_distribution low_;
 };
-// frag_ready_i's generator is seeded with the seed itself, each valid input's with the
+// The memory port's generator is seeded with the seed itself, each valid input's with the
 // seed and its own index (port 1, 2, ...).
 std::mt19937_64 port_rng(uint64_t seed, uint32_t port) {
   if (port == 0) return std::mt19937_64(seed);
@@ -96,26 +114,25 @@ std::mt19937_64 port_rng(uint64_t seed, uint32_t port) {
 
 // One co-simulation run: the verilated rast_top between the testbench's front end
 // (command fetch, command FIFO, the geometry front end with its clip-command and screen
-// FIFOs, primitive assembly) and its back end (fragment
-// staging, fragment FIFO, the ROP as a memory model). Each cycle: the back end and
-// assembly act on what is visible (ROP, staging, assembly take), the triangle port is
-// driven, the clock falls, the fragment port is read, assembly and fetch advance, the
-// clock rises.
+// FIFOs, primitive assembly) and the memory behind its ROP. Each cycle: the ROP's
+// command and the memory's answers are driven, assembly acts on what is visible, the
+// triangle port is driven, the clock falls, the fragment port and the ROP's requests are
+// read and served, assembly and fetch advance, the clock rises.
 class Testbench {
  public:
   Testbench(const TbSetup& setup, RastPorts& ports, CosimResult& result)
       : setup_(setup), ports_(ports), result_(result),
-        frag_ready_stress_(port_rng(setup.opts.stress_seed, 0), setup.opts.backpressure),
+        mem_ready_stress_(port_rng(setup.opts.stress_seed, 0), setup.opts.backpressure),
         tri_valid_stress_(port_rng(setup.opts.stress_seed, 1), setup.opts.valid_gaps),
         op_valid_stress_(port_rng(setup.opts.stress_seed, 2), setup.opts.valid_gaps),
         cmd_depth_(size_t(setup.timing.fifo_entries(FifoId::Command))),
-        frag_depth_(size_t(setup.timing.fifo_entries(FifoId::Fragment))),
         draw2d_depth_(size_t(setup.timing.fifo_entries(FifoId::Draw2d))),
         op2d_depth_(size_t(setup.timing.fifo_entries(FifoId::Op2d))),
         clip_depth_(size_t(setup.timing.fifo_entries(FifoId::ClipCommand))),
-        screen_depth_(size_t(setup.timing.fifo_entries(FifoId::Screen))), rop_state_(setup.arch),
-        fb_(setup.arch.fb_width, setup.arch.fb_height, setup.samples) {
-    fb_.clear_depth(static_cast<uint32_t>((uint64_t{1} << rop_state_.depth_bits) - 1));  // as render_scene
+        screen_depth_(size_t(setup.timing.fifo_entries(FifoId::Screen))),
+        fb_(setup.arch.fb_width, setup.arch.fb_height, setup.samples),
+        depth_base_(rop_depth_base(fb_.width, fb_.height, fb_.samples)) {
+    fb_.clear_depth(static_cast<uint32_t>((uint64_t{1} << setup.arch.depth_bits) - 1));  // as render_scene
     for (size_t i = 0; i < setup.items.size(); ++i)
       if (!setup.items[i].from_front_end) fetched_.push_back(i);
   }
@@ -125,13 +142,14 @@ class Testbench {
  private:
   void reset();
   bool cycle(uint64_t t);
-  // Back end: the ROP as a memory model (model/sc/rop.cpp).
-  void rop_step(uint64_t t);
-  bool rop_start(uint64_t t);
-  void push_staging(uint64_t t);
-  void unblock_staging(uint64_t t) {
-    if (staging_blocked_) push_staging(t);
-  }
+  // Back end: the ROP's command feed and the memory behind its port.
+  void rop_drive(uint64_t t);
+  void rop_serve(uint64_t t);
+  void rop_command_taken(uint64_t t);
+  bool rop_decode(uint32_t addr, uint64_t t, bool& depth, int& x, int& y, int& s);
+  uint32_t rop_read_word(uint32_t addr, uint64_t t);
+  void rop_write_word(uint32_t addr, uint32_t data, uint32_t be, uint64_t t);
+  void rop_fill(const RopLane& l, uint32_t data, uint32_t be, uint64_t t);
   void take_beat(uint64_t t, const FragmentBeat& beat);
   // The 2D path (model/sc/draw2d_setup.cpp, engine2d.cpp).
   void engine_take(uint64_t t);
@@ -142,6 +160,10 @@ class Testbench {
   void engine_write(uint64_t t, int x, int y);
   void front_end_take(uint64_t t);
   void front_end_step(uint64_t t);
+  bool front_end_push(uint64_t t, Cyc& state);
+  static bool try_push(std::deque<Entry>& fifo, size_t depth, const Entry& e, bool& blocked, Cyc& state);
+  template <class Take, class Push>
+  void step_stage(StageId k, uint64_t t, TbStage& st, const bool& blocked, Take take, Push push);
   // The geometry front end (model/sc/front_end.cpp).
   void geometry_take(uint64_t t);
   void geometry_step(uint64_t t);
@@ -157,11 +179,12 @@ class Testbench {
   void tx_begin(StageId k, uint64_t t);
   void tx_end(StageId k, uint64_t t);
   void observe_rtl_stages(uint64_t t);
+  void observe_rop(uint64_t t, const RtlStageBits& bits);
   void close_stage_counts(uint64_t counted);
   // Checks.
   void mismatch(const std::string& what);
   void compare(const Fragment& f);
-  bool done() const { return rop_left_ == 0 && done_but_rop(); }
+  bool done() const { return resolve_left_ == 0 && done_but_rop(); }
   bool done_but_rop() const;
   void end_of_run_check();
   void framebuffer_check();
@@ -169,25 +192,32 @@ class Testbench {
   const TbSetup& setup_;
   RastPorts& ports_;
   CosimResult& result_;
-  PortStress frag_ready_stress_, tri_valid_stress_, op_valid_stress_;
-  const size_t cmd_depth_, frag_depth_;  // command FIFO; fragment FIFO with the interpolator's latency slots
+  PortStress mem_ready_stress_, tri_valid_stress_, op_valid_stress_;
+  const size_t cmd_depth_;  // command FIFO
   const size_t draw2d_depth_, op2d_depth_;  // the 2D command and operation FIFOs
   const size_t clip_depth_, screen_depth_;  // the clip-command FIFO; the screen FIFO with the front end's latency slots
 
   std::deque<Entry> cmd_fifo_;
-  std::deque<Batch> frag_fifo_;
   std::deque<size_t> markers_in_flight_;  // marker items sent to the RTL, in order
-  Batch staging_;                         // the batch the interpolator is filling
-  bool staging_blocked_ = false;          // completed, waiting for fragment-FIFO room
+  std::deque<size_t> rop_commands_;       // markers out of the interpolator, their commands not yet taken
   TbStage fetch_, assembly_;
   std::vector<size_t> fetched_;           // the items fetch takes, in order (not the front end's triangles)
   size_t next_item_ = 0;                  // next of fetched_
-  uint64_t rop_left_ = 0;                 // ROP busy cycles left
+  uint64_t resolve_left_ = 0;             // the resolve pass's ROP cycles left
   uint64_t last_busy_ = 0;                // last cycle any stage worked
   size_t next_expected_ = 0;
+  // The memory behind the ROP's port: the framebuffer (docs/rtl.md "ROP" for the layout).
+  Framebuffer fb_;                        // the memory: the ROP's writes and clears, 2D writes
+  const uint32_t depth_base_;             // the depth surface's byte address (colour at 0)
+  bool read_pending_ = false;             // a read taken, its data not yet returned
+  uint64_t read_due_ = 0;                 // the cycle its data returns
+  std::vector<uint32_t> read_data_;       // lane k word i at k MaxSamples + i
+  std::array<uint32_t, 2> fill_next_{};   // a clear's next word address per surface (colour, depth)
+  bool read_ready_ = false, write_ready_ = false;  // rd_ready_i, wr_ready_i this cycle
+  bool command_valid_ = false;            // cmd_valid_i this cycle
+  int command_op_ = 0;                    // cmd_op_i this cycle
+  uint64_t perturb_now_ = 0;              // CosimOptions::perturb_rop_*: the next read's extra latency
   // The 2D path.
-  RasterState rop_state_;                 // the ROP's state (depth function, clears)
-  Framebuffer fb_;                        // the memory: fragments, clears, 2D writes
   std::deque<Entry> draw2d_fifo_, op2d_fifo_;  // fetch -> front end -> engine (items: work2d indices)
   TbStage front_end_;                     // the 2D front end
   bool front_end_blocked_ = false;        // the front end waited for op2d FIFO room
@@ -197,7 +227,8 @@ class Testbench {
   bool engine_busy_ = false;              // executing `engine_work_` (the port is lent)
   bool engine_worked_ = false;            // the engine is busy in this cycle (stage statistics)
   size_t next_op_ = 0;                    // next operation of `engine_work_` to offer
-  bool rop_wait_2d_ = false;              // the ROP holds for the engine
+  bool rop_wait_2d_ = false;              // the ROP's port is lent to the engine
+  bool rop_2d_done_ = false;              // the engine is done: the 2D marker's command goes to the ROP
   int granted_work_ = -1;                 // the 2D command the ROP granted
   // Stage statistics.
   struct Meter {
@@ -233,17 +264,16 @@ void Testbench::run() {
       result_.cycles_rtl = last_busy_ + 1;
       break;
     }
-    // Only the ROP left, counting down a long operation (a multisampled frame's resolve
-    // pass: up to millions of cycles): skip to its last cycle instead of clocking an
-    // idle RTL (the waveform stops here).
-    if (rop_left_ > 1 && done_but_rop()) {
-      last_busy_ = std::max(last_busy_, t + rop_left_);
+    // Only the resolve pass left (a multisampled frame's: up to millions of cycles): skip
+    // to its last cycle instead of clocking an idle RTL (the waveform stops here).
+    if (resolve_left_ > 1 && done_but_rop()) {
+      last_busy_ = std::max(last_busy_, t + resolve_left_);
       result_.cycles_rtl = last_busy_ + 1;
-      // The skipped cycles t + 1 .. t + rop_left_: the ROP busy, every other stage starved.
-      for (const StageInfo& s : kStages) (s.id == StageId::Rop ? record(s.id).busy : record(s.id).starved) += rop_left_;
-      counted = t + 1 + rop_left_;
-      tx_end(StageId::Rop, counted);
-      rop_left_ = 0;
+      // The skipped cycles t + 1 .. t + resolve_left_: the ROP busy, every other stage starved.
+      for (const StageInfo& s : kStages)
+        (s.id == StageId::Rop ? record(s.id).busy : record(s.id).starved) += resolve_left_;
+      counted = t + 1 + resolve_left_;
+      resolve_left_ = 0;
       break;
     }
   }
@@ -263,23 +293,29 @@ void Testbench::reset() {
 
 // One clock cycle t; true when the run is complete.
 bool Testbench::cycle(uint64_t t) {
-  rop_step(t);
-  unblock_staging(t);
+  rop_drive(t);
   engine_take(t);
   front_end_take(t);
   front_end_step(t);
-  const bool op_valid = engine_drive();
+  bool op_valid = engine_drive();
   assembly_take(t);
   const bool tri_valid = assembly_.offering() && !tri_valid_stress_.low();
   ports_.drive_triangle(tri_valid ? &setup_.items[assembly_.item] : nullptr);
-  const bool frag_ready = !staging_blocked_ && !frag_ready_stress_.low();
-  ports_.drive_fragment_ready(frag_ready);
   ports_.clock_edge(false);
   const bool tri_taken = tri_valid && ports_.triangle_ready();
   observe_rtl_stages(t);
   const FragmentBeat beat = ports_.fragment_beat();
   if (!ports_.idle() || beat.valid || fetch_.active || assembly_.active) last_busy_ = std::max(last_busy_, t);
-  if (beat.valid && frag_ready) take_beat(t, beat);
+  if (beat.valid && ports_.fragment_taken()) take_beat(t, beat);
+  const bool granted = rop_wait_2d_;
+  rop_serve(t);
+  // A grant made now (the 2D marker waits at the quiet ROP): the engine takes the port and
+  // is offered its first operation in this cycle, as the model's engine reads the grant
+  // the ROP writes (answer_engine_reads evaluates it again).
+  if (!granted && rop_wait_2d_) {
+    engine_take(t);
+    op_valid = engine_drive();
+  }
   engine_memory_and_handshake(t, op_valid);
   assembly_step(t, tri_taken);
   geometry_step(t);
@@ -288,86 +324,146 @@ bool Testbench::cycle(uint64_t t) {
   return done();
 }
 
-// ---- Back end: the ROP as a memory model (model/sc/rop.cpp) ----
+// ---- Back end: the ROP's commands and memory (rtl/rast_rop.sv's ports) ----
 
-// Starts the next visible batch when idle and counts its busy cycles.
-void Testbench::rop_step(uint64_t t) {
-  if (rop_wait_2d_) {  // the port is lent to the 2D engine (the SystemC ROP waits in read: starved)
-    last_busy_ = t;
-    count(StageId::Rop, Cyc::Starved);
+// Before the clock falls: the memory's answer to the read taken earlier (its data in the
+// cycle after, or later under CosimOptions::perturb_rop_*), both ready inputs (low at
+// random under backpressure stress), and the head marker's command: a clear's value, a
+// pass; a 2D marker's only once the engine is done with the port.
+void Testbench::rop_drive(uint64_t t) {
+  const bool respond = read_pending_ && read_due_ <= t;
+  ports_.drive_rop_response(respond, read_data_);
+  if (respond) read_pending_ = false;
+  read_ready_ = !mem_ready_stress_.low();
+  write_ready_ = !mem_ready_stress_.low();
+  ports_.drive_rop_memory_ready(read_ready_, write_ready_);
+  command_valid_ = false;
+  if (rop_commands_.empty()) {
+    ports_.drive_rop_command(false, 0, 0);
     return;
   }
-  if (rop_left_ == 0 && !frag_fifo_.empty() && frag_fifo_.front().pushed < t && !rop_start(t)) return;
-  if (rop_left_ > 0) {
-    --rop_left_;
-    last_busy_ = t;
-    count(StageId::Rop, Cyc::Busy);
-    if (rop_left_ == 0) tx_end(StageId::Rop, t + 1);
-  } else {
-    count(StageId::Rop, Cyc::Starved);
+  const TbItem& m = setup_.items[rop_commands_.front()];
+  command_valid_ = m.work2d < 0 || rop_2d_done_;
+  const RopCommand c = m.cmd ? rop_command(*m.cmd, setup_.arch.depth_bits) : RopCommand{};  // none: the frame end
+  command_op_ = c.op;
+  ports_.drive_rop_command(command_valid_, c.op, c.value);
+}
+// After the clock falls: the ROP's write (before its read: the memory orders a read after
+// every write it took in the same cycle), its read (the data read now, returned later),
+// and its command port (a command taken; a 2D marker waiting at the quiet ROP: the grant).
+void Testbench::rop_serve(uint64_t t) {
+  if (write_ready_ && ports_.rop_write_valid()) {
+    const int lanes = 2 * setup_.params.rop_pixels_per_cycle;
+    if (ports_.rop_write_fill()) {
+      rop_fill(ports_.rop_write_lane(0), ports_.rop_write_data(0), ports_.rop_write_enables(0, 0), t);
+    } else {
+      for (int k = 0; k < lanes; ++k) {
+        if (!ports_.rop_write_lane_valid(k)) continue;
+        const RopLane l = ports_.rop_write_lane(k);
+        for (uint32_t i = 0; i < l.len; ++i)
+          rop_write_word(l.addr + 4 * i, ports_.rop_write_data(k), ports_.rop_write_enables(k, int(i)), t);
+      }
+    }
+  }
+  if (read_ready_ && ports_.rop_read_valid()) {
+    const int ms = setup_.params.max_samples;
+    if (read_pending_) mismatch("cycle " + std::to_string(t) + ": the ROP read again before its read's data");
+    read_data_.assign(size_t(setup_.params.rop_pixels_per_cycle * ms), 0);
+    for (int k = 0; k < setup_.params.rop_pixels_per_cycle; ++k) {
+      if (!ports_.rop_read_lane_valid(k)) continue;
+      const RopLane l = ports_.rop_read_lane(k);
+      if (l.len > uint32_t(ms)) mismatch("cycle " + std::to_string(t) + ": a read burst longer than MaxSamples");
+      for (uint32_t i = 0; i < l.len && i < uint32_t(ms); ++i) read_data_[size_t(k * ms) + i] = rop_read_word(l.addr + 4 * i, t);
+    }
+    read_pending_ = true;
+    read_due_ = t + 1 + std::exchange(perturb_now_, 0);
+  }
+  if (rop_commands_.empty() || !ports_.rop_command_wanted()) return;
+  const TbItem& m = setup_.items[rop_commands_.front()];
+  if (command_valid_) {
+    rop_commands_.pop_front();
+    rop_2d_done_ = false;
+    if (!m.cmd) resolve_left_ = m.rop_cost;  // the frame end: its marker's cycle, then the resolve pass
+  } else if (m.work2d >= 0 && !rop_wait_2d_ && !rop_2d_done_) {
+    rop_wait_2d_ = true;  // the engine takes the port in this cycle (cycle: engine_take again)
+    granted_work_ = m.work2d;
   }
 }
-// The ROP takes the fragment FIFO's head: a batch or a state marker is written and
-// costed; a 2D marker lends the port to the engine (false: this cycle is counted).
-bool Testbench::rop_start(uint64_t t) {
-  const Batch b = std::move(frag_fifo_.front());
-  frag_fifo_.pop_front();
-  if (b.marker && setup_.items[b.marker_item].work2d >= 0) {
-    // One transaction (the model's marker read): the wait for the engine, then the
-    // marker's own cycle (engine_done), whose end closes it.
-    tx_begin(StageId::Rop, t);
-    rop_wait_2d_ = true;
-    granted_work_ = setup_.items[b.marker_item].work2d;
-    last_busy_ = t;
-    count(StageId::Rop, Cyc::Starved);
+// The surface, pixel and sample of a byte address (false: none, a mismatch reported).
+bool Testbench::rop_decode(uint32_t addr, uint64_t t, bool& depth, int& x, int& y, int& s) {
+  depth = addr >= depth_base_;
+  const uint64_t off = addr - (depth ? depth_base_ : 0);
+  if (off % 4 != 0 || off >= depth_base_) {
+    mismatch("cycle " + std::to_string(t) + ": the ROP addressed byte " + std::to_string(addr) +
+             ", outside its surfaces or not a word");
     return false;
   }
-  // (The end-of-frame marker has no command: its cost is the resolve pass.)
-  if (b.marker && setup_.items[b.marker_item].cmd) apply_state_command(*setup_.items[b.marker_item].cmd, rop_state_, fb_);
-  for (const Fragment& f : b.frags) rop_write(fb_, f, rop_state_.depth_func, rop_state_.depth_write);
-  rop_left_ = b.marker ? setup_.items[b.marker_item].rop_cost : setup_.timing.rop_fragment_cycles(b.accesses);
-  if (setup_.opts.perturb_rop_cycles && record(StageId::Rop).transactions == setup_.opts.perturb_rop_transaction)
-    rop_left_ += setup_.opts.perturb_rop_cycles;  // test-only (CosimOptions)
-  tx_begin(StageId::Rop, t);
+  const uint64_t word = off / 4, pixel = word / uint64_t(fb_.samples);
+  s = int(word % uint64_t(fb_.samples));
+  x = int(pixel % uint64_t(fb_.width));
+  y = int(pixel / uint64_t(fb_.width));
   return true;
 }
-// A completed batch pushes into the fragment FIFO, or waits for room there while
-// blocking the interpolator (frag_ready low).
-void Testbench::push_staging(uint64_t t) {
-  if (frag_fifo_.size() < frag_depth_) {
-    staging_.pushed = t;
-    frag_fifo_.push_back(staging_);
-    staging_ = Batch{};
-    staging_blocked_ = false;
-  } else {
-    staging_blocked_ = true;
-  }
+uint32_t Testbench::rop_read_word(uint32_t addr, uint64_t t) {
+  bool depth = false;
+  int x = 0, y = 0, s = 0;
+  if (!rop_decode(addr, t, depth, x, y, s)) return 0;
+  if (depth) return fb_.depth_at(x, y, s);
+  uint32_t v = 0;
+  std::memcpy(&v, std::as_const(fb_).sample(x, y, s), 4);  // bytes {r, g, b, a}, little-endian word
+  return v;
 }
-// A taken beat: a marker, or up to interp.fragments_per_cycle fragments, each compared
-// in order with the reference; a marker or a tile's last beat completes the batch.
+void Testbench::rop_write_word(uint32_t addr, uint32_t data, uint32_t be, uint64_t t) {
+  if (be == 0) return;
+  bool depth = false;
+  int x = 0, y = 0, s = 0;
+  if (!rop_decode(addr, t, depth, x, y, s)) return;
+  uint32_t v = rop_read_word(addr, t);
+  for (int b = 0; b < 4; ++b)
+    if ((be >> b) & 1) v = (v & ~(0xffu << (8 * b))) | (data & (0xffu << (8 * b)));
+  if (depth) fb_.set_depth(x, y, s, v);
+  else std::memcpy(fb_.sample(x, y, s), &v, 4);
+}
+// A clear's fill write: word 0's value and enables over the burst. The clear's writes
+// cover its surface in address order; its last one applies the clear to the whole
+// surface (as Framebuffer's clears: every tile at once, none materialised).
+void Testbench::rop_fill(const RopLane& l, uint32_t data, uint32_t be, uint64_t t) {
+  const bool depth = l.addr >= depth_base_;
+  const uint32_t base = depth ? depth_base_ : 0;
+  uint32_t& next = fill_next_[depth ? 1 : 0];
+  if (l.addr != base && l.addr != next) {
+    mismatch("cycle " + std::to_string(t) + ": a clear's write at byte " + std::to_string(l.addr) + ", expected " +
+             std::to_string(next));
+    return;
+  }
+  next = l.addr + 4 * l.len;
+  if (next < base + depth_base_) return;
+  if (next != base + depth_base_) mismatch("cycle " + std::to_string(t) + ": a clear's write past its surface");
+  const uint32_t depth_mask = setup_.arch.depth_bits >= 32 ? ~0u : (1u << setup_.arch.depth_bits) - 1;
+  const uint32_t want_be = depth ? (1u << ((setup_.arch.depth_bits + 7) / 8)) - 1 : 0xfu;
+  if (be != want_be) mismatch("cycle " + std::to_string(t) + ": a clear's byte enables " + std::to_string(be));
+  if (depth) fb_.clear_depth(data & depth_mask);
+  else fb_.clear_color(uint8_t(data), uint8_t(data >> 8), uint8_t(data >> 16));
+}
+// A beat the fragment FIFO takes: a marker (its command next for the ROP), or up to
+// interp.fragments_per_cycle fragments, each compared in order with the reference.
 void Testbench::take_beat(uint64_t t, const FragmentBeat& beat) {
   if (beat.marker) {
     if (markers_in_flight_.empty()) {
       mismatch("cycle " + std::to_string(t) + ": a marker the testbench never sent");
     } else {
-      staging_.marker = true;
-      staging_.marker_item = markers_in_flight_.front();
+      rop_commands_.push_back(markers_in_flight_.front());
       markers_in_flight_.pop_front();
     }
-  } else {
-    for (int j = 0; j < setup_.params.interp_fragments_per_cycle; ++j) {
-      if (!ports_.fragment_lane_valid(j)) continue;
-      Fragment f = ports_.fragment_lane(j);
-      f.samples = static_cast<uint8_t>(setup_.samples);
-      ++staging_.fragments;
-      staging_.frags.push_back(f);
-      const uint64_t acc = TimingParams::rop_accesses(f.mask, setup_.samples);
-      staging_.accesses += acc;
-      result_.rop_accesses += acc;
-      compare(f);
-    }
+    return;
   }
-  if (beat.marker || beat.last) push_staging(t);
+  for (int j = 0; j < setup_.params.interp_fragments_per_cycle; ++j) {
+    if (!ports_.fragment_lane_valid(j)) continue;
+    Fragment f = ports_.fragment_lane(j);
+    f.samples = static_cast<uint8_t>(setup_.samples);
+    result_.rop_accesses += TimingParams::rop_accesses(f.mask, setup_.samples);
+    compare(f);
+  }
 }
 
 // ---- The 2D path (model/sc/draw2d_setup.cpp, engine2d.cpp) ----
@@ -392,13 +488,13 @@ void Testbench::engine_take(uint64_t t) {
   }
 }
 // The engine's last busy cycle t: its transaction ends (the model's write of done
-// returns at once: the ROP waits for it), the ROP's marker cycle is t + 1.
+// returns at once: the ROP waits for it), the ROP takes the marker's command in t + 1.
 void Testbench::engine_done(uint64_t t) {
   tx_end(StageId::Engine2d, t + 1);
   engine_busy_ = false;
   engine_work_ = -1;
   rop_wait_2d_ = false;
-  rop_left_ = 1;  // the ROP's own cycle for the marker, next cycle
+  rop_2d_done_ = true;  // the marker's command, next cycle: the ROP's own cycle for it
 }
 // Drives the next operation and the command's paint state; true when one is offered
 // (none while the valid-gap stress holds in_valid_i low).
@@ -473,30 +569,50 @@ void Testbench::front_end_take(uint64_t t) {
 // attempt, stalled for a retried push, and a push after a stall ends that transaction
 // as the cycle starts.
 void Testbench::front_end_step(uint64_t t) {
+  step_stage(StageId::Draw2dSetup, t, front_end_, front_end_blocked_, [&] { front_end_take(t); },
+             [&](Cyc& state) { return front_end_push(t, state); });
+}
+// The operation batch into the op2d FIFO; true when the front end goes on in this cycle
+// (it pushed after waiting for room).
+bool Testbench::front_end_push(uint64_t t, Cyc& state) {
+  if (!try_push(op2d_fifo_, op2d_depth_, Entry{front_end_.item, t}, front_end_blocked_, state)) return false;
+  front_end_.active = false;
+  const bool was_blocked = front_end_blocked_;
+  front_end_blocked_ = false;
+  tx_end(StageId::Draw2dSetup, was_blocked ? t : t + 1);
+  return was_blocked;
+}
+// A testbench stage's push of `e` into `fifo` of `depth` entries: false while it is full
+// (the stage blocked; a retried push's cycle is stalled).
+bool Testbench::try_push(std::deque<Entry>& fifo, size_t depth, const Entry& e, bool& blocked, Cyc& state) {
+  if (fifo.size() >= depth) {
+    if (blocked) state = Cyc::Stalled;
+    blocked = true;
+    return false;
+  }
+  fifo.push_back(e);
+  return true;
+}
+// One cycle of a testbench-played stage that works `left` cycles on its item and pushes
+// in the last (front_end_step's comment): `take` starts the next item when idle, `push`
+// makes the last cycle's push (true: the stage goes on in this cycle). The cycle is busy
+// for a countdown or a first push attempt, stalled for a retried push, else starved.
+template <class Take, class Push>
+void Testbench::step_stage(StageId k, uint64_t t, TbStage& st, const bool& blocked, Take take, Push push) {
   Cyc state = Cyc::Starved;
   for (;;) {
-    front_end_take(t);
-    if (!front_end_.active) break;
+    take();
+    if (!st.active) break;
     last_busy_ = std::max(last_busy_, t);
-    if (front_end_.left > 1) {
-      --front_end_.left;
+    if (st.left > 1) {
+      --st.left;
       state = Cyc::Busy;
       break;
     }
-    if (!front_end_blocked_) state = Cyc::Busy;
-    if (op2d_fifo_.size() >= op2d_depth_) {
-      if (front_end_blocked_) state = Cyc::Stalled;
-      front_end_blocked_ = true;
-      break;
-    }
-    op2d_fifo_.push_back(Entry{front_end_.item, t});
-    front_end_.active = false;
-    const bool was_blocked = front_end_blocked_;
-    front_end_blocked_ = false;
-    tx_end(StageId::Draw2dSetup, was_blocked ? t : t + 1);
-    if (!was_blocked) break;
+    if (st.left == 1 && !blocked) state = Cyc::Busy;
+    if (!push(state)) break;
   }
-  count(StageId::Draw2dSetup, state);
+  count(k, state);
 }
 
 // ---- The geometry front end (model/sc/front_end.cpp) ----
@@ -516,20 +632,8 @@ void Testbench::geometry_take(uint64_t t) {
 // 2D front end's (front_end_step): busy, stalled for a retried push; after a push that
 // waited, the next step or job starts in the same cycle.
 void Testbench::geometry_step(uint64_t t) {
-  Cyc state = Cyc::Starved;
-  for (;;) {
-    geometry_take(t);
-    if (!geometry_.active) break;
-    last_busy_ = std::max(last_busy_, t);
-    if (geometry_.left > 1) {
-      --geometry_.left;
-      state = Cyc::Busy;
-      break;
-    }
-    if (geometry_.left == 1 && !geometry_blocked_) state = Cyc::Busy;
-    if (!geometry_push(t, state)) break;
-  }
-  count(StageId::FrontEnd, state);
+  step_stage(StageId::FrontEnd, t, geometry_, geometry_blocked_, [&] { geometry_take(t); },
+             [&](Cyc& state) { return geometry_push(t, state); });
 }
 // The step's entry into the screen FIFO, ready front_end.latency_cycles after its first
 // attempt's cycle (the model's write: ready from the cycle the work ended). True when the
@@ -652,21 +756,12 @@ bool Testbench::fetch_push(uint64_t t, Cyc& state) {
   const TbItem& it = setup_.items[fetch_.item];
   const bool clip = it.kind == TbItem::ClipCommand;
   if ((it.work2d >= 0 || clip) && !fetch_job_pushed_) {
-    std::deque<Entry>& jobs = clip ? clip_fifo_ : draw2d_fifo_;
-    if (jobs.size() >= (clip ? clip_depth_ : draw2d_depth_)) {
-      if (fetch_blocked_) state = Cyc::Stalled;
-      fetch_blocked_ = true;
+    if (!try_push(clip ? clip_fifo_ : draw2d_fifo_, clip ? clip_depth_ : draw2d_depth_,
+                  Entry{clip ? fetch_.item : size_t(it.work2d), t}, fetch_blocked_, state))
       return false;
-    }
-    jobs.push_back(Entry{clip ? fetch_.item : size_t(it.work2d), t});
     fetch_job_pushed_ = true;
   }
-  if (cmd_fifo_.size() >= cmd_depth_) {
-    if (fetch_blocked_) state = Cyc::Stalled;
-    fetch_blocked_ = true;
-    return false;
-  }
-  cmd_fifo_.push_back(Entry{fetch_.item, t});
+  if (!try_push(cmd_fifo_, cmd_depth_, Entry{fetch_.item, t}, fetch_blocked_, state)) return false;
   fetch_.active = false;
   fetch_job_pushed_ = false;
   const bool was_blocked = fetch_blocked_;
@@ -697,11 +792,16 @@ void Testbench::tx_end(StageId k, uint64_t t) {
 // the cycle in which a waited-for output is finally taken (its work was done before;
 // the SystemC write returns as that cycle starts). The interpolator's refused output
 // freezes its whole pipeline, so each such cycle is stalled, and the cycle it moves
-// again picks pixels (busy).
+// again picks pixels (busy). The ROP likewise: busy in a cycle it works (a group's read,
+// a clear's write, a marker), stalled while the memory refuses its request.
 void Testbench::observe_rtl_stages(uint64_t t) {
   const RtlStageBits bits = ports_.stage_bits();
   for (size_t s = 0; s < kObservedStages.size(); ++s) {
     const StageId k = kObservedStages[s];
+    if (k == StageId::Rop) {
+      observe_rop(t, bits);
+      continue;
+    }
     const bool pipelined = k == StageId::Interpolate;
     const bool has = (bits.has >> s) & 1, done = (bits.done >> s) & 1;
     const bool blocked = has && ((bits.blocked >> s) & 1);
@@ -713,6 +813,29 @@ void Testbench::observe_rtl_stages(uint64_t t) {
     count(k, !has ? Cyc::Starved : stalled ? Cyc::Stalled : Cyc::Busy);
     if (done) tx_end(k, handshake_only ? t : t + 1);
   }
+}
+// The ROP: busy in a cycle it works (a group's read, a clear's write, a marker), stalled
+// while the memory refuses its request, starved otherwise; or busy in the testbench's
+// resolve pass. A transaction ends at its done (a batch's last write, a clear's last
+// write) and starts at its start (a batch's first read taken, a marker taken), in that
+// order, as one may start in the cycle another ends; a pass command (the testbench's
+// command, taken with its marker) ends in its own cycle.
+void Testbench::observe_rop(uint64_t t, const RtlStageBits& bits) {
+  const StageId k = StageId::Rop;
+  if (resolve_left_ > 0) {
+    --resolve_left_;
+    last_busy_ = t;
+    count(k, Cyc::Busy);
+    return;
+  }
+  const bool has = (bits.has >> kRopBit) & 1;
+  count(k, !has ? Cyc::Starved : ((bits.blocked >> kRopBit) & 1) ? Cyc::Stalled : Cyc::Busy);
+  if ((bits.done >> kRopBit) & 1) tx_end(k, t + 1);
+  if (!bits.rop_start) return;
+  if (setup_.opts.perturb_rop_cycles && record(k).transactions == setup_.opts.perturb_rop_transaction)
+    perturb_now_ = setup_.opts.perturb_rop_cycles;  // test-only (CosimOptions): its first read's data later
+  tx_begin(k, t);
+  if (command_valid_ && command_op_ == 0 && ports_.rop_command_wanted()) tx_end(k, t + 1);
 }
 // The run is cycles_rtl cycles (to the ROP's last busy cycle); the loop may have
 // classified a few more, in which every stage is starved: drop them.
@@ -748,14 +871,15 @@ void Testbench::compare(const Fragment& f) {
              "' mask " + std::to_string(e.f.mask) + ", RTL gave '" + fragment_trace_line(f) + "' mask " +
              std::to_string(f.mask));
 }
-// Nothing left anywhere but the ROP's countdown: scene fetched, FIFOs and stages
-// empty, the RTL idle (its idle_o covers the interpolator's pipeline) with no beat out.
+// Nothing left anywhere but the resolve pass: scene fetched, FIFOs and stages empty, the
+// RTL idle (its idle_o covers the interpolator's pipeline, the fragment FIFO and the ROP)
+// with no beat out, no read in flight, every command taken.
 bool Testbench::done_but_rop() const {
   return next_item_ >= fetched_.size() && !fetch_.active && cmd_fifo_.empty() && !assembly_.active &&
          clip_fifo_.empty() && !geometry_.active && screen_fifo_.empty() && !assembly_clip_ &&
-         ports_.idle() && !ports_.fragment_beat().valid && !staging_blocked_ && staging_.fragments == 0 &&
-         !staging_.marker && frag_fifo_.empty() && draw2d_fifo_.empty() && !front_end_.active &&
-         op2d_fifo_.empty() && engine_work_ < 0 && !engine_busy_ && !rop_wait_2d_;
+         ports_.idle() && !ports_.fragment_beat().valid && !read_pending_ && rop_commands_.empty() &&
+         draw2d_fifo_.empty() && !front_end_.active && op2d_fifo_.empty() && engine_work_ < 0 && !engine_busy_ &&
+         !rop_wait_2d_ && !rop_2d_done_;
 }
 void Testbench::end_of_run_check() {
   if (next_expected_ < setup_.expected.size())
@@ -765,8 +889,8 @@ void Testbench::end_of_run_check() {
   if (!markers_in_flight_.empty()) mismatch(std::to_string(markers_in_flight_.size()) + " markers lost in the RTL");
   framebuffer_check();
 }
-// The whole picture: the testbench framebuffer (fragments, clears and the 2D engine's
-// writes) against the reference model's. Multisampled: the resolved image (the
+// The whole picture: the memory's framebuffer (the ROP's writes and clears, the 2D
+// engine's writes) against the reference model's. Multisampled: the resolved image (the
 // reference's is resolved by render_scene).
 void Testbench::framebuffer_check() {
   const Framebuffer resolved = fb_.resolve();

@@ -3,8 +3,8 @@
 // the stimulus and expectation of one run (TbSetup, filled by cosim_setup.cpp), the
 // RTL's ports as the testbench sees them (RastPorts, implemented per verilated config by
 // the port adapter in cosim_driver.h), and the testbench itself (run_testbench,
-// testbench.cpp): the command front end, the ROP and framebuffer as a memory model, the
-// stage meters and the checks. Internal to model/rtlsim; callers use cosim.h.
+// testbench.cpp): the command front end, the ROP's command feed and the memory behind
+// its port (the framebuffer), the stage meters and the checks. Internal to model/rtlsim; callers use cosim.h.
 #pragma once
 
 #include <array>
@@ -31,7 +31,7 @@ struct TbItem {
   enum Kind { Triangle, Marker, Null, ClipCommand } kind = Triangle;
   uint64_t fetch_cost = 1;     // command fetch cycles (header + vertices)
   uint64_t assembly_cost = 1;  // primitive assembly cycles (1 for a marker)
-  uint64_t rop_cost = 1;       // markers: ROP cycles (a clear's fast-clear time, else 1)
+  uint64_t rop_cost = 1;       // markers: ROP cycles (the end-of-frame marker's: the resolve pass)
   int64_t x[3] = {}, y[3] = {};  // snapped raw coordinates
   uint32_t z[3] = {};
   uint64_t rgb[3] = {};        // {b, g, r} packed as the RTL port: 8 + interp.color_frac_bits bits a channel
@@ -80,7 +80,7 @@ struct TbSetup {
   std::vector<std::string> tri_names;   // "file:line triangle k"
   std::vector<TbWork2d> work2d;         // the 2D commands, in order
   std::vector<TbFrontEndStep> front_end_steps;  // the clip-space commands' steps, in order
-  RasterState arch;                     // the config's state: the testbench ROP applies state commands to it
+  RasterState arch;                     // the config's state: framebuffer size, depth function and write (the ROP's static inputs)
   Framebuffer reference;                // the reference model's image of the scene
   TimingParams timing;                  // of the config being simulated: FIFO depths, ROP cost
   CosimOptions opts;
@@ -95,12 +95,25 @@ struct FragmentBeat {
   bool last = false;    // frag_last_o: a tile's last beat
 };
 // rast_top's stage observation ports (bit s: 0 setup, 1 coarse raster, 2 fine raster,
-// 3 interpolation).
+// 3 interpolation, 4 ROP).
 struct RtlStageBits {
   uint32_t has = 0;      // dbg_has_o: stage s holds a transaction
   uint32_t done = 0;     // dbg_done_o: stage s finishes its transaction this cycle
   uint32_t blocked = 0;  // dbg_blocked_o: stage s offers an output that is not taken
+  bool rop_start = false;  // dbg_rop_start_o: the ROP starts a batch or command
 };
+// One lane of a ROP memory request (rast_top's rd_* / wr_*): a byte address and a burst
+// length in 32-bit words.
+struct RopLane {
+  uint32_t addr = 0;
+  uint32_t len = 0;
+};
+// The ROP's surfaces in the testbench's memory: 32-bit words, sample s of pixel (x, y) at
+// base + ((y W + x) S + s) 4 (docs/rtl.md "ROP"); colour from 0, depth after it.
+inline uint32_t rop_depth_base(int width, int height, int samples) {
+  return uint32_t(uint64_t(width) * uint64_t(height) * uint64_t(samples) * 4);
+}
+
 // The 2D engine's framebuffer reads this cycle, sign-extended pixel indices.
 struct Engine2dAccess {
   int x = 0, y = 0;    // mem_x_o, mem_y_o: lane 0's destination (lane k at x + k)
@@ -127,13 +140,33 @@ class RastPorts {
   // rast_top's triangle port: `it` offered (tri_valid_i high), or nothing (nullptr).
   virtual void drive_triangle(const TbItem* it) = 0;
   virtual bool triangle_ready() const = 0;  // tri_ready_o
-  virtual void drive_fragment_ready(bool ready) = 0;  // frag_ready_i
+  virtual bool fragment_taken() const = 0;  // frag_ready_o: the fragment FIFO takes the beat
   virtual FragmentBeat fragment_beat() const = 0;
   virtual bool fragment_lane_valid(int lane) const = 0;  // frag_lanes_o bit
   // Lane `lane` of the fragment port (x, y, z, colour, sample mask; samples left 1).
   virtual Fragment fragment_lane(int lane) const = 0;
   virtual bool idle() const = 0;  // idle_o
   virtual RtlStageBits stage_bits() const = 0;
+
+  // The ROP's command port: cmd_ready_o (a marker waits for its command, the ROP is
+  // quiet), and the command offered (cmd_valid_i, cmd_op_i, cmd_value_i).
+  virtual bool rop_command_wanted() const = 0;
+  virtual void drive_rop_command(bool valid, int op, uint32_t value) = 0;
+  // The ROP's memory port. Reads: rd_valid_o, lane k's rd_lanes_o bit and request.
+  virtual bool rop_read_valid() const = 0;
+  virtual bool rop_read_lane_valid(int k) const = 0;
+  virtual RopLane rop_read_lane(int k) const = 0;
+  // rd_ready_i and wr_ready_i.
+  virtual void drive_rop_memory_ready(bool read, bool write) = 0;
+  // rd_rvalid_i, and rd_rdata_i: lane k word i at words[k MaxSamples + i].
+  virtual void drive_rop_response(bool valid, const std::vector<uint32_t>& words) = 0;
+  // Writes: wr_valid_o, wr_fill_o, lane k's bit, request, data word and word i's byte enables.
+  virtual bool rop_write_valid() const = 0;
+  virtual bool rop_write_fill() const = 0;
+  virtual bool rop_write_lane_valid(int k) const = 0;
+  virtual RopLane rop_write_lane(int k) const = 0;
+  virtual uint32_t rop_write_data(int k) const = 0;
+  virtual uint32_t rop_write_enables(int k, int word) const = 0;
 
   // The 2D engine's operation port: `op` of `work` offered (in_valid_i high with the
   // command's paint state and clip box), or nothing (nullptr).

@@ -4,13 +4,13 @@
 //
 // - Random scenes of 2,000 triangles for three tile sizes (4, 8, 16: the RTL's tile size
 //   is a run-time input) and two coordinate formats (default s7.16, d3d11 s15.8), with
-//   random backpressure on the fragment stream and gaps in the triangle valid (seeded;
+//   random backpressure on the ROP's memory port and gaps in the triangle valid (seeded;
 //   the seed is printed).
 // - Directed scenes: fill-rule edges through pixel centres, slivers, degenerate
 //   (zero-area, collinear, repeated vertex) triangles, triangles crossing and touching
 //   the viewport border and the guard band, vertices at the format's extreme values,
 //   state changes (viewport, scissor) between triangles.
-// - Stress on every valid/ready input of the RTL (frag_ready_i backpressure, gaps in
+// - Stress on every valid/ready input of the RTL (memory-port backpressure, gaps in
 //   tri_valid_i and the 2D engine's in_valid_i; seeded, the seed printed): the same
 //   fragments and image as without, in more cycles; the same seed replays the same run.
 // - 120 random clip-space triangles (tri4 with colour and texture coordinates, near-plane

@@ -97,6 +97,12 @@ TEST(RtlOnDemand, ConfigTheRtlCannotRunNamesTheKey) {
   EXPECT_NE(m.find("--set raster.traversal=bbox: raster.traversal = bbox has no RTL"), std::string::npos) << m;
 }
 
+TEST(RtlOnDemand, DramMemoryHasNoCosimYetNamesTheKey) {
+  const std::string m = cosim_error("memory.model=dram");
+  EXPECT_NE(m.find("--set memory.model=dram: memory.model = \"dram\" has no RTL co-simulation yet"), std::string::npos)
+      << m;
+}
+
 TEST(RtlOnDemand, InMemorySceneOnANewConfigNamesConfigAndScene) {
   const std::string m = cosim_error("fifo.tile_depth=3");
   EXPECT_NE(m.find("embedded.toml --set fifo.tile_depth=3"), std::string::npos) << m;

@@ -4,7 +4,7 @@
 // SystemC owns main(), and each SystemC run is in a forked child.
 //
 // - On a random 2,000-triangle scene (seeded, printed) per shipped config, without
-//   backpressure (the model has none on the fragment port): every stage's busy cycles
+//   backpressure (the model has none on the memory port): every stage's busy cycles
 //   agree within 2 % (the bound), busy + stalled + starved = cycles on each side,
 //   both sides take the same number of transactions, every fragment matches; the 2D
 //   stages are idle on both sides.
@@ -14,8 +14,8 @@
 //   sides).
 // - The same on every clip-space scene (traces/3d/*.trace) per shipped config, with the
 //   SystemC model's CRC equal to the RTL's and its cycles within 2 % of them.
-// - --trace-diff: two RTL runs, one with the testbench ROP slowed by 7 cycles on one
-//   transaction (CosimOptions::perturb_rop_*): the CSVs have equal row counts, and the
+// - --trace-diff: two RTL runs, one with the memory answering the ROP 7 cycles late on
+//   one transaction (CosimOptions::perturb_rop_*): the CSVs have equal row counts, and the
 //   first difference is that transaction, its start equal and its end 7 cycles later.
 #include <gtest/gtest.h>
 
