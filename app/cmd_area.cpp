@@ -4,6 +4,7 @@
 // estimate of each stage module and of the whole design, cached per parameter set.
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <iomanip>
 #include <iostream>
@@ -33,6 +34,11 @@ void print_table(std::ostream& os, const AreaReport& r) {
        << std::setw(12) << c.cells << std::setw(12) << c.flip_flops << std::setw(14) << c.transistors << "\n";
   };
   for (const auto& [name, c] : r.stages) row(name, c, true);
+  for (const StorageArray& a : r.storage) {
+    const int overflow = std::max(0, int(a.name.size()) - 22);  // a long name takes from the blank columns
+    os << std::left << std::setw(22) << a.name << std::right << std::setw(44 - overflow) << a.transistors << "  " << a.bits
+       << " bits, " << (a.sram ? "SRAM" : "flip-flops") << " (counted, not synthesised)\n";
+  }
   row("total", r.total, false);
   os << "cells by type (total):";
   for (const auto& [type, n] : r.total.cells_by_type) os << " " << type << " " << n;
@@ -53,7 +59,9 @@ void run_area_command(const AreaCommandOptions& o) {
   ao.jobs = o.jobs;
   ao.progress = progress_printer(o.quiet);
   const bool tty = isatty(2);
-  const AreaReport r = synthesize_area(p, ao);
+  AreaReport r = synthesize_area(p, ao);
+  // The memory system's arrays belong to the whole design, not to one module.
+  if (o.top.empty()) add_storage(r, memory_storage(arch));
   if (!o.quiet && tty) std::cerr << "\r\033[K" << std::flush;
   std::ostream& out = summary_stream(o.stats_path, o.quiet);
   out << "area: " << cfg.source_name() << ", " << (r.top.empty() ? "rast_top + rast_engine2d" : r.top) << ", "
@@ -77,7 +85,8 @@ void register_area(CLI::App& app) {
   static AreaCommandOptions o;
   add_config_options(cmd, o.config);
   cmd->add_option("--stats", o.stats_path,
-                  "Write cells, flip_flops, transistors, cells_by_type and stages.<module>.* as JSON ('-' for stdout)");
+                  "Write cells, flip_flops, transistors, cells_by_type, stages.<module>.* and storage (the memory "
+                  "system's counted arrays) as JSON ('-' for stdout)");
   cmd->add_option("--top", o.top,
                   "Synthesise one module only: rast_top (the raster pipeline), rast_engine2d, a binary32 unit of "
                   "the front end (rast_fp32_mul, rast_fp32_add, rast_fp32_recip, rast_front_end_xform), the "
@@ -94,8 +103,12 @@ void register_area(CLI::App& app) {
   add_quiet_flag(cmd, o.quiet, "progress or the table");
   cmd->footer(
       "Relative area: generic gates with Yosys' CMOS transistor estimate, no cell library, no wires "
-      "(docs/area.md). Needs Yosys (Debian package yosys). Results are cached per RTL parameter set and "
-      "RTL source in $RASTSIM_CACHE/area (default ~/.cache/rastsim/area).");
+      "(docs/area.md). With memory.model other than fixed the total also counts, without synthesis, the ROP "
+      "caches' data, tag and state bits and the fast-clear and compression flags: an array of " +
+      std::to_string(kSramMinBits) + " bits or more as " + std::to_string(kSramCellTransistors) +
+      "T SRAM cells + " + std::to_string(kSramPeripheryPercent) + " % for the periphery, a smaller one as flip-flops at " +
+      std::to_string(kFlopBitTransistors) +
+      " transistors a bit. Needs Yosys (Debian package yosys). Results are cached per RTL parameter set and RTL source in $RASTSIM_CACHE/area (default ~/.cache/rastsim/area).");
   cmd->callback([] { run_area_command(o); });
 }
 

@@ -866,6 +866,11 @@ nlohmann::json area_to_json(const AreaReport& r) {
   nlohmann::json stages = nlohmann::json::object();
   for (const auto& [name, c] : r.stages) stages[name] = counts_json(c);
   j["stages"] = stages;
+  nlohmann::json storage = nlohmann::json::array();
+  for (const StorageArray& a : r.storage)
+    storage.push_back({{"name", a.name}, {"bits", a.bits}, {"kind", a.sram ? "sram" : "flip_flops"},
+                       {"transistors", a.transistors}});
+  j["storage"] = storage;
   j["top"] = r.top.empty() ? "rast_top+rast_engine2d" : r.top;
   j["yosys"] = r.yosys_version;
   j["key"] = r.key;
@@ -884,6 +889,9 @@ AreaReport area_from_json(const nlohmann::json& j) {
   AreaReport r;
   r.total = counts_from(j);
   for (const auto& [name, s] : j.at("stages").items()) r.stages[name] = counts_from(s);
+  for (const auto& a : j.value("storage", nlohmann::json::array()))
+    r.storage.push_back({a.at("name").get<std::string>(), a.at("bits").get<uint64_t>(),
+                         a.at("kind").get<std::string>() == "sram", a.at("transistors").get<uint64_t>()});
   const std::string top = j.value("top", "");
   r.top = top == "rast_top+rast_engine2d" ? "" : top;
   r.yosys_version = j.value("yosys", "");

@@ -29,6 +29,7 @@
 #include <string>
 #include <vector>
 
+#include "rtlsim/area_memory.h"
 #include "rtlsim/rtl_params.h"
 
 namespace rastsim {
@@ -45,7 +46,7 @@ struct AreaCounts {
 };
 
 struct AreaReport {
-  AreaCounts total;                         // the whole design
+  AreaCounts total;                         // the whole design (transistors: the storage rows' too)
   std::map<std::string, AreaCounts> stages; // module name -> its figures ("rast_top.glue": rast_top's own logic)
   std::string top;                          // "" = rast_top and rast_engine2d; else the one module synthesised
   std::string yosys_version;
@@ -56,6 +57,9 @@ struct AreaReport {
   uint64_t modules = 0;                     // Yosys processes the figures come from (split: one a module)
   bool from_cache = false;                  // every run read from the cache
   std::vector<std::pair<std::string, int>> parameters;  // the exported RTL parameters
+  // Counted, not synthesised: the memory system's arrays (area_memory.h), added by the
+  // caller with add_storage; empty when the memory system is off or for one module.
+  std::vector<StorageArray> storage;
 };
 
 struct AreaOptions {
@@ -91,6 +95,7 @@ std::vector<std::string> area_reportable_tops();
 AreaReport synthesize_area(const RtlParams& p, const AreaOptions& o = {});
 
 // The report as JSON: cells, flip_flops, transistors, cells_by_type, stages.<module>.*,
+// storage (the arrays in order: name, bits, kind "sram" or "flip_flops", transistors),
 // and how it was made (top, yosys, key, synth_seconds, from_cache, parameters).
 nlohmann::json area_to_json(const AreaReport& r);
 AreaReport area_from_json(const nlohmann::json& j);

@@ -23,13 +23,15 @@ volatile std::sig_atomic_t interrupted = 0;
 namespace {
 
 // `--area`: a point's RTL area (rastsim area, model/rtlsim/area.h) under "area" in its stats,
-// so the CSV gains area.cells, area.flip_flops and area.transistors. Synthesised once a
+// so the CSV gains area.cells, area.flip_flops, area.transistors (the memory system's
+// counted arrays included) and area.storage_transistors. Synthesised once a
 // distinct RTL parameter set (a tile-size sweep over three scenes: one run a tile size),
 // the rest from this map or the on-disk cache.
 class AreaColumns {
  public:
   void add(Point& p, const std::vector<Axis>& axes, const BaseConfig& base) {
-    const RtlParams rp = rtl_params(ArchParams::resolve(point_config(p, axes, base)));  // each point resolves its own config
+    const ArchParams arch = ArchParams::resolve(point_config(p, axes, base));  // each point resolves its own config
+    const RtlParams rp = rtl_params(arch);
     const auto key = rtl_params_named(rp);
     auto it = done_.find(key);
     if (it == done_.end()) {
@@ -43,7 +45,12 @@ class AreaColumns {
                 << it->second.total.cells << " cells\n";
     }
     const AreaCounts& t = it->second.total;
-    p.stats["area"] = {{"cells", t.cells}, {"flip_flops", t.flip_flops}, {"transistors", t.transistors}};
+    // The memory system's arrays (not synthesised) follow the point's memory keys, which
+    // the RTL parameters do not hold: counted a point.
+    uint64_t storage = 0;
+    for (const StorageArray& a : memory_storage(arch)) storage += a.transistors;
+    p.stats["area"] = {{"cells", t.cells}, {"flip_flops", t.flip_flops}, {"transistors", t.transistors + storage},
+                       {"storage_transistors", storage}};
   }
 
  private:

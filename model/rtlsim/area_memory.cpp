@@ -1,0 +1,74 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "rtlsim/area_memory.h"
+
+#include <bit>
+
+#include "config/arch_params.h"
+#include "ref/memory/rop_memory.h"
+#include "rtlsim/area.h"
+
+namespace rastsim {
+
+namespace {
+
+uint64_t log2_exact(uint64_t power_of_two) { return uint64_t(std::countr_zero(power_of_two)); }
+
+// The arrays of one cache (`prefix`.data, .tags, .state) over a surface of `surface_bytes`
+// bytes (its footprint, padding included).
+void add_cache(std::vector<StorageArray>& out, const std::string& prefix, const CacheParams& c,
+               uint64_t surface_bytes) {
+  if (c.bytes == 0) return;
+  const uint64_t lines = c.bytes / uint64_t(c.line_bytes);
+  const uint64_t sets = lines / uint64_t(c.ways);
+  const uint64_t address_bits = surface_bytes > 1 ? uint64_t(std::bit_width(surface_bytes - 1)) : 0;
+  const uint64_t below_tag = log2_exact(uint64_t(c.line_bytes)) + log2_exact(sets);
+  const uint64_t tag_bits = address_bits > below_tag ? address_bits - below_tag : 0;
+  const uint64_t lru_bits = uint64_t(std::bit_width(unsigned(c.ways - 1)));  // a way's recency rank, 0..ways-1
+  out.push_back({prefix + ".data", c.bytes * 8, false, 0});
+  out.push_back({prefix + ".tags", lines * tag_bits, false, 0});
+  out.push_back({prefix + ".state", lines * (2 + lru_bits), false, 0});  // valid, dirty, rank
+}
+
+}  // namespace
+
+uint64_t storage_transistors(uint64_t bits, bool& sram) {
+  sram = bits >= kSramMinBits;
+  if (!sram) return bits * kFlopBitTransistors;
+  const uint64_t cells = bits * kSramCellTransistors;
+  return cells + cells * kSramPeripheryPercent / 100;
+}
+
+std::vector<StorageArray> memory_storage(const MemoryParams& m, int width, int height, int samples, int depth_bits) {
+  std::vector<StorageArray> out;
+  if (!m.enabled) return out;
+  // The surfaces and the depth cache as the functional model builds them (rop_memory.h):
+  // plane compression tiles the depth surface by the block and makes a line one block.
+  const SurfaceLayout color = color_surface_layout(m, width, height, samples);
+  const SurfaceLayout depth = depth_surface_layout(m, width, height, samples, depth_bits);
+  add_cache(out, "rop_color_cache", m.color_cache, color.footprint_bytes());
+  add_cache(out, "rop_depth_cache", depth_cache_params(m, samples, depth_bits), depth.footprint_bytes());
+  // Blocks over a surface as SurfaceClient counts them (edge blocks partly outside).
+  const uint64_t blocks = uint64_t((width + m.block_width - 1) / m.block_width) *
+                          uint64_t((height + m.block_height - 1) / m.block_height);
+  if (m.fast_clear) {
+    out.push_back({"rop_color.fast_clear_flags", blocks, false, 0});
+    out.push_back({"rop_depth.fast_clear_flags", blocks, false, 0});
+  }
+  if (m.depth_compression == DepthCompression::Plane) out.push_back({"rop_depth.compression_flags", blocks, false, 0});
+  for (StorageArray& a : out) a.transistors = storage_transistors(a.bits, a.sram);
+  return out;
+}
+
+std::vector<StorageArray> memory_storage(const ArchParams& arch) {
+  const RasterState& r = arch.raster;
+  return memory_storage(arch.memory, r.fb_width, r.fb_height, r.samples, r.depth_bits);
+}
+
+void add_storage(AreaReport& r, const std::vector<StorageArray>& arrays) {
+  for (const StorageArray& a : arrays) {
+    r.storage.push_back(a);
+    r.total.transistors += a.transistors;
+  }
+}
+
+}  // namespace rastsim
