@@ -17,6 +17,8 @@ bool is_power_of_two(const ParamValue& v) {
   return n > 0 && (n & (n - 1)) == 0;
 }
 
+bool is_page_multiple(const ParamValue& v) { return std::get<int64_t>(v) % 4096 == 0; }
+
 namespace {
 
 std::vector<ParamDef> make_schema() {

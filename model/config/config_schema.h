@@ -34,6 +34,8 @@ void add_memory_params(std::vector<ParamDef>& schema);  // config_schema_memory.
 void add_texture_params(std::vector<ParamDef>& schema);  // config_schema_texture.cpp
 // An integer key's check: a power of two (config_schema.cpp).
 bool is_power_of_two(const ParamValue& v);
+// An address key's check: a multiple of 4096, a DRAM page (config_schema.cpp).
+bool is_page_multiple(const ParamValue& v);
 // A string key's check: of form s<I>.<F> (FixedFormat::parse accepts it).
 bool is_fixed_format(const ParamValue& v);
 

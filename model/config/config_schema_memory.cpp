@@ -9,8 +9,6 @@ namespace rastsim {
 
 namespace {
 
-bool is_page_multiple(const ParamValue& v) { return std::get<int64_t>(v) % 4096 == 0; }
-
 // rop.<surface>_cache_bytes, _ways, _line_bytes.
 void add_cache_keys(std::vector<ParamDef>& s, const std::string& surface) {
   using T = ParamType;

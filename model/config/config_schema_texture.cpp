@@ -6,10 +6,6 @@
 
 namespace rastsim {
 
-namespace {
-bool is_page_multiple(const ParamValue& v) { return std::get<int64_t>(v) % 4096 == 0; }
-}  // namespace
-
 void add_texture_params(std::vector<ParamDef>& s) {
   using T = ParamType;
   s.push_back({"texture.format", T::Enum, std::string("rgba8888"), "", 1, 0, {"rgba8888", "rgb565", "l8"},
