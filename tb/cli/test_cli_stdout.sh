@@ -47,7 +47,7 @@ if [ "$MODE" = area ]; then
   # tb/area/test_area.cpp's small_config): a few seconds of Yosys the first time, then
   # cached (the embedded config's took a minute on every fresh machine).
   AREA=(area --config "$EMB" --set display.width=16 --set display.height=16 --set raster.coord_format=s4.2
-        --set raster.tile_size=4 --set fine.samples_per_cycle=1 --top rast_fine_raster)
+        --set raster.tile_size=4 --set fine.samples_per_cycle=1 --set raster.max_samples=2 --top rast_fine_raster)
   stats_stdout area "${AREA[@]}"
   grep -q "^area: " "$TMP/err.txt" && pass || fail "area: the summary did not go to stderr"
   quiet area "${AREA[@]}" --stats "$TMP/area.json"
