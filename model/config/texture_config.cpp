@@ -11,6 +11,7 @@ TextureParams texture_params_from_config(const Config& cfg) {
   p.format = format == "rgb565" ? TexelFormat::Rgb565 : format == "l8" ? TexelFormat::L8 : TexelFormat::Rgba8888;
   p.layout = layout == "tiled" ? TexLayout::Tiled : layout == "morton" ? TexLayout::Morton : TexLayout::Linear;
   p.base = uint64_t(cfg.get_int("texture.base"));
+  p.weight_bits = int(cfg.get_int("texture.weight_bits"));
   p.cache = {uint64_t(cfg.get_int("texture.cache_bytes")), int(cfg.get_int("texture.ways")),
              int(cfg.get_int("texture.line_bytes"))};
   const uint64_t way_bytes = uint64_t(p.cache.ways) * uint64_t(p.cache.line_bytes);

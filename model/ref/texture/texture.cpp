@@ -127,17 +127,19 @@ struct AxisTexel {
   int64_t i0 = 0;
   int weight = 0;
 };
-AxisTexel axis_texel(int32_t s, int n, int frac_bits, bool bilinear) {
+AxisTexel axis_texel(int32_t s, int n, int frac_bits, bool bilinear, int weight_bits) {
   const int64_t u = int64_t(s) * n;  // 2^-F texels
   if (!bilinear) return {u >> frac_bits, 0};
   const int64_t u8 = ((u << 8) - (int64_t{1} << (frac_bits + 7))) >> frac_bits;  // u - 1/2, 8 fraction bits, floor
-  return {u8 >> 8, int(u8 & 255)};
+  const int kept = 256 - (1 << (kMaxWeightBits - weight_bits));  // the top weight_bits of the 8
+  return {u8 >> 8, int(u8 & kept)};
 }
 }  // namespace
 
 TexelQuad texel_quad(int32_t s, int32_t t, int width, int height, int frac_bits, bool bilinear, TexWrap wrap_s,
-                     TexWrap wrap_t) {
-  const AxisTexel a = axis_texel(s, width, frac_bits, bilinear), b = axis_texel(t, height, frac_bits, bilinear);
+                     TexWrap wrap_t, int weight_bits) {
+  const AxisTexel a = axis_texel(s, width, frac_bits, bilinear, weight_bits);
+  const AxisTexel b = axis_texel(t, height, frac_bits, bilinear, weight_bits);
   TexelQuad q;
   if (!bilinear) {
     q.i[0] = wrap_texel(a.i0, width, wrap_s);

@@ -51,10 +51,15 @@ struct TextureState {
 };
 
 // The texture unit's parameters (keys texture.*, config/texture_config.h).
+// The bilinear weight's widest fraction: 8 bits, so that a weight 0..256 is 9 bits and a
+// texel times two weights fits 25 bits (filter_texels' 32-bit sums).
+inline constexpr int kMaxWeightBits = 8;
+
 struct TextureParams {
   TexelFormat format = TexelFormat::Rgba8888;
   TexLayout layout = TexLayout::Linear;
   uint64_t base = 0;  // bytes: the first texture's address (multiple of 4096)
+  int weight_bits = kMaxWeightBits;  // texture.weight_bits: bilinear weight fraction bits, 1..8
   CacheParams cache;  // texture.cache_bytes (0: no cache), texture.ways, texture.line_bytes
 };
 
@@ -125,9 +130,10 @@ struct TexelQuad {
 };
 // Nearest: i = floor(s W / 2^F) (the texel whose [i, i + 1) / W holds s). Bilinear:
 // u = s W / 2^F - 1/2 truncated to 8 fraction bits, i0 = floor(u), i1 = i0 + 1, alpha the
-// 8 fraction bits; t, H, j and beta alike. Each index wrapped on its own axis.
+// 8 fraction bits with all but the top weight_bits cleared (u truncated to weight_bits
+// fraction bits, in 1/256); t, H, j and beta alike. Each index wrapped on its own axis.
 TexelQuad texel_quad(int32_t s, int32_t t, int width, int height, int frac_bits, bool bilinear, TexWrap wrap_s,
-                     TexWrap wrap_t);
+                     TexWrap wrap_t, int weight_bits = kMaxWeightBits);
 // The filtered colour of a TexelQuad's texels: nearest the texel; bilinear per channel
 // (T00 (256-a)(256-b) + T10 a (256-b) + T01 (256-a) b + T11 a b + 2^15) >> 16.
 Rgba8 filter_texels(const TexelQuad& q, const std::array<Rgba8, 4>& texels);

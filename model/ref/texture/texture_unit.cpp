@@ -81,7 +81,8 @@ Rgba8 TextureUnit::sample_level(const Resident& r, int level, const Fragment& f,
                                 int frac_bits) {
   const MipLevel& l = r.levels[size_t(level)];
   const TexelQuad q =
-      texel_quad(f.s, f.t, l.width, l.height, frac_bits, ts.filter != TexFilter::Nearest, ts.wrap_s, ts.wrap_t);
+      texel_quad(f.s, f.t, l.width, l.height, frac_bits, ts.filter != TexFilter::Nearest, ts.wrap_s, ts.wrap_t,
+                 p_.weight_bits);
   std::array<Rgba8, 4> texels{};
   const int bytes = texel_bytes(p_.format);
   for (size_t k = 0; k < size_t(q.count); ++k) {
