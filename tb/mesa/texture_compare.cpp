@@ -1,0 +1,206 @@
+// SPDX-License-Identifier: Apache-2.0
+// Textured triangles, reference model against llvmpipe (texture_compare.h).
+#include "texture_compare.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <memory>
+#include <random>
+
+#include "mesa_scenes.h"
+#include "ref/pipeline.h"
+
+namespace rastsim::mesa {
+namespace {
+
+constexpr int kTexcoordGrid = 1024;  // texture coordinates are multiples of 1/1024 repeat
+
+TexWrap ref_wrap(GlWrap w) {
+  switch (w) {
+    case GlWrap::Repeat: return TexWrap::Repeat;
+    case GlWrap::Clamp: return TexWrap::Clamp;
+    case GlWrap::Mirror: return TexWrap::Mirror;
+  }
+  return TexWrap::Repeat;
+}
+
+// A triangle of at least 40 px^2 (so that it has interior pixels) inside the framebuffer.
+GridTri random_tri(std::mt19937_64& rng, int width, int height) {
+  std::uniform_int_distribution<int64_t> ux(0, int64_t(width) * 256 - 1), uy(0, int64_t(height) * 256 - 1);
+  for (;;) {
+    GridTri t;
+    for (size_t v = 0; v < 3; ++v) t.x[v] = ux(rng), t.y[v] = uy(rng);
+    const int64_t area2 = (t.x[1] - t.x[0]) * (t.y[2] - t.y[0]) - (t.y[1] - t.y[0]) * (t.x[2] - t.x[0]);
+    if (std::llabs(area2) >= int64_t{80} * 256 * 256) return t;
+  }
+}
+
+// The scene of one case: the triangle drawn textured, texenv replace, over black.
+Scene reference_scene(const TexCase& c) {
+  auto image = std::make_shared<TextureImage>();
+  image->name = "random";
+  image->width = c.tex.width, image->height = c.tex.height;
+  image->rgba = c.tex.rgba;
+  CmdPrimitives prims;
+  prims.texture.image = image;
+  prims.texture.filter = c.filter == GlFilter::Nearest ? TexFilter::Nearest : TexFilter::Bilinear;
+  prims.texture.wrap_s = ref_wrap(c.wrap_s), prims.texture.wrap_t = ref_wrap(c.wrap_t);
+  prims.texture.env = TexEnv::Replace;
+  for (size_t v = 0; v < 3; ++v) {
+    SceneVertex sv;
+    sv.x = Q64{i128(c.tri.tri.x[v]) << (Q64::kFracBits - c.tri.tri.frac_bits)};
+    sv.y = Q64{i128(c.tri.tri.y[v]) << (Q64::kFracBits - c.tri.tri.frac_bits)};
+    sv.z = 0.5;
+    sv.s = c.tri.s[v], sv.t = c.tri.t[v];
+    prims.vertices.push_back(sv);
+  }
+  Scene scene;
+  scene.source = "mesa-texture";
+  scene.commands.push_back({CmdClear{0, 0, 0}, {"mesa-texture", 1}});
+  scene.commands.push_back({std::move(prims), {"mesa-texture", 2}});
+  return scene;
+}
+
+// The exact barycentric weights of point (px, py) (pixels) in the triangle, and whether
+// it lies farther than one 1/256 px LSB from every edge, inside.
+struct Bary {
+  double w[3] = {};
+  bool interior = false;
+};
+Bary barycentric(const GridTri& t, double px, double py) {
+  const double k = 1.0 / double(int64_t{1} << t.frac_bits);
+  double x[3], y[3];
+  for (size_t v = 0; v < 3; ++v) x[v] = double(t.x[v]) * k, y[v] = double(t.y[v]) * k;
+  const double area2 = (x[1] - x[0]) * (y[2] - y[0]) - (y[1] - y[0]) * (x[2] - x[0]);
+  Bary b;
+  b.interior = true;
+  for (size_t v = 0; v < 3; ++v) {
+    const size_t i = (v + 1) % 3, j = (v + 2) % 3;  // the edge opposite vertex v
+    const double e = ((x[j] - x[i]) * (py - y[i]) - (y[j] - y[i]) * (px - x[i])) / area2;
+    b.w[v] = e;
+    const double dist = e * std::fabs(area2) / std::hypot(x[j] - x[i], y[j] - y[i]);  // px, > 0 inside
+    b.interior = b.interior && dist > k;
+  }
+  return b;
+}
+
+// Distance (texels) of texel coordinate u from the nearest edge that decides the filter's
+// result: texel edges (integers) for nearest; for bilinear the 1/256 steps of u - 1/2.
+double edge_distance(double u, GlFilter f) {
+  const double q = f == GlFilter::Nearest ? u : (u - 0.5) * 256.0;
+  const double d = std::fabs(q - std::nearbyint(q));
+  return f == GlFilter::Nearest ? d : d / 256.0;
+}
+
+// Vulkan's wrap of texel index i on an axis of n texels (written here, not the model's).
+int64_t wrap_index(int64_t i, int64_t n, GlWrap w) {
+  const auto mod = [](int64_t a, int64_t b) { return ((a % b) + b) % b; };
+  if (w == GlWrap::Repeat) return mod(i, n);
+  if (w == GlWrap::Clamp) return std::clamp<int64_t>(i, 0, n - 1);
+  const int64_t a = mod(i, 2 * n) - n;  // mirrored repeat: (n - 1) - mirror((i mod 2n) - n)
+  return (n - 1) - (a >= 0 ? a : -(1 + a));
+}
+
+// The exact bilinear filter (double weights, nothing rounded) at texel coordinates (u, v).
+std::array<double, 3> exact_bilinear(const TexCase& c, double u, double v) {
+  const double x = u - 0.5, y = v - 0.5, i0 = std::floor(x), j0 = std::floor(y), a = x - i0, b = y - j0;
+  std::array<double, 3> out{};
+  for (int dj = 0; dj < 2; ++dj)
+    for (int di = 0; di < 2; ++di) {
+      const int64_t i = wrap_index(int64_t(i0) + di, c.tex.width, c.wrap_s);
+      const int64_t j = wrap_index(int64_t(j0) + dj, c.tex.height, c.wrap_t);
+      for (size_t ch = 0; ch < 3; ++ch)
+        out[ch] += (di ? a : 1 - a) * (dj ? b : 1 - b) * c.tex.rgba[size_t(j * c.tex.width + i) * 4 + ch];
+    }
+  return out;
+}
+
+std::string rgb_text(double r, double g, double b) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "(%.2f %.2f %.2f)", r, g, b);
+  return buf;
+}
+
+}  // namespace
+
+std::vector<TexCase> make_texture_cases(uint64_t seed, int count, GlFilter filter, int width, int height) {
+  std::mt19937_64 rng(seed);
+  std::uniform_int_distribution<int> side(1, 16), byte(0, 255), wrap(0, 2);
+  std::uniform_int_distribution<int> coord(-2 * kTexcoordGrid, 3 * kTexcoordGrid);
+  std::vector<TexCase> out;
+  for (int n = 0; n < count; ++n) {
+    TexCase c;
+    c.filter = filter;
+    c.tex.width = side(rng), c.tex.height = side(rng);
+    for (int k = 0; k < c.tex.width * c.tex.height; ++k)
+      c.tex.rgba.insert(c.tex.rgba.end(), {uint8_t(byte(rng)), uint8_t(byte(rng)), uint8_t(byte(rng)), 255});
+    c.wrap_s = GlWrap(wrap(rng)), c.wrap_t = GlWrap(wrap(rng));
+    c.tri.tri = random_tri(rng, width, height);
+    for (size_t v = 0; v < 3; ++v)
+      c.tri.s[v] = float(coord(rng)) / kTexcoordGrid, c.tri.t[v] = float(coord(rng)) / kTexcoordGrid;
+    out.push_back(std::move(c));
+  }
+  return out;
+}
+
+TexCompareStats& TexCompareStats::operator+=(const TexCompareStats& o) {
+  triangles += o.triangles;
+  interior += o.interior;
+  identical += o.identical;
+  within_one += o.within_one;
+  beyond_one += o.beyond_one;
+  near_texel_edge += o.near_texel_edge;
+  ref_max_error = std::max(ref_max_error, o.ref_max_error);
+  llvmpipe_max_error = std::max(llvmpipe_max_error, o.llvmpipe_max_error);
+  max_channel_diff = std::max(max_channel_diff, o.max_channel_diff);
+  return *this;
+}
+
+TexCompareStats compare_textured(const TexCase& c, const RasterState& st, OsMesaTexture& gl,
+                                 std::vector<std::string>& report, size_t max_report) {
+  RenderStats rs;
+  const Framebuffer fb = render_scene(reference_scene(c), st, rs);
+  const std::vector<uint32_t> lp = gl.draw(c.tri, c.tex, c.filter, c.wrap_s, c.wrap_t);
+  TexCompareStats s;
+  s.triangles = 1;
+  for (int y = 0; y < st.fb_height; ++y)
+    for (int x = 0; x < st.fb_width; ++x) {
+      const Bary b = barycentric(c.tri.tri, x + 0.5, y + 0.5);
+      if (!b.interior) continue;
+      ++s.interior;
+      const uint8_t* r = fb.pixel(x, y);
+      const uint32_t l = lp[size_t(y) * size_t(st.fb_width) + size_t(x)];
+      const double u = (b.w[0] * c.tri.s[0] + b.w[1] * c.tri.s[1] + b.w[2] * c.tri.s[2]) * c.tex.width;
+      const double v = (b.w[0] * c.tri.t[0] + b.w[1] * c.tri.t[1] + b.w[2] * c.tri.t[2]) * c.tex.height;
+      const std::array<double, 3> exact = exact_bilinear(c, u, v);
+      int diff = 0;
+      for (size_t ch = 0; ch < 3; ++ch) {
+        const int lv = int((l >> (8 * ch)) & 255);
+        diff = std::max(diff, std::abs(int(r[ch]) - lv));
+        if (c.filter == GlFilter::Bilinear) {
+          s.ref_max_error = std::max(s.ref_max_error, std::fabs(r[ch] - exact[ch]));
+          s.llvmpipe_max_error = std::max(s.llvmpipe_max_error, std::fabs(lv - exact[ch]));
+        }
+      }
+      s.max_channel_diff = std::max(s.max_channel_diff, diff);
+      if (diff == 0) {
+        ++s.identical;
+        continue;
+      }
+      ++(diff <= 1 ? s.within_one : s.beyond_one);
+      const double edge = std::min(edge_distance(u, c.filter), edge_distance(v, c.filter));
+      if (edge < kTexelTieBand) ++s.near_texel_edge;
+      if (report.size() < max_report && (diff > 1 || c.filter == GlFilter::Nearest))
+        report.push_back(describe(c.tri.tri) + " texture " + std::to_string(c.tex.width) + "x" +
+                         std::to_string(c.tex.height) + ": pixel (" + std::to_string(x) + ", " + std::to_string(y) +
+                         ") u " + std::to_string(u) + " v " + std::to_string(v) + ": RGB differs by " +
+                         std::to_string(diff) + ", " + std::to_string(edge) + " texels from an edge: rastsim " +
+                         rgb_text(r[0], r[1], r[2]) + ", llvmpipe " + rgb_text(l & 255, (l >> 8) & 255, (l >> 16) & 255) +
+                         ", exact " + rgb_text(exact[0], exact[1], exact[2]));
+    }
+  return s;
+}
+
+}  // namespace rastsim::mesa

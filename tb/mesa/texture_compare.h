@@ -1,0 +1,56 @@
+// SPDX-License-Identifier: Apache-2.0
+// Textured triangles, reference model against llvmpipe (docs/texture.md, "Checks"):
+// random small textures (1..16 texels a side, odd sides included), random triangles on
+// the 1/256 px grid with random texture coordinates (multiples of 2^-10 in [-2, 3]
+// repeats: exact in binary32 and in interp.texcoord_format), nearest or bilinear, every
+// wrap pair, mipmaps off, texenv replace. Compared on interior pixels only: pixel centres
+// farther than one coordinate LSB (1/256 px) from every edge, whose coverage the two
+// rasterizers cannot decide differently.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "osmesa_texture.h"
+#include "ref/raster_state.h"
+
+namespace rastsim::mesa {
+
+struct TexCase {
+  TexturedTri tri;
+  TexImage tex;
+  GlFilter filter = GlFilter::Nearest;
+  GlWrap wrap_s = GlWrap::Repeat, wrap_t = GlWrap::Repeat;
+};
+
+// `count` cases of one filter in a width x height framebuffer; the same seed, the same cases.
+std::vector<TexCase> make_texture_cases(uint64_t seed, int count, GlFilter filter, int width, int height);
+
+// Where the exact texel coordinate u = s W (or v = t H; bilinear: u - 1/2) of a pixel
+// centre lies within this many texels of a texel edge, rounding decides the texel: the
+// reference rounds s once to 2^-F repeats (F = 20: 2^-16 texels at W = 16), llvmpipe
+// interpolates s in binary32 (2^-22 relative: about 2^-16 texels at |s| = 3, W = 16). The
+// band is wider than both together.
+inline constexpr double kTexelTieBand = 1.0 / 4096;
+
+struct TexCompareStats {
+  uint64_t triangles = 0;
+  uint64_t interior = 0;        // interior pixel centres compared
+  uint64_t identical = 0;       // the same RGB
+  uint64_t within_one = 0;      // different, every channel within 1 LSB
+  uint64_t beyond_one = 0;      // some channel more than 1 LSB apart
+  uint64_t near_texel_edge = 0; // of the different: u or v within kTexelTieBand of a texel edge
+  int max_channel_diff = 0;
+  // Bilinear: the largest |colour - exact bilinear filter| (double weights, unrounded) of
+  // any channel, reference and llvmpipe.
+  double ref_max_error = 0, llvmpipe_max_error = 0;
+  TexCompareStats& operator+=(const TexCompareStats& o);
+};
+
+// Renders `c` by the reference (render_scene, `st`) and by llvmpipe and compares the
+// interior pixels; describes up to max_report differences in `report`.
+TexCompareStats compare_textured(const TexCase& c, const RasterState& st, OsMesaTexture& gl,
+                                 std::vector<std::string>& report, size_t max_report);
+
+}  // namespace rastsim::mesa
