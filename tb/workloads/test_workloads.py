@@ -21,7 +21,11 @@ glmark2's meshes, then
   turned upside down (obj_up = z) and left Y-up (the default) fail the check, so it can
   tell;
 - the bunny and the horse through the perspective camera (scene.camera = perspective),
-  from outside and from inside the mesh (check_perspective).
+  from outside and from inside the mesh (check_perspective);
+- the textured crate (cube.3ds with crate-base.png, its MTL's map_Kd pointed at the PNG):
+  12 triangles, every fragment a bilinear sample of 4 texel fetches, and the wood's grain
+  on screen: many more sharp steps between neighbouring pixels than the same mesh drawn
+  without its map_Kd (Gouraud shading alone is smooth).
 
 usage: test_workloads.py RASTSIM SOURCE_DIR. Exits 77 (ctest: skipped) without
 glmark2-data or assimp-utils.
@@ -199,6 +203,35 @@ def stands(img):
     return base >= w / 2 and base > 2 * top, w, h, base, top
 
 
+def sharp_steps(img):
+    """Horizontally neighbouring pixels, both not black, whose channel sums differ by more than 24."""
+    g = img.astype(int).sum(axis=2)
+    ink = (g[:, 1:] > 0) & (g[:, :-1] > 0)
+    return int(((abs(g[:, 1:] - g[:, :-1]) > 24) & ink).sum())
+
+
+def check_crate(binary, cfg, tmp):
+    crate, sets = os.path.join(tmp, "crate.obj"), read_sets(os.path.join(tmp, "crate.set"))
+    mtl = open(os.path.join(tmp, "crate.mtl")).read()
+    check("map_Kd crate-base.png" in mtl and os.path.isfile(os.path.join(tmp, "crate-base.png")),
+          "crate.mtl's map_Kd names the linked crate-base.png")
+    img, st = rastsim(binary, "render", cfg, crate, sets, tmp, "crate")
+    samples = st.get("texture_samples", {}).get("bilinear", 0)
+    check(st["triangles_in"] == 12 and samples == st["fragments"] > 0 and st["texel_fetches"] == 4 * samples,
+          "crate: %d triangles, %d fragments, %d bilinear samples, %d texel fetches" %
+          (st["triangles_in"], st["fragments"], samples, st.get("texel_fetches", 0)))
+    # The same mesh without its texture: the control.
+    plain = os.path.join(tmp, "plain")
+    os.makedirs(plain, exist_ok=True)
+    shutil.copy(crate, plain)
+    with open(os.path.join(plain, "crate.mtl"), "w") as f:
+        f.write("".join(l for l in mtl.splitlines(True) if not l.startswith("map_Kd")))
+    img_plain, _ = rastsim(binary, "render", cfg, os.path.join(plain, "crate.obj"), sets, tmp, "crate_plain")
+    steps, steps_plain = sharp_steps(img), sharp_steps(img_plain)
+    check(steps > 2000 and steps > 20 * max(1, steps_plain),
+          "crate textured: %d sharp steps between neighbours, untextured %d" % (steps, steps_plain))
+
+
 def main():
     binary, src = sys.argv[1], sys.argv[2]
     if not os.path.isfile(os.path.join(MODELS, "bunny.obj")):
@@ -286,6 +319,7 @@ def main():
                 up, w, h, base, top = stands(img)
                 check(not up, "%s placed with obj_up = %s is not upright (base %d px of width %d, top %d px)" %
                       (name, wrong, base, w, top))
+        check_crate(binary, cfg, tmp)
     if failures:
         print("workloads test: %d check(s) failed" % len(failures))
         return 1
