@@ -38,23 +38,28 @@ OsMesaTexture::OsMesaTexture(int width, int height)
   glBindTexture(GL_TEXTURE_2D, tex_);
   glEnable(GL_TEXTURE_2D);
   glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_REPLACE);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);  // no mipmaps: level 0 is complete
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
   if (glGetError() != GL_NO_ERROR) throw std::runtime_error("OpenGL error during texture set-up");
 }
 
 OsMesaTexture::~OsMesaTexture() { OSMesaDestroyContext(static_cast<OSMesaContext>(ctx_)); }
 
-std::vector<uint32_t> OsMesaTexture::draw(const TexturedTri& tri, const TexImage& tex, GlFilter filter,
+std::vector<uint32_t> OsMesaTexture::draw(const TexturedTri& tri, const TexChain& tex, GlFilter filter,
                                           GlWrap wrap_s, GlWrap wrap_t) {
   if (!OSMesaMakeCurrent(static_cast<OSMesaContext>(ctx_), buffer_.data(), GL_UNSIGNED_BYTE, width_, height_))
     throw std::runtime_error("OSMesaMakeCurrent failed");
   // Row 0 of the upload is GL's t = 0 row, the reference's top (first) row: the same
   // (s, t) names the same texel in both, whatever the window's orientation.
-  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, tex.width, tex.height, 0, GL_RGBA, GL_UNSIGNED_BYTE, tex.rgba.data());
-  const GLint f = filter == GlFilter::Nearest ? GL_NEAREST : GL_LINEAR;
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, f);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, f);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, tex.base.width, tex.base.height, 0, GL_RGBA, GL_UNSIGNED_BYTE,
+               tex.base.rgba.data());
+  for (size_t k = 0; k < tex.below.size(); ++k)
+    glTexImage2D(GL_TEXTURE_2D, GLint(k + 1), GL_RGBA8, tex.below[k].width, tex.below[k].height, 0, GL_RGBA,
+                 GL_UNSIGNED_BYTE, tex.below[k].rgba.data());
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, GLint(tex.below.size()));  // level 0 alone: no mipmaps
+  const bool nearest = filter == GlFilter::Nearest, mip = !tex.below.empty();
+  const GLint min = mip ? (nearest ? GL_NEAREST_MIPMAP_NEAREST : GL_LINEAR_MIPMAP_NEAREST) : (nearest ? GL_NEAREST : GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, min);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, nearest ? GL_NEAREST : GL_LINEAR);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, gl_wrap(wrap_s));
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, gl_wrap(wrap_t));
   glClear(GL_COLOR_BUFFER_BIT);

@@ -30,6 +30,11 @@ struct TexImage {
   int width = 0, height = 0;
   std::vector<uint8_t> rgba;
 };
+// A texture and, mipmapped, its levels below level 0 (down to 1 x 1).
+struct TexChain {
+  TexImage base;
+  std::vector<TexImage> below;  // empty: mipmaps off
+};
 
 class OsMesaTexture {
  public:
@@ -39,8 +44,9 @@ class OsMesaTexture {
   OsMesaTexture& operator=(const OsMesaTexture&) = delete;
 
   // The image of `tri` drawn alone over a clear colour of (0, 0, 0, 0), textured with
-  // `tex` (filter and wrap on both axes), GL_REPLACE: RGBA8 per pixel, row 0 at the top.
-  std::vector<uint32_t> draw(const TexturedTri& tri, const TexImage& tex, GlFilter filter, GlWrap wrap_s,
+  // `tex` (filter and wrap on both axes; mipmapped: the nearest level,
+  // GL_*_MIPMAP_NEAREST), GL_REPLACE: RGBA8 per pixel, row 0 at the top.
+  std::vector<uint32_t> draw(const TexturedTri& tri, const TexChain& tex, GlFilter filter, GlWrap wrap_s,
                              GlWrap wrap_t);
 
  private:

@@ -41,13 +41,14 @@ GridTri random_tri(std::mt19937_64& rng, int width, int height) {
 Scene reference_scene(const TexCase& c) {
   auto image = std::make_shared<TextureImage>();
   image->name = "random";
-  image->width = c.tex.width, image->height = c.tex.height;
-  image->rgba = c.tex.rgba;
+  image->width = c.tex.base.width, image->height = c.tex.base.height;
+  image->rgba = c.tex.base.rgba;
   CmdPrimitives prims;
   prims.texture.image = image;
   prims.texture.filter = c.filter == GlFilter::Nearest ? TexFilter::Nearest : TexFilter::Bilinear;
   prims.texture.wrap_s = ref_wrap(c.wrap_s), prims.texture.wrap_t = ref_wrap(c.wrap_t);
   prims.texture.env = TexEnv::Replace;
+  prims.texture.mipmap = !c.tex.below.empty();
   for (size_t v = 0; v < 3; ++v) {
     SceneVertex sv;
     sv.x = Q64{i128(c.tri.tri.x[v]) << (Q64::kFracBits - c.tri.tri.frac_bits)};
@@ -109,12 +110,40 @@ std::array<double, 3> exact_bilinear(const TexCase& c, double u, double v) {
   std::array<double, 3> out{};
   for (int dj = 0; dj < 2; ++dj)
     for (int di = 0; di < 2; ++di) {
-      const int64_t i = wrap_index(int64_t(i0) + di, c.tex.width, c.wrap_s);
-      const int64_t j = wrap_index(int64_t(j0) + dj, c.tex.height, c.wrap_t);
-      for (size_t ch = 0; ch < 3; ++ch)
-        out[ch] += (di ? a : 1 - a) * (dj ? b : 1 - b) * c.tex.rgba[size_t(j * c.tex.width + i) * 4 + ch];
+      const TexImage& t = c.tex.base;
+      const int64_t i = wrap_index(int64_t(i0) + di, t.width, c.wrap_s);
+      const int64_t j = wrap_index(int64_t(j0) + dj, t.height, c.wrap_t);
+      for (size_t ch = 0; ch < 3; ++ch) out[ch] += (di ? a : 1 - a) * (dj ? b : 1 - b) * t.rgba[size_t(j * t.width + i) * 4 + ch];
     }
   return out;
+}
+
+// The reference's mip chain below level 0 (ref/texture's box filter, RGBA8888: the
+// chain is the input both samplers read, not what is compared).
+std::vector<TexImage> chain_below(const TexImage& base) {
+  TextureImage img;
+  img.width = base.width, img.height = base.height, img.rgba = base.rgba;
+  std::vector<TexImage> out;
+  const std::vector<MipLevel> chain = build_mip_chain(img, TexelFormat::Rgba8888, true);
+  for (size_t k = 1; k < chain.size(); ++k) out.push_back({chain[k].width, chain[k].height, chain[k].rgba});
+  return out;
+}
+
+// The exact level of detail of an affine triangle: log2 of the longer Euclidean length of
+// (du/dx, dv/dx) and (du/dy, dv/dy), texels a pixel (u = s W, v = t H).
+double exact_lambda(const TexCase& c) {
+  const GridTri& g = c.tri.tri;
+  const double k = 1.0 / double(int64_t{1} << g.frac_bits);
+  const double x1 = double(g.x[1] - g.x[0]) * k, y1 = double(g.y[1] - g.y[0]) * k;
+  const double x2 = double(g.x[2] - g.x[0]) * k, y2 = double(g.y[2] - g.y[0]) * k, det = x1 * y2 - x2 * y1;
+  const auto grad = [&](const std::array<float, 3>& a, double n, double& dx, double& dy) {
+    const double a1 = (a[1] - a[0]) * n, a2 = (a[2] - a[0]) * n;
+    dx = (a1 * y2 - a2 * y1) / det, dy = (a2 * x1 - a1 * x2) / det;
+  };
+  double udx, udy, vdx, vdy;
+  grad(c.tri.s, c.tex.base.width, udx, udy);
+  grad(c.tri.t, c.tex.base.height, vdx, vdy);
+  return std::log2(std::max(std::hypot(udx, vdx), std::hypot(udy, vdy)));
 }
 
 std::string rgb_text(double r, double g, double b) {
@@ -125,17 +154,20 @@ std::string rgb_text(double r, double g, double b) {
 
 }  // namespace
 
-std::vector<TexCase> make_texture_cases(uint64_t seed, int count, GlFilter filter, int width, int height) {
+std::vector<TexCase> make_texture_cases(uint64_t seed, int count, GlFilter filter, int width, int height,
+                                        bool mipmap) {
   std::mt19937_64 rng(seed);
-  std::uniform_int_distribution<int> side(1, 16), byte(0, 255), wrap(0, 2);
+  std::uniform_int_distribution<int> side(1, mipmap ? 32 : 16), byte(0, 255), wrap(0, 2);
   std::uniform_int_distribution<int> coord(-2 * kTexcoordGrid, 3 * kTexcoordGrid);
   std::vector<TexCase> out;
   for (int n = 0; n < count; ++n) {
     TexCase c;
     c.filter = filter;
-    c.tex.width = side(rng), c.tex.height = side(rng);
-    for (int k = 0; k < c.tex.width * c.tex.height; ++k)
-      c.tex.rgba.insert(c.tex.rgba.end(), {uint8_t(byte(rng)), uint8_t(byte(rng)), uint8_t(byte(rng)), 255});
+    TexImage& t = c.tex.base;
+    t.width = side(rng), t.height = side(rng);
+    for (int k = 0; k < t.width * t.height; ++k)
+      t.rgba.insert(t.rgba.end(), {uint8_t(byte(rng)), uint8_t(byte(rng)), uint8_t(byte(rng)), 255});
+    if (mipmap) c.tex.below = chain_below(t);
     c.wrap_s = GlWrap(wrap(rng)), c.wrap_t = GlWrap(wrap(rng));
     c.tri.tri = random_tri(rng, width, height);
     for (size_t v = 0; v < 3; ++v)
@@ -152,6 +184,8 @@ TexCompareStats& TexCompareStats::operator+=(const TexCompareStats& o) {
   within_one += o.within_one;
   beyond_one += o.beyond_one;
   near_texel_edge += o.near_texel_edge;
+  near_lod_tie += o.near_lod_tie;
+  unexplained += o.unexplained;
   ref_max_error = std::max(ref_max_error, o.ref_max_error);
   llvmpipe_max_error = std::max(llvmpipe_max_error, o.llvmpipe_max_error);
   max_channel_diff = std::max(max_channel_diff, o.max_channel_diff);
@@ -165,6 +199,9 @@ TexCompareStats compare_textured(const TexCase& c, const RasterState& st, OsMesa
   const std::vector<uint32_t> lp = gl.draw(c.tri, c.tex, c.filter, c.wrap_s, c.wrap_t);
   TexCompareStats s;
   s.triangles = 1;
+  const bool mipmap = !c.tex.below.empty();
+  const double lambda = mipmap ? exact_lambda(c) : 0.0;
+  const bool lod_tie = mipmap && lambda > 0.5 - kLodTieBand && std::fabs(lambda - std::floor(lambda) - 0.5) < kLodTieBand;
   for (int y = 0; y < st.fb_height; ++y)
     for (int x = 0; x < st.fb_width; ++x) {
       const Bary b = barycentric(c.tri.tri, x + 0.5, y + 0.5);
@@ -172,14 +209,15 @@ TexCompareStats compare_textured(const TexCase& c, const RasterState& st, OsMesa
       ++s.interior;
       const uint8_t* r = fb.pixel(x, y);
       const uint32_t l = lp[size_t(y) * size_t(st.fb_width) + size_t(x)];
-      const double u = (b.w[0] * c.tri.s[0] + b.w[1] * c.tri.s[1] + b.w[2] * c.tri.s[2]) * c.tex.width;
-      const double v = (b.w[0] * c.tri.t[0] + b.w[1] * c.tri.t[1] + b.w[2] * c.tri.t[2]) * c.tex.height;
+      const double s_at = b.w[0] * c.tri.s[0] + b.w[1] * c.tri.s[1] + b.w[2] * c.tri.s[2];
+      const double t_at = b.w[0] * c.tri.t[0] + b.w[1] * c.tri.t[1] + b.w[2] * c.tri.t[2];
+      const double u = s_at * c.tex.base.width, v = t_at * c.tex.base.height;
       const std::array<double, 3> exact = exact_bilinear(c, u, v);
       int diff = 0;
       for (size_t ch = 0; ch < 3; ++ch) {
         const int lv = int((l >> (8 * ch)) & 255);
         diff = std::max(diff, std::abs(int(r[ch]) - lv));
-        if (c.filter == GlFilter::Bilinear) {
+        if (c.filter == GlFilter::Bilinear && !mipmap) {
           s.ref_max_error = std::max(s.ref_max_error, std::fabs(r[ch] - exact[ch]));
           s.llvmpipe_max_error = std::max(s.llvmpipe_max_error, std::fabs(lv - exact[ch]));
         }
@@ -190,11 +228,16 @@ TexCompareStats compare_textured(const TexCase& c, const RasterState& st, OsMesa
         continue;
       }
       ++(diff <= 1 ? s.within_one : s.beyond_one);
-      const double edge = std::min(edge_distance(u, c.filter), edge_distance(v, c.filter));
+      double edge = std::min(edge_distance(u, c.filter), edge_distance(v, c.filter));
+      for (const TexImage& l : c.tex.below)  // mipmapped: the edges of every level
+        edge = std::min({edge, edge_distance(s_at * l.width, c.filter), edge_distance(t_at * l.height, c.filter)});
       if (edge < kTexelTieBand) ++s.near_texel_edge;
-      if (report.size() < max_report && (diff > 1 || c.filter == GlFilter::Nearest))
-        report.push_back(describe(c.tri.tri) + " texture " + std::to_string(c.tex.width) + "x" +
-                         std::to_string(c.tex.height) + ": pixel (" + std::to_string(x) + ", " + std::to_string(y) +
+      if (lod_tie) ++s.near_lod_tie;
+      if (!lod_tie && edge >= kTexelTieBand) ++s.unexplained;
+      if (report.size() < max_report && (diff > 1 || c.filter == GlFilter::Nearest) && !lod_tie)
+        report.push_back(describe(c.tri.tri) + " texture " + std::to_string(c.tex.base.width) + "x" +
+                         std::to_string(c.tex.base.height) + (mipmap ? " lambda " + std::to_string(lambda) : "") +
+                         ": pixel (" + std::to_string(x) + ", " + std::to_string(y) +
                          ") u " + std::to_string(u) + " v " + std::to_string(v) + ": RGB differs by " +
                          std::to_string(diff) + ", " + std::to_string(edge) + " texels from an edge: rastsim " +
                          rgb_text(r[0], r[1], r[2]) + ", llvmpipe " + rgb_text(l & 255, (l >> 8) & 255, (l >> 16) & 255) +

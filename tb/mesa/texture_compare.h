@@ -19,13 +19,21 @@ namespace rastsim::mesa {
 
 struct TexCase {
   TexturedTri tri;
-  TexImage tex;
+  TexChain tex;  // mipmapped: the reference's chain (ref/texture build_mip_chain) uploaded level by level
   GlFilter filter = GlFilter::Nearest;
   GlWrap wrap_s = GlWrap::Repeat, wrap_t = GlWrap::Repeat;
 };
 
-// `count` cases of one filter in a width x height framebuffer; the same seed, the same cases.
-std::vector<TexCase> make_texture_cases(uint64_t seed, int count, GlFilter filter, int width, int height);
+// `count` cases of one filter in a width x height framebuffer; the same seed, the same
+// cases. Mipmapped: textures of 1 to 32 texels a side, minified up to about 8 times.
+std::vector<TexCase> make_texture_cases(uint64_t seed, int count, GlFilter filter, int width, int height,
+                                        bool mipmap = false);
+
+// Mipmapped: where the triangle's exact level of detail (log2 of the longer Euclidean
+// derivative length, constant on an affine triangle) lies within this many levels of a
+// rounding point k + 1/2, the approximations decide the level: the reference's is low by
+// up to 0.086 (log2_fixed8) and high by up to 0.161 (the length, +11.8 %), docs/texture.md.
+inline constexpr double kLodTieBand = 0.2;
 
 // Where the exact texel coordinate u = s W (or v = t H; bilinear: u - 1/2) of a pixel
 // centre lies within this many texels of a texel edge, rounding decides the texel: the
@@ -41,6 +49,8 @@ struct TexCompareStats {
   uint64_t within_one = 0;      // different, every channel within 1 LSB
   uint64_t beyond_one = 0;      // some channel more than 1 LSB apart
   uint64_t near_texel_edge = 0; // of the different: u or v within kTexelTieBand of a texel edge
+  uint64_t near_lod_tie = 0;    // of the different, mipmapped: the exact lambda within kLodTieBand of k + 1/2
+  uint64_t unexplained = 0;     // of the different: neither near a texel edge nor a level tie
   int max_channel_diff = 0;
   // Bilinear: the largest |colour - exact bilinear filter| (double weights, unrounded) of
   // any channel, reference and llvmpipe.
