@@ -67,13 +67,19 @@ std::array<double, 3> exact_level(const RefImage& l, const Query& q, bool biline
   return out;
 }
 
-// The exact sample: lambda = log2 of the longer Euclidean derivative length in texels.
-std::array<double, 3> exact_sample(const std::vector<RefImage>& chain, const Query& q, TexFilter f) {
-  const double w = kSide, h = kSide;
-  const auto len = [&](int64_t ds, int64_t dt) { return std::hypot(std::ldexp(double(ds), -kF) * w, std::ldexp(double(dt), -kF) * h); };
+// The exact level of detail: log2 of the longer Euclidean derivative length in texels.
+double exact_lambda(const Query& q) {
+  const auto len = [&](int64_t ds, int64_t dt) {
+    return std::hypot(std::ldexp(double(ds), -kF) * kSide, std::ldexp(double(dt), -kF) * kSide);
+  };
   const double rho = std::max(len(q.d.dsdx, q.d.dtdx), len(q.d.dsdy, q.d.dtdy));
+  return rho > 0 ? std::log2(rho) : -1e9;
+}
+
+// The exact sample at the exact level of detail.
+std::array<double, 3> exact_sample(const std::vector<RefImage>& chain, const Query& q, TexFilter f) {
   const double top = double(chain.size() - 1);
-  const double l = std::clamp(rho > 0 ? std::log2(rho) : 0.0, 0.0, top);
+  const double l = std::clamp(exact_lambda(q), 0.0, top);
   if (f != TexFilter::Trilinear) return exact_level(chain[size_t(std::max(0.0, std::ceil(l - 0.5)))], q, f == TexFilter::Bilinear);
   const double k = std::floor(l), frac = l - k;
   const auto c0 = exact_level(chain[size_t(k)], q, true), c1 = exact_level(chain[size_t(std::min(k + 1, top))], q, true);
@@ -98,8 +104,26 @@ std::vector<Query> study_queries() {
   return out;
 }
 
-// One table row: golden (filter f, weight_bits, mipmaps) against the exact filter.
-void study_row(const char* name, TexFilter f, int weight_bits, bool mipmap) {
+// The golden arithmetic (texel_quad, filter_texels, blend_levels) at the exact level of
+// detail, lambda rounded to s.8: what the sampler gives without the LOD approximation.
+Rgba8 golden_at_exact_lod(const std::vector<MipLevel>& chain, const Query& q, TexFilter f) {
+  const LevelChoice c = choose_levels(int32_t(std::lround(std::max(exact_lambda(q), -64.0) * 256)), 0,
+                                      int(chain.size()), f);
+  const auto level = [&](int k) {
+    const MipLevel& l = chain[size_t(k)];
+    const TexelQuad tq = texel_quad(q.s, q.t, l.width, l.height, kF, f != TexFilter::Nearest, TexWrap::Repeat,
+                                    TexWrap::Repeat);
+    std::array<Rgba8, 4> texels{};
+    for (size_t n = 0; n < size_t(tq.count); ++n) texels[n] = l.texel(tq.i[n], tq.j[n]);
+    return filter_texels(tq, texels);
+  };
+  const Rgba8 c0 = level(c.level0);
+  return c.level1 == c.level0 ? c0 : blend_levels(c0, level(c.level1), c.frac);
+}
+
+// One table row: golden (filter f, weight_bits, mipmaps; exact_lod: at the exact level of
+// detail) against the exact filter.
+void study_row(const char* name, TexFilter f, int weight_bits, bool mipmap, bool exact_lod = false) {
   const auto image = study_texture();
   const auto chain = texture_test::ref_chain(*image, TexelFormat::Rgba8888);
   const std::vector<RefImage> level0(chain.begin(), chain.begin() + 1);
@@ -113,12 +137,14 @@ void study_row(const char* name, TexFilter f, int weight_bits, bool mipmap) {
   ts.mipmap = mipmap;
   double sum[3] = {}, worst[3] = {}, sq = 0;
   const auto queries = study_queries();
+  const std::vector<MipLevel> golden_chain = build_mip_chain(*image, TexelFormat::Rgba8888, true);
   for (const Query& q : queries) {
     Fragment frag;
     frag.s = q.s, frag.t = q.t;
     const Fragment g = unit.shade(frag, q.d, ts, kF);
+    const Rgba8 x = exact_lod ? golden_at_exact_lod(golden_chain, q, f) : Rgba8{g.r, g.g, g.b, 255};
     const auto e = exact_sample(mipmap ? chain : level0, q, f);
-    const double got[3] = {double(g.r), double(g.g), double(g.b)};
+    const double got[3] = {double(x[0]), double(x[1]), double(x[2])};
     for (size_t ch = 0; ch < 3; ++ch) {
       const double err = std::fabs(got[ch] - e[ch]);
       sum[ch] += err, worst[ch] = std::max(worst[ch], err), sq += err * err;
@@ -135,6 +161,9 @@ TEST(TextureStudy, DISABLED_FilterErrorAgainstExact) {
   study_row("nearest, mipmaps", TexFilter::Nearest, 8, true);
   study_row("bilinear, mipmaps", TexFilter::Bilinear, 8, true);
   study_row("trilinear", TexFilter::Trilinear, 8, true);
+  study_row("nearest, mipmaps, exact LOD", TexFilter::Nearest, 8, true, true);
+  study_row("bilinear, mipmaps, exact LOD", TexFilter::Bilinear, 8, true, true);
+  study_row("trilinear, exact LOD", TexFilter::Trilinear, 8, true, true);
   for (int bits = 8; bits >= 1; --bits) study_row("bilinear, level 0", TexFilter::Bilinear, bits, false);
 }
 
