@@ -47,6 +47,7 @@ TexCompareStats run_cases(GlFilter filter, std::vector<std::string>& report, boo
             << total.identical << ", within 1 LSB " << total.within_one << ", beyond " << total.beyond_one
             << " (max " << total.max_channel_diff << "), near a texel edge " << total.near_texel_edge
             << ", near a level tie " << total.near_lod_tie << ", unexplained " << total.unexplained
+            << ", off ties beyond 1 LSB " << total.beyond_one_off_tie << " (max " << total.max_diff_off_tie << ")"
             << "; bilinear error against the exact filter: rastsim " << total.ref_max_error << ", llvmpipe "
             << total.llvmpipe_max_error << "\n";
   for (const std::string& r : report) std::cout << "  " << r << "\n";
@@ -70,6 +71,17 @@ TEST(MesaTexture, NearestMipmappedDiffersOnlyAtLevelTies) {
   EXPECT_GT(s.interior, 20000u);
   EXPECT_EQ(s.unexplained, 0u);
   EXPECT_GT(s.identical * 10, s.interior * 9);  // ties are the exception
+}
+
+// Mipmapped bilinear (GL_LINEAR_MIPMAP_NEAREST against `mipmap on`, bilinear): away from
+// the level ties, as bilinear on level 0 (within 2 LSB, at most 0.5 % beyond 1).
+TEST(MesaTexture, BilinearMipmappedAsLevelZeroOffTies) {
+  std::vector<std::string> report;
+  const TexCompareStats s = run_cases(GlFilter::Bilinear, report, true);
+  EXPECT_GT(s.interior, 20000u);
+  EXPECT_LE(s.beyond_one_off_tie * 200, s.interior);
+  EXPECT_LE(s.max_diff_off_tie, 2);
+  EXPECT_GT(s.identical * 2, s.interior);
 }
 
 TEST(MesaTexture, BilinearWithinOneLsb) {

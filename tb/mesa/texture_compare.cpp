@@ -186,6 +186,8 @@ TexCompareStats& TexCompareStats::operator+=(const TexCompareStats& o) {
   near_texel_edge += o.near_texel_edge;
   near_lod_tie += o.near_lod_tie;
   unexplained += o.unexplained;
+  max_diff_off_tie = std::max(max_diff_off_tie, o.max_diff_off_tie);
+  beyond_one_off_tie += o.beyond_one_off_tie;
   ref_max_error = std::max(ref_max_error, o.ref_max_error);
   llvmpipe_max_error = std::max(llvmpipe_max_error, o.llvmpipe_max_error);
   max_channel_diff = std::max(max_channel_diff, o.max_channel_diff);
@@ -234,6 +236,10 @@ TexCompareStats compare_textured(const TexCase& c, const RasterState& st, OsMesa
       if (edge < kTexelTieBand) ++s.near_texel_edge;
       if (lod_tie) ++s.near_lod_tie;
       if (!lod_tie && edge >= kTexelTieBand) ++s.unexplained;
+      if (!lod_tie) {
+        s.max_diff_off_tie = std::max(s.max_diff_off_tie, diff);
+        s.beyond_one_off_tie += diff > 1;
+      }
       if (report.size() < max_report && (diff > 1 || c.filter == GlFilter::Nearest) && !lod_tie)
         report.push_back(describe(c.tri.tri) + " texture " + std::to_string(c.tex.base.width) + "x" +
                          std::to_string(c.tex.base.height) + (mipmap ? " lambda " + std::to_string(lambda) : "") +

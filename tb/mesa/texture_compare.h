@@ -51,6 +51,8 @@ struct TexCompareStats {
   uint64_t near_texel_edge = 0; // of the different: u or v within kTexelTieBand of a texel edge
   uint64_t near_lod_tie = 0;    // of the different, mipmapped: the exact lambda within kLodTieBand of k + 1/2
   uint64_t unexplained = 0;     // of the different: neither near a texel edge nor a level tie
+  int max_diff_off_tie = 0;     // the largest channel difference away from level ties
+  uint64_t beyond_one_off_tie = 0;  // more than 1 LSB apart away from level ties
   int max_channel_diff = 0;
   // Bilinear: the largest |colour - exact bilinear filter| (double weights, unrounded) of
   // any channel, reference and llvmpipe.
