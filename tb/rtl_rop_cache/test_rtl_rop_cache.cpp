@@ -15,7 +15,8 @@
 // - a flush's write-backs in SetAssocCache::write_back_all's order (set by set, ways in
 //   order) and the lists' dirty lines;
 // - after the stream's last flush, the memory behind the RTL equals the reference's.
-// Half the streams stall every handshake at random (ready low, fill latency 0..3).
+// Half the streams stall every handshake at random (ready low, fill latency 0..3); the
+// other half check each request's cycles (unstalled_cycles).
 // The seed is printed; RASTSIM_ROP_CACHE_SEED=<n> replays a run, =random draws a new one.
 #include <gtest/gtest.h>
 
@@ -263,6 +264,21 @@ struct Totals {
   uint64_t requests = 0, hits = 0, evictions = 0, dirty_evictions = 0, flushed = 0, cycles = 0;
 };
 
+// A request's cycles, from the one it is offered in to the one its response is taken in,
+// when every handshake is ready and a fill answers in the cycle after its request (docs/
+// rtl.md "ROP cache"), counted by hand from the sequence: taken, lookup, then a read
+// hit's data, a miss's write-back (dirty victim), fill request and fill, a flush's one
+// cycle a line and one a written-back line; the response.
+uint64_t unstalled_cycles(const CacheSet& c, Op op, const Observed& o) {
+  switch (op) {
+    case kRead: return o.hit ? 4 : 5 + (o.evict_dirty ? 1 : 0);
+    case kWrite: return o.hit ? 3 : 5 + (o.evict_dirty ? 1 : 0);
+    case kFlush: return 3 + uint64_t(c.sets() * c.ways) + o.transfers.size();
+    case kInvalidate: return 3;
+  }
+  return 0;
+}
+
 // One stream from reset: `n` requests, then a flush; the memories compared at the end.
 template <class Model>
 void run_stream(const CacheSet& c, std::mt19937_64& rng, bool stalls, int n, Totals& t) {
@@ -282,8 +298,10 @@ void run_stream(const CacheSet& c, std::mt19937_64& rng, bool stalls, int n, Tot
     const uint64_t addr = (rng() % 4 ? window_base + rng() % window : rng() % bytes) & ~uint64_t(c.word_bytes - 1);
     const uint32_t be = uint32_t(rng()) & ((1u << c.word_bytes) - 1);
     const uint64_t wdata = rng() & ((uint64_t{1} << (8 * c.word_bytes)) - 1);
+    const uint64_t before = bench.cycles();
     const Observed o = bench.request(op, addr, be, wdata);
     ++t.requests;
+    if (!stalls) ASSERT_EQ(bench.cycles() - before, unstalled_cycles(c, op, o)) << "cycles of request " << i;
     if (op == kFlush) {
       ASSERT_NO_FATAL_FAILURE(check_flush(c, ref, rtl_mem, o));
       t.flushed += o.transfers.size();
