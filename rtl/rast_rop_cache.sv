@@ -146,6 +146,16 @@ module rast_rop_cache #(
     line_addr = a;
   endfunction
 
+  // ---- The request's set: its ways' tags, valid and dirty bits and ranks (one row) ----
+  localparam int RowTagW = Ways * TagW, RowRankW = Ways * WayW;
+  logic [RowTagW-1:0]  row_tag;   // way w at [w TagW +: TagW]
+  logic [RowRankW-1:0] row_rank;  // way w at [w WayW +: WayW]
+  logic [Ways-1:0]     row_valid, row_dirty;
+  assign row_tag = tag_q[set * RowTagW +: RowTagW];
+  assign row_rank = rank_q[set * RowRankW +: RowRankW];
+  assign row_valid = valid_q[set * Ways +: Ways];
+  assign row_dirty = dirty_q[set * Ways +: Ways];
+
   // ---- Lookup: the hit way, else the victim (first invalid way, else rank Ways - 1) ----
   logic            hit;
   logic [WayW-1:0] hit_way, victim_way;
@@ -156,22 +166,47 @@ module rast_rop_cache #(
     victim_way = '0;
     found_invalid = 1'b0;
     for (int w = 0; w < Ways; w++) begin
-      if (valid_q[entry(set, WayW'(w))] && tag_q[entry(set, WayW'(w))*TagW +: TagW] == tag) begin
+      if (row_valid[w] && row_tag[w*TagW +: TagW] == tag) begin
         hit = 1'b1;
         hit_way = WayW'(w);
       end
     end
     for (int w = 0; w < Ways; w++)
-      if (!found_invalid && !valid_q[entry(set, WayW'(w))]) begin
+      if (!found_invalid && !row_valid[w]) begin
         found_invalid = 1'b1;
         victim_way = WayW'(w);
       end
     if (!found_invalid)
       for (int w = 0; w < Ways; w++)
-        if (rank_q[entry(set, WayW'(w))*WayW +: WayW] == WayW'(Ways - 1)) victim_way = WayW'(w);
+        if (row_rank[w*WayW +: WayW] == WayW'(Ways - 1)) victim_way = WayW'(w);
   end
   logic [WayW-1:0] touch_way;  // the way the lookup makes most recent
   assign touch_way = hit ? hit_way : victim_way;
+
+  // The row after the lookup: touch_way most recent (the ways more recent than it one
+  // down), a write's line dirty, a miss's line allocated in the victim's way.
+  logic [RowTagW-1:0]  row_tag_n;
+  logic [RowRankW-1:0] row_rank_n;
+  logic [Ways-1:0]     row_valid_n, row_dirty_n;
+  always_comb begin
+    row_tag_n = row_tag;
+    row_valid_n = row_valid;
+    row_dirty_n = row_dirty;
+    for (int w = 0; w < Ways; w++) begin
+      row_rank_n[w*WayW +: WayW] = row_rank[w*WayW +: WayW];
+      if (row_rank[w*WayW +: WayW] < row_rank[touch_way*WayW +: WayW])
+        row_rank_n[w*WayW +: WayW] = row_rank[w*WayW +: WayW] + 1'b1;
+      if (WayW'(w) == touch_way) begin
+        row_rank_n[w*WayW +: WayW] = '0;
+        if (op_q[0]) row_dirty_n[w] = 1'b1;
+        if (!hit) begin
+          row_tag_n[w*TagW +: TagW] = tag;
+          row_valid_n[w] = 1'b1;
+          row_dirty_n[w] = op_q[0];
+        end
+      end
+    end
+  end
 
   // ---- The written word placed in a line: its byte mask and data ----
   logic [LineBytes-1:0]   word_mask;
@@ -220,7 +255,7 @@ module rast_rop_cache #(
           ram_we = op_q[0];
           ram_wmask = word_mask;
           ram_wdata = word_line;
-        end else if (valid_q[entry(set, victim_way)] && dirty_q[entry(set, victim_way)]) begin
+        end else if (row_valid[victim_way] && row_dirty[victim_way]) begin
           ram_en = 1'b1;  // the victim's line, for its write-back
         end
       end
@@ -262,16 +297,10 @@ module rast_rop_cache #(
       valid_q <= '0;
       dirty_q <= '0;
     end else if (state_q == SLookup && op_q[1] == 1'b0) begin
-      for (int w = 0; w < Ways; w++)  // touch_way becomes the most recent
-        if (rank_q[entry(set, WayW'(w))*WayW +: WayW] < rank_q[entry(set, touch_way)*WayW +: WayW])
-          rank_q[entry(set, WayW'(w))*WayW +: WayW] <= rank_q[entry(set, WayW'(w))*WayW +: WayW] + 1'b1;
-      rank_q[entry(set, touch_way)*WayW +: WayW] <= '0;
-      if (op_q[0]) dirty_q[entry(set, touch_way)] <= 1'b1;
-      if (!hit) begin
-        tag_q[entry(set, victim_way)*TagW +: TagW] <= tag;
-        valid_q[entry(set, victim_way)] <= 1'b1;
-        dirty_q[entry(set, victim_way)] <= op_q[0];
-      end
+      tag_q[set * RowTagW +: RowTagW] <= row_tag_n;
+      rank_q[set * RowRankW +: RowRankW] <= row_rank_n;
+      valid_q[set * Ways +: Ways] <= row_valid_n;
+      dirty_q[set * Ways +: Ways] <= row_dirty_n;
     end else if (state_q == SFlush && ram_en) begin
       dirty_q[ram_addr] <= 1'b0;
     end
@@ -315,10 +344,10 @@ module rast_rop_cache #(
             state_q <= SResp;
           end else if (hit) state_q <= op_q[0] ? SResp : SReadData;
           else begin
-            evict_q <= valid_q[entry(set, victim_way)];
-            evict_dirty_q <= valid_q[entry(set, victim_way)] && dirty_q[entry(set, victim_way)];
-            victim_addr_q <= line_addr(tag_q[entry(set, victim_way)*TagW +: TagW], set);
-            state_q <= valid_q[entry(set, victim_way)] && dirty_q[entry(set, victim_way)] ? SWriteBack : SFillReq;
+            evict_q <= row_valid[victim_way];
+            evict_dirty_q <= row_valid[victim_way] && row_dirty[victim_way];
+            victim_addr_q <= line_addr(row_tag[victim_way*TagW +: TagW], set);
+            state_q <= row_valid[victim_way] && row_dirty[victim_way] ? SWriteBack : SFillReq;
           end
         end
         SReadData: begin
