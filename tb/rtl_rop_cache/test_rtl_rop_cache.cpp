@@ -28,12 +28,16 @@
 
 #include "common/rtl_unit_test.h"
 #include "ref/memory/cache.h"
+#include "ref/memory/surface_client.h"
 #include "rop_cache_sets.h"
 #include "rtlsim/port_bits.h"
 
 namespace {
 
 using rastsim::CacheParams;
+using rastsim::FbLayout;
+using rastsim::SurfaceClient;
+using rastsim::SurfaceLayout;
 using rastsim::SetAssocCache;
 using rastsim::rtlsim::port_bits;
 using rastsim::rtlsim::set_port_bits;
@@ -336,9 +340,71 @@ void run_set(const CacheSet& c) {
   EXPECT_GT(t.flushed, 1000u);
 }
 
-#define RAST_ROP_CACHE_TEST(name, addr_w, cache_bytes, ways, line_bytes, word_bytes) \
-  TEST(RtlRopCache, RandomStreams_##name) {                                           \
-    run_set<Vrast_rop_cache_##name>(CacheSet{addr_w, cache_bytes, ways, line_bytes, word_bytes}); \
+// The ROP's access pattern through SurfaceClient, the class the reference ROP counts
+// render --stats with: a surface of the set's whole address space (word_bytes a sample,
+// one sample a pixel; square, or 2:1), linear and tiled (4 x 4 px tiles), drawn as random
+// rectangles walked tile by tile (tiles row-major, pixels row-major in a tile), each
+// pixel a read then (three times in four) a write, as a depth test and its write; a
+// clear now and then (the client drops its lines; the RTL invalidates); the frame end's
+// write-back (the RTL flushes). The RTL's hits, misses, evictions and write-backs must be
+// the client's, and so the bytes it reads and writes through the cache.
+template <class Model>
+void run_surface(const CacheSet& c, FbLayout layout) {
+  std::mt19937_64 rng(seed() + uint64_t(c.cache_bytes) + (layout == FbLayout::Tiled ? 7 : 0));
+  const int pixels = (1 << c.addr_w) / c.word_bytes;
+  int w = 1;
+  while (w * w < pixels) w *= 2;  // square, or twice as wide as high
+  const int h = pixels / w;
+  const SurfaceLayout lay(layout, 4, 4, 0, w, h, 1, c.word_bytes);
+  ASSERT_EQ(lay.footprint_bytes(), uint64_t(1) << c.addr_w);
+  SurfaceClient client(lay, CacheParams{uint64_t(c.cache_bytes), c.ways, c.line_bytes}, false, 4, 4);
+  std::vector<uint8_t> mem(size_t(1) << c.addr_w, 0);
+  Bench<Model> bench(c, mem, rng, true);
+  uint64_t hits = 0, misses = 0, evictions = 0, writebacks = 0, clear_bytes = 0;
+  const auto count = [&](const Observed& o) {
+    hits += o.hit, misses += !o.hit, evictions += o.evict, writebacks += o.evict_dirty;
+  };
+  for (int r = 0; r < 200; ++r) {
+    if (rng() % 10 == 0) {
+      client.clear();
+      clear_bytes += lay.footprint_bytes();
+      bench.request(kInvalidate, 0, 0, 0);
+      continue;
+    }
+    const int x0 = int(rng() % uint64_t(w)), y0 = int(rng() % uint64_t(h));
+    const int x1 = std::min(w, x0 + 1 + int(rng() % 12)), y1 = std::min(h, y0 + 1 + int(rng() % 12));
+    for (int ty = y0 / 4 * 4; ty < y1; ty += 4)
+      for (int tx = x0 / 4 * 4; tx < x1; tx += 4)
+        for (int y = std::max(ty, y0); y < std::min(ty + 4, y1); ++y)
+          for (int x = std::max(tx, x0); x < std::min(tx + 4, x1); ++x) {
+            const uint64_t off = lay.offset_of(x, y, 0);
+            client.access(x, y, 0, false);
+            count(bench.request(kRead, off, 0, 0));
+            if (rng() % 4 == 0) continue;
+            client.access(x, y, 0, true);
+            count(bench.request(kWrite, off, (1u << c.word_bytes) - 1, rng()));
+          }
+  }
+  client.write_back_all();
+  writebacks += bench.request(kFlush, 0, 0, 0).transfers.size();
+  const rastsim::MemoryClientStats& st = client.stats();
+  EXPECT_EQ(hits, st.hits);
+  EXPECT_EQ(misses, st.misses);
+  EXPECT_EQ(evictions, st.evictions);
+  EXPECT_EQ(writebacks, st.writebacks);
+  EXPECT_EQ(misses * uint64_t(c.line_bytes), st.bytes_read);
+  EXPECT_EQ(writebacks * uint64_t(c.line_bytes) + clear_bytes, st.bytes_written);
+  EXPECT_GT(st.hits, st.accesses / 3);  // the walk reuses lines (a write after its read hits, at least)
+  EXPECT_GT(st.writebacks, 10u);
+}
+
+#define RAST_ROP_CACHE_TEST(name, addr_w, cache_bytes, ways, line_bytes, word_bytes)                              \
+  TEST(RtlRopCache, RandomStreams_##name) {                                                                       \
+    run_set<Vrast_rop_cache_##name>(CacheSet{addr_w, cache_bytes, ways, line_bytes, word_bytes});                \
+  }                                                                                                               \
+  TEST(RtlRopCache, SurfaceClientCounts_##name) {                                                                 \
+    for (FbLayout l : {FbLayout::Linear, FbLayout::Tiled})                                                        \
+      run_surface<Vrast_rop_cache_##name>(CacheSet{addr_w, cache_bytes, ways, line_bytes, word_bytes}, l);       \
   }
 RAST_ROP_CACHE_SETS(RAST_ROP_CACHE_TEST)
 #undef RAST_ROP_CACHE_TEST
