@@ -60,8 +60,10 @@ void run_area_command(const AreaCommandOptions& o) {
   ao.progress = progress_printer(o.quiet);
   const bool tty = isatty(2);
   AreaReport r = synthesize_area(p, ao);
-  // The memory system's arrays belong to the whole design, not to one module.
+  // The memory system's arrays belong to the whole design, not to one module; the ROP
+  // cache's module synthesises its tags and state and counts its data array.
   if (o.top.empty()) add_storage(r, memory_storage(arch));
+  if (o.top == "rast_rop_cache") add_storage(r, rop_cache_data_storage(arch));
   if (!o.quiet && tty) std::cerr << "\r\033[K" << std::flush;
   std::ostream& out = summary_stream(o.stats_path, o.quiet);
   out << "area: " << cfg.source_name() << ", " << (r.top.empty() ? "rast_top + rast_engine2d" : r.top) << ", "
@@ -91,7 +93,8 @@ void register_area(CLI::App& app) {
                   "Synthesise one module only: rast_top (the raster pipeline), rast_engine2d, a binary32 unit of "
                   "the front end (rast_fp32_mul, rast_fp32_add, rast_fp32_recip, rast_front_end_xform), the "
                   "reciprocal unit of perspective-correct interpolation (rast_recip, built with interp.recip_seed_bits and "
-                  "interp.recip_iterations) or a stage "
+                  "interp.recip_iterations), the ROP's cache (rast_rop_cache, built with rop.color_cache_*; its "
+                  "data array counted, not synthesised) or a stage "
                   "module under rast_top such as rast_fine_raster (default: rast_top and rast_engine2d)");
   cmd->add_flag("--one-process", o.one_process,
                 "Synthesise rast_top's whole hierarchy in one Yosys process (default: one process a module, its "

@@ -114,8 +114,15 @@ struct ModuleInfo {
   std::vector<std::pair<std::string, uint64_t>> children;  // submodule id, instances
 };
 
+// Modules Yosys keeps as blackboxes (`(* blackbox *)`), SRAM macros whose bits the caller
+// counts as storage (area_memory.h): an instance adds no gate. The ROP cache's data array.
+bool is_storage_blackbox(const std::string& type) {
+  return type == "rast_rop_cache_data" || type == "\\rast_rop_cache_data";
+}
+
 // One module's entry of `stat -json [-tech cmos]`: its gates ($_*) as its own counts, the
-// cell types is_module() names as submodule instances; anything else is an error.
+// cell types is_module() names as submodule instances, storage blackboxes skipped; anything
+// else is an error.
 ModuleInfo module_from_stat(const std::string& id, const nlohmann::json& m,
                             const std::function<bool(const std::string&)>& is_module) {
   ModuleInfo info;
@@ -129,6 +136,7 @@ ModuleInfo module_from_stat(const std::string& id, const nlohmann::json& m,
       info.children.emplace_back(child, count);
       continue;
     }
+    if (is_storage_blackbox(type)) continue;
     if (type.rfind("$_", 0) != 0)
       throw std::runtime_error("yosys stat: cell type " + type + " in " + id + " is neither a gate nor a module");
     info.own.cells_by_type[type] += count;
@@ -657,13 +665,14 @@ std::vector<std::pair<std::string, std::string>> instance_sites(const std::strin
 
 // Hierarchies synthesised apart from rast_top, each its own root: the 2D engine and the
 // front end's binary32 units (docs/rtl.md, "Binary32 units of the front end"), with no
-// config parameter, and the reciprocal unit (docs/rtl.md, "Reciprocal unit") with the
+// config parameter, the reciprocal unit (docs/rtl.md, "Reciprocal unit") with the
 // config's seed bits and iterations (root_rtl_params, AreaOptions::root_parameters);
 // rast_top's interpolator holds its own at the config's, reported in the interpolator's
-// rows.
+// rows; and the ROP's cache (docs/rtl.md, "ROP cache") with the colour cache's
+// parameters, its data array a blackbox (rtl/rast_rop_cache_data.sv).
 const std::vector<std::string>& standalone_roots() {
   static const std::vector<std::string> roots{"rast_engine2d", "rast_fp32_mul", "rast_fp32_add", "rast_fp32_recip",
-                                              "rast_front_end_xform", "rast_recip"};
+                                              "rast_front_end_xform", "rast_recip", "rast_rop_cache"};
   return roots;
 }
 
@@ -814,7 +823,8 @@ AreaReport synthesize_area(const RtlParams& p, const AreaOptions& o) {
     if (std::find(takes.begin(), takes.end(), name) == takes.end())
       throw std::runtime_error("area: " + (o.top.empty() ? std::string("the whole design") : o.top) +
                                " takes no parameter " + name + " from the config (a standalone root's parameters: "
-                               "rast_recip's SEED_BITS and ITERATIONS)");
+                               "rast_recip's SEED_BITS and ITERATIONS, rast_rop_cache's AddrW, CacheBytes, Ways, "
+                               "LineBytes and WordBytes)");
   if (o.jobs < 1) throw std::runtime_error("area: jobs must be at least 1, not " + std::to_string(o.jobs));
   const std::string yosys = find_yosys();
   AreaReport r;

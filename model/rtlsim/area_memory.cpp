@@ -6,12 +6,19 @@
 #include "config/arch_params.h"
 #include "ref/memory/rop_memory.h"
 #include "rtlsim/area.h"
+#include "rtlsim/rtl_params.h"
 
 namespace rastsim {
 
 namespace {
 
 uint64_t log2_exact(uint64_t power_of_two) { return uint64_t(std::countr_zero(power_of_two)); }
+
+StorageArray cache_data_array(const std::string& prefix, uint64_t bytes) {
+  StorageArray a{prefix + ".data", bytes * 8, false, 0};
+  a.transistors = storage_transistors(a.bits, a.sram);
+  return a;
+}
 
 // The arrays of one cache (`prefix`.data, .tags, .state) over a surface of `surface_bytes`
 // bytes (its footprint, padding included).
@@ -20,11 +27,11 @@ void add_cache(std::vector<StorageArray>& out, const std::string& prefix, const 
   if (c.bytes == 0) return;
   const uint64_t lines = c.bytes / uint64_t(c.line_bytes);
   const uint64_t sets = lines / uint64_t(c.ways);
-  const uint64_t address_bits = surface_bytes > 1 ? uint64_t(std::bit_width(surface_bytes - 1)) : 0;
+  const uint64_t address_bits = uint64_t(rop_cache_rtl_params(c, surface_bytes, 1).addr_w);  // rast_rop_cache's AddrW
   const uint64_t below_tag = log2_exact(uint64_t(c.line_bytes)) + log2_exact(sets);
   const uint64_t tag_bits = address_bits > below_tag ? address_bits - below_tag : 0;
   const uint64_t lru_bits = uint64_t(std::bit_width(unsigned(c.ways - 1)));  // a way's recency rank, 0..ways-1
-  out.push_back({prefix + ".data", c.bytes * 8, false, 0});
+  out.push_back(cache_data_array(prefix, c.bytes));
   out.push_back({prefix + ".tags", lines * tag_bits, false, 0});
   out.push_back({prefix + ".state", lines * (2 + lru_bits), false, 0});  // valid, dirty, rank
 }
@@ -62,6 +69,10 @@ std::vector<StorageArray> memory_storage(const MemoryParams& m, int width, int h
 std::vector<StorageArray> memory_storage(const ArchParams& arch) {
   const RasterState& r = arch.raster;
   return memory_storage(arch.memory, r.fb_width, r.fb_height, r.samples, r.depth_bits);
+}
+
+std::vector<StorageArray> rop_cache_data_storage(const ArchParams& arch) {
+  return {cache_data_array("rop_color_cache", uint64_t(rop_cache_rtl_params(arch).cache_bytes))};
 }
 
 void add_storage(AreaReport& r, const std::vector<StorageArray>& arrays) {

@@ -1,15 +1,17 @@
 // SPDX-License-Identifier: Apache-2.0
 // The on-chip storage of the ROP's memory system (docs/memory.md) that `rastsim area`
-// counts beside the synthesised RTL (docs/area.md, "Storage of the memory system"). There
-// is no cache RTL yet, so nothing here is synthesised: each array is counted from the
-// config by a stated rule.
+// counts beside the synthesised RTL (docs/area.md, "Storage of the memory system"). The
+// whole design's report has no cache RTL in it (rtl/rast_rop_cache.sv is not yet in
+// rast_top), so every array is counted from the config by a stated rule; `--top
+// rast_rop_cache` synthesises the cache's tags and state and counts its data array
+// (rast_rop_cache_data, a blackbox to Yosys) by the same rule.
 //
 // - Arrays a cache (rop.color_cache_*, rop.depth_cache_*; none when its bytes are 0):
 //   data (bytes x 8 bits), tags (a tag a line) and state (valid and dirty a line, an LRU
 //   rank of log2(ways) bits a way). The tag is the line address above the set index:
-//   address bits of the surface (bit width of its last byte offset; the cache indexes
-//   the byte offset in its surface, the base is added past it) - log2(line bytes) -
-//   log2(sets).
+//   address bits of the surface (rast_rop_cache's AddrW, rop_cache_rtl_params: the cache
+//   indexes the byte offset in its surface, the base is added past it) - log2(line
+//   bytes) - log2(sets).
 // - Fast-clear flags (rop.fast_clear): one bit a fast-clear block over each surface.
 // - Plane compression (rop.depth_compression = plane): one bit a depth block, whether
 //   memory holds it plane-encoded (a fill reads the plane size or the raw size).
@@ -60,6 +62,10 @@ uint64_t storage_transistors(uint64_t bits, bool& sram);
 std::vector<StorageArray> memory_storage(const MemoryParams& m, int width, int height, int samples, int depth_bits);
 // ... for a resolved config: its display size, raster.samples and raster.depth_bits.
 std::vector<StorageArray> memory_storage(const ArchParams& arch);
+
+// The data array of rast_rop_cache as `rastsim area --top rast_rop_cache` builds it (the
+// colour cache): "rop_color_cache.data", bytes x 8 bits.
+std::vector<StorageArray> rop_cache_data_storage(const ArchParams& arch);
 
 // Adds the arrays to the report (its storage rows) and their transistors to its total.
 void add_storage(AreaReport& r, const std::vector<StorageArray>& arrays);

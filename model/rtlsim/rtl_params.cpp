@@ -11,6 +11,7 @@
 #include "ref/raster_state.h"
 #include "config/raster_state_config.h"
 #include "config/video_timing.h"
+#include "ref/memory/rop_memory.h"
 
 namespace rastsim {
 
@@ -101,6 +102,23 @@ constexpr ParamField<RecipRtlParams> kRecipFields[] = {
     {"ITERATIONS", &RecipRtlParams::iterations, "interp.recip_iterations"},
 };
 
+// The ROP's cache synthesised as a root of its own (`rastsim area --top rast_rop_cache`).
+constexpr ParamField<RopCacheRtlParams> kRopCacheFields[] = {
+    {"AddrW", &RopCacheRtlParams::addr_w, "bits of a byte offset in the surface"},
+    {"CacheBytes", &RopCacheRtlParams::cache_bytes, "rop.color_cache_bytes"},
+    {"Ways", &RopCacheRtlParams::ways, "rop.color_cache_ways"},
+    {"LineBytes", &RopCacheRtlParams::line_bytes, "rop.color_cache_line_bytes"},
+    {"WordBytes", &RopCacheRtlParams::word_bytes, "bytes of a colour sample"},
+};
+
+// (name, value) of each field of `p`, in the table's order.
+template <class P, size_t N>
+std::vector<std::pair<std::string, int>> named_fields(const P& p, const ParamField<P> (&fields)[N]) {
+  std::vector<std::pair<std::string, int>> out;
+  for (const auto& f : fields) out.emplace_back(f.name, p.*f.member);
+  return out;
+}
+
 // Bits of the 2D engine's signed pixel indices: a 2D command's coordinates, clipped or
 // not (a line's far end, a blit's source), with room above the largest framebuffer.
 constexpr int kEngine2dIndexBits = 20;
@@ -125,19 +143,39 @@ bool engine2d_rtl_params_compatible(const Engine2dRtlParams& built, const Engine
   return true;
 }
 
+RopCacheRtlParams rop_cache_rtl_params(const CacheParams& c, uint64_t surface_bytes, int word_bytes) {
+  RopCacheRtlParams p;
+  p.addr_w = surface_bytes > 1 ? int(std::bit_width(surface_bytes - 1)) : 0;
+  p.cache_bytes = int(c.bytes);
+  p.ways = c.ways;
+  p.line_bytes = c.line_bytes;
+  p.word_bytes = word_bytes;
+  return p;
+}
+
+RopCacheRtlParams rop_cache_rtl_params(const ArchParams& arch) {
+  const RasterState& r = arch.raster;
+  if (arch.memory.color_cache.bytes == 0)
+    throw std::runtime_error("rast_rop_cache is built with the colour cache's parameters, and rop.color_cache_bytes "
+                             "is 0 (no cache): set it (e.g. --set rop.color_cache_bytes=16384)");
+  const SurfaceLayout color = color_surface_layout(arch.memory, r.fb_width, r.fb_height, r.samples);
+  return rop_cache_rtl_params(arch.memory.color_cache, color.footprint_bytes(), kColorBytesPerSample);
+}
+
 std::vector<std::string> root_rtl_param_names(const std::string& root) {
   std::vector<std::string> out;
   if (root == "rast_recip")
     for (const auto& f : kRecipFields) out.emplace_back(f.name);
+  if (root == "rast_rop_cache")
+    for (const auto& f : kRopCacheFields) out.emplace_back(f.name);
   return out;
 }
 
 std::vector<std::pair<std::string, int>> root_rtl_params(const std::string& root, const ArchParams& arch) {
-  std::vector<std::pair<std::string, int>> out;
-  if (root != "rast_recip") return out;
-  const RecipRtlParams p{arch.raster.recip_seed_bits, arch.raster.recip_iterations};
-  for (const auto& f : kRecipFields) out.emplace_back(f.name, p.*f.member);
-  return out;
+  if (root == "rast_recip")
+    return named_fields(RecipRtlParams{arch.raster.recip_seed_bits, arch.raster.recip_iterations}, kRecipFields);
+  if (root == "rast_rop_cache") return named_fields(rop_cache_rtl_params(arch), kRopCacheFields);
+  return {};
 }
 
 ScanoutRtlParams scanout_rtl_params(const ArchParams& arch, const DisplayParams& display) {

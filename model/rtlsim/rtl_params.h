@@ -122,9 +122,27 @@ struct RecipRtlParams {
   int iterations = 0;  // ITERATIONS: interp.recip_iterations, Newton-Raphson steps
 };
 
+// The ROP's cache of one surface (rtl/rast_rop_cache.sv; docs/rtl.md "ROP cache"), not
+// yet in rast_top: `rastsim area --top rast_rop_cache` synthesises it as a root of its own
+// with the colour cache's parameters (rop.color_cache_*), rop_cache_rtl_params(arch).
+struct RopCacheRtlParams {
+  int addr_w = 0;       // AddrW: bits of a byte offset in the surface (the bit width of its last byte's)
+  int cache_bytes = 0;  // CacheBytes: rop.*_cache_bytes
+  int ways = 0;         // Ways: rop.*_cache_ways
+  int line_bytes = 0;   // LineBytes: rop.*_cache_line_bytes
+  int word_bytes = 0;   // WordBytes: bytes of a sample (colour 4; depth 2 or 4)
+};
+// A cache `c` of a surface of `surface_bytes` bytes (its footprint, padding included) of
+// word_bytes-byte samples.
+RopCacheRtlParams rop_cache_rtl_params(const CacheParams& c, uint64_t surface_bytes, int word_bytes);
+// ... the colour cache of a resolved config (over its colour surface); throws naming
+// rop.color_cache_bytes when it is 0 (no cache to build).
+RopCacheRtlParams rop_cache_rtl_params(const ArchParams& arch);
+
 // The parameters a standalone area root (area.h) takes from the config, as (its Verilog
-// name, value) in its table's order: rast_recip's SEED_BITS and ITERATIONS; none for a
-// root without config parameters (rast_engine2d, the binary32 units) or another name.
+// name, value) in its table's order: rast_recip's SEED_BITS and ITERATIONS, rast_rop_cache's
+// AddrW, CacheBytes, Ways, LineBytes and WordBytes; none for a root without config
+// parameters (rast_engine2d, the binary32 units) or another name.
 std::vector<std::pair<std::string, int>> root_rtl_params(const std::string& root, const ArchParams& arch);
 // Their names alone (what the root can be given), in the same order.
 std::vector<std::string> root_rtl_param_names(const std::string& root);
