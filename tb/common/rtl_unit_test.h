@@ -32,11 +32,15 @@ void clock_cycle(Model& m) {
   m.clk_i = 1, m.eval();
 }
 
-// Reset with nothing offered and nothing taken, then out of reset (clock low).
+// Reset with nothing offered and nothing taken, then out of reset (clock low). rst_ni
+// goes 1 -> 0 -> 1: Verilator's variables start at 0, so driving it low from there is
+// no falling edge and an asynchronous-reset block (always_ff @(negedge rst_ni)) would
+// never run, leaving every non-zero reset value unset.
 template <class Model>
 void reset_stream(Model& m) {
-  m.rst_ni = 0, m.in_valid_i = 0, m.out_ready_i = 0, m.clk_i = 0;
+  m.rst_ni = 1, m.in_valid_i = 0, m.out_ready_i = 0, m.clk_i = 0;
   m.eval();
+  m.rst_ni = 0, m.eval();
   m.rst_ni = 1, m.eval();
 }
 
