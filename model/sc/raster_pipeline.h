@@ -23,7 +23,7 @@
 #include "config/arch_params.h"
 #include "ref/pipeline.h"
 #include "sc/command_fetch.h"
-#include "sc/memory.h"
+#include "timing/memory_system.h"
 #include "sc/scanout.h"
 #include "scene/scene_io.h"
 #include "config/timing_params.h"
