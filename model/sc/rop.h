@@ -22,11 +22,13 @@
 //   bytes) + (W H 4 a colour clear, W H depth bytes a depth clear) + resolve bytes.
 //
 // With the timed memory system (memory.model = "dram", attach_memory; docs/memory.md,
-// "Timed memory system (SystemC)") every access also goes through the reference's
-// functional caches (timing/rop_memory_port.h: RopMemoryPort), and a batch or the resolve pass lasts
-// timing/memory_timing.h's memory_transaction_cycles: its cycles above, or until its last
-// line fill has arrived plus one cycle, whichever is later; write-backs and clears'
-// writes are posted.
+// "Timed memory system") every access also goes through the reference's functional
+// caches (timing/rop_memory_port.h: RopMemoryPort). A batch then lasts as the RTL ROP's
+// groups take (timing/memory_timing.h, memory_group_response: one group of
+// rop.pixels_per_cycle accesses in flight, each answered when its fills have arrived;
+// no fill: the cycles above); the resolve pass memory_transaction_cycles: its cycles,
+// or until its last fill has arrived plus one cycle. Write-backs and clears' writes are
+// posted.
 #pragma once
 
 #include <array>
