@@ -196,8 +196,11 @@ void register_cosim(CLI::App& app) {
   add_rtl_run_options(cmd, c.run);
   cmd->add_option("--stats", c.stats_path,
                   "Write cycles_rtl, cycles_model, cycle_error, fragments_compared, mismatches, per stage "
-                  "stages.<name>.{busy,stalled,starved}_{rtl,model} and busy_error, stage_worst_busy_error, ... "
-                  "as JSON ('-' for stdout)");
+                  "stages.<name>.{busy,stalled,starved}_{rtl,model} and busy_error, stage_worst_busy_error, ...; "
+                  "with memory.model = \"dram\" the RTL run's memory keys under simulate's names (dram_bytes_read, "
+                  "dram_bytes_written, rop_*_cache_hits / _misses, fast_clear_blocks, depth_compressed_bytes, "
+                  "dram_row_hit_rate, dram_bandwidth_utilisation, memory.dram.*, memory.clients.<client>.*; "
+                  "docs/memory.md) as JSON ('-' for stdout)");
   cmd->add_option("--max-error", c.max_error,
                   "Fail when |cycles_model - cycles_rtl| / cycles_rtl exceeds this (e.g. 0.05; default: report only)");
   cmd->add_flag("--no-model", c.no_model, "Do not run the SystemC model (fragment check only)");

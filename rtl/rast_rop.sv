@@ -413,10 +413,13 @@ module rast_rop #(
 
   // ---- Observation ----
   assign idle_o = count_q == '0 && !q_valid_q && !w_valid_q && !clr_active_q;
-  // Works this cycle: issues a group's read, a clear's write or takes a marker, or holds
-  // a write the memory refuses (a batch's last write, taken, is not a cycle of its own:
-  // a batch of A accesses works rop_fragment_cycles(A) cycles, the SystemC model's).
-  assign dbg_has_o = rd_valid_o || clr_active_q || marker_take || w_valid_q || (wr_valid_o && !wr_ready_i);
+  // Works this cycle: issues a group's read, a clear's write or takes a marker, waits for
+  // its read's response (a memory slower than a cycle: a line fill), or holds a write the
+  // memory refuses (a batch's last write, taken, is not a cycle of its own: a batch of A
+  // accesses works rop_fragment_cycles(A) cycles with a one-cycle memory, the SystemC
+  // model's; with a slower one, to its last group's response: memory_group_response).
+  assign dbg_has_o = rd_valid_o || clr_active_q || marker_take || w_valid_q || (wr_valid_o && !wr_ready_i) ||
+                     (q_valid_q && !rd_rvalid_i);
   assign dbg_start_o = (rd_take && first_q) || marker_take;
   assign dbg_done_o = (resp_done && q_last_q) || (w_done && w_last_q) ||
                       (clr_active_q && wr_ready_i && clr_left_q <= (2 * PixelW + 1)'(ClearPixelsPerCycle));

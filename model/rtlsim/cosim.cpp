@@ -87,7 +87,7 @@ RtlCacheEntry on_demand_model(const ArchParams& arch, const CosimOptions& opts, 
 }  // namespace
 
 nlohmann::json CosimResult::to_json(const CosimOptions& opts) const {
-  return {{"rtl_model", rtl_config},
+  nlohmann::json j = {{"rtl_model", rtl_config},
           {"rtl_model_dir", rtl_model_dir},
           {"rtl_cache_hit", rtl_cache_hit},
           {"rtl_build_seconds", rtl_build_seconds},
@@ -108,6 +108,11 @@ nlohmann::json CosimResult::to_json(const CosimOptions& opts) const {
           {"seed", opts.stress_seed},
           {"rtl_wall_seconds", wall_seconds},
           {"rtl_cycles_per_second", wall_seconds > 0 ? double(cycles_rtl) / wall_seconds : 0.0}};
+  if (memory.enabled) {  // render's memory keys, then the DRAM's (simulate --stats' names)
+    add_memory(j, memory);
+    j.merge_patch(dram);
+  }
+  return j;
 }
 
 std::vector<RtlModelInfo> rtl_models() {

@@ -35,7 +35,16 @@
 
 #include "config/arch_params.h"
 #include "rtlsim/rtl_params.h"
+#include "ref/memory/rop_memory.h"
 #include "ref/scene.h"
+
+namespace rastsim {
+// The functional memory counts as JSON fields (the on-demand runner's answer, CosimResult).
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(MemoryClientStats, accesses, hits, misses, evictions, writebacks,
+                                                bytes_read, bytes_written, fast_clear_blocks, clear_fill_bytes,
+                                                compressed_blocks, compressed_bytes)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(MemoryStats, enabled, rop_color, rop_depth)
+}  // namespace rastsim
 
 namespace rastsim::rtlsim {
 
@@ -97,6 +106,11 @@ struct CosimResult {
   int samples = 1;                 // raster.samples driven on the RTL
   uint64_t rop_accesses = 0;       // ROP accesses of the fragments (TimingParams::rop_accesses)
   uint64_t resolve_cycles = 0;     // the frame-end resolve pass (end-of-frame marker), included in cycles_rtl
+  // memory.model = "dram": the ROP's functional memory counts (render --stats' keys) and
+  // the DRAM's figures (add_memory_system_json's keys: dram_row_hit_rate, memory.dram.*,
+  // memory.clients.<client>.bursts_read, ...); memory.enabled false and {} with fixed.
+  MemoryStats memory;
+  nlohmann::json dram = nlohmann::json::object();
   double wall_seconds = 0;         // the RTL simulation (testbench included)
   // Per stage, every row of the stage table in its order (timing/stage_table.h, kStages):
   // the RTL's stages from its handshakes (rast_top's dbg_*_o ports), the others from the
@@ -112,8 +126,8 @@ struct CosimResult {
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(CosimResult, rtl_config, rtl_model_dir, rtl_cache_hit,
                                                 rtl_build_seconds, cycles_rtl, fragments_expected, fragments_compared,
                                                 mismatches, first_mismatch, triangles, markers, commands_2d, pixels_2d,
-                                                crc_rtl, crc_ref, samples, rop_accesses, resolve_cycles, wall_seconds,
-                                                stages)
+                                                crc_rtl, crc_ref, samples, rop_accesses, resolve_cycles, memory, dram,
+                                                wall_seconds, stages)
 
 // The verilated configs linked into this binary, and the parameters each was built with
 // (compiled in at configure time: no config file is read).

@@ -212,13 +212,6 @@ RtlParams cosim_wanted_params(const ArchParams& arch, const CosimOptions& opts) 
     throw ConfigError(cfg.origin("raster.traversal") + ": raster.traversal = " + cfg.get_string("raster.traversal") +
                       " has no RTL; the RTL (rtl/) walks tiles only: co-simulate with raster.traversal = tiled "
                       "(render and simulate run every method)");
-  // The testbench serves the RTL ROP's memory port with fixed costs only (docs/memory.md,
-  // "RTL co-simulation"); comparing against the SystemC model's DRAM timing would only
-  // count the difference.
-  if (arch.memory.enabled)
-    throw ConfigError(cfg.origin("memory.model") + ": memory.model = \"" + cfg.get_string("memory.model") +
-                      "\" has no RTL co-simulation yet (the testbench serves the ROP's memory port with fixed "
-                      "costs): co-simulate with memory.model = \"fixed\" (render and simulate run dram)");
   const int tile = opts.tile_size ? opts.tile_size : arch.raster.tile_size;
   if (tile < 2 || !std::has_single_bit(static_cast<unsigned>(tile)))
     throw std::runtime_error("tile size " + std::to_string(tile) + " is not a power of two >= 2");
@@ -267,6 +260,14 @@ void cosim_setup(const Scene& scene, const ArchParams& arch, const CosimOptions&
   RenderStats ref_stats;
   s.reference = render_scene(scene, s.arch, ref_stats);
   build(scene, arch, tile, s);
+  s.memory = arch.memory;
+  s.dram = arch.dram;
+  // The RTL 2D engine reads its memory asynchronously (rtl/rast_engine2d.sv: no wait for
+  // a line fill), so the timed memory system cannot serve it.
+  if (s.memory.enabled && !s.work2d.empty())
+    throw ConfigError(arch.config.origin("memory.model") + ": memory.model = \"dram\" has no RTL co-simulation of a "
+                      "2D command (" + s.work2d.front().name + "): the RTL 2D engine reads its memory without "
+                      "waiting for a line fill; co-simulate it with memory.model = \"fixed\"");
   r.fragments_expected = s.expected.size();
   for (const TbItem& it : s.items)
     (it.kind == TbItem::Marker ? r.markers : r.triangles) += it.kind == TbItem::Marker || it.kind == TbItem::Triangle;

@@ -13,7 +13,8 @@
 // The ROP is rast_top's (rtl/rast_rop.sv behind the fragment FIFO). The testbench feeds
 // its command port, one command a marker in stream order (a clear's value, else a pass),
 // and serves its memory port from the framebuffer (memory.model = "fixed": every request
-// taken at once, a read's data in the next cycle). What stays the testbench's: the 2D
+// taken at once, a read's data in the next cycle; "dram": taken at once, a read's data
+// when its group's line fills have arrived, tb_rop_memory.h). What stays the testbench's: the 2D
 // engine's grant of the ROP's port (a 2D marker's command is held back until the engine
 // is done) and the multisample resolve pass (after the end-of-frame marker's command,
 // TimingParams::resolve_cycles counted as ROP busy cycles).
@@ -34,10 +35,12 @@
 #include <chrono>
 #include <cstring>
 #include <deque>
+#include <memory>
 #include <random>
 #include <utility>
 
 #include "ref/fixed_point.h"
+#include "rtlsim/tb_rop_memory.h"
 #include "ref/pipeline.h"
 #include "timing/stage_table.h"
 
@@ -133,6 +136,7 @@ class Testbench {
         fb_(setup.arch.fb_width, setup.arch.fb_height, setup.samples),
         depth_base_(rop_depth_base(fb_.width, fb_.height, fb_.samples)) {
     fb_.clear_depth(static_cast<uint32_t>((uint64_t{1} << setup.arch.depth_bits) - 1));  // as render_scene
+    if (setup.memory.enabled) dram_ = std::make_unique<TbRopMemory>(setup);
     for (size_t i = 0; i < setup.items.size(); ++i)
       if (!setup.items[i].from_front_end) fetched_.push_back(i);
   }
@@ -217,6 +221,7 @@ class Testbench {
   bool command_valid_ = false;            // cmd_valid_i this cycle
   int command_op_ = 0;                    // cmd_op_i this cycle
   uint64_t perturb_now_ = 0;              // CosimOptions::perturb_rop_*: the next read's extra latency
+  std::unique_ptr<TbRopMemory> dram_;     // memory.model = "dram": the timed memory system (null: fixed)
   // The 2D path.
   std::deque<Entry> draw2d_fifo_, op2d_fifo_;  // fetch -> front end -> engine (items: work2d indices)
   TbStage front_end_;                     // the 2D front end
@@ -278,6 +283,7 @@ void Testbench::run() {
     }
   }
   close_stage_counts(counted);
+  if (dram_) dram_->finish(result_.cycles_rtl, result_);
   end_of_run_check();
   ports_.finish();
   result_.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -369,21 +375,24 @@ void Testbench::rop_serve(uint64_t t) {
     const int ms = setup_.params.max_samples;
     if (read_pending_) mismatch("cycle " + std::to_string(t) + ": the ROP read again before its read's data");
     read_data_.assign(size_t(setup_.params.rop_pixels_per_cycle * ms), 0);
+    uint32_t accesses = 0;  // one a lane
     for (int k = 0; k < setup_.params.rop_pixels_per_cycle; ++k) {
       if (!ports_.rop_read_lane_valid(k)) continue;
+      ++accesses;
       const RopLane l = ports_.rop_read_lane(k);
       if (l.len > uint32_t(ms)) mismatch("cycle " + std::to_string(t) + ": a read burst longer than MaxSamples");
       for (uint32_t i = 0; i < l.len && i < uint32_t(ms); ++i) read_data_[size_t(k * ms) + i] = rop_read_word(l.addr + 4 * i, t);
     }
     read_pending_ = true;
-    read_due_ = t + 1 + std::exchange(perturb_now_, 0);
+    read_due_ = (dram_ ? dram_->read(t, accesses) : t + 1) + std::exchange(perturb_now_, 0);
   }
   if (rop_commands_.empty() || !ports_.rop_command_wanted()) return;
   const TbItem& m = setup_.items[rop_commands_.front()];
   if (command_valid_) {
     rop_commands_.pop_front();
     rop_2d_done_ = false;
-    if (!m.cmd) resolve_left_ = m.rop_cost;  // the frame end: its marker's cycle, then the resolve pass
+    if (!m.cmd) resolve_left_ = dram_ ? dram_->frame_end(t, m.rop_cost) : m.rop_cost;  // the frame end: its marker's cycle, then the resolve pass
+    else if (dram_ && m.work2d < 0) dram_->command(*m.cmd, t);
   } else if (m.work2d >= 0 && !rop_wait_2d_ && !rop_2d_done_) {
     rop_wait_2d_ = true;  // the engine takes the port in this cycle (cycle: engine_take again)
     granted_work_ = m.work2d;
@@ -463,6 +472,7 @@ void Testbench::take_beat(uint64_t t, const FragmentBeat& beat) {
     f.samples = static_cast<uint8_t>(setup_.samples);
     result_.rop_accesses += TimingParams::rop_accesses(f.mask, setup_.samples);
     compare(f);
+    if (dram_) dram_->fragment(f);
   }
 }
 

@@ -4,7 +4,7 @@
 // RTL's ports as the testbench sees them (RastPorts, implemented per verilated config by
 // the port adapter in cosim_driver.h), and the testbench itself (run_testbench,
 // testbench.cpp): the command front end, the ROP's command feed and the memory behind
-// its port (the framebuffer), the stage meters and the checks. Internal to model/rtlsim; callers use cosim.h.
+// its port (the framebuffer; with memory.model = "dram" timed by tb_rop_memory.h), the stage meters and the checks. Internal to model/rtlsim; callers use cosim.h.
 #pragma once
 
 #include <array>
@@ -16,10 +16,12 @@
 #include "ref/2d/draw2d.h"
 #include "ref/framebuffer.h"
 #include "ref/interpolate.h"
+#include "ref/memory/memory_params.h"
 #include "ref/raster_state.h"
 #include "ref/sample_pattern.h"
 #include "ref/scene.h"
 #include "rtlsim/cosim.h"
+#include "timing/dram.h"
 
 namespace rastsim::rtlsim {
 
@@ -83,6 +85,10 @@ struct TbSetup {
   RasterState arch;                     // the config's state: framebuffer size, depth function and write (the ROP's static inputs)
   Framebuffer reference;                // the reference model's image of the scene
   TimingParams timing;                  // of the config being simulated: FIFO depths, ROP cost
+  // memory.model = "dram" (memory.enabled): the timed memory system behind the ROP's port
+  // (tb_rop_memory.h) with these caches, layout and DRAM; "fixed": the framebuffer alone.
+  MemoryParams memory;
+  DramParams dram;
   CosimOptions opts;
 };
 

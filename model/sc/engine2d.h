@@ -19,9 +19,11 @@
 #include "ref/framebuffer.h"
 #include "sc/draw2d_setup.h"
 
-namespace rastsim::sc {
-
+namespace rastsim {
 class RopMemoryPort;
+}  // namespace rastsim
+
+namespace rastsim::sc {
 
 // ROP -> engine: the port is yours for this command; engine -> ROP: it is done.
 struct PortGrant {

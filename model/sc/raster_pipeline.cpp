@@ -271,7 +271,7 @@ SimResult simulate_commands(CommandSource source, const ArchParams& params, cons
   static ScanoutFetch* scanout = nullptr;
   std::optional<AtomicFile> mem_trace;
   if (params.memory.enabled) {
-    memory = new MemorySystem("memory", params.dram);
+    memory = new MemorySystem(params.dram);
     if (!opts.mem_trace_path.empty()) memory->record_trace(&mem_trace.emplace(opts.mem_trace_path).stream());
     scanout = attach_scanout_fetch(*memory, params);  // first: its requests at cycle 0 go first
     top->rop.attach_memory(*memory, params.memory);  // its first request: the frame's depth clear

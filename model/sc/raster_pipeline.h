@@ -23,7 +23,7 @@
 #include "config/arch_params.h"
 #include "ref/pipeline.h"
 #include "sc/command_fetch.h"
-#include "sc/memory.h"
+#include "timing/memory_system.h"
 #include "sc/scanout.h"
 #include "scene/scene_io.h"
 #include "config/timing_params.h"
@@ -88,7 +88,7 @@ struct SimResult {
   // --heatmap: busy cycles per tile of coarse_raster, fine_raster, interpolate and rop,
   // in that order (empty when off).
   std::vector<TileHeat> heat;
-  // The timed memory system's figures (memory.model = "dram"; sc/memory.h), else empty.
+  // The timed memory system's figures (memory.model = "dram"; timing/memory_system.h), else empty.
   // render.memory holds the functional counts, equal to render's.
   std::optional<MemorySystemReport> memory;
   // The scan-out's line fetch as a memory client (sc/scanout.h: ScanoutFetch), when the

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "sc/rop.h"
 
+#include <span>
+
 #include "ref/pipeline.h"
 #include "ref/rop.h"
 #include "sc/model_error.h"
@@ -8,44 +10,35 @@
 
 namespace rastsim::sc {
 
-RopMemoryPort::RopMemoryPort(MemorySystem& mem, const MemoryParams& p, const Framebuffer& fb, int depth_bits)
-    : mem_(mem), rop_(p, fb, depth_bits) {
-  SurfaceClient* clients[2] = {&rop_.color, &rop_.depth};
-  for (size_t k = 0; k < surfaces_.size(); ++k) {
-    Surface& s = surfaces_[k];
-    s.client = MemClient(k);
-    clients[k]->on_access = [this, &s](uint64_t, bool) { settle(s); };
-    clients[k]->on_transfer = [&s](const MemoryTransfer& t) { s.pending.push_back(t); };
+namespace {
+
+struct RopBatchCounts {
+  uint64_t accesses = 0, passed = 0, samples_passed = 0;
+};
+
+// A batch's fragments through the timed memory system a group at a time (timing/
+// memory_timing.h, memory_group_response: `group_accesses` accesses a group, a
+// fragment's accesses made by the group of its first one), the first group issued at core
+// cycle `start`; returns the cycle the last group's response comes (`start`: no access).
+uint64_t rop_write_groups(Framebuffer& fb, std::span<const Fragment> frags, const RasterState& st,
+                          RopMemoryPort& port, uint64_t group_accesses, uint64_t start, RopBatchCounts& n) {
+  uint64_t issue = start, group_end = group_accesses;
+  port.begin(issue);
+  const auto respond = [&] {  // the current group's response; the next group issues then
+    issue = memory_group_response(issue, port.end());
+    port.begin(issue);
+    group_end += group_accesses;
+  };
+  for (const Fragment& f : frags) {
+    if (n.accesses == group_end) respond();  // f's first access opens the next group
+    n.passed += rop_write(fb, f, st.depth_func, st.depth_write, &n.samples_passed, &port.functional());
+    n.accesses += TimingParams::rop_accesses(f.mask, fb.samples);
+    while (n.accesses > group_end) respond();  // f's later accesses fill further groups
   }
+  return n.accesses ? memory_group_response(issue, port.end()) : start;
 }
 
-// The surface's transfers reported so far, in order, as DRAM requests at the current cycle.
-void RopMemoryPort::settle(Surface& s) {
-  for (const MemoryTransfer& t : s.pending) {
-    if (t.write) mem_.post_write(s.client, t.address, t.bytes, cycle_);
-    else mem_.issue_read(s.client, t.address, t.bytes, cycle_);
-  }
-  s.pending.clear();
-}
-
-void RopMemoryPort::begin(uint64_t cycle) { cycle_ = cycle; }
-
-std::optional<uint64_t> RopMemoryPort::end() {
-  for (Surface& s : surfaces_) settle(s);
-  return mem_.wait_reads();
-}
-
-uint64_t RopMemoryPort::transaction_cycles(uint64_t work_cycles, uint64_t start) {
-  const std::optional<uint64_t> fill = end();
-  return memory_transaction_cycles(work_cycles, start, fill.has_value(), fill.value_or(0));
-}
-
-void RopMemoryPort::cleared(MemClient c) { settle(surfaces_[size_t(c)]); }
-
-void RopMemoryPort::finish() {
-  rop_.finish();  // the resolve's accesses, the flush's lines and the resolved image report their transfers
-  for (Surface& s : surfaces_) settle(s);
-}
+}  // namespace
 
 Rop::Rop(SimContext& ctx, const RasterState& arch, const TimingParams& p,
          Link<FragmentItem>& in, Link<PortGrant>& grant_2d, Link<PortGrant>& done_2d, sc_core::sc_module_name name)
@@ -128,16 +121,21 @@ void Rop::body() {
     const FragmentBatch& batch = *in.work;
     const std::span<const Fragment> frags = batch.fragments();
     uint64_t accesses = 0, passed = 0, samples_passed = 0;  // summed locally, added once a batch
-    RopMemory* const mem = functional_memory();
-    if (mem_) mem_->begin(now());
-    if (batch.one_per_pixel() && fb_.samples == 1) {
+    uint64_t cycles = 0;
+    if (mem_) {
+      RopBatchCounts n;
+      cycles = rop_write_groups(fb_, frags, st_, *mem_, p_.rop_pixels_per_cycle, now(), n) - now();
+      accesses = n.accesses;
+      passed = n.passed;
+      samples_passed = n.samples_passed;
+    } else if (batch.one_per_pixel() && fb_.samples == 1) {
       // A run at a time: the same tests and writes as rop_write on each fragment in turn
       // (ref/rop.h), the storage tile looked up once a run. Each fragment is one access
       // and, written, one sample.
       const Fragment* f = frags.data();
       for (const PixelRun& r : batch.pixels->runs) {
         const uint32_t n = rop_write_run(
-            fb_, r.y, r.x0, r.x1, [f, x0 = r.x0](int x) { return f[x - x0]; }, st_.depth_func, st_.depth_write, mem);
+            fb_, r.y, r.x0, r.x1, [f, x0 = r.x0](int x) { return f[x - x0]; }, st_.depth_func, st_.depth_write);
         f += r.x1 - r.x0;
         passed += n;
         samples_passed += n;
@@ -146,15 +144,16 @@ void Rop::body() {
     } else {
       for (const Fragment& f : frags) {
         accesses += TimingParams::rop_accesses(f.mask, fb_.samples);
-        passed += rop_write(fb_, f, st_.depth_func, st_.depth_write, &samples_passed, mem);
+        passed += rop_write(fb_, f, st_.depth_func, st_.depth_write, &samples_passed);
       }
     }
+    if (!mem_) cycles = p_.rop_fragment_cycles(accesses);
     ctx_.render.fragments_passed += passed;
     ctx_.render.samples_passed += samples_passed;
     ctx_.rop_accesses += accesses;
     ctx_.framebuffer_bytes += accesses * (4 + depth_bytes_);
     if (!frags.empty()) attribute_to(frags.front().x, frags.front().y);  // the batch's tile
-    busy(transaction_cycles(p_.rop_fragment_cycles(accesses)));
+    busy(cycles);
   }
 }
 

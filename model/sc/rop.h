@@ -22,11 +22,13 @@
 //   bytes) + (W H 4 a colour clear, W H depth bytes a depth clear) + resolve bytes.
 //
 // With the timed memory system (memory.model = "dram", attach_memory; docs/memory.md,
-// "Timed memory system (SystemC)") every access also goes through the reference's
-// functional caches (RopMemoryPort below), and a batch or the resolve pass lasts
-// timing/memory_timing.h's memory_transaction_cycles: its cycles above, or until its last
-// line fill has arrived plus one cycle, whichever is later; write-backs and clears'
-// writes are posted.
+// "Timed memory system") every access also goes through the reference's functional
+// caches (timing/rop_memory_port.h: RopMemoryPort). A batch then lasts as the RTL ROP's
+// groups take (timing/memory_timing.h, memory_group_response: one group of
+// rop.pixels_per_cycle accesses in flight, each answered when its fills have arrived;
+// no fill: the cycles above); the resolve pass memory_transaction_cycles: its cycles,
+// or until its last fill has arrived plus one cycle. Write-backs and clears' writes are
+// posted.
 #pragma once
 
 #include <array>
@@ -38,55 +40,9 @@
 #include "ref/framebuffer.h"
 #include "sc/engine2d.h"
 #include "sc/interpolate.h"
-#include "sc/memory.h"
+#include "timing/rop_memory_port.h"
 
 namespace rastsim::sc {
-
-// The ROP's memory clients (rop_color, rop_depth) on the timed memory system: it runs the
-// reference's functional memory system (ref/memory/rop_memory.h) on the ROP's own access
-// stream (and the 2D engine's, which owns the ROP's port while it draws), so hits, misses
-// and bytes equal render's, and issues each DRAM transfer the functional model reports
-// (SurfaceClient::on_transfer) at its own address and size: a write-back at the evicted
-// line, a fill at the missed line, each flushed line at the frame end.
-//
-// Order: a client's transfers wait until its next access (or the transaction's end):
-// the requests of one cycle enter the DRAM in access order, a surface at a time, the
-// colour surface's first at the transaction's end.
-class RopMemoryPort {
- public:
-  RopMemoryPort(MemorySystem& mem, const MemoryParams& p, const Framebuffer& fb, int depth_bits);
-  RopMemoryPort(const RopMemoryPort&) = delete;
-  RopMemoryPort& operator=(const RopMemoryPort&) = delete;
-
-  // The functional model the ROP calls (ref/rop.h's mem argument).
-  RopMemory& functional() { return rop_; }
-  // Accesses from now on are made at core cycle `cycle` (the transaction's start).
-  void begin(uint64_t cycle);
-  // The transaction's accesses are all made: their requests issued, then its fills
-  // waited for; returns the last fill's completion (nullopt: no fill).
-  std::optional<uint64_t> end();
-  // end(), then the transaction's cycles by timing/memory_timing.h's rule: `work_cycles`
-  // or until its last fill has arrived plus one cycle, from its start `start`.
-  uint64_t transaction_cycles(uint64_t work_cycles, uint64_t start);
-  // After functional().clear_color() / clear_depth(): the clear's bytes written.
-  void cleared(MemClient c);
-  // The frame end (RopMemory::finish: resolve reads, flush, resolved image), made at
-  // the current cycle; then the stats.
-  void finish();
-  MemoryStats stats() const { return rop_.stats(); }
-
- private:
-  struct Surface {
-    MemClient client;
-    std::vector<MemoryTransfer> pending;  // reported, not yet issued
-  };
-  void settle(Surface& s);
-
-  MemorySystem& mem_;
-  RopMemory rop_;
-  std::array<Surface, 2> surfaces_;
-  uint64_t cycle_ = 0;
-};
 
 class Rop : public Stage {
  public:

@@ -33,7 +33,7 @@
 #include "config/video_timing.h"
 #include "ref/memory/memory_params.h"
 #include "ref/memory/surface_layout.h"
-#include "sc/memory.h"
+#include "timing/memory_system.h"
 
 namespace rastsim::sc {
 

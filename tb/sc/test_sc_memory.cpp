@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// The timed memory system (model/sc/memory.h; docs/memory.md, "Timed memory system
+// The timed memory system (model/timing/memory_system.h; docs/memory.md, "Timed memory system
 // (SystemC)"):
 //
 // - with memory.model = dram, simulate's image, every render counter and every cache,

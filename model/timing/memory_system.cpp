@@ -1,15 +1,14 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "sc/memory.h"
+#include "timing/memory_system.h"
 
 #include <algorithm>
+#include <stdexcept>
+#include <string>
 #include <utility>
 
-#include "sc/model_error.h"
 #include "timing/dram_trace.h"
 
-namespace rastsim::sc {
-
-MemorySystem::MemorySystem(sc_core::sc_module_name name, const DramParams& p) : sc_module(name), dram_(p) {}
+namespace rastsim {
 
 void MemorySystem::enqueue(MemClient c, uint64_t address, uint64_t bytes, bool write, uint64_t cycle) {
   // No request arrives before the DRAM's own time: one that would (a client behind the
@@ -71,7 +70,7 @@ bool MemorySystem::step(uint64_t limit) {
 std::optional<uint64_t> MemorySystem::wait_reads() {
   while (outstanding_reads_ > 0)
     if (!step(DramModel::kNoEvent))
-      throw ModelError("memory: " + std::to_string(outstanding_reads_) + " reads outstanding but the DRAM is idle");
+      throw std::logic_error("memory: " + std::to_string(outstanding_reads_) + " reads outstanding but the DRAM is idle");
   return std::exchange(last_read_, std::nullopt);
 }
 
@@ -118,4 +117,4 @@ void add_memory_system_json(nlohmann::json& j, const MemorySystemReport& r) {
   }
 }
 
-}  // namespace rastsim::sc
+}  // namespace rastsim

@@ -1,10 +1,11 @@
 // SPDX-License-Identifier: Apache-2.0
-// The timed memory system (memory.model = "dram"; docs/memory.md, "Timed memory system
-// (SystemC)"): one module every memory client goes through, wrapping the shared DRAM
-// model (timing/dram.h) built from ArchParams::dram.
+// The timed memory system (memory.model = "dram"; docs/memory.md, "Timed memory system"):
+// one object every memory client goes through, wrapping the shared DRAM model
+// (timing/dram.h) built from ArchParams::dram. Plain C++ (no SystemC): the SystemC model
+// and the RTL testbench (model/rtlsim) run the same one, so their DRAM timing can agree.
 //
-// Time: like the Links (sc/link.h), the module works in its clients' own time (temporal
-// decoupling): a request carries the core cycle it is made at, and the DRAM model is
+// Time: the object works in its clients' own time (in the SystemC model, temporal
+// decoupling like its Links, sc/link.h; in the RTL testbench, the cycle being clocked): a request carries the core cycle it is made at, and the DRAM model is
 // advanced event by event (DramModel::next_event, never a cycle at a time) only as far
 // as a client needs an answer. A blocking read (wait_reads) returns the core cycle the
 // DRAM's completion arrives; posted writes occupy the DRAM and return nothing.
@@ -15,12 +16,12 @@
 // rop_depth. Inside the DRAM model FR-FCFS decides, with no client priority.
 //
 // The scan-out's line fetch (sc/scanout.h: ScanoutFetch) is a self-timed client: it
-// makes its requests of its own accord as display time passes, so the module runs it
+// makes its requests of its own accord as display time passes, so the object runs it
 // inside its event loop (step): before any other client's request enters at cycle c,
 // every scan-out request due at or before c has entered, the DRAM first advanced to c
 // while scan-out reads are in flight (their completions set its next request).
 //
-// The ROP's client, RopMemoryPort, is in sc/rop.h.
+// The ROP's client, RopMemoryPort, is in timing/rop_memory_port.h.
 #pragma once
 
 #include <array>
@@ -31,12 +32,10 @@
 #include <vector>
 
 #include <nlohmann/json.hpp>
-#include <systemc>
-
 #include "ref/memory/rop_memory.h"
 #include "timing/dram.h"
 
-namespace rastsim::sc {
+namespace rastsim {
 
 // The clients: the index of each one's DRAM stats and its stats name
 // (memory.clients.<name>).
@@ -72,9 +71,9 @@ struct MemorySystemReport {
   uint64_t peak_bytes_per_kcycle = 0;  // peak DRAM bytes per 1000 core cycles
 };
 
-class MemorySystem : public sc_core::sc_module {
+class MemorySystem {
  public:
-  MemorySystem(sc_core::sc_module_name name, const DramParams& p);
+  explicit MemorySystem(const DramParams& p) : dram_(p) {}
 
   // A posted write of `bytes` at `address` made at core cycle `cycle`; split into
   // requests of at most kMaxRequestBytes.
@@ -88,7 +87,7 @@ class MemorySystem : public sc_core::sc_module {
   uint64_t drain();
 
   // The self-timed client (at most one: the scan-out, requests as MemClient::Scanout);
-  // it must outlive the module's use.
+  // it must outlive the object's use.
   void attach(SelfTimedClient& c) { timed_ = &c; }
 
   // Writes every request from now on to *out in DRAMsim3's format (timing/dram_trace.h).
@@ -120,4 +119,4 @@ class MemorySystem : public sc_core::sc_module {
 // row_conflicts, mean_read_latency_cycles} (docs/stats.md).
 void add_memory_system_json(nlohmann::json& j, const MemorySystemReport& r);
 
-}  // namespace rastsim::sc
+}  // namespace rastsim

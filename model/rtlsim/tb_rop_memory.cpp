@@ -1,0 +1,67 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "rtlsim/tb_rop_memory.h"
+
+#include <algorithm>
+#include <variant>
+
+#include "ref/pipeline.h"
+#include "ref/rop.h"
+#include "rtlsim/testbench.h"
+#include "timing/memory_timing.h"
+
+namespace rastsim::rtlsim {
+
+TbRopMemory::TbRopMemory(const TbSetup& s)
+    : system_(s.dram), shadow_(s.arch.fb_width, s.arch.fb_height, s.samples), state_(s.arch),
+      port_(system_, s.memory, shadow_, s.arch.depth_bits) {
+  // As the SystemC ROP (Rop::attach_memory): the frame starts with the depth clear.
+  shadow_.clear_depth(static_cast<uint32_t>((uint64_t{1} << s.arch.depth_bits) - 1));
+  port_.begin(0);
+  port_.functional().clear_depth();
+  port_.cleared(MemClient::RopDepth);
+}
+
+uint64_t TbRopMemory::read(uint64_t t, uint32_t accesses) {
+  port_.begin(t);
+  for (uint64_t left = accesses; left > 0;) {
+    if (head_left_ == 0) {  // the next fragment's first access is in this group: all its accesses now
+      if (fragments_.empty()) break;  // more accesses than fragments: the fragment check reports it
+      const Fragment f = fragments_.front();
+      fragments_.pop_front();
+      rop_write(shadow_, f, state_.depth_func, state_.depth_write, nullptr, &port_.functional());
+      head_left_ = TimingParams::rop_accesses(f.mask, shadow_.samples);
+    }
+    const uint64_t n = std::min(left, head_left_);
+    left -= n;
+    head_left_ -= n;
+  }
+  return memory_group_response(t, port_.end());
+}
+
+void TbRopMemory::command(const Command& cmd, uint64_t t) {
+  port_.begin(t);
+  apply_state_command(cmd, state_, shadow_, &port_.functional());
+  if (std::holds_alternative<CmdClear>(cmd.body)) port_.cleared(MemClient::RopColor);
+  if (std::holds_alternative<CmdClearDepth>(cmd.body)) port_.cleared(MemClient::RopDepth);
+}
+
+uint64_t TbRopMemory::frame_end(uint64_t t, uint64_t resolve_cycles) {
+  port_.begin(t);
+  port_.finish();
+  frame_finished_ = true;
+  return port_.transaction_cycles(resolve_cycles, t);
+}
+
+void TbRopMemory::finish(uint64_t cycles, CosimResult& r) {
+  if (!frame_finished_) {
+    port_.begin(cycles);
+    port_.finish();
+    port_.end();
+  }
+  system_.drain();
+  r.memory = port_.stats();
+  r.dram = nlohmann::json::object();
+  add_memory_system_json(r.dram, system_.report(cycles));
+}
+
+}  // namespace rastsim::rtlsim

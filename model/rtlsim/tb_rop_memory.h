@@ -1,0 +1,63 @@
+// SPDX-License-Identifier: Apache-2.0
+// The timed memory system behind the RTL ROP's memory port in co-simulation
+// (memory.model = "dram"; docs/memory.md, "RTL co-simulation"): the SystemC model's
+// MemorySystem, RopMemoryPort and DramModel (model/timing), driven by the testbench
+// (testbench.cpp) as the SystemC ROP drives them (sc/rop.cpp), so both levels follow one
+// timing rule (timing/memory_timing.h: memory_group_response) and make the same
+// functional accesses.
+//
+// The functional accesses are the reference ROP's (ref/rop.h rop_write) on the fragments
+// the RTL's fragment FIFO takes, in order, replayed on a framebuffer of its own (the
+// state the reference's caches and depth compression see; the testbench's memory holds
+// the RTL's writes): every hit, miss and byte equals render's. A fragment's accesses are
+// made when the group of its first access reads (rast_rop.sv's groups: the read's lanes,
+// one an access); the read's response comes when that group's fills have arrived.
+// Clears at their command, the resolve's and the frame end's accesses as the SystemC ROP.
+#pragma once
+
+#include <cstdint>
+#include <deque>
+
+#include "ref/framebuffer.h"
+#include "ref/interpolate.h"
+#include "ref/raster_state.h"
+#include "ref/scene.h"
+#include "rtlsim/cosim.h"
+#include "timing/memory_system.h"
+#include "timing/rop_memory_port.h"
+
+namespace rastsim::rtlsim {
+
+struct TbSetup;
+
+class TbRopMemory {
+ public:
+  explicit TbRopMemory(const TbSetup& s);
+  TbRopMemory(const TbRopMemory&) = delete;
+  TbRopMemory& operator=(const TbRopMemory&) = delete;
+
+  // A fragment the ROP's fragment FIFO took (in order).
+  void fragment(const Fragment& f) { fragments_.push_back(f); }
+  // The ROP's read of a group of `accesses` accesses, taken at core cycle `t`: the cycle
+  // its response is due.
+  uint64_t read(uint64_t t, uint32_t accesses);
+  // A state command taken at cycle `t` (a clear's bytes written).
+  void command(const Command& cmd, uint64_t t);
+  // The end-of-frame marker's command taken at cycle `t`: the resolve pass's cycles
+  // (`resolve_cycles`, or until its last fill has arrived plus one cycle).
+  uint64_t frame_end(uint64_t t, uint64_t resolve_cycles);
+  // The run ended after `cycles` cycles: the frame end's accesses (if the resolve did not
+  // make them), every request drained; the functional counts and the DRAM's figures into `r`.
+  void finish(uint64_t cycles, CosimResult& r);
+
+ private:
+  MemorySystem system_;
+  Framebuffer shadow_;   // the reference ROP's framebuffer, replayed in stream order
+  RasterState state_;
+  RopMemoryPort port_;
+  std::deque<Fragment> fragments_;  // taken by the fragment FIFO, not yet replayed
+  uint64_t head_left_ = 0;          // accesses of the last replayed fragment not yet in a group
+  bool frame_finished_ = false;     // the resolve made the frame end's accesses
+};
+
+}  // namespace rastsim::rtlsim
