@@ -16,6 +16,7 @@
 #include <string>
 
 #include "config/obj_placement.h"
+#include "estimate/estimate.h"
 #include "scene/scene_io.h"
 #include "sim_harness.h"
 
@@ -93,6 +94,11 @@ TEST_P(ScTexture, RandomTrianglesMatchRender) {
   EXPECT_GT(st["helper_pixels"].get<uint64_t>(), 0u);
   EXPECT_GT(st["stages"]["texture"]["busy"].get<uint64_t>(), 0u);
   EXPECT_GT(st["fifos"]["texture_done"]["transactions"].get<uint64_t>(), 0u);  // fences were passed
+  // estimate's texture bound stays below the simulation: the stage's busy and the cycles.
+  const EstimateResult e = estimate_scene(scene, ArchParams::resolve(cfg));
+  EXPECT_GT(e.stages[stage_index(StageId::Texture)].busy, 0u);
+  EXPECT_LE(e.stages[stage_index(StageId::Texture)].busy, st["stages"]["texture"]["busy"].get<uint64_t>());
+  EXPECT_LE(e.cycles_lower_bound, st["cycles"].get<uint64_t>());
 }
 
 INSTANTIATE_TEST_SUITE_P(
@@ -136,6 +142,9 @@ TEST(ScTextureBox, BoxTMatchesRender) {
     sctest::expect_matches_reference(r);
     ASSERT_FALSE(r.contains("error"));
     EXPECT_GT(r["stats"]["helper_pixels"].get<uint64_t>(), 0u);
+    const EstimateResult e = estimate_scene(scene, ArchParams::resolve(cfg));
+    EXPECT_LE(e.stages[stage_index(StageId::Texture)].busy, r["stats"]["stages"]["texture"]["busy"].get<uint64_t>());
+    EXPECT_LE(e.cycles_lower_bound, r["stats"]["cycles"].get<uint64_t>());
   }
 }
 
@@ -171,6 +180,11 @@ TEST(ScTextureTiming, BusyCyclesFollowTheEquation) {
     EXPECT_EQ(st["texture_cache_misses"].get<uint64_t>(), 4u);
     EXPECT_EQ(st["helper_pixels"].get<uint64_t>(), 32u);
     EXPECT_EQ(st["stages"]["texture"]["busy"].get<uint64_t>(), 256 * slots + 4 * 100);
+    // estimate: the sample-rate term alone (no misses, no quads), and no upper bound.
+    const EstimateResult e = estimate_scene(scene, ArchParams::resolve(config));
+    EXPECT_EQ(e.stages[stage_index(StageId::Texture)].busy, 256 * slots);
+    EXPECT_FALSE(e.has_upper_bound());
+    EXPECT_LE(e.cycles_lower_bound, st["cycles"].get<uint64_t>());
   }
 }
 
