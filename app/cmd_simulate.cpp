@@ -151,7 +151,6 @@ void run_simulate_command(const SimulateOptions& o) {
     throw std::runtime_error("--sample: the fraction F must be in (0, 1], got " + got.str());
   }
   check_one_stdout({{"--stats", o.stats_path}, {"--heatmap-data", o.heatmap_data_path}});
-  reject_textured_scene(o.scene_path, arch.placement, "SystemC");  // never a silently untextured picture
   if (o.sample || !o.tolerance.empty()) return run_level_mode(o, arch);
   std::unique_ptr<AtomicFile> frag_file;
   const sc::SimOptions sim = sim_options(o, frag_file);

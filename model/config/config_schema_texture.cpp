@@ -26,6 +26,20 @@ void add_texture_params(std::vector<ParamDef>& s) {
                "Fraction bits of the bilinear weights: u - 1/2 truncated to this many bits (8: weights in 1/256)"});
   s.push_back({"texture.line_bytes", T::Int, int64_t{64}, "bytes", 4, 4096, {},
                "Line of the texture cache: the bytes a miss reads from memory", is_power_of_two, "a power of two"});
+  // The timed texture stage (simulate; docs/texture.md, "Timed texture stage").
+  s.push_back({"texture.quads_per_cycle", T::Int, int64_t{1}, "quads/cycle", 1, 64, {},
+               "Timed texture stage: 2x2 quads a cycle through level of detail and texel addressing (helper pixels "
+               "included: they ride in their quad)"});
+  s.push_back({"texture.bilinear_per_cycle", T::Int, int64_t{4}, "samples/cycle", 1, 64, {},
+               "Timed texture stage: bilinear (or nearest) samples filtered a cycle; a trilinear sample is two "
+               "bilinear ones (half rate)"});
+  s.push_back({"texture.texels_per_cycle", T::Int, int64_t{16}, "texels/cycle", 1, 256, {},
+               "Timed texture stage: the texture cache's port, texel fetches a cycle"});
+  s.push_back({"texture.combine_per_cycle", T::Int, int64_t{4}, "fragments/cycle", 1, 64, {},
+               "Timed texture stage: fragments through the texenv combine a cycle"});
+  s.push_back({"texture.miss_cycles", T::Int, int64_t{20}, "cycles", 0, 65536, {},
+               "Timed texture stage, memory.model = \"fixed\": cycles each texture-cache line miss stalls the stage "
+               "(its line read from memory); simulate refuses a textured scene with memory.model = \"dram\""});
 }
 
 }  // namespace rastsim

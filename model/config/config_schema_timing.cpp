@@ -116,6 +116,9 @@ void add_fifo_keys(const AddKey& add) {
        "Fine raster -> interpolation FIFO (one entry: one tile's covered pixels)"});
   add({"fifo.fragment_depth", T::Int, int64_t{4}, "entries", 1, 65536, {},
        "Interpolation -> ROP FIFO (one entry: one tile's shaded fragments)"});
+  add({"fifo.texture_depth", T::Int, int64_t{4}, "entries", 1, 65536, {},
+       "Interpolation -> texture stage FIFO (one entry: one tile's textured fragments; plus interpolation's "
+       "pipeline slots, as the fragment FIFO)"});
 }
 
 }  // namespace

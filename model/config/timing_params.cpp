@@ -50,6 +50,12 @@ TimingParams TimingParams::from_config(const Config& cfg) {
   p.fifo_tile = depth("fifo.tile_depth");
   p.fifo_pixel = depth("fifo.pixel_depth");
   p.fifo_fragment = depth("fifo.fragment_depth");
+  p.fifo_texture = depth("fifo.texture_depth");
+  p.texture_quads_per_cycle = u("texture.quads_per_cycle");
+  p.texture_bilinear_per_cycle = u("texture.bilinear_per_cycle");
+  p.texture_texels_per_cycle = u("texture.texels_per_cycle");
+  p.texture_combine_per_cycle = u("texture.combine_per_cycle");
+  p.texture_miss_cycles = u("texture.miss_cycles");
   if (p.setup_latency < p.setup_interval)
     throw ConfigError(cfg.origin("setup.latency_cycles") + ": setup.latency_cycles = " +
                       std::to_string(p.setup_latency) + " is less than setup.interval_cycles = " +
@@ -85,10 +91,12 @@ int TimingParams::fifo_entries(FifoId fifo) const {
     case FifoId::Tile: return fifo_tile;
     case FifoId::Pixel: return fifo_pixel;
     case FifoId::Fragment: return fragment_fifo_entries();
+    case FifoId::Texture: return texture_fifo_entries();
     case FifoId::Draw2d: return fifo_draw2d;
     case FifoId::Op2d: return fifo_op2d;
     case FifoId::Grant2d:
-    case FifoId::Done2d: return 1;
+    case FifoId::Done2d:
+    case FifoId::TextureDone: return 1;
   }
   return 0;
 }

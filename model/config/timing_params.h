@@ -42,12 +42,19 @@ struct TimingParams {
   int fifo_draw2d = 0, fifo_op2d = 0;
   int fifo_clip_command = 0, fifo_screen = 0;
   int fifo_command = 0, fifo_triangle = 0, fifo_setup = 0, fifo_tile = 0, fifo_pixel = 0, fifo_fragment = 0;
+  // The texture stage (docs/texture.md, "Timed texture stage"): quads through level of
+  // detail and addressing, bilinear samples filtered, texels through the cache port and
+  // fragments combined a cycle, and the cycles a texture-cache line miss stalls it.
+  uint64_t texture_quads_per_cycle = 0, texture_bilinear_per_cycle = 0, texture_texels_per_cycle = 0;
+  uint64_t texture_combine_per_cycle = 0, texture_miss_cycles = 0;
+  int fifo_texture = 0;
 
   // Entries of the FIFO after a stage with a pipeline latency: the configured depth plus
   // the transactions in flight inside the stage's pipeline (its pipeline registers),
   // so that latency costs time but not throughput.
   int setup_fifo_entries() const { return fifo_setup + int(ceil_div(setup_latency - setup_interval, setup_interval)); }
   int fragment_fifo_entries() const { return fifo_fragment + int(interp_pipeline_latency()); }
+  int texture_fifo_entries() const { return fifo_texture + int(interp_pipeline_latency()); }
   int screen_fifo_entries() const { return fifo_screen + int(front_end_latency); }
 
   // The interpolator's reciprocal unit (rtl/rast_recip.sv inside rtl/rast_interpolate.sv)
@@ -149,6 +156,28 @@ struct TimingParams {
   }
   // ROP on a 2D command's marker: 1 cycle after the 2D engine hands its port back.
   static constexpr uint64_t rop_draw2d_marker_cycles() { return 1; }
+
+  // The texture stage on one batch of textured fragments (docs/texture.md, "Timed texture
+  // stage"): its four units run in a pipeline, so the slowest sets the batch's cycles,
+  // and each texture-cache line miss stalls the whole pipeline texture.miss_cycles:
+  //   max(ceil(Q / quads_per_cycle), ceil(B / bilinear_per_cycle),
+  //       ceil(T / texels_per_cycle), ceil(N / combine_per_cycle)) + M miss_cycles
+  // Q the batch's 2x2 quads (helper pixels ride in their quad's lanes), B its bilinear
+  // sample slots (a nearest or bilinear sample 1, a trilinear sample 2: half rate), T its
+  // texel fetches, N its fragments, M its line misses. At least 1 cycle a batch.
+  struct TextureWork {
+    uint64_t quads = 0, bilinear_slots = 0, texel_fetches = 0, fragments = 0, misses = 0;
+  };
+  uint64_t texture_batch_cycles(const TextureWork& w) const {
+    const uint64_t rate = std::max({ceil_div(w.quads, texture_quads_per_cycle),
+                                    ceil_div(w.bilinear_slots, texture_bilinear_per_cycle),
+                                    ceil_div(w.texel_fetches, texture_texels_per_cycle),
+                                    ceil_div(w.fragments, texture_combine_per_cycle), uint64_t{1}});
+    return rate + w.misses * texture_miss_cycles;
+  }
+  // Bilinear sample slots of one sample by its filter: trilinear blends two levels' bilinear
+  // samples at half rate (also where its level weight is 0 and one level is read).
+  static constexpr uint64_t texture_sample_slots(bool trilinear) { return trilinear ? 2 : 1; }
 
   // Traversal (docs/traversal.md). Coarse raster classifies coarse_tiles_per_cycle tiles a
   // cycle at every level: tile i of a walk (counted from 0 over all levels, in walk order)

@@ -98,6 +98,7 @@ class Walker {
       ++r_.render.triangles_in;
       SetupTriangle tri;
       const SetupOutcome outcome = setup_triangle(v, st_, cmd.loc, tri);
+      tri.texture = prims.texture;  // as sc/tri_setup: the texture stage's batches
       stage(StageId::TriSetup).busy += p_.setup_triangle_cycles();
       if (!count_setup_outcome(outcome, r_.render)) return;  // culled: no transaction out
       emit(StageId::TriSetup);
@@ -245,7 +246,29 @@ class Walker {
     work(StageId::Interpolate, p_.interp_batch_cycles(shaded, t.affine));
     r_.latency_waits += p_.interp_pipeline_latency();
     stage(StageId::Rop).busy += p_.rop_fragment_cycles(acc);
+    if (t.texture.enabled()) texture_batch(t.texture.filter, shaded);
   }
+
+  // A textured batch of `fragments` through the texture stage (sc/texture): the terms of
+  // TimingParams::texture_batch_cycles the counts give, its sample slots, its fewest texel
+  // fetches (1 a nearest sample, 4 a bilinear or trilinear one: one level read at least)
+  // and its fragments; its quads and cache misses need the texture unit itself and count
+  // 0 here, so this stays at most the simulated busy (a lower bound; no upper bound).
+  void texture_batch(TexFilter filter, uint64_t fragments) {
+    textured_ = true;
+    TimingParams::TextureWork w;
+    w.bilinear_slots = fragments * TimingParams::texture_sample_slots(filter == TexFilter::Trilinear);
+    w.texel_fetches = fragments * (filter == TexFilter::Nearest ? 1 : 4);
+    w.fragments = fragments;
+    work(StageId::Texture, p_.texture_batch_cycles(w));
+  }
+
+ public:
+  // A texture stage batch was counted (its busy cycles are only a lower bound).
+  bool textured() const { return textured_; }
+
+ private:
+  bool textured_ = false;
 
   RasterState st_;
   TraversalParams tp_;
@@ -299,8 +322,10 @@ EstimateResult estimate_scene(const Scene& scene, const ArchParams& params, cons
   }
   bandwidth_bounds(scene, params, r);
   r.cycles_lower_bound = std::max(r.stage_lower_bound, r.bandwidth_lower_bound);
-  // The ROP's busy cycles under DRAM include its fills' waits, which no count bounds.
-  r.cycles_upper_bound = params.memory.enabled ? EstimateResult::kNoUpperBound : busy_sum + r.latency_waits;
+  // The ROP's busy cycles under DRAM include its fills' waits, which no count bounds; the
+  // texture stage's include its cache misses, which only the texture unit counts.
+  r.cycles_upper_bound =
+      params.memory.enabled || walker.textured() ? EstimateResult::kNoUpperBound : busy_sum + r.latency_waits;
   r.cycles_estimate = r.cycles_lower_bound;
   if (r.has_upper_bound())
     r.cycles_estimate +=

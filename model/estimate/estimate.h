@@ -16,6 +16,9 @@
 // - With memory.model = "dram": a bandwidth bound joins the lower bound (the line fills the
 //   ROP waits for cannot move faster than the DRAM's peak), and there is no upper bound
 //   (the DRAM's latencies under load are not bounded by the counts).
+// - A scene drawn with a texture bound: the texture stage's busy cycles from its sample
+//   rate, fetches and combine alone (TimingParams::texture_batch_cycles without quads and
+//   misses), a lower bound; no upper bound (the texture cache's misses are not counted).
 #pragma once
 
 #include <array>
@@ -54,7 +57,7 @@ struct EstimateResult {
   // The lower bound's two parts: max over stages of fill + busy, and the bandwidth bound
   // (0 with memory.model = "fixed").
   uint64_t stage_lower_bound = 0, bandwidth_lower_bound = 0;
-  // memory.model = "dram": no upper bound; cycles_upper_bound is kNoUpperBound.
+  // memory.model = "dram" or a texture bound: no upper bound; cycles_upper_bound is kNoUpperBound.
   static constexpr uint64_t kNoUpperBound = ~uint64_t{0};
   bool has_upper_bound() const { return cycles_upper_bound != kNoUpperBound; }
   // memory.model = "dram": the reference's DRAM bytes (render --stats' dram_bytes_read and

@@ -5,7 +5,6 @@
 #include <atomic>
 #include <chrono>
 #include <optional>
-#include <unordered_map>
 
 #include "ref/homogeneous.h"
 #include "ref/prim_assembly.h"
@@ -106,8 +105,8 @@ void reject_textured_commands(std::span<const Command> commands, const char* lev
   for (const Command& cmd : commands)
     if (const auto* p = std::get_if<CmdPrimitives>(&cmd.body); p && p->texture.enabled())
       throw SceneError(cmd.loc.str() + ": drawn with texture '" + p->texture.image->name + "' bound, and the " +
-                       level + " level has no texture stage yet: texturing is modelled by the reference only: use "
-                       "`rastsim render` (docs/texture.md)");
+                       level + " level has no texture stage yet: use `rastsim render` or `rastsim simulate` "
+                       "(docs/texture.md)");
 }
 
 void count_interp_error(const Fragment& got, const Fragment& exact, RenderStats& stats) {
@@ -233,11 +232,10 @@ struct SceneRenderer::Impl {
   }
 
   // The texture stage (ref/texture/texture_unit.h, docs/texture.md): created at the first
-  // textured triangle; its quads' derivatives, one triangle's, by quad.
+  // textured triangle; its quads' derivatives, one triangle's.
   std::optional<TextureUnit> tex;
-  std::unordered_map<uint64_t, QuadDerivatives> quads;
+  TriangleQuads quads;
   void draw_textured(const SetupTriangle& tri, const TextureState& ts);
-  const QuadDerivatives& quad_derivatives(const SetupTriangle& tri, int px, int py);
 };
 
 SceneRenderer::SceneRenderer(const RasterState& arch, RenderStats& stats, const FragmentSink& on_fragment,
@@ -307,31 +305,16 @@ void SceneRenderer::Impl::draw_textured(const SetupTriangle& tri, const TextureS
   if (!tex) tex.emplace(st.texture);
   PixelShader shader(tri, F);
   quads.clear();
-  uint64_t covered = 0;
   const int tex_frac = st.texcoord_format.frac_bits;
   traverse(tri, tp, stats.traversal, [&](int px, int py, uint32_t mask) {
     if (check) pixels.emplace_back(px, py);
-    ++covered;
-    const QuadDerivatives& d = quad_derivatives(tri, px, py);
+    quads.add_covered(1);
+    const QuadDerivatives& d = quads.derivatives(tri, px, py, F);
     shader.shade(px, py, mask, [&](const Fragment& f) {
       write(tri, px, py, f, stats, [&](const Fragment& g) { return tex->shade(g, d, ts, tex_frac); });
     });
   });
-  tex->stats().helper_pixels += 4 * uint64_t(quads.size()) - covered;
-}
-
-// Coarse derivatives (ref/texture/texture.h): the quad's top-left, top-right and
-// bottom-left pixel centres by plane equations (extrapolated where not covered).
-const QuadDerivatives& SceneRenderer::Impl::quad_derivatives(const SetupTriangle& tri, int px, int py) {
-  const int x0 = px & ~1, y0 = py & ~1;
-  const uint64_t key = (uint64_t(uint32_t(y0)) << 32) | uint32_t(x0);
-  const auto [it, added] = quads.try_emplace(key);
-  if (added) {
-    const Fragment a = interpolate_plane(tri, x0, y0, F), b = interpolate_plane(tri, x0 + 1, y0, F),
-                   c = interpolate_plane(tri, x0, y0 + 1, F);
-    it->second = {int64_t(b.s) - a.s, int64_t(b.t) - a.t, int64_t(c.s) - a.s, int64_t(c.t) - a.t};
-  }
-  return it->second;
+  tex->stats().helper_pixels += quads.helper_pixels();
 }
 
 // State and 2D commands one by one, in order; each run of primitive commands between

@@ -96,7 +96,7 @@ void check_2d_sample_count(const Command& cmd, const RasterState& st);
 void reject_2d_commands(const Scene& scene, const char* level);
 
 // Throws SceneError naming the first primitives command of `commands` drawn with a
-// texture bound, for the levels that have no texture stage yet (`level`: "SystemC", "RTL").
+// texture bound, for the level that has no texture stage yet (`level`: "RTL").
 void reject_textured_commands(std::span<const Command> commands, const char* level);
 
 // Adds one fragment's attribute error (a method's fragment against interpolate_plane's)

@@ -96,6 +96,10 @@ struct SetupTriangle {
   int depth_bits = 24;  // raster.depth_bits: the range the dda method clamps depth to
   int samples = 1;      // raster.samples: coverage is a mask of this many bits a pixel
   AaMode aa_mode = AaMode::Msaa;
+  // The texture the triangle is drawn with, its command's (none bound: untextured): the
+  // timed model's setup sets it for its texture stage (sc/texture.h); the reference's
+  // setup leaves it unbound and samples with the command's state.
+  TextureState texture;
   // The 64-bit paths (same results as i128, tb/test_int64_paths.cpp): edges64 when every
   // edge value at a point of the format's range fits int64 (fixed_point.h
   // edges_fit_int64); an interpolation numerator w0 a0 + w1 a1 + w2 a2 (a_k < 2^A, A =

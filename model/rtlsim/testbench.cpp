@@ -823,6 +823,7 @@ void Testbench::observe_rtl_stages(uint64_t t) {
     count(k, !has ? Cyc::Starved : stalled ? Cyc::Stalled : Cyc::Busy);
     if (done) tx_end(k, handshake_only ? t : t + 1);
   }
+  count(StageId::Texture, Cyc::Starved);  // no texture stage in the RTL (cosim refuses textured scenes)
 }
 // The ROP: busy in a cycle it works (a group's read, a clear's write, a marker), stalled
 // while the memory refuses its request, starved otherwise; or busy in the testbench's

@@ -8,41 +8,18 @@ namespace rastsim::sc {
 void Interpolate::body() {
   for (;;) {
     const PixelItem in = read(in_);
-    if (pass_state(in, out_, p_.interp_pipeline_latency())) continue;
+    if (!textured_ahead_ && pass_state(in, out_, p_.interp_pipeline_latency())) continue;
+    if (in.state) {
+      pass_state_behind_texture(in);
+      continue;
+    }
     const PixelBatch& batch = *in.work;
     const SetupTriangle& tri = *batch.tri;
     LocalPtr<FragmentBatch> frags = fragments_.take();
     frags->pixels = in.work;
     // At most one fragment a covered sample (ssaa), one a pixel otherwise.
     Fragment* const first = frags->reset(size_t(batch.pixels) * size_t(tri.samples));
-    Fragment* out = first;
-    if (shader_tri_ != batch.tri) {
-      shader_tri_ = batch.tri;
-      shader_.emplace(tri, frac_bits_);  // the reference's shading, fast path included
-    }
-    PixelShader& shader = *shader_;
-    // Per batch, not per fragment: the stepped plane equations with no sink are the
-    // common case and store fragments only, a run at a time.
-    if (shader.stepped() && !ctx_.on_fragment) {
-      for (const PixelRun& r : batch.runs)
-        shader.shade_run(r.y, r.x0, [&](auto&& frag) {
-          for (int x = r.x0; x < r.x1; ++x) *out++ = frag(x);
-        });
-    } else {
-      const bool dda = tri.interp_method != InterpMethod::Plane;
-      for (const PixelRun& r : batch.runs) {
-        for (int x = r.x0; x < r.x1; ++x) {
-          shader.shade(x, r.y, r.mask, [&](const Fragment& f) {
-            *out++ = f;
-            // interp.method = dda: its error against the plane equations, counted as the
-            // reference's render_scene counts it (same stats keys at both levels).
-            if (dda) count_interp_error(f, interpolate_plane(tri, x, r.y, frac_bits_), ctx_.render);
-            if (ctx_.on_fragment) ctx_.on_fragment(f);
-          });
-        }
-      }
-    }
-    frags->count = size_t(out - first);
+    frags->count = shade(batch, first);
     ctx_.render.fragments_shaded += frags->count;
     if (frags->count != 0) attribute_to(first->x, first->y);  // the batch's tile
     const uint64_t cycles = p_.interp_batch_cycles(frags->count, tri.affine);
@@ -51,8 +28,63 @@ void Interpolate::body() {
       ctx_.recip_busy_cycles += cycles;
     }
     busy(cycles);
-    write(out_, FragmentItem{nullptr, std::move(frags)}, p_.interp_pipeline_latency());
+    if (tri.texture.enabled()) {
+      textured_ahead_ = true;
+      write(texture_out_, FragmentItem{nullptr, std::move(frags)}, p_.interp_pipeline_latency());
+      continue;
+    }
+    const uint64_t latency = behind_texture(now() + p_.interp_pipeline_latency());
+    write(out_, FragmentItem{nullptr, std::move(frags)}, latency);
   }
+}
+
+size_t Interpolate::shade(const PixelBatch& batch, Fragment* const first) {
+  const SetupTriangle& tri = *batch.tri;
+  Fragment* out = first;
+  if (shader_tri_ != batch.tri) {
+    shader_tri_ = batch.tri;
+    shader_.emplace(tri, frac_bits_);  // the reference's shading, fast path included
+  }
+  PixelShader& shader = *shader_;
+  // Per batch, not per fragment: the stepped plane equations with no sink are the
+  // common case and store fragments only, a run at a time.
+  if (shader.stepped() && !ctx_.on_fragment) {
+    for (const PixelRun& r : batch.runs)
+      shader.shade_run(r.y, r.x0, [&](auto&& frag) {
+        for (int x = r.x0; x < r.x1; ++x) *out++ = frag(x);
+      });
+    return size_t(out - first);
+  }
+  const bool dda = tri.interp_method != InterpMethod::Plane;
+  for (const PixelRun& r : batch.runs) {
+    for (int x = r.x0; x < r.x1; ++x) {
+      shader.shade(x, r.y, r.mask, [&](const Fragment& f) {
+        *out++ = f;
+        // interp.method = dda: its error against the plane equations, counted as the
+        // reference's render_scene counts it (same stats keys at both levels).
+        if (dda) count_interp_error(f, interpolate_plane(tri, x, r.y, frac_bits_), ctx_.render);
+        if (ctx_.on_fragment) ctx_.on_fragment(f);
+      });
+    }
+  }
+  return size_t(out - first);
+}
+
+// Stage::pass_state's issue cycle and latency, with the fence between them.
+void Interpolate::pass_state_behind_texture(const PixelItem& in) {
+  attribute_to_no_tile();
+  busy(TimingParams::state_pass_cycles());
+  const uint64_t latency = behind_texture(now() + p_.interp_pipeline_latency());
+  write(out_, FragmentItem{in.state, {}}, latency);
+}
+
+uint64_t Interpolate::behind_texture(uint64_t ready) {
+  if (textured_ahead_) {
+    write(texture_out_, FragmentItem{});  // the fence
+    read(texture_done_, false);           // starved until its token is back
+    textured_ahead_ = false;
+  }
+  return ready > now() ? ready - now() : 0;
 }
 
 }  // namespace rastsim::sc

@@ -17,6 +17,12 @@
 // - A one-sample triangle shaded by plane equations goes run by run through
 //   PixelShader::shade_run, the reference's run path (ref/pipeline.cpp, RunWriter): a
 //   flat-shaded run is one fragment with its x moved along.
+// - A batch of a triangle drawn with a texture bound goes to the texture stage
+//   (sc/texture.h) on the texture FIFO; everything else to the ROP on the fragment FIFO,
+//   after a fence when textured batches are ahead of it: the fence goes down the texture
+//   FIFO, its token comes back on texture_done (starved until then) and the transaction
+//   enters the fragment FIFO behind them, ready no earlier than its own pipeline allows.
+//   Without textures this path is never taken: the stage is timed as without a texture stage.
 #pragma once
 
 #include <optional>
@@ -50,20 +56,35 @@ struct FragmentBatch {
 };
 using FragmentItem = Item<LocalPtr<const FragmentBatch>>;
 
+// Texture stage -> interpolation: every textured batch before the fence has left
+// (sc/texture.h).
+struct TextureFence {};
+
 class Interpolate : public Stage {
  public:
   static constexpr StageId kId = StageId::Interpolate;
   Interpolate(SimContext& ctx, const RasterState& arch, const TimingParams& p,
-              Link<PixelItem>& in, Link<FragmentItem>& out,
-            sc_core::sc_module_name name = stage_name(kId).data())
-      : Stage(name, ctx, kId), frac_bits_(arch.coord_format.frac_bits), p_(p), in_(in), out_(out) {}
+              Link<PixelItem>& in, Link<FragmentItem>& out, Link<FragmentItem>& texture_out,
+              Link<TextureFence>& texture_done, sc_core::sc_module_name name = stage_name(kId).data())
+      : Stage(name, ctx, kId), frac_bits_(arch.coord_format.frac_bits), p_(p), in_(in), out_(out),
+        texture_out_(texture_out), texture_done_(texture_done) {}
 
  private:
   void body() override;
+  // Shades the batch's fragments into `out` (one a covered sample at most); their count.
+  size_t shade(const PixelBatch& batch, Fragment* out);
+  // A state command with textured batches ahead: its issue cycle, then behind them.
+  void pass_state_behind_texture(const PixelItem& in);
+  // The fence, when textured batches are ahead; then the extra latency that makes a
+  // transaction whose pipeline ends at cycle `ready` ready then (0 when already past).
+  uint64_t behind_texture(uint64_t ready);
   int frac_bits_;
   const TimingParams& p_;
   Link<PixelItem>& in_;
   Link<FragmentItem>& out_;
+  Link<FragmentItem>& texture_out_;    // textured batches and fences, to the texture stage
+  Link<TextureFence>& texture_done_;   // a fence's token back
+  bool textured_ahead_ = false;        // a textured batch was sent since the last fence
   Recycler<FragmentBatch> fragments_;  // no allocation a batch (sc/recycler.h)
   // The shader of the last batch's triangle, kept for its next tiles (the reference
   // builds one a triangle too: PlaneStepper's setup divides). Holding the triangle keeps

@@ -10,6 +10,7 @@
 
 #include "sc/model_error.h"
 #include "sc/rop.h"
+#include "sc/texture.h"
 #include "scene/scene_io.h"
 #include "util/atomic_file.h"
 
@@ -23,7 +24,7 @@ namespace {
 // stops the build: -Wswitch).
 struct RasterPipeline : sc_core::sc_module {
   RasterPipeline(sc_core::sc_module_name name, SimContext& ctx, CommandSource source, const RasterState& arch,
-                 const TimingParams& p)
+                 const TimingParams& p, bool memory_dram)
       : sc_module(name),
         command_fifo(fifo_name(FifoId::Command).data(), p.fifo_entries(FifoId::Command), ctx.tracing, ctx.lockstep),
         clip_command_fifo(fifo_name(FifoId::ClipCommand).data(), p.fifo_entries(FifoId::ClipCommand), ctx.tracing,
@@ -34,6 +35,9 @@ struct RasterPipeline : sc_core::sc_module {
         tile_fifo(fifo_name(FifoId::Tile).data(), p.fifo_entries(FifoId::Tile), ctx.tracing, ctx.lockstep),
         pixel_fifo(fifo_name(FifoId::Pixel).data(), p.fifo_entries(FifoId::Pixel), ctx.tracing, ctx.lockstep),
         fragment_fifo(fifo_name(FifoId::Fragment).data(), p.fifo_entries(FifoId::Fragment), ctx.tracing, ctx.lockstep),
+        texture_fifo(fifo_name(FifoId::Texture).data(), p.fifo_entries(FifoId::Texture), ctx.tracing, ctx.lockstep),
+        texture_done(fifo_name(FifoId::TextureDone).data(), p.fifo_entries(FifoId::TextureDone), ctx.tracing,
+                     ctx.lockstep),
         draw2d_fifo(fifo_name(FifoId::Draw2d).data(), p.fifo_entries(FifoId::Draw2d), ctx.tracing, ctx.lockstep),
         op2d_fifo(fifo_name(FifoId::Op2d).data(), p.fifo_entries(FifoId::Op2d), ctx.tracing, ctx.lockstep),
         grant_2d(fifo_name(FifoId::Grant2d).data(), p.fifo_entries(FifoId::Grant2d), ctx.tracing, ctx.lockstep),
@@ -44,7 +48,8 @@ struct RasterPipeline : sc_core::sc_module {
         tri_setup(ctx, arch, p, triangle_fifo, setup_fifo),
         coarse_raster(ctx, arch, p, setup_fifo, tile_fifo),
         fine_raster(ctx, arch, p, tile_fifo, pixel_fifo),
-        interpolate(ctx, arch, p, pixel_fifo, fragment_fifo),
+        interpolate(ctx, arch, p, pixel_fifo, fragment_fifo, texture_fifo, texture_done),
+        texture(ctx, arch, p, memory_dram, texture_fifo, fragment_fifo, texture_done),
         rop(ctx, arch, p, fragment_fifo, grant_2d, done_2d),
         draw2d_setup(ctx, p, draw2d_fifo, op2d_fifo),
         engine2d(ctx, p, rop.framebuffer(), op2d_fifo, grant_2d, done_2d) {}
@@ -57,6 +62,8 @@ struct RasterPipeline : sc_core::sc_module {
   Link<TileItem> tile_fifo;
   Link<PixelItem> pixel_fifo;
   Link<FragmentItem> fragment_fifo;
+  Link<FragmentItem> texture_fifo;
+  Link<TextureFence> texture_done;
   Link<Draw2dItem> draw2d_fifo;
   Link<Op2dItem> op2d_fifo;
   Link<PortGrant> grant_2d, done_2d;  // the ROP's framebuffer port, lent to the 2D engine
@@ -67,6 +74,7 @@ struct RasterPipeline : sc_core::sc_module {
   CoarseRaster coarse_raster;
   FineRaster fine_raster;
   Interpolate interpolate;
+  Texture texture;
   Rop rop;
   Draw2dSetup draw2d_setup;
   Engine2d engine2d;
@@ -80,6 +88,7 @@ struct RasterPipeline : sc_core::sc_module {
       case StageId::CoarseRaster: return coarse_raster;
       case StageId::FineRaster: return fine_raster;
       case StageId::Interpolate: return interpolate;
+      case StageId::Texture: return texture;
       case StageId::Rop: return rop;
       case StageId::Draw2dSetup: return draw2d_setup;
       case StageId::Engine2d: return engine2d;
@@ -97,6 +106,8 @@ struct RasterPipeline : sc_core::sc_module {
       case FifoId::Tile: return f(tile_fifo);
       case FifoId::Pixel: return f(pixel_fifo);
       case FifoId::Fragment: return f(fragment_fifo);
+      case FifoId::Texture: return f(texture_fifo);
+      case FifoId::TextureDone: return f(texture_done);
       case FifoId::Draw2d: return f(draw2d_fifo);
       case FifoId::Op2d: return f(op2d_fifo);
       case FifoId::Grant2d: return f(grant_2d);
@@ -264,7 +275,7 @@ SimResult simulate_commands(CommandSource source, const ArchParams& params, cons
   // Built once and kept: SystemC does not support tearing a design down.
   static RasterPipeline* top = nullptr;
   if (top) throw std::logic_error("simulate_scene: SystemC elaborates only once per process");
-  top = new RasterPipeline("pipeline", ctx, std::move(source), arch, p);
+  top = new RasterPipeline("pipeline", ctx, std::move(source), arch, p, params.memory.enabled);
   Recorders rec;
   rec.attach(*top, opts, arch, ctx.tracing);
   static MemorySystem* memory = nullptr;  // kept, as the top: elaborated once
@@ -292,6 +303,7 @@ SimResult simulate_commands(CommandSource source, const ArchParams& params, cons
     r.timeline = rec.timeline.write_trace_json(opts.timeline_path, r.cycles, opts.timeline_max_events);
   r.heat = std::move(rec.heat);
   top->coarse_raster.finish_coverage();
+  top->texture.finish_texture();
   r.render = ctx.render;
   r.rop_accesses = ctx.rop_accesses;
   r.framebuffer_bytes = ctx.framebuffer_bytes;

@@ -4,6 +4,7 @@
 //
 //   command_fetch -> prim_assembly -> tri_setup -> coarse_raster -> fine_raster
 //                 -> interpolate -> rop (framebuffer)
+//   interpolate -> texture -> rop                    (textured batches only)
 //   command_fetch -> front_end -> prim_assembly      (clip-space commands only)
 //   command_fetch -> draw2d_setup -> engine2d <-> rop (2D commands)
 //

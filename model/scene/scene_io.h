@@ -73,10 +73,6 @@ std::optional<StatementCounts> obj_ignored_counts(const std::string& path, ObjCa
 // True when `path` names an OBJ mesh: the name, without any .gz / .zst, ends in .obj (any case).
 bool is_obj_path(const std::string& path);
 
-// reject_textured_commands (ref/pipeline.h) over the scene at `path`, streamed: the
-// levels without a texture stage refuse a textured scene before they run it.
-void reject_textured_scene(const std::string& path, const ObjPlacement& placement, const char* level);
-
 // By extension, after any .gz / .zst: .obj -> load_obj, anything else -> load_trace.
 // Every loader reads plain, gzip and zstd files alike (scene_stream.h).
 Scene load_scene(const std::string& path, const ObjPlacement& placement);

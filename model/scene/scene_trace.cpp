@@ -747,9 +747,6 @@ class TraceParser {
 
 }  // namespace
 
-// Commands a batch of reject_textured_scene's pass (memory bounded as a render's).
-constexpr size_t kRejectBatchCommands = 4096;
-
 // The parser follows the name without its compression suffix: a.obj.gz is an OBJ.
 bool is_obj_path(const std::string& path) {
   std::string ext = std::filesystem::path(scene_stream::strip_compression_suffix(path)).extension().string();
@@ -788,11 +785,6 @@ void stream_scene(const std::string& path, const ObjPlacement& placement, size_t
                                         std::ptrdiff_t(std::min(scene.commands.size(), i + std::max<size_t>(batch, 1)))));
     consume(part);
   }
-}
-
-void reject_textured_scene(const std::string& path, const ObjPlacement& placement, const char* level) {
-  stream_scene(path, placement, kRejectBatchCommands,
-               [&](std::vector<Command>& batch) { reject_textured_commands(batch, level); });
 }
 
 Scene load_scene(const std::string& path, const ObjPlacement& placement) {

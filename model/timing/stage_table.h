@@ -31,6 +31,7 @@ enum class StageId : int {
   CoarseRaster,
   FineRaster,
   Interpolate,
+  Texture,
   Rop,
   Draw2dSetup,
   Engine2d,
@@ -49,12 +50,15 @@ enum class StagePass {
 
 // Triangle: every triangle command; ClipSpace: the geometry front end, beside the
 // triangle path from command fetch to primitive assembly, which only clip-space
-// commands take (screen-space ones bypass it); TwoD: the 2D commands' path.
-enum class StagePath { Triangle, ClipSpace, TwoD };
+// commands take (screen-space ones bypass it); Texture: the texture stage, beside the
+// triangle path from interpolation to the ROP, which only textured batches take
+// (untextured ones bypass it); TwoD: the 2D commands' path.
+enum class StagePath { Triangle, ClipSpace, Texture, TwoD };
 constexpr std::string_view stage_path_name(StagePath p) {
   switch (p) {
     case StagePath::Triangle: return "triangle";
     case StagePath::ClipSpace: return "clip_space";
+    case StagePath::Texture: return "texture";
     case StagePath::TwoD: return "2d";
   }
   return "";
@@ -83,6 +87,9 @@ inline constexpr std::array kStages = {
     StageInfo{StageId::CoarseRaster, "coarse_raster", StagePath::Triangle, StageId::TriSetup, StagePass::IssueCycle, true, 3},
     StageInfo{StageId::FineRaster, "fine_raster", StagePath::Triangle, StageId::CoarseRaster, StagePass::IssueCycle, true, 4},
     StageInfo{StageId::Interpolate, "interpolate", StagePath::Triangle, StageId::FineRaster, StagePass::IssueInterpLatency, true, 5},
+    // Beside the path: only textured batches pass it (untextured fragments go from
+    // interpolation to the ROP directly), so the ROP's fill stays interpolation's.
+    StageInfo{StageId::Texture, "texture", StagePath::Texture, StageId::Interpolate, StagePass::IssueCycle, false, 10},
     StageInfo{StageId::Rop, "rop", StagePath::Triangle, StageId::Interpolate, StagePass::IssueCycle, true, 6},
     // Lower bound: a 2D command's first operation leaves command fetch with its header.
     StageInfo{StageId::Draw2dSetup, "draw2d_setup", StagePath::TwoD, StageId::CommandFetch, StagePass::IssueCycle, false, 7},
@@ -110,7 +117,10 @@ enum class FifoId : int {
   Setup,     // setup -> coarse raster: set-up triangles (plus setup's pipeline slots)
   Tile,      // coarse raster -> fine raster: tiles (or scanline spans)
   Pixel,     // fine raster -> interpolation: covered pixels
-  Fragment,  // interpolation -> ROP: fragments (plus interpolation's pipeline slots)
+  Fragment,  // interpolation -> ROP: fragments (plus interpolation's pipeline slots); the
+             // texture stage writes its textured batches here too, in order
+  Texture,   // interpolation -> texture stage: textured batches (plus interpolation's pipeline slots)
+  TextureDone,  // texture stage -> interpolation: a fence passed (one entry; the merge's order)
   Draw2d,    // command fetch -> 2D front end: 2D commands
   Op2d,      // 2D front end -> 2D engine: engine operations
   Grant2d,   // ROP -> 2D engine: the framebuffer port lent (one entry)
@@ -135,6 +145,8 @@ inline constexpr std::array kFifos = {
     FifoInfo{FifoId::Tile, "tile_fifo", LinkKind::Fifo, StageId::CoarseRaster, StageId::FineRaster},
     FifoInfo{FifoId::Pixel, "pixel_fifo", LinkKind::Fifo, StageId::FineRaster, StageId::Interpolate},
     FifoInfo{FifoId::Fragment, "fragment_fifo", LinkKind::Fifo, StageId::Interpolate, StageId::Rop},
+    FifoInfo{FifoId::Texture, "texture_fifo", LinkKind::Fifo, StageId::Interpolate, StageId::Texture},
+    FifoInfo{FifoId::TextureDone, "texture_done", LinkKind::PortHandshake, StageId::Texture, StageId::Interpolate},
     FifoInfo{FifoId::Draw2d, "draw2d_fifo", LinkKind::Fifo, StageId::CommandFetch, StageId::Draw2dSetup},
     FifoInfo{FifoId::Op2d, "op2d_fifo", LinkKind::Fifo, StageId::Draw2dSetup, StageId::Engine2d},
     FifoInfo{FifoId::Grant2d, "grant_2d", LinkKind::PortHandshake, StageId::Rop, StageId::Engine2d},

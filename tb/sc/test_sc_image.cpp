@@ -133,7 +133,7 @@ TEST(ScFifo, DepthOneNeverLosesOrReorders) {
   const Config cfg = make_config({"fifo.command_depth=1", "fifo.triangle_depth=1", "fifo.setup_depth=1",
                                   "fifo.tile_depth=1", "fifo.pixel_depth=1", "fifo.fragment_depth=1",
                                   "fifo.draw2d_depth=1", "fifo.op2d_depth=1", "fifo.clip_command_depth=1",
-                                  "fifo.screen_depth=1", "front_end.latency_cycles=0",
+                                  "fifo.screen_depth=1", "fifo.texture_depth=1", "front_end.latency_cycles=0",
                                   "raster.tile_size=8", "setup.latency_cycles=2", "interp.latency_cycles=0",
                                   "interp.perspective=false"});
   const Scene scene = random_scene(11, 128, 128, 80);

@@ -41,6 +41,18 @@ uint64_t level_footprint(TexLayout layout, int w, int h, int bytes) {
   return grid_layout(layout, w, h, bytes).footprint_bytes();
 }
 
+const QuadDerivatives& TriangleQuads::derivatives(const SetupTriangle& tri, int px, int py, int frac_bits) {
+  const int x0 = px & ~1, y0 = py & ~1;
+  const uint64_t key = (uint64_t(uint32_t(y0)) << 32) | uint32_t(x0);
+  const auto [it, added] = quads_.try_emplace(key);
+  if (added) {
+    const Fragment a = interpolate_plane(tri, x0, y0, frac_bits), b = interpolate_plane(tri, x0 + 1, y0, frac_bits),
+                   c = interpolate_plane(tri, x0, y0 + 1, frac_bits);
+    it->second = {int64_t(b.s) - a.s, int64_t(b.t) - a.t, int64_t(c.s) - a.s, int64_t(c.t) - a.t};
+  }
+  return it->second;
+}
+
 TextureUnit::TextureUnit(const TextureParams& p) : p_(p), next_base_(p.base) {
   if (p.cache.bytes > 0) cache_.emplace(p.cache);
 }

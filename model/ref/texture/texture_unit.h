@@ -19,6 +19,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <unordered_map>
 #include <vector>
 
 #include "ref/interpolate.h"
@@ -42,6 +43,28 @@ struct TextureStats {
 // level's start, and the level's footprint (bytes from its start past its last texel).
 uint64_t texel_offset(TexLayout layout, int w, int h, int bytes, int i, int j);
 uint64_t level_footprint(TexLayout layout, int w, int h, int bytes);
+
+// The 2x2 quads (pixels 2x..2x+1, 2y..2y+1) of one triangle that reached the texture
+// stage: each quad's coarse derivatives (QuadDerivatives: its top-left, top-right and
+// bottom-left pixel centres by plane equations, extrapolated where not covered),
+// computed once, and its helper pixels, the quads' pixels the triangle does not cover:
+// 4 a quad less the covered pixels. One a triangle: clear() at the next.
+class TriangleQuads {
+ public:
+  void clear() {
+    quads_.clear();
+    covered_ = 0;
+  }
+  // The derivatives of the quad of pixel (px, py) of tri (frac_bits: raster.coord_format's).
+  const QuadDerivatives& derivatives(const SetupTriangle& tri, int px, int py, int frac_bits);
+  void add_covered(uint64_t pixels) { covered_ += pixels; }
+  uint64_t quads() const { return uint64_t(quads_.size()); }
+  uint64_t helper_pixels() const { return 4 * quads() - covered_; }
+
+ private:
+  std::unordered_map<uint64_t, QuadDerivatives> quads_;  // by top-left pixel: y0 << 32 | x0
+  uint64_t covered_ = 0;
+};
 
 class TextureUnit {
  public:

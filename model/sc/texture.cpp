@@ -1,0 +1,70 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "sc/texture.h"
+
+namespace rastsim::sc {
+
+void Texture::body() {
+  for (;;) {
+    const FragmentItem in = read(in_);
+    if (!in.work) {  // a fence: every batch before it is in the fragment FIFO
+      write(done_, TextureFence{});
+      continue;
+    }
+    const FragmentBatch& batch = *in.work;
+    if (memory_dram_)
+      throw SceneError("texture '" + batch.pixels->tri->texture.image->name +
+                       "' bound with memory.model = \"dram\": the timed texture stage serves its cache misses with "
+                       "memory.model = \"fixed\" only (texture.miss_cycles a line miss); use memory.model = \"fixed\" "
+                       "or `rastsim render` (docs/texture.md)");
+    TimingParams::TextureWork work;
+    LocalPtr<const FragmentBatch> out = shade(batch, work);
+    if (work.fragments != 0) attribute_to(batch.fragments().front().x, batch.fragments().front().y);
+    busy(p_.texture_batch_cycles(work));
+    write(out_, FragmentItem{nullptr, std::move(out)});
+  }
+}
+
+// The batch's fragments through the texture unit, in order (the reference's fetch order),
+// and the work it took.
+LocalPtr<const FragmentBatch> Texture::shade(const FragmentBatch& batch, TimingParams::TextureWork& work) {
+  if (!unit_) unit_.emplace(arch_.texture);
+  if (quads_tri_ != batch.pixels->tri) next_triangle(batch.pixels->tri);
+  const SetupTriangle& tri = *batch.pixels->tri;
+  const TextureStats before = unit_->stats();
+  const uint64_t quads_before = quads_.quads();
+  LocalPtr<FragmentBatch> out = batches_.take();
+  out->pixels = batch.pixels;
+  Fragment* o = out->reset(batch.count);
+  const int coord_frac = arch_.coord_format.frac_bits, tex_frac = arch_.texcoord_format.frac_bits;
+  for (const Fragment& f : batch.fragments())
+    *o++ = unit_->shade(f, quads_.derivatives(tri, f.x, f.y, coord_frac), tri.texture, tex_frac);
+  out->count = batch.count;
+  quads_.add_covered(batch.pixels->pixels);
+  const TextureStats& s = unit_->stats();
+  const auto samples = [&](TexFilter f) { return s.samples[size_t(f)] - before.samples[size_t(f)]; };
+  work.quads = quads_.quads() - quads_before;
+  work.bilinear_slots = (samples(TexFilter::Nearest) + samples(TexFilter::Bilinear)) *
+                            TimingParams::texture_sample_slots(false) +
+                        samples(TexFilter::Trilinear) * TimingParams::texture_sample_slots(true);
+  work.texel_fetches = s.texel_fetches - before.texel_fetches;
+  work.fragments = batch.count;
+  work.misses = s.cache_misses - before.cache_misses;
+  return out;
+}
+
+// A new triangle's first batch: the last one's helper pixels counted, its quads dropped.
+void Texture::next_triangle(const LocalPtr<const SetupTriangle>& tri) {
+  unit_->stats().helper_pixels += quads_.helper_pixels();
+  quads_.clear();
+  quads_tri_ = tri;
+}
+
+void Texture::finish_texture() {
+  if (!unit_) return;
+  unit_->stats().helper_pixels += quads_.helper_pixels();
+  quads_.clear();
+  quads_tri_ = nullptr;
+  ctx_.render.texture = unit_->stats();
+}
+
+}  // namespace rastsim::sc

@@ -1,0 +1,57 @@
+// SPDX-License-Identifier: Apache-2.0
+// The texture stage (docs/texture.md, "Timed texture stage"): the reference texture unit
+// (ref/texture/texture_unit.h: level of detail, addressing, filters, texenv, the texture
+// cache) on each textured batch of interpolated fragments, timed.
+//
+// - Beside the triangle path: interpolation sends it the batches of triangles drawn with a
+//   texture bound (sc/interpolate.h) and every other transaction straight to the ROP, so an
+//   untextured scene never reaches this stage and is timed as without it.
+// - A batch's fragments are shaded in order, with their 2x2 quad's coarse derivatives
+//   (ref TriangleQuads, one a triangle: helper pixels counted as the reference counts
+//   them), and the shaded batch goes to the ROP's fragment FIFO.
+// - Cost: TimingParams::texture_batch_cycles on the batch's quads, bilinear sample slots,
+//   texel fetches, fragments and texture-cache line misses (texture.miss_cycles each:
+//   memory.model = "fixed"; with memory.model = "dram" a textured batch is refused).
+// - A fence (a transaction without a batch) from interpolation: every batch before it is
+//   in the fragment FIFO, so one token goes back on texture_done, at 0 cycles; interpolation
+//   writes its next untextured transaction behind it (the ROP takes them in order).
+// - Counts RenderStats::texture (docs/stats.md) at the end of the run (finish()).
+#pragma once
+
+#include <optional>
+
+#include "ref/texture/texture_unit.h"
+#include "sc/interpolate.h"
+
+namespace rastsim::sc {
+
+class Texture : public Stage {
+ public:
+  static constexpr StageId kId = StageId::Texture;
+  // memory_dram: memory.model = "dram" (textured batches refused).
+  Texture(SimContext& ctx, const RasterState& arch, const TimingParams& p, bool memory_dram,
+          Link<FragmentItem>& in, Link<FragmentItem>& out, Link<TextureFence>& done,
+          sc_core::sc_module_name name = stage_name(kId).data())
+      : Stage(name, ctx, kId), arch_(arch), p_(p), memory_dram_(memory_dram), in_(in), out_(out), done_(done) {}
+  // After the run: the last triangle's helper pixels, and the unit's counts into the
+  // context's RenderStats::texture (all 0 when nothing was textured).
+  void finish_texture();
+
+ private:
+  void body() override;
+  LocalPtr<const FragmentBatch> shade(const FragmentBatch& batch, TimingParams::TextureWork& work);
+  void next_triangle(const LocalPtr<const SetupTriangle>& tri);
+
+  const RasterState& arch_;
+  const TimingParams& p_;
+  bool memory_dram_;
+  Link<FragmentItem>& in_;
+  Link<FragmentItem>& out_;
+  Link<TextureFence>& done_;
+  Recycler<FragmentBatch> batches_;       // the shaded batches (sc/recycler.h)
+  std::optional<TextureUnit> unit_;       // created at the first textured batch, as the reference's
+  TriangleQuads quads_;                   // the current triangle's quads
+  LocalPtr<const SetupTriangle> quads_tri_;  // held: its address identifies the triangle
+};
+
+}  // namespace rastsim::sc
