@@ -64,6 +64,10 @@ std::vector<ParamDef> make_schema() {
   add_dram_params(s);
   add_memory_params(s);
   add_texture_params(s);
+  // ---- depth: culling ahead of the ROP (docs/depth.md) ----
+  add({"depth.early", T::Bool, false, "", 1, 0, {},
+       "Depth test before colour/texture interpolation where the state allows it (docs/depth.md; "
+       "the same image; render only: simulate and estimate ignore it for now)"});
   return s;
 }
 

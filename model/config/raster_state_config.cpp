@@ -40,6 +40,7 @@ RasterState raster_state_from_config(const Config& cfg) {
   s.depth_func = depth_func_from_name(cfg.get_string("raster.depth_func"));
   s.depth_bits = static_cast<int>(cfg.get_int("raster.depth_bits"));
   s.depth_write = cfg.get_bool("raster.depth_write");
+  s.depth_early = cfg.get_bool("depth.early");
   s.out_of_range = cfg.get_string("raster.out_of_range") == "cull" ? OutOfRange::Cull : OutOfRange::Error;
   s.fb_width = static_cast<int>(cfg.get_int("display.width"));
   s.fb_height = static_cast<int>(cfg.get_int("display.height"));

@@ -130,7 +130,8 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 void add_draw_stats(RenderStats& into, const RenderStats& part) {
   into.traversal += part.traversal;
   for (auto m : {&RenderStats::fragments_shaded, &RenderStats::fragments_passed, &RenderStats::samples_passed,
-                 &RenderStats::attr_error_sum, &RenderStats::depth_error_sum})
+                 &RenderStats::depth_writes, &RenderStats::fragments_culled_early, &RenderStats::interpolations_saved,
+                 &RenderStats::texture_samples_saved, &RenderStats::attr_error_sum, &RenderStats::depth_error_sum})
     into.*m += part.*m;
   for (auto m : {&RenderStats::max_attr_error_lsb, &RenderStats::max_depth_error_lsb})
     into.*m = std::max(into.*m, part.*m);
@@ -151,7 +152,7 @@ struct SceneRenderer::Impl {
       });
       s.fragments_shaded += uint64_t(x1 - x0);
       s.fragments_passed += n;
-      s.samples_passed += n;
+      m.count_written(s, n);
     }
   };
 
@@ -184,6 +185,7 @@ struct SceneRenderer::Impl {
               tp.method == Traversal::Hierarchical && !tp.hier_levels.empty() ? tp.hier_levels[0] : 1,
               fb.tile_size()}) {
     count_multisample_footprint(st, stats);
+    stats.depth_early = st.depth_early;
     if (memory.enabled) mem.emplace(memory, fb, st.depth_bits);
     // The frame starts with depth cleared to 1.0 (a clear the memory system sees); the
     // colour buffer's initial black is taken to be in memory already.
@@ -207,7 +209,7 @@ struct SceneRenderer::Impl {
   // tests and writes every fragment of tri, counting into s.
   void draw(const SetupTriangle& tri, const SetupTriangle& walk, RenderStats& s) {
     PixelShader shader(tri, F);  // PlaneStepper where it applies
-    if (shader.stepped() && !check && !on_fragment) {
+    if (shader.stepped() && !check && !on_fragment && !st.depth_early) {
       // One fragment a covered pixel, no error stats to add and nobody watching the
       // fragments: traversal's runs of pixels are shaded and written a run at a time
       // (rop_write_run: the same writes as rop_write on each fragment in turn).
@@ -217,19 +219,43 @@ struct SceneRenderer::Impl {
     }
     traverse(walk, tp, s.traversal, [&](int px, int py, uint32_t mask) {
       if (check) pixels.emplace_back(px, py);
-      shader.shade(px, py, mask, [&](const Fragment& f) { write(tri, px, py, f, s, [](const Fragment& g) { return g; }); });
+      shader.shade(px, py, mask, [&](const Fragment& f) { write(tri, px, py, f, s, false, [](const Fragment& g) { return g; }); });
     });
   }
 
-  // One fragment of pixel (px, py) of tri out of interpolation: counted, shown to the
-  // fragment sink, then `texture(f)` (the texture stage, or f itself) tested and written.
+  // One fragment of pixel (px, py) of tri out of interpolation: with depth.early, culled
+  // here when it fails the depth test at every sample (the colour and, when `textured`,
+  // texture work it saves counted); else counted, shown to the fragment sink, then
+  // `texture(f)` (the texture stage, or f itself) tested and written. The reference
+  // interpolates every attribute at once: the early test uses the same depth a pipeline
+  // interpolating depth first would (docs/depth.md).
   template <class TextureStage>
-  void write(const SetupTriangle& tri, int px, int py, const Fragment& f, RenderStats& s, TextureStage&& texture) {
+  void write(const SetupTriangle& tri, int px, int py, const Fragment& f, RenderStats& s, bool textured,
+             TextureStage&& texture) {
     if (tri.interp_method != InterpMethod::Plane) count_interp_error(f, interpolate_plane(tri, px, py, F), s);
+    if (st.depth_early && early_depth_cull(fb, f, st.depth_func, mem_ptr())) {
+      ++s.fragments_culled_early;
+      s.interpolations_saved += kColorChannels + (textured ? kTexCoords : 0);
+      s.texture_samples_saved += textured ? 1 : 0;
+      return;
+    }
     ++s.fragments_shaded;
     if (on_fragment) on_fragment(f);
-    if (rop_write(fb, texture(f), st.depth_func, st.depth_write, &s.samples_passed, mem_ptr())) ++s.fragments_passed;
+    rop(texture(f), s);
   }
+  // The ROP: f tested and written, counted into s.
+  void rop(const Fragment& f, RenderStats& s) {
+    uint64_t n = 0;
+    if (rop_write(fb, f, st.depth_func, st.depth_write, &n, mem_ptr())) ++s.fragments_passed;
+    count_written(s, n);
+  }
+  // n samples written by the ROP: their colour and, with raster.depth_write, their depth.
+  void count_written(RenderStats& s, uint64_t n) const {
+    s.samples_passed += n;
+    if (st.depth_write) s.depth_writes += n;
+  }
+  // The attributes interpolated a fragment besides depth: r, g, b, and s, t when textured.
+  static constexpr uint64_t kColorChannels = 3, kTexCoords = 2;
 
   // The texture stage (ref/texture/texture_unit.h, docs/texture.md): created at the first
   // textured triangle; its quads' derivatives, one triangle's.
@@ -283,7 +309,7 @@ void SceneRenderer::Impl::draw_triangles(const Command& cmd, const CmdPrimitives
     draw_homogeneous(prims, st, cmd.loc, stats.front_end, stats.traversal, setup_done, [&](const Fragment& f) {
       ++stats.fragments_shaded;
       if (on_fragment) on_fragment(f);
-      if (rop_write(fb, f, st.depth_func, st.depth_write, &stats.samples_passed, mem_ptr())) ++stats.fragments_passed;
+      rop(f, stats);  // the late test only (docs/depth.md)
     });
     return;
   }
@@ -311,7 +337,7 @@ void SceneRenderer::Impl::draw_textured(const SetupTriangle& tri, const TextureS
     quads.add_covered(1);
     const QuadDerivatives& d = quads.derivatives(tri, px, py, F);
     shader.shade(px, py, mask, [&](const Fragment& f) {
-      write(tri, px, py, f, stats, [&](const Fragment& g) { return tex->shade(g, d, ts, tex_frac); });
+      write(tri, px, py, f, stats, true, [&](const Fragment& g) { return tex->shade(g, d, ts, tex_frac); });
     });
   });
   tex->stats().helper_pixels += quads.helper_pixels();

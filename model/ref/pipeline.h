@@ -36,6 +36,14 @@ struct RenderStats {
   Traversal traversal_method = Traversal::Tiled;  // raster.traversal, for the stats
   CoverageErrors coverage;            // inexact traversal against the exact rule
   uint64_t fragments_passed = 0;        // passed the depth test and were written
+  uint64_t depth_writes = 0;            // depth values the ROP wrote, one a sample
+  // Early depth test (depth.early, docs/depth.md): fragments it culled, and the work they
+  // did not do: attribute values not interpolated (3 colour channels a fragment, 2 texture
+  // coordinates more when textured) and texture samples not taken.
+  bool depth_early = false;
+  uint64_t fragments_culled_early = 0;
+  uint64_t interpolations_saved = 0;
+  uint64_t texture_samples_saved = 0;
   // interp.method = dda only: |dda - plane| of each fragment's attributes, in LSBs of the
   // attribute (colour channels: 8-bit LSBs; depth: raster.depth_bits LSBs). 0 for plane.
   uint32_t max_attr_error_lsb = 0, max_depth_error_lsb = 0;

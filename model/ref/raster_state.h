@@ -55,6 +55,9 @@ struct RasterState {
   DepthFunc depth_func = DepthFunc::Always;
   int depth_bits = 0;
   bool depth_write = false;
+  // depth.early: the depth test before interpolation's colour and texture work where the
+  // state allows it (docs/depth.md); the image is the same either way.
+  bool depth_early = false;
   OutOfRange out_of_range = OutOfRange::Error;
   int fb_width = 0, fb_height = 0;  // framebuffer (display) size, px
   // 2D primitives (config keys line.*, polygon.*).

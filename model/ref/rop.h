@@ -62,6 +62,23 @@ inline bool rop_write(Framebuffer& fb, const Fragment& f, DepthFunc func, bool d
   return n > 0;
 }
 
+// The early depth test (depth.early, docs/depth.md): true when fragment f fails `func`
+// at every sample of its mask against the stored depth, so that rop_write would write
+// none of it and it can be dropped before its colour and texture work. `mem`, if given,
+// sees the depth reads of a fragment it culls (one a covered sample, in sample order, as
+// rop_write's); a fragment it keeps is read at the ROP, so the memory system sees the
+// same access stream with the early test as without.
+inline bool early_depth_cull(const Framebuffer& fb, const Fragment& f, DepthFunc func, RopMemory* mem = nullptr) {
+  if (func == DepthFunc::Always) return false;  // passes everywhere: nothing to cull
+  const uint32_t mask = fb.samples == 1 ? 1u : f.mask;
+  for (int s = 0; s < fb.samples; ++s)
+    if (((mask >> s) & 1) && depth_test(func, f.z, fb.depth_at(f.x, f.y, s))) return false;
+  if (mem && depth_test_reads(func))
+    for (int s = 0; s < fb.samples; ++s)
+      if ((mask >> s) & 1) mem->depth_read(f.x, f.y, s);
+  return true;
+}
+
 namespace rop_detail {
 
 // rop_write_run, with the depth function's test left out when it is `always` (kAlways).

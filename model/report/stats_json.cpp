@@ -102,6 +102,7 @@ nlohmann::json to_json(const RenderStats& s) {
       {"depth_buffer_bytes", s.depth_buffer_bytes},
       {"resolve_bytes", s.resolve_bytes},
       {"fragments_passed", s.fragments_passed},
+      {"depth_writes", s.depth_writes},
       {"max_attr_error_lsb", s.max_attr_error_lsb},
       {"mean_attr_error_lsb", s.traversal.fragments ? double(s.attr_error_sum) / double(3 * s.traversal.fragments) : 0.0},
       {"max_depth_error_lsb", s.max_depth_error_lsb},
@@ -116,6 +117,12 @@ nlohmann::json to_json(const RenderStats& s) {
   // stats are the same as before raster.traversal existed.
   if (s.traversal_method != Traversal::Tiled) j["traversal"] = to_string(s.traversal_method);
   if (s.traversal_method == Traversal::Scanline) j["spans"] = s.traversal.spans;
+  // The early depth test's keys only with depth.early on (docs/depth.md).
+  if (s.depth_early) {
+    j["fragments_culled_early"] = s.fragments_culled_early;
+    j["interpolations_saved"] = s.interpolations_saved;
+    j["texture_samples_saved"] = s.texture_samples_saved;
+  }
   if (s.samples > 1) j["aa_mode"] = s.aa_mode == AaMode::Ssaa ? "ssaa" : "msaa";
   // The geometry front end's keys only where a clip-space primitive was drawn, so that a
   // screen-space scene's stats are the same as before clip space existed.
