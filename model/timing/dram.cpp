@@ -210,7 +210,7 @@ void DramModel::queue_burst(Channel& ch, const Burst& b) {
 // The first clock at which `cmd` for `b` meets every constraint (docs/memory.md, "Timing
 // equations"): the command bus, the bank's own state, the other banks through its bank
 // group's bounds (Channel::group) and the activate windows.
-int64_t DramModel::earliest(const Channel& ch, const Burst& b, Cmd cmd) const {
+inline int64_t DramModel::earliest(const Channel& ch, const Burst& b, Cmd cmd) const {
   const Bank& bank = ch.banks[size_t(bank_index(b.at))];
   const GroupBounds& group = ch.group[size_t(b.at.bank_group)];
   const int64_t t = std::max(b.eligible, ch.last_cmd + 1);
@@ -229,21 +229,26 @@ int64_t DramModel::earliest(const Channel& ch, const Burst& b, Cmd cmd) const {
 // `from`: the same group's by the _L spacing, the others' by the _S one.
 void DramModel::raise_group_bounds(Channel& ch, int from, Cmd cmd, int64_t at) {
   const int64_t burst = p_.burst_clocks();
-  for (size_t g = 0; g < ch.group.size(); ++g) {
-    GroupBounds& bound = ch.group[g];
-    const bool same = int(g) == from;
-    switch (cmd) {
-      case Cmd::Pre: break;
-      case Cmd::Act: bound.act = std::max(bound.act, at + (same ? p_.tRRD_L : p_.tRRD_S)); break;
-      case Cmd::Read:
-        bound.read = std::max(bound.read, at + std::max(burst, same ? p_.tCCD_L : p_.tCCD_S));
-        bound.write = std::max(bound.write, at + p_.tCL + burst - p_.tCWL + kReadToWriteGap);
-        break;
-      case Cmd::Write:
-        bound.write = std::max(bound.write, at + std::max(burst, same ? p_.tCCD_L : p_.tCCD_S));
-        bound.read = std::max(bound.read, at + p_.tCWL + burst + (same ? p_.tWTR_L : p_.tWTR_S));
-        break;
+  // One bound of every group: at + same_group in `from`, at + other_group elsewhere.
+  const auto raise = [&](int64_t GroupBounds::*bound, int64_t same_group, int64_t other_group) {
+    for (size_t g = 0; g < ch.group.size(); ++g) {
+      int64_t& b = ch.group[g].*bound;
+      b = std::max(b, at + (int(g) == from ? same_group : other_group));
     }
+  };
+  switch (cmd) {
+    case Cmd::Pre: return;
+    case Cmd::Act: raise(&GroupBounds::act, p_.tRRD_L, p_.tRRD_S); return;
+    case Cmd::Read: {
+      raise(&GroupBounds::read, std::max(burst, p_.tCCD_L), std::max(burst, p_.tCCD_S));
+      const int64_t turnaround = p_.tCL + burst - p_.tCWL + kReadToWriteGap;
+      raise(&GroupBounds::write, turnaround, turnaround);
+      return;
+    }
+    case Cmd::Write:
+      raise(&GroupBounds::write, std::max(burst, p_.tCCD_L), std::max(burst, p_.tCCD_S));
+      raise(&GroupBounds::read, p_.tCWL + burst + p_.tWTR_L, p_.tCWL + burst + p_.tWTR_S);
+      return;
   }
 }
 
