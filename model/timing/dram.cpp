@@ -92,8 +92,7 @@ DramAddress decode_address(const DramParams& p, uint64_t address) { return DramA
 
 DramAddressDecoder::DramAddressDecoder(const DramParams& p) {
   int shift = std::countr_zero(p.burst_bytes());  // the offset within a burst
-  size_t n = 0;
-  for (auto it = p.address_map.rbegin(); it != p.address_map.rend() && n < slices_.size(); ++it, ++n) {
+  for (auto it = p.address_map.rbegin(); it != p.address_map.rend(); ++it) {
     int64_t count = 0;  // the field's values (a power of two)
     switch (*it) {
       case DramField::Row: count = p.rows; break;
@@ -103,25 +102,21 @@ DramAddressDecoder::DramAddressDecoder(const DramParams& p) {
       case DramField::Column: count = p.columns / std::max(p.burst_length, 1); break;
     }
     const int width = std::countr_zero(uint64_t(count));
-    slices_[n].field = *it;
-    slices_[n].shift = shift < 64 ? shift : 0;
-    slices_[n].mask = shift >= 64 ? 0 : width >= 64 ? ~uint64_t{0} : (uint64_t{1} << width) - 1;
+    const size_t f = size_t(*it);
+    shift_[f] = shift < 64 ? shift : 0;
+    mask_[f] = shift >= 64 ? 0 : width >= 64 ? ~uint64_t{0} : (uint64_t{1} << width) - 1;
     shift += width;
   }
 }
 
 DramAddress DramAddressDecoder::operator()(uint64_t address) const {
+  const auto field = [&](DramField f) { return (address >> shift_[size_t(f)]) & mask_[size_t(f)]; };
   DramAddress a;
-  for (const Slice& s : slices_) {
-    const uint64_t v = (address >> s.shift) & s.mask;
-    switch (s.field) {
-      case DramField::Row: a.row = int64_t(v); break;
-      case DramField::Channel: a.channel = int(v); break;
-      case DramField::Bank: a.bank = int(v); break;
-      case DramField::BankGroup: a.bank_group = int(v); break;
-      case DramField::Column: a.column = int64_t(v); break;
-    }
-  }
+  a.row = int64_t(field(DramField::Row));
+  a.channel = int(field(DramField::Channel));
+  a.bank = int(field(DramField::Bank));
+  a.bank_group = int(field(DramField::BankGroup));
+  a.column = int64_t(field(DramField::Column));
   return a;
 }
 
@@ -207,20 +202,20 @@ void DramModel::queue_burst(Channel& ch, const Burst& b) {
   touch(ch, bank);
 }
 
-// The first clock at which `cmd` for `b` meets every constraint (docs/memory.md, "Timing
-// equations"): the command bus, the bank's own state, the other banks through its bank
-// group's bounds (Channel::group) and the activate windows.
-inline int64_t DramModel::earliest(const Channel& ch, const Burst& b, Cmd cmd) const {
-  const Bank& bank = ch.banks[size_t(bank_index(b.at))];
-  const GroupBounds& group = ch.group[size_t(b.at.bank_group)];
-  const int64_t t = std::max(b.eligible, ch.last_cmd + 1);
-  switch (cmd) {
-    case Cmd::Pre: return std::max(t, bank.pre_ok);
+// The first clock at which an offer's command meets every constraint (docs/memory.md,
+// "Timing equations"): the burst's eligible clock and the bank's own state (offer.ready),
+// the command bus, the other banks through its bank group's bounds (Channel::group) and
+// the activate windows.
+inline int64_t DramModel::earliest(const Channel& ch, const Bank::Offer& offer) const {
+  const GroupBounds& group = ch.group[size_t(offer.group)];
+  const int64_t t = std::max(offer.ready, ch.last_cmd + 1);
+  switch (offer.cmd) {
+    case Cmd::Pre: return t;
     case Cmd::Act:
-      return std::max({t, group.act, bank.act_ok, ch.acts[(ch.next_act + 28) % ch.acts.size()] + p_.tFAW,
+      return std::max({t, group.act, ch.acts[(ch.next_act + 28) % ch.acts.size()] + p_.tFAW,
                        ch.acts[ch.next_act] + p_.t32AW});
-    case Cmd::Read: return std::max({t, group.read, bank.read_ok});
-    case Cmd::Write: return std::max({t, group.write, bank.write_ok});
+    case Cmd::Read: return std::max(t, group.read);
+    case Cmd::Write: return std::max(t, group.write);
   }
   return t;
 }
@@ -268,12 +263,11 @@ DramModel::Choice DramModel::choose(const Channel& ch) const {
     if (!bank.offers_fresh) make_offers(bank);
     for (int o = 0; o < bank.offer_count; ++o) {
       const Bank::Offer& offer = bank.offers[size_t(o)];
-      const Burst& b = bank.queue[offer.index];
-      const int64_t at = earliest(ch, b, offer.cmd);
+      const int64_t at = earliest(ch, offer);
       const bool column = offer.cmd == Cmd::Read || offer.cmd == Cmd::Write;
       const bool better = best.at < 0 || at < best.at ||
-                          (at == best.at && (column != best_column ? column : b.seq < best_seq));
-      if (better) best = {at, k, offer.index, offer.cmd}, best_seq = b.seq, best_column = column;
+                          (at == best.at && (column != best_column ? column : offer.seq < best_seq));
+      if (better) best = {at, k, offer.index, offer.cmd}, best_seq = offer.seq, best_column = column;
     }
   }
   ch.choice = best;
@@ -286,17 +280,21 @@ DramModel::Choice DramModel::choose(const Channel& ch) const {
 void DramModel::make_offers(const Bank& bank) const {
   bank.offer_count = 0;
   bank.offers_fresh = true;
-  if (bank.hits[0] + bank.hits[1] == 0) {
-    bank.offers[0] = {0, bank.open_row < 0 ? Cmd::Act : Cmd::Pre};
-    bank.offer_count = 1;
-    return;
-  }
+  const auto offer = [&](size_t index, Cmd cmd) {
+    const Burst& b = bank.queue[index];
+    const int64_t bound = cmd == Cmd::Act   ? bank.act_ok
+                          : cmd == Cmd::Pre ? bank.pre_ok
+                          : cmd == Cmd::Read ? bank.read_ok
+                                             : bank.write_ok;
+    bank.offers[size_t(bank.offer_count++)] = {index, cmd, b.at.bank_group, b.seq, std::max(b.eligible, bound)};
+  };
+  if (bank.hits[0] + bank.hits[1] == 0) return offer(0, bank.open_row < 0 ? Cmd::Act : Cmd::Pre);
   bool read = bank.hits[0] == 0, write = bank.hits[1] == 0;
   for (size_t i = 0; i < bank.queue.size() && !(read && write); ++i) {
     const Burst& b = bank.queue[i];
     if (b.at.row != bank.open_row || (b.write ? write : read)) continue;
     (b.write ? write : read) = true;
-    bank.offers[size_t(bank.offer_count++)] = {i, b.write ? Cmd::Write : Cmd::Read};
+    offer(i, b.write ? Cmd::Write : Cmd::Read);
   }
 }
 

@@ -83,12 +83,9 @@ class DramAddressDecoder {
   DramAddress operator()(uint64_t address) const;
 
  private:
-  struct Slice {
-    DramField field = DramField::Row;
-    int shift = 0;      // bits
-    uint64_t mask = 0;  // 0: the field lies wholly above bit 63
-  };
-  std::array<Slice, 5> slices_{};  // one per DramField
+  // By DramField: the shift in bits and the mask (0: the field lies wholly above bit 63).
+  std::array<int, 5> shift_{};
+  std::array<uint64_t, 5> mask_{};
 };
 
 struct DramRequest {
@@ -184,10 +181,13 @@ class DramModel {
     std::vector<Burst> queue;  // this bank's queued bursts, in arrival order
     std::array<int, 2> hits{};  // how many of them want open_row: reads [0], writes [1]
     // The bank's candidates (above: a burst's index into queue and its command), kept
-    // while offers_fresh, i.e. until its queue or open row changes (touch()).
+    // while offers_fresh, i.e. until its queue, open row or bounds change (touch()).
     struct Offer {
       size_t index = 0;
       Cmd cmd = Cmd::Act;
+      int group = 0;      // the burst's bank group
+      uint64_t seq = 0;   // the burst's
+      int64_t ready = 0;  // DRAM clock: the burst's eligible clock and the bank's bound for cmd
     };
     mutable std::array<Offer, 2> offers{};
     mutable int offer_count = 0;
@@ -235,7 +235,7 @@ class DramModel {
   Choice choose(const Channel& ch) const;
   void make_offers(const Bank& bank) const;
   static void touch(Channel& ch, Bank& bank) { bank.offers_fresh = false, ch.choice_valid = false; }
-  int64_t earliest(const Channel& ch, const Burst& b, Cmd cmd) const;
+  int64_t earliest(const Channel& ch, const Bank::Offer& offer) const;
   void queue_burst(Channel& ch, const Burst& b);
   void issue(Channel& ch, const Choice& c);
   void issue_column(Channel& ch, Burst b, int64_t at);
