@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <numeric>
 #include <stdexcept>
 
 namespace rastsim {
@@ -31,6 +32,14 @@ constexpr FieldName kFieldNames[] = {{DramField::Row, "ro"},
                                      {DramField::Column, "co"}};
 
 bool pow2(int64_t v) { return v > 0 && std::has_single_bit(uint64_t(v)); }
+
+// v * mul / div, rounded up or down; in 64 bits when v <= limit (then v * mul + div - 1
+// fits), else in 128.
+uint64_t scale_clock(uint64_t v, uint64_t mul, uint64_t div, uint64_t limit, bool round_up) {
+  const uint64_t add = round_up ? div - 1 : 0;
+  if (v <= limit) return (v * mul + add) / div;
+  return uint64_t((Wide(v) * mul + add) / div);
+}
 
 }  // namespace
 
@@ -79,23 +88,35 @@ std::string DramParams::check() const {
   return {};
 }
 
-DramAddress decode_address(const DramParams& p, uint64_t address) {
-  uint64_t bits = address >> std::countr_zero(p.burst_bytes());
-  DramAddress a;
+DramAddress decode_address(const DramParams& p, uint64_t address) { return DramAddressDecoder(p)(address); }
+
+DramAddressDecoder::DramAddressDecoder(const DramParams& p) {
+  int shift = std::countr_zero(p.burst_bytes());  // the offset within a burst
   for (auto it = p.address_map.rbegin(); it != p.address_map.rend(); ++it) {
-    auto take = [&](int64_t count) {
-      const int64_t v = int64_t(bits & uint64_t(count - 1));
-      bits >>= std::countr_zero(uint64_t(count));
-      return v;
-    };
+    int64_t count = 0;  // the field's values (a power of two)
     switch (*it) {
-      case DramField::Row: a.row = take(p.rows); break;
-      case DramField::Channel: a.channel = int(take(p.channels)); break;
-      case DramField::Bank: a.bank = int(take(p.banks_per_group)); break;
-      case DramField::BankGroup: a.bank_group = int(take(p.bank_groups)); break;
-      case DramField::Column: a.column = take(p.columns / p.burst_length); break;
+      case DramField::Row: count = p.rows; break;
+      case DramField::Channel: count = p.channels; break;
+      case DramField::Bank: count = p.banks_per_group; break;
+      case DramField::BankGroup: count = p.bank_groups; break;
+      case DramField::Column: count = p.columns / std::max(p.burst_length, 1); break;
     }
+    const int width = std::countr_zero(uint64_t(count));
+    const size_t f = size_t(*it);
+    shift_[f] = shift < 64 ? shift : 0;
+    mask_[f] = shift >= 64 ? 0 : width >= 64 ? ~uint64_t{0} : (uint64_t{1} << width) - 1;
+    shift += width;
   }
+}
+
+DramAddress DramAddressDecoder::operator()(uint64_t address) const {
+  const auto field = [&](DramField f) { return (address >> shift_[size_t(f)]) & mask_[size_t(f)]; };
+  DramAddress a;
+  a.row = int64_t(field(DramField::Row));
+  a.channel = int(field(DramField::Channel));
+  a.bank = int(field(DramField::Bank));
+  a.bank_group = int(field(DramField::BankGroup));
+  a.column = int64_t(field(DramField::Column));
   return a;
 }
 
@@ -116,25 +137,28 @@ DramClientStats DramStats::total() const {
   return t;
 }
 
-DramModel::DramModel(DramParams params) : p_(std::move(params)) {
+DramModel::DramModel(DramParams params) : p_(std::move(params)), decode_(p_) {
   if (const std::string why = p_.check(); !why.empty()) throw std::invalid_argument("DRAM parameters: " + why);
+  const uint64_t common = std::gcd(p_.dram_khz, p_.core_khz);
+  dram_ratio_ = p_.dram_khz / common;
+  core_ratio_ = p_.core_khz / common;
+  to_dram_limit_ = (UINT64_MAX - (core_ratio_ - 1)) / dram_ratio_;
+  to_core_limit_ = (UINT64_MAX - (dram_ratio_ - 1)) / core_ratio_;
   channels_.resize(size_t(p_.channels));
   for (Channel& ch : channels_) {
     ch.banks.resize(size_t(p_.banks()));
-    ch.last_act.assign(size_t(p_.bank_groups), kNever);
-    ch.last_read.assign(size_t(p_.bank_groups), kNever);
-    ch.last_write.assign(size_t(p_.bank_groups), kNever);
+    ch.group.assign(size_t(p_.bank_groups), GroupBounds{kNever, kNever, kNever});
     ch.acts.fill(kNever);
     ch.next_refresh = p_.tREFI;
   }
 }
 
 uint64_t DramModel::to_dram(uint64_t c) const {
-  return uint64_t((Wide(c) * p_.dram_khz + p_.core_khz - 1) / p_.core_khz);
+  return scale_clock(c, dram_ratio_, core_ratio_, to_dram_limit_, true);
 }
 
 uint64_t DramModel::to_core(uint64_t d) const {
-  return uint64_t((Wide(d) * p_.core_khz + p_.dram_khz - 1) / p_.dram_khz);
+  return scale_clock(d, core_ratio_, dram_ratio_, to_core_limit_, true);
 }
 
 double DramModel::bandwidth_utilisation(uint64_t busy_clocks, uint64_t elapsed_cycles) const {
@@ -153,13 +177,14 @@ void DramModel::enqueue(const DramRequest& r, uint64_t cycle) {
   const uint64_t bb = p_.burst_bytes();
   const uint64_t first = r.address / bb, last = (r.address + r.bytes - 1) / bb;
   const size_t number = next_request_++;
-  pending_[number] = Pending{r, cycle, int(last - first + 1), 0};
+  pending_.push_back(Pending{r, cycle, int(last - first + 1), 0});
+  const int64_t eligible = int64_t(to_dram(cycle));
   for (uint64_t n = first; n <= last; ++n) {
     Burst b;
     b.seq = next_seq_++;
     b.request = number;
-    b.at = decode_address(p_, n * bb);
-    b.eligible = int64_t(to_dram(cycle));
+    b.at = decode_(n * bb);
+    b.eligible = eligible;
     b.write = r.write;
     Channel& ch = channels_[size_t(b.at.channel)];
     if (ch.queued < size_t(p_.queue_depth) && ch.backlog.empty())
@@ -174,39 +199,52 @@ void DramModel::queue_burst(Channel& ch, const Burst& b) {
   bank.queue.push_back(b);
   if (b.at.row == bank.open_row) ++bank.hits[b.write];
   ++ch.queued;
-  ch.choice_valid = false;
+  touch(ch, bank);
 }
 
-// The first clock at which `cmd` for `b` meets every constraint (docs/memory.md, "Timing
-// equations"): the command bus, the bank's own state, and the other banks through the
-// bank-group (_L) or other-group (_S) spacing.
-int64_t DramModel::earliest(const Channel& ch, const Burst& b, Cmd cmd) const {
-  const Bank& bank = ch.banks[size_t(bank_index(b.at))];
-  const size_t g = size_t(b.at.bank_group);
-  const int64_t burst = p_.burst_clocks();
-  int64_t t = std::max(b.eligible, ch.last_cmd + 1);
-  for (size_t h = 0; h < size_t(p_.bank_groups); ++h) {
-    const bool same = h == g;
-    switch (cmd) {
-      case Cmd::Pre: break;
-      case Cmd::Act: t = std::max(t, ch.last_act[h] + (same ? p_.tRRD_L : p_.tRRD_S)); break;
-      case Cmd::Read:
-        t = std::max({t, ch.last_read[h] + std::max(burst, same ? p_.tCCD_L : p_.tCCD_S),
-                      ch.last_write[h] + p_.tCWL + burst + (same ? p_.tWTR_L : p_.tWTR_S)});
-        break;
-      case Cmd::Write:
-        t = std::max({t, ch.last_write[h] + std::max(burst, same ? p_.tCCD_L : p_.tCCD_S),
-                      ch.last_read[h] + p_.tCL + burst - p_.tCWL + kReadToWriteGap});
-        break;
-    }
-  }
-  switch (cmd) {
-    case Cmd::Pre: return std::max(t, bank.pre_ok);
-    case Cmd::Act: return std::max({t, bank.act_ok, ch.acts[28] + p_.tFAW, ch.acts[0] + p_.t32AW});
-    case Cmd::Read: return std::max(t, bank.read_ok);
-    case Cmd::Write: return std::max(t, bank.write_ok);
+// The first clock at which an offer's command meets every constraint (docs/memory.md,
+// "Timing equations"): the burst's eligible clock and the bank's own state (offer.ready),
+// the command bus, the other banks through its bank group's bounds (Channel::group) and
+// the activate windows.
+inline int64_t DramModel::earliest(const Channel& ch, const Bank::Offer& offer) const {
+  const GroupBounds& group = ch.group[size_t(offer.group)];
+  const int64_t t = std::max(offer.ready, ch.last_cmd + 1);
+  switch (offer.cmd) {
+    case Cmd::Pre: return t;
+    case Cmd::Act:
+      return std::max({t, group.act, ch.acts[(ch.next_act + 28) % ch.acts.size()] + p_.tFAW,
+                       ch.acts[ch.next_act] + p_.t32AW});
+    case Cmd::Read: return std::max(t, group.read);
+    case Cmd::Write: return std::max(t, group.write);
   }
   return t;
+}
+
+// Raises every bank group's bounds for a command `cmd` issued at clock `at` in group
+// `from`: the same group's by the _L spacing, the others' by the _S one.
+void DramModel::raise_group_bounds(Channel& ch, int from, Cmd cmd, int64_t at) {
+  const int64_t burst = p_.burst_clocks();
+  // One bound of every group: at + same_group in `from`, at + other_group elsewhere.
+  const auto raise = [&](int64_t GroupBounds::*bound, int64_t same_group, int64_t other_group) {
+    for (size_t g = 0; g < ch.group.size(); ++g) {
+      int64_t& b = ch.group[g].*bound;
+      b = std::max(b, at + (int(g) == from ? same_group : other_group));
+    }
+  };
+  switch (cmd) {
+    case Cmd::Pre: return;
+    case Cmd::Act: raise(&GroupBounds::act, p_.tRRD_L, p_.tRRD_S); return;
+    case Cmd::Read: {
+      raise(&GroupBounds::read, std::max(burst, p_.tCCD_L), std::max(burst, p_.tCCD_S));
+      const int64_t turnaround = p_.tCL + burst - p_.tCWL + kReadToWriteGap;
+      raise(&GroupBounds::write, turnaround, turnaround);
+      return;
+    }
+    case Cmd::Write:
+      raise(&GroupBounds::write, std::max(burst, p_.tCCD_L), std::max(burst, p_.tCCD_S));
+      raise(&GroupBounds::read, p_.tCWL + burst + p_.tWTR_L, p_.tCWL + burst + p_.tWTR_S);
+      return;
+  }
 }
 
 // FR-FCFS: the command that can issue first; at the same clock a column command (a row
@@ -219,33 +257,45 @@ DramModel::Choice DramModel::choose(const Channel& ch) const {
   Choice best;
   uint64_t best_seq = 0;
   bool best_column = false;
-  const auto consider = [&](int k, size_t i, Cmd cmd) {
-    const Burst& b = ch.banks[size_t(k)].queue[i];
-    const int64_t at = earliest(ch, b, cmd);
-    const bool column = cmd == Cmd::Read || cmd == Cmd::Write;
-    const bool better = best.at < 0 || at < best.at ||
-                        (at == best.at && (column != best_column ? column : b.seq < best_seq));
-    if (better) best = {at, k, i, cmd}, best_seq = b.seq, best_column = column;
-  };
   for (int k = 0; k < int(ch.banks.size()); ++k) {
     const Bank& bank = ch.banks[size_t(k)];
     if (bank.queue.empty()) continue;
-    if (bank.hits[0] + bank.hits[1] == 0) {  // every burst wants another row (or the bank is closed)
-      consider(k, 0, bank.open_row < 0 ? Cmd::Act : Cmd::Pre);
-      continue;
-    }
-    // The oldest read hit and write hit, as far as there are any.
-    bool read = bank.hits[0] == 0, write = bank.hits[1] == 0;
-    for (size_t i = 0; i < bank.queue.size() && !(read && write); ++i) {
-      const Burst& b = bank.queue[i];
-      if (b.at.row != bank.open_row || (b.write ? write : read)) continue;
-      (b.write ? write : read) = true;
-      consider(k, i, b.write ? Cmd::Write : Cmd::Read);
+    if (!bank.offers_fresh) make_offers(bank);
+    for (int o = 0; o < bank.offer_count; ++o) {
+      const Bank::Offer& offer = bank.offers[size_t(o)];
+      const int64_t at = earliest(ch, offer);
+      const bool column = offer.cmd == Cmd::Read || offer.cmd == Cmd::Write;
+      const bool better = best.at < 0 || at < best.at ||
+                          (at == best.at && (column != best_column ? column : offer.seq < best_seq));
+      if (better) best = {at, k, offer.index, offer.cmd}, best_seq = offer.seq, best_column = column;
     }
   }
   ch.choice = best;
   ch.choice_valid = true;
   return best;
+}
+
+// A bank's candidates: its oldest burst's ACT or PRE when no burst wants its open row (or
+// it is closed), else its oldest read hit and oldest write hit, as far as there are any.
+void DramModel::make_offers(const Bank& bank) const {
+  bank.offer_count = 0;
+  bank.offers_fresh = true;
+  const auto offer = [&](size_t index, Cmd cmd) {
+    const Burst& b = bank.queue[index];
+    const int64_t bound = cmd == Cmd::Act   ? bank.act_ok
+                          : cmd == Cmd::Pre ? bank.pre_ok
+                          : cmd == Cmd::Read ? bank.read_ok
+                                             : bank.write_ok;
+    bank.offers[size_t(bank.offer_count++)] = {index, cmd, b.at.bank_group, b.seq, std::max(b.eligible, bound)};
+  };
+  if (bank.hits[0] + bank.hits[1] == 0) return offer(0, bank.open_row < 0 ? Cmd::Act : Cmd::Pre);
+  bool read = bank.hits[0] == 0, write = bank.hits[1] == 0;
+  for (size_t i = 0; i < bank.queue.size() && !(read && write); ++i) {
+    const Burst& b = bank.queue[i];
+    if (b.at.row != bank.open_row || (b.write ? write : read)) continue;
+    (b.write ? write : read) = true;
+    offer(i, b.write ? Cmd::Write : Cmd::Read);
+  }
 }
 
 void DramModel::note(const Channel& ch, int64_t at, DramCommand::Kind kind, const DramAddress& a) {
@@ -256,7 +306,7 @@ void DramModel::issue(Channel& ch, const Choice& c) {
   Bank& bank = ch.banks[size_t(c.bank)];
   Burst& b = bank.queue[c.index];
   ch.last_cmd = c.at;
-  ch.choice_valid = false;
+  touch(ch, bank);
   constexpr DramCommand::Kind kKind[] = {DramCommand::Activate, DramCommand::Precharge, DramCommand::Read,
                                          DramCommand::Write};
   note(ch, c.at, kKind[int(c.cmd)], b.at);
@@ -276,9 +326,9 @@ void DramModel::issue(Channel& ch, const Choice& c) {
       bank.write_ok = c.at + p_.tRCD_WR;
       bank.pre_ok = std::max(bank.pre_ok, c.at + p_.tRAS);
       bank.act_ok = std::max(bank.act_ok, c.at + p_.tRC);
-      ch.last_act[size_t(b.at.bank_group)] = c.at;
-      std::rotate(ch.acts.begin(), ch.acts.begin() + 1, ch.acts.end());
-      ch.acts.back() = c.at;
+      raise_group_bounds(ch, b.at.bank_group, Cmd::Act, c.at);
+      ch.acts[ch.next_act] = c.at;
+      ch.next_act = (ch.next_act + 1) % ch.acts.size();
       b.activated = true;
       ++stats_.activates;
       return;
@@ -297,23 +347,19 @@ void DramModel::issue(Channel& ch, const Choice& c) {
 
 void DramModel::issue_column(Channel& ch, Burst b, int64_t at) {
   Bank& bank = ch.banks[size_t(bank_index(b.at))];
-  const size_t g = size_t(b.at.bank_group);
   const int64_t end = at + (b.write ? p_.tCWL : p_.tCL) + p_.burst_clocks();
-  if (b.write) {
-    ch.last_write[g] = at;
+  raise_group_bounds(ch, b.at.bank_group, b.write ? Cmd::Write : Cmd::Read, at);
+  if (b.write)
     bank.pre_ok = std::max(bank.pre_ok, end + p_.tWR);
-  } else {
-    ch.last_read[g] = at;
+  else
     bank.pre_ok = std::max(bank.pre_ok, at + p_.tRTP);
-  }
   if (p_.page_policy == PagePolicy::Closed) {  // auto-precharge: no command bus slot
     bank.open_row = -1;
     bank.hits = {};
     bank.act_ok = std::max(bank.act_ok, bank.pre_ok + p_.tRP);
     ++stats_.precharges;
   }
-  auto node = pending_.find(b.request);
-  Pending& p = node->second;
+  Pending& p = pending(b.request);
   DramClientStats& s = stats_.clients[size_t(p.req.client)];
   (b.write ? s.bytes_written : s.bytes_read) += p_.burst_bytes();
   ++(b.write ? s.bursts_written : s.bursts_read);
@@ -323,8 +369,8 @@ void DramModel::issue_column(Channel& ch, Burst b, int64_t at) {
   if (--p.bursts_left > 0) return;
   const uint64_t cycle = to_core(uint64_t(p.end));
   if (!p.req.write) ++s.requests_read, s.read_latency_cycles += cycle - p.arrival;
-  done_.push_back({b.request, DramCompletion{cycle, p.req.tag, p.req.client}});
-  pending_.erase(node);
+  done_.push(Done{DramCompletion{cycle, p.req.tag, p.req.client}, b.request});
+  while (!pending_.empty() && pending_.front().bursts_left == 0) pending_.pop_front(), ++first_pending_;
 }
 
 void DramModel::admit(Channel& ch, int64_t at) {
@@ -347,9 +393,8 @@ void DramModel::refresh(Channel& ch) {
     if (bank.open_row >= 0) any_open = true, pre_at = std::max(pre_at, bank.pre_ok);
   int64_t ref_at = any_open ? pre_at + p_.tRP : start;
   for (const Bank& bank : ch.banks) ref_at = std::max(ref_at, bank.act_ok);
-  for (Bank& bank : ch.banks) bank.open_row = -1, bank.hits = {}, bank.act_ok = ref_at + p_.tRFC;
+  for (Bank& bank : ch.banks) bank.open_row = -1, bank.hits = {}, bank.act_ok = ref_at + p_.tRFC, touch(ch, bank);
   ch.last_cmd = ref_at;
-  ch.choice_valid = false;
   note(ch, ref_at, DramCommand::Refresh, DramAddress{});
   ch.next_refresh += p_.tREFI;
   ++stats_.refreshes;
@@ -358,11 +403,12 @@ void DramModel::refresh(Channel& ch) {
 
 uint64_t DramModel::next_event() const {
   uint64_t next = kNoEvent;
-  for (const auto& d : done_) next = std::min(next, d.second.cycle);
+  if (!done_.empty()) next = done_.top().completion.cycle;
   for (const Channel& ch : channels_) {
     const Choice c = choose(ch);
     // The first core cycle whose DRAM clock comes after c.at: advance_to() issues it.
-    if (c.at >= 0) next = std::min(next, uint64_t(Wide(c.at) * p_.core_khz / p_.dram_khz) + 1);
+    if (c.at >= 0)
+      next = std::min(next, scale_clock(uint64_t(c.at), core_ratio_, dram_ratio_, to_core_limit_, false) + 1);
   }
   return next;
 }
@@ -383,19 +429,11 @@ void DramModel::advance_to(uint64_t cycle) {
   advanced_ = std::max(advanced_, cycle);
 }
 
-std::vector<DramCompletion> DramModel::take_completions() {
-  if (done_.empty()) return {};
-  std::vector<std::pair<uint64_t, DramCompletion>> ready;
-  auto later = std::stable_partition(done_.begin(), done_.end(),
-                                     [&](const auto& d) { return d.second.cycle > advanced_; });
-  ready.assign(later, done_.end());
-  done_.erase(later, done_.end());
-  std::sort(ready.begin(), ready.end(), [](const auto& a, const auto& b) {
-    return a.second.cycle != b.second.cycle ? a.second.cycle < b.second.cycle : a.first < b.first;
-  });
-  std::vector<DramCompletion> out;
-  for (const auto& r : ready) out.push_back(r.second);
-  return out;
+const std::vector<DramCompletion>& DramModel::take_completions() {
+  taken_.clear();
+  for (; !done_.empty() && done_.top().completion.cycle <= advanced_; done_.pop())
+    taken_.push_back(done_.top().completion);
+  return taken_;
 }
 
 }  // namespace rastsim

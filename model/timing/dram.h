@@ -8,14 +8,16 @@
 // Units: a request's arrival and completion are core cycles; everything inside is DRAM
 // clocks (the command clock CK). A core cycle c maps to the DRAM clock ceil(c * f_dram /
 // f_core) (the first DRAM edge at or after the core edge), a DRAM clock d back to the
-// core cycle ceil(d * f_core / f_dram); both clocks are whole kHz, so the ratio is exact.
+// core cycle ceil(d * f_core / f_dram); both clocks are whole kHz, so the ratio is exact
+// (kept reduced, so the products fit 64 bits for any cycle below 2^64 / f_dram in kHz).
 #pragma once
 
 #include <array>
 #include <cstdint>
 #include <deque>
+#include <functional>
+#include <queue>
 #include <string>
-#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -73,6 +75,19 @@ struct DramAddress {
 };
 DramAddress decode_address(const DramParams& p, uint64_t address);
 
+// decode_address with the fields' bit positions worked out once: a field is
+// (address >> shift) & mask, the shift counting the burst offset and every field below it.
+class DramAddressDecoder {
+ public:
+  explicit DramAddressDecoder(const DramParams& p);
+  DramAddress operator()(uint64_t address) const;
+
+ private:
+  // By DramField: the shift in bits and the mask (0: the field lies wholly above bit 63).
+  std::array<int, 5> shift_{};
+  std::array<uint64_t, 5> mask_{};
+};
+
 struct DramRequest {
   uint64_t address = 0;  // bytes
   bool write = false;
@@ -127,8 +142,9 @@ class DramModel {
   // Issues every command before DRAM clock to_dram(cycle) (every command a request
   // arriving at `cycle` could not have competed for) and the refreshes due before it.
   void advance_to(uint64_t cycle);
-  // The completions at or before the last advance_to() cycle, by cycle then arrival.
-  std::vector<DramCompletion> take_completions();
+  // The completions at or before the last advance_to() cycle, by cycle then arrival;
+  // valid until the next call.
+  const std::vector<DramCompletion>& take_completions();
 
   // Appends every command issued from now on to *log (nullptr: stop).
   void log_commands(std::vector<DramCommand>* log) { log_ = log; }
@@ -164,12 +180,31 @@ class DramModel {
     int64_t act_ok = 0, pre_ok = 0, read_ok = 0, write_ok = 0;
     std::vector<Burst> queue;  // this bank's queued bursts, in arrival order
     std::array<int, 2> hits{};  // how many of them want open_row: reads [0], writes [1]
+    // The bank's candidates (above: a burst's index into queue and its command), kept
+    // while offers_fresh, i.e. until its queue, open row or bounds change (touch()).
+    struct Offer {
+      size_t index = 0;
+      Cmd cmd = Cmd::Act;
+      int group = 0;      // the burst's bank group
+      uint64_t seq = 0;   // the burst's
+      int64_t ready = 0;  // DRAM clock: the burst's eligible clock and the bank's bound for cmd
+    };
+    mutable std::array<Offer, 2> offers{};
+    mutable int offer_count = 0;
+    mutable bool offers_fresh = false;
   };
   struct Choice {
     int64_t at = -1;  // DRAM clock; -1: nothing to issue
     int bank = 0;     // index into Channel::banks
     size_t index = 0; // into that bank's queue
     Cmd cmd = Cmd::Act;
+  };
+  // The channel's constraints between banks are kept as the first clock each command may
+  // issue at in each bank group, raised as commands issue (docs/memory.md, "Timing
+  // equations"): commands on a channel issue at increasing clocks, so the latest command
+  // of a kind in a group sets the bound, and a decision reads one value a candidate.
+  struct GroupBounds {
+    int64_t act = 0, read = 0, write = 0;  // DRAM clock; tRRD, tCCD and the tWTR / read-to-write turnarounds
   };
   struct Channel {
     std::vector<Bank> banks;
@@ -178,8 +213,9 @@ class DramModel {
     mutable Choice choice;       // choose()'s answer while choice_valid
     mutable bool choice_valid = false;
     int64_t last_cmd = -1;       // the command bus carries one command a clock
-    std::vector<int64_t> last_act, last_read, last_write;  // a bank group's last
-    std::array<int64_t, 32> acts{};  // the last 32 activates, oldest first (tFAW: the last 4)
+    std::vector<GroupBounds> group;  // by bank group
+    std::array<int64_t, 32> acts{};  // the last 32 activates, a ring: acts[next_act] is the oldest
+    size_t next_act = 0;             // (tFAW: the 4th newest, acts[(next_act + 28) % 32]; t32AW: the oldest)
     int64_t next_refresh = 0;
   };
   struct Pending {  // a request with bursts outstanding
@@ -188,21 +224,40 @@ class DramModel {
     int bursts_left = 0;
     int64_t end = 0;  // DRAM clock its last data beat ends so far
   };
+  struct Done {  // a completion not yet taken; request: its number (the order at equal cycles)
+    DramCompletion completion;
+    uint64_t request = 0;
+    bool operator>(const Done& o) const {
+      return completion.cycle != o.completion.cycle ? completion.cycle > o.completion.cycle : request > o.request;
+    }
+  };
 
   Choice choose(const Channel& ch) const;
-  int64_t earliest(const Channel& ch, const Burst& b, Cmd cmd) const;
+  void make_offers(const Bank& bank) const;
+  static void touch(Channel& ch, Bank& bank) { bank.offers_fresh = false, ch.choice_valid = false; }
+  int64_t earliest(const Channel& ch, const Bank::Offer& offer) const;
   void queue_burst(Channel& ch, const Burst& b);
   void issue(Channel& ch, const Choice& c);
   void issue_column(Channel& ch, Burst b, int64_t at);
+  void raise_group_bounds(Channel& ch, int group, Cmd cmd, int64_t at);
   void refresh(Channel& ch);
   void admit(Channel& ch, int64_t at);
   void note(const Channel& ch, int64_t at, DramCommand::Kind kind, const DramAddress& a);
   int bank_index(const DramAddress& a) const { return a.bank_group * p_.banks_per_group + a.bank; }
+  Pending& pending(size_t request) { return pending_[request - first_pending_]; }
 
   DramParams p_;
+  DramAddressDecoder decode_;
+  // f_dram / f_core reduced: to_dram and to_core multiply and divide by these, in 64 bits
+  // below the limits (the products fit), else in 128.
+  uint64_t dram_ratio_ = 1, core_ratio_ = 1, to_dram_limit_ = 0, to_core_limit_ = 0;
   std::vector<Channel> channels_;
-  std::unordered_map<size_t, Pending> pending_;        // by request number
-  std::vector<std::pair<uint64_t, DramCompletion>> done_;  // (request number, completion), not yet taken
+  // Requests by number from first_pending_ on (completed ones at the front are dropped;
+  // completed ones behind an outstanding one stay, with bursts_left 0).
+  std::deque<Pending> pending_;
+  size_t first_pending_ = 0;
+  std::priority_queue<Done, std::vector<Done>, std::greater<Done>> done_;  // earliest first
+  std::vector<DramCompletion> taken_;  // take_completions()' answer
   uint64_t next_seq_ = 0, next_request_ = 0, last_arrival_ = 0, advanced_ = 0;
   DramStats stats_;
   std::vector<DramCommand>* log_ = nullptr;
