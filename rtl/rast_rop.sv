@@ -15,6 +15,12 @@
 //   holds two batches' accesses and only a batch's last group is short, so a batch of A
 //   accesses issues ceil(A / PixelsPerCycle) groups, one a cycle while the memory keeps
 //   up: rop_fragment_cycles.
+// - Access buffer: a ring of fragments, not of accesses. A beat's lanes with an access are
+//   packed (Lanes x Lanes) and written after the held ones; a group is cut from the P
+//   oldest fragments, each lane k picking its fragment by the fragments' running access
+//   counts and its sample as the n-th covered one (skip_q counts the oldest fragment's
+//   accesses already issued). No structure muxes from Lanes MaxSamples accesses, so
+//   elaboration and area grow with Lanes and P, not with MaxSamples.
 // - Memory: a 32-bit word a sample. Sample s of pixel (x, y) is the word at
 //   base + ((y W + x) S + s) 4 (W = fb_width_i, S = 2^samples_log2_i): colour at
 //   color_base_i as bytes {r, g, b, a = 255} (a word {a, b, g, r}), depth at depth_base_i in
@@ -107,9 +113,14 @@ module rast_rop #(
 );
   localparam int P = PixelsPerCycle;
   localparam int SBits = MaxSamples > 1 ? $clog2(MaxSamples) : 1;  // a sample index
-  localparam int Cap = 1 << $clog2(P + Lanes * MaxSamples);         // access buffer entries
+  // The access buffer holds up to Cap accesses (a beat is taken while Lanes MaxSamples
+  // more fit) as fragments, FCap entries: every fragment held is at least one access, so
+  // at most Cap - Lanes MaxSamples + Lanes of them.
+  localparam int Cap = 1 << $clog2(P + Lanes * MaxSamples);
   localparam int CapW = $clog2(Cap);
-  localparam int NewIdxW = Lanes * MaxSamples > 1 ? $clog2(Lanes * MaxSamples) : 1;  // a beat's access index
+  localparam int FCap = 1 << $clog2(Cap - Lanes * MaxSamples + Lanes);
+  localparam int FCapW = $clog2(FCap);
+  localparam int LaneW = Lanes > 1 ? $clog2(Lanes) : 1;  // a beat's fragment index
   localparam int DepthBytes = (DepthW + 7) / 8;
   localparam logic [3:0] DepthBe = 4'((1 << DepthBytes) - 1);
 
@@ -131,6 +142,12 @@ module rast_rop #(
   localparam int AccY = AccZ + DepthW;    // pixel y, PixelW
   localparam int AccX = AccY + PixelW;    // pixel x, PixelW
   localparam int AccW = AccX + PixelW;
+  // One fragment of the buffer: the access fields above AccS0 and its sample mask.
+  localparam int FrLast = 0;                   // its last access ends the batch
+  localparam int FrFull = 1;                   // one access, all S samples
+  localparam int FrMask = 2;                   // covered samples (per-sample accesses), MaxSamples
+  localparam int FrRgb = FrMask + MaxSamples;  // {x, y, z, rgb}, as from AccRgb up
+  localparam int FrW = FrRgb + AccW - AccRgb;
 
   // The write request of a group (or held: w_q).
   typedef struct packed {
@@ -142,8 +159,10 @@ module rast_rop #(
   } wreq_t;
 
   // ---- State ----
-  logic [AccW-1:0] buf_q [Cap];     // the access buffer, a ring
-  logic [CapW-1:0] head_q;          // oldest access
+  logic [FrW-1:0]  frag_q [FCap];   // the access buffer, a ring of fragments
+  logic [FCapW-1:0] fhead_q;        // oldest fragment
+  logic [FCapW:0]  fcount_q;        // fragments held
+  logic [SBits-1:0] skip_q;         // accesses of the oldest fragment already issued
   logic [CapW:0]   count_q;         // accesses held
   logic            q_valid_q;       // a group's read taken, its response not yet in
   logic [P*AccW-1:0] q_acc_q;       // that group, access k at [k AccW +: AccW]
@@ -189,25 +208,64 @@ module rast_rop #(
     endcase
   endfunction
 
+  // Covered samples of a mask: a fragment's accesses when its mask is not full.
+  function automatic logic [CapW:0] covered(input logic [MaxSamples-1:0] m);
+    covered = '0;
+    for (int i = 0; i < MaxSamples; i++) covered = covered + (CapW + 1)'(m[i]);
+  endfunction
+
   // ---- The next group: up to P accesses from the head, never past a batch's end ----
+  // Group lane k is access k from the head: of fragment f (of the P oldest) when
+  // start_f <= k < start_f + n_f (n_f its accesses not yet issued); its sample the
+  // (k - start_f + skip)-th covered one (skip for the oldest fragment only).
   logic [CapW:0] grp_n;      // accesses in it (0: none ready)
   logic [P*AccW-1:0] grp;   // access k at [k AccW +: AccW]
   logic [P-1:0]  grp_lanes;
   logic          grp_last;   // it ends a batch
+  logic [FrW-1:0] head_fr [P];       // the P oldest fragments (one read of the ring each)
+  logic [CapW:0] fr_start [P + 1];  // access index of the oldest fragments' first (P: past them)
+  for (genvar f = 0; f < P; f++) begin : g_head
+    assign head_fr[f] = frag_q[fhead_q + FCapW'(f)];
+  end
   always_comb begin
-    logic ended;
-    logic [CapW:0] upto;
-    logic [CapW-1:0] e;
-    logic [AccW-1:0] g;
+    logic ended, hit;
+    logic [CapW:0] upto, r, seen;
+    logic [FrW-1:0] sel;
+    logic [CapW:0] n;
+    logic [SBits-1:0] s0;
+    logic [AccW-1:0] a;
+    fr_start[0] = '0;
+    for (int f = 0; f < P; f++) begin
+      n = head_fr[f][FrFull] ? (CapW + 1)'(1) : covered(head_fr[f][FrMask +: MaxSamples]);
+      if (f == 0) n = n - (CapW + 1)'(skip_q);
+      fr_start[f + 1] = (FCapW + 1)'(f) < fcount_q ? fr_start[f] + n : fr_start[f];
+    end
     ended = 1'b0;
     upto = '0;
     for (int k = 0; k < P; k++) begin
-      e = head_q + CapW'(k);
-      g = buf_q[e];
-      grp[k*AccW +: AccW] = g;
+      sel = '0;
+      r = '0;
+      hit = 1'b0;
+      for (int f = 0; f < P; f++) begin
+        if (fr_start[f] <= (CapW + 1)'(k) && (CapW + 1)'(k) < fr_start[f + 1]) begin
+          sel = head_fr[f];
+          r = (CapW + 1)'(k) - fr_start[f] + (f == 0 ? (CapW + 1)'(skip_q) : '0);
+          hit = (CapW + 1)'(k) + 1'b1 == fr_start[f + 1];
+        end
+      end
+      s0 = '0;
+      seen = '0;
+      for (int i = 0; i < MaxSamples; i++) begin
+        if (sel[FrMask + i] && seen == r) s0 = SBits'(i);
+        seen = seen + (CapW + 1)'(sel[FrMask + i]);
+      end
+      if (sel[FrFull]) s0 = '0;
+      a = {sel[FrRgb +: AccW - AccRgb], s0, sel[FrFull], 1'b0};
+      a[AccLast] = sel[FrLast] && hit;
+      grp[k*AccW +: AccW] = a;
       if (!ended && (CapW + 1)'(k) < count_q) begin
         upto = (CapW + 1)'(k + 1);
-        ended = g[AccLast];
+        ended = a[AccLast];
       end
     end
     // A full group, or a short one that ends its batch.
@@ -314,56 +372,69 @@ module rast_rop #(
   assign beat_take = in_valid_i && !in_marker_i && in_ready_o;
   assign cmd_clear = cmd_op_i == 2'd1 || cmd_op_i == 2'd2;
 
-  // ---- The beat's accesses, in lane and sample order ----
-  // An array, not a flat vector: Verilator writes an element at a variable index as a
-  // word copy, a variable part-select of a wide vector bit by bit (17x slower at 16 lanes
-  // and 16 samples).
-  logic [AccW-1:0]  new_acc [1 << NewIdxW];
-  logic [NewIdxW:0] new_n;
+  // ---- The beat's fragments, in lane order ----
+  // The lanes with at least one access, packed: slot i is the lane with i such lanes below
+  // it; new_n their accesses (a full mask one, else one a covered sample).
+  logic [FrW-1:0]  new_fr [1 << LaneW];
+  logic [LaneW:0]  new_frn;  // fragments
+  logic [CapW:0]   new_n;    // accesses
+  logic [FrW-1:0]  beat_fr [Lanes];   // lane j's fragment
+  logic [LaneW:0]  beat_idx [Lanes];  // its slot
+  logic [Lanes-1:0] beat_has;         // it has an access
   always_comb begin
     logic [MaxSamples-1:0] full_mask, mask;
-    logic [AccW-AccRgb-1:0] f;  // the lane's fields above s0: {x, y, z, rgb}
     full_mask = MaxSamples'(((MaxSamples + 1)'(1) << s_count) - 1'b1);
+    new_frn = '0;
     new_n = '0;
-    for (int i = 0; i < (1 << NewIdxW); i++) new_acc[i] = '0;
     for (int j = 0; j < Lanes; j++) begin
-      // Whole-word stores in the field order of the Acc* offsets (a store of one field
-      // into a wide word costs Verilator as much as the word).
-      f = {in_x_i[j*PixelW +: PixelW], in_y_i[j*PixelW +: PixelW], in_z_i[j*DepthW +: DepthW], in_rgb_i[j*24 +: 24]};
       mask = slog2 == '0 ? MaxSamples'(1) : in_mask_i[j*MaxSamples +: MaxSamples] & full_mask;
-      if (in_valid_i && !in_marker_i && in_lanes_i[j]) begin  // (no work while nothing is offered)
-        if (mask == full_mask) begin
-          new_acc[new_n[NewIdxW-1:0]] = {f, SBits'(0), 1'b1, 1'b0};  // s0, full, last
-          new_n = new_n + 1'b1;
-        end else begin
-          for (int s = 0; s < MaxSamples; s++) begin
-            if (mask[s]) begin
-              new_acc[new_n[NewIdxW-1:0]] = {f, SBits'(s), 1'b0, 1'b0};
-              new_n = new_n + 1'b1;
-            end
-          end
+      beat_has[j] = in_lanes_i[j] && mask != '0;
+      beat_fr[j] = {in_x_i[j*PixelW +: PixelW], in_y_i[j*PixelW +: PixelW], in_z_i[j*DepthW +: DepthW], in_rgb_i[j*24 +: 24],
+               mask, mask == full_mask, 1'b0};
+      beat_idx[j] = new_frn;
+      new_frn = new_frn + (LaneW + 1)'(beat_has[j]);
+      if (beat_has[j]) new_n = new_n + (mask == full_mask ? (CapW + 1)'(1) : covered(mask));
+    end
+    for (int i = 0; i < (1 << LaneW); i++) begin
+      new_fr[i] = '0;
+      for (int j = 0; j < Lanes; j++) begin
+        if (beat_has[j] && beat_idx[j] == (LaneW + 1)'(i)) begin
+          new_fr[i] = beat_fr[j];
+          new_fr[i][FrLast] = in_last_i && beat_idx[j] + 1'b1 == new_frn;
         end
       end
     end
-    for (int i = 0; i < (1 << NewIdxW); i++)
-      if (in_last_i && (NewIdxW + 1)'(i + 1) == new_n) new_acc[i][AccLast] = 1'b1;
   end
 
   // ---- Registers ----
   logic [CapW:0] drained;
+  logic [FCapW:0] fr_done;     // the oldest fragments the group issues every access of
+  logic [SBits-1:0] skip_next;
   assign drained = rd_take ? grp_n : '0;
+  always_comb begin
+    logic [SBits-1:0] part;  // of the first fragment left, accesses issued
+    fr_done = '0;
+    for (int f = 1; f <= P; f++) if (fr_start[f] <= drained && (FCapW + 1)'(f) <= fcount_q) fr_done = (FCapW + 1)'(f);
+    part = '0;
+    for (int f = 0; f < P; f++) if (fr_done == (FCapW + 1)'(f)) part = SBits'(drained - fr_start[f]);
+    skip_next = fr_done == '0 ? skip_q + part : part;
+  end
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      head_q <= '0;
+      fhead_q <= '0;
+      fcount_q <= '0;
+      skip_q <= '0;
       count_q <= '0;
       q_valid_q <= 1'b0;
       w_valid_q <= 1'b0;
       clr_active_q <= 1'b0;
       first_q <= 1'b1;
     end else begin
-      head_q <= head_q + drained[CapW-1:0];
+      fhead_q <= fhead_q + fr_done[FCapW-1:0];
+      fcount_q <= fcount_q - fr_done + (beat_take ? (FCapW + 1)'(new_frn) : '0);
+      skip_q <= skip_next;
       if (rd_take) first_q <= grp_last;
-      count_q <= count_q - drained + (beat_take ? (CapW + 1)'(new_n) : '0);
+      count_q <= count_q - drained + (beat_take ? new_n : '0);
       // The group in flight: read taken -> response -> write (held until taken).
       if (rd_take) q_valid_q <= 1'b1;
       else if (resp_now) q_valid_q <= 1'b0;
@@ -399,15 +470,15 @@ module rast_rop #(
     end
   end
 
-  // The beat's accesses into the ring after the held ones: entry e takes access
-  // (e - tail) mod Cap when that is one of the beat's.
-  logic [CapW-1:0] tail;
-  assign tail = head_q + CapW'(count_q);
-  for (genvar e = 0; e < Cap; e++) begin : g_ring
-    logic [CapW-1:0] i;
-    assign i = CapW'(e) - tail;
+  // The beat's fragments into the ring after the held ones: entry e takes slot
+  // (e - tail) mod FCap when that is one of the beat's.
+  logic [FCapW-1:0] tail;
+  assign tail = fhead_q + fcount_q[FCapW-1:0];
+  for (genvar e = 0; e < FCap; e++) begin : g_ring
+    logic [FCapW-1:0] i;
+    assign i = FCapW'(e) - tail;
     always_ff @(posedge clk_i) begin
-      if (beat_take && (CapW + 1)'(i) < (CapW + 1)'(new_n)) buf_q[e] <= new_acc[NewIdxW'(i)];
+      if (beat_take && (FCapW + 1)'(i) < (FCapW + 1)'(new_frn)) frag_q[e] <= new_fr[LaneW'(i)];
     end
   end
 
