@@ -23,7 +23,8 @@ void add_texture_params(std::vector<ParamDef>& s) {
                "bytes from memory. Otherwise texture.ways x texture.line_bytes x a power-of-two set count"});
   s.push_back({"texture.ways", T::Int, int64_t{4}, "ways", 1, 64, {}, "Associativity of the texture cache"});
   s.push_back({"texture.weight_bits", T::Int, int64_t{8}, "bits", 1, 8, {},
-               "Fraction bits of the bilinear weights: u - 1/2 truncated to this many bits (8: weights in 1/256)"});
+               "Fraction bits of the bilinear weights: u - 1/2 rounded to nearest (ties up) at this many bits "
+               "(8: weights in 1/256)"});
   s.push_back({"texture.line_bytes", T::Int, int64_t{64}, "bytes", 4, 4096, {},
                "Line of the texture cache: the bytes a miss reads from memory", is_power_of_two, "a power of two"});
   // The timed texture stage (simulate; docs/texture.md, "Timed texture stage").

@@ -2,11 +2,11 @@
 // Textured triangles against llvmpipe (ctest -L mesa; docs/texture.md, "Checks"): random
 // small textures, nearest and bilinear, every wrap pair (repeat, clamp, mirror), mipmaps
 // off, texenv replace, compared on interior pixels. Nearest: the same texel at every
-// interior pixel. Bilinear: within 1 LSB per channel but for a counted few (0.12 % at the
-// default seed) 2 LSB apart, where the two quantise the weights on opposite sides of the
-// exact filter: rastsim truncates u - 1/2 to 1/256 (docs/texture.md), llvmpipe rounds
-// 256 u to nearest (gallivm's lp_build_iround) and lerps in two rounded passes; rastsim
-// stays within its stated bound of the exact filter. RASTSIM_MESA_SEED changes the seed.
+// interior pixel. Bilinear: within 1 LSB per channel on every interior pixel: both round
+// the weight to the nearest 1/256 texel (rastsim u - 1/2, docs/texture.md; llvmpipe 256 u,
+// gallivm's lp_build_iround), rastsim rounds the weighted sum once, llvmpipe lerps in two
+// rounded passes; rastsim stays within its stated bound of the exact filter.
+// RASTSIM_MESA_SEED changes the seed.
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -74,13 +74,13 @@ TEST(MesaTexture, NearestMipmappedDiffersOnlyAtLevelTies) {
 }
 
 // Mipmapped bilinear (GL_LINEAR_MIPMAP_NEAREST against `mipmap on`, bilinear): away from
-// the level ties, as bilinear on level 0 (within 2 LSB, at most 0.5 % beyond 1).
+// the level ties, as bilinear on level 0 (within 1 LSB).
 TEST(MesaTexture, BilinearMipmappedAsLevelZeroOffTies) {
   std::vector<std::string> report;
   const TexCompareStats s = run_cases(GlFilter::Bilinear, report, true);
   EXPECT_GT(s.interior, 20000u);
-  EXPECT_LE(s.beyond_one_off_tie * 200, s.interior);
-  EXPECT_LE(s.max_diff_off_tie, 2);
+  EXPECT_EQ(s.beyond_one_off_tie, 0u);
+  EXPECT_LE(s.max_diff_off_tie, 1);
   EXPECT_GT(s.identical * 2, s.interior);
 }
 
@@ -88,12 +88,12 @@ TEST(MesaTexture, BilinearWithinOneLsb) {
   std::vector<std::string> report;
   const TexCompareStats s = run_cases(GlFilter::Bilinear, report);
   EXPECT_GT(s.interior, 20000u);
-  EXPECT_GT(s.within_one, 0u);                  // the two roundings do differ
-  EXPECT_LE(s.beyond_one * 200, s.interior);    // at most 0.5 % 2 LSB apart
-  EXPECT_LE(s.max_channel_diff, 2);
-  // Truncated 8-bit weights lose less than 1/256 texel an axis: at most 255 (2 / 256) of
-  // a channel on two axes, plus the final rounding's 1/2: below 2.5 LSB.
-  EXPECT_LT(s.ref_max_error, 2.5);
+  EXPECT_GT(s.within_one, 0u);  // the two final roundings do differ
+  EXPECT_EQ(s.beyond_one, 0u);
+  EXPECT_LE(s.max_channel_diff, 1);
+  // Rounded 8-bit weights are at most 1/512 texel off an axis: at most 255 (2 / 512) of a
+  // channel on two axes, plus the final rounding's 1/2: below 1.5 LSB.
+  EXPECT_LT(s.ref_max_error, 1.5);
 }
 
 }  // namespace

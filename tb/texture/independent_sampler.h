@@ -96,19 +96,22 @@ struct RefQuery {
   int32_t s = 0, t = 0;                 // raw, F fraction bits
   int64_t dsdx = 0, dtdx = 0, dsdy = 0, dtdy = 0;
   int frac_bits = 20;
+  int weight_bits = 8;                  // texture.weight_bits
   std::array<double, 3> color{};        // the fragment's colour
 };
 
 // One level's filtered colour at (s, t): nearest, the texel holding the point (u = s W);
-// bilinear, the four texels around u - 1/2 weighted by its fraction truncated to 1/256,
-// the weighted sum rounded to nearest with ties up.
+// bilinear, x = u - 1/2 rounded to the nearest multiple of 2^-B texel (B the weight bits;
+// ties up, to the multiple to the right), the two texels either side of it weighted by
+// its distance from them, the weighted sum rounded to nearest with ties up.
 inline std::array<double, 4> ref_level(const RefImage& l, const RefQuery& q, const TextureState& ts) {
   const double scale = std::pow(2.0, -q.frac_bits);
   const double u = q.s * scale * l.w, v = q.t * scale * l.h;
   if (ts.filter == TexFilter::Nearest) return l.at(ref_wrap(std::floor(u), l.w, ts.wrap_s), ref_wrap(std::floor(v), l.h, ts.wrap_t));
-  const double x = u - 0.5, y = v - 0.5;
+  const double step = std::pow(2.0, q.weight_bits);
+  const double x = std::floor((u - 0.5) * step + 0.5) / step, y = std::floor((v - 0.5) * step + 0.5) / step;
   const double i0 = std::floor(x), j0 = std::floor(y);
-  const double a = std::floor((x - i0) * 256) / 256, b = std::floor((y - j0) * 256) / 256;
+  const double a = x - i0, b = y - j0;
   std::array<double, 4> out{};
   for (size_t ch = 0; ch < 4; ++ch) {
     double sum = 0;

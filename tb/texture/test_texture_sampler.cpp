@@ -29,6 +29,7 @@ std::shared_ptr<const TextureImage> image(int w, int h, const std::vector<uint8_
 std::array<int, 3> golden(const TextureState& ts, TexelFormat format, const RefQuery& q) {
   TextureParams p;
   p.format = format;
+  p.weight_bits = q.weight_bits;
   TextureUnit unit(p);
   Fragment f;
   f.s = q.s;
@@ -46,12 +47,15 @@ std::array<int, 3> independent(const TextureState& ts, TexelFormat format, const
 }
 
 // A coordinate on an n-texel axis: often exactly on a texel edge k / n or centre
-// (k + 1/2) / n (where 2^F divides), else anywhere in a few repeats either side.
+// (k + 1/2) / n, or on a bilinear weight tie u = (2k + 1) / 512 (u - 1/2 halfway between
+// two 1/256 steps) (each exact where n divides 2^F), else anywhere in a few repeats
+// either side.
 int32_t random_coord(std::mt19937_64& rng, int n) {
-  const int kind = int(rng() % 4);
+  const int kind = int(rng() % 5);
   const int64_t k = int64_t(rng() % uint64_t(6 * n)) - 3 * n;
   if (kind == 0) return int32_t((k << kF) / n);                      // an edge (exact when n divides 2^F)
   if (kind == 1) return int32_t(((2 * k + 1) << (kF - 1)) / n);      // a centre
+  if (kind == 2) return int32_t(((2 * (k * 256 + int64_t(rng() % 256)) + 1) << (kF - 9)) / n);  // a weight tie
   return int32_t(int64_t(rng() % (uint64_t(6) << kF)) - (int64_t{3} << kF));
 }
 
@@ -84,6 +88,7 @@ TEST(TextureSampler, GoldenEqualsIndependentOnRandomSamples) {
       ts.lod_bias = int32_t(rng() % 1025) - 512;
       RefQuery q;
       q.frac_bits = kF;
+      q.weight_bits = rng() % 2 ? kMaxWeightBits : 1 + int(rng() % kMaxWeightBits);
       q.s = random_coord(rng, w);
       q.t = random_coord(rng, h);
       q.dsdx = random_derivative(rng), q.dtdx = random_derivative(rng);
@@ -149,6 +154,29 @@ TEST(TextureSampler, BilinearAtTheMidpointAndAtACentre) {
   EXPECT_EQ(rgb(unit.shade(at(0.25, 0.25), d, ts, kF)), (std::array<int, 3>{10, 20, 30}));
   // (3/8, 1/4): u - 1/2 = 1/4, weight 64 of B: red (10 192 + 50 64) / 256 = 20.
   EXPECT_EQ(rgb(unit.shade(at(0.375, 0.25), d, ts, kF)), (std::array<int, 3>{20, 30, 40}));
+}
+
+// The weight is u - 1/2 rounded to the nearest 1/256 texel, ties up. On a 2-texel axis
+// u = 2 s, so s = 3/8 + 1/1024 (raw 393216 + 1024 = 394240) puts u - 1/2 at 1/4 + 1/512,
+// the tie 64.5/256: weight 65; one raw step lower (64.5 - 2^-11) rounds to 64. s = 3/4 -
+// 1/2048 (raw 786432 - 512 = 785920): u - 1/2 = 1 - 1/1024, 255.75/256, rounds to the whole
+// texel 1: i0 = 1 (i1 = 2 wraps to 0), weight 0.
+TEST(TextureSampler, BilinearWeightRoundsToNearestTiesUp) {
+  const int32_t t = 1 << (kF - 2);  // row 0's centre: v - 1/2 = 0
+  const auto quad = [&](int32_t s) { return texel_quad(s, t, 2, 2, kF, true, TexWrap::Repeat, TexWrap::Repeat); };
+  EXPECT_EQ(quad(394240).alpha, 65);
+  EXPECT_EQ(quad(394239).alpha, 64);
+  EXPECT_EQ(quad(394240).i[0], 0);
+  const TexelQuad whole = quad(785920);
+  EXPECT_EQ(whole.alpha, 0);
+  EXPECT_EQ(whole.i[0], 1);
+  EXPECT_EQ(whole.i[1], 0);
+  EXPECT_EQ(whole.beta, 0);
+  // Negative coordinates round the same way (up at a tie): s = -1/8 + 1/1024 (raw -131072
+  // + 1024): u - 1/2 = -3/4 + 1/512 = -1 + 64.5/256: i0 = -1 (wraps to 1), weight 65.
+  const TexelQuad neg = quad(-131072 + 1024);
+  EXPECT_EQ(neg.i[0], 1);
+  EXPECT_EQ(neg.alpha, 65);
 }
 
 TEST(TextureSampler, LevelOfDetailHandWorked) {

@@ -130,9 +130,11 @@ struct AxisTexel {
 AxisTexel axis_texel(int32_t s, int n, int frac_bits, bool bilinear, int weight_bits) {
   const int64_t u = int64_t(s) * n;  // 2^-F texels
   if (!bilinear) return {u >> frac_bits, 0};
-  const int64_t u8 = ((u << 8) - (int64_t{1} << (frac_bits + 7))) >> frac_bits;  // u - 1/2, 8 fraction bits, floor
-  const int kept = 256 - (1 << (kMaxWeightBits - weight_bits));  // the top weight_bits of the 8
-  return {u8 >> 8, int(u8 & kept)};
+  // u - 1/2 rounded to B = weight_bits fraction bits, ties up: floor((u - 1/2) 2^B + 1/2),
+  // all in 2^-(F + B) texels (|u| < 2^45, so the shifted terms stay below 2^54).
+  const int b = weight_bits;
+  const int64_t ub = ((u << b) - (int64_t{1} << (frac_bits + b - 1)) + (int64_t{1} << (frac_bits - 1))) >> frac_bits;
+  return {ub >> b, int(ub & ((int64_t{1} << b) - 1)) << (kMaxWeightBits - b)};  // weight in 1/256
 }
 }  // namespace
 

@@ -129,9 +129,10 @@ struct TexelQuad {
   int alpha = 0, beta = 0;        // bilinear weights of i1 and j1, 0..255 (/256)
 };
 // Nearest: i = floor(s W / 2^F) (the texel whose [i, i + 1) / W holds s). Bilinear:
-// u = s W / 2^F - 1/2 truncated to 8 fraction bits, i0 = floor(u), i1 = i0 + 1, alpha the
-// 8 fraction bits with all but the top weight_bits cleared (u truncated to weight_bits
-// fraction bits, in 1/256); t, H, j and beta alike. Each index wrapped on its own axis.
+// x = s W / 2^F - 1/2 rounded to nearest at B = weight_bits fraction bits, ties up
+// (xB = floor(x 2^B + 1/2)), i0 = xB >> B, i1 = i0 + 1, alpha = (xB mod 2^B) 2^(8 - B)
+// (in 1/256; a weight rounding up to a whole texel moves i0 on, alpha 0); t, H, j and
+// beta alike. Each index wrapped on its own axis.
 TexelQuad texel_quad(int32_t s, int32_t t, int width, int height, int frac_bits, bool bilinear, TexWrap wrap_s,
                      TexWrap wrap_t, int weight_bits = kMaxWeightBits);
 // The filtered colour of a TexelQuad's texels: nearest the texel; bilinear per channel
