@@ -150,6 +150,7 @@ void Rop::body() {
     if (!mem_) cycles = p_.rop_fragment_cycles(accesses);
     ctx_.render.fragments_passed += passed;
     ctx_.render.samples_passed += samples_passed;
+    if (st_.depth_write) ctx_.render.depth_writes += samples_passed;  // as ref/pipeline.cpp's count_written
     ctx_.rop_accesses += accesses;
     ctx_.framebuffer_bytes += accesses * (4 + depth_bytes_);
     if (!frags.empty()) attribute_to(frags.front().x, frags.front().y);  // the batch's tile
