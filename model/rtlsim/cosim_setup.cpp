@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "config/timing_params.h"
+#include "display/scanout_fetch.h"
 #include "rtlsim/testbench.h"
 #include "ref/pipeline.h"
 #include "ref/prim_assembly.h"
@@ -262,6 +263,7 @@ void cosim_setup(const Scene& scene, const ArchParams& arch, const CosimOptions&
   build(scene, arch, tile, s);
   s.memory = arch.memory;
   s.dram = arch.dram;
+  s.scanout = scanout_params_if_display(arch);
   // The RTL 2D engine reads its memory asynchronously (rtl/rast_engine2d.sv: no wait for
   // a line fill), so the timed memory system cannot serve it.
   if (s.memory.enabled && !s.work2d.empty())

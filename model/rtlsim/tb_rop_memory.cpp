@@ -14,7 +14,9 @@ namespace rastsim::rtlsim {
 TbRopMemory::TbRopMemory(const TbSetup& s)
     : system_(s.dram), shadow_(s.arch.fb_width, s.arch.fb_height, s.samples), state_(s.arch),
       port_(system_, s.memory, shadow_, s.arch.depth_bits) {
-  // As the SystemC ROP (Rop::attach_memory): the frame starts with the depth clear.
+  // As simulate: the scan-out first (its requests of a cycle go first), then the ROP's
+  // port (Rop::attach_memory), whose frame starts with the depth clear.
+  if (s.scanout) scanout_ = attach_scanout_fetch(system_, *s.scanout, s.memory, s.arch);
   shadow_.clear_depth(static_cast<uint32_t>((uint64_t{1} << s.arch.depth_bits) - 1));
   port_.begin(0);
   port_.functional().clear_depth();
@@ -53,6 +55,7 @@ uint64_t TbRopMemory::frame_end(uint64_t t, uint64_t resolve_cycles) {
 }
 
 void TbRopMemory::finish(uint64_t cycles, CosimResult& r) {
+  if (scanout_) scanout_->raster_done(cycles);
   if (!frame_finished_) {
     port_.begin(cycles);
     port_.finish();
@@ -62,6 +65,7 @@ void TbRopMemory::finish(uint64_t cycles, CosimResult& r) {
   r.memory = port_.stats();
   r.dram = nlohmann::json::object();
   add_memory_system_json(r.dram, system_.report(cycles));
+  if (scanout_) add_scanout_fetch_json(r.dram, scanout_->report());
 }
 
 }  // namespace rastsim::rtlsim

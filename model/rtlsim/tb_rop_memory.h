@@ -13,11 +13,16 @@
 // made when the group of its first access reads (rast_rop.sv's groups: the read's lanes,
 // one an access); the read's response comes when that group's fills have arrived.
 // Clears at their command, the resolve's and the frame end's accesses as the SystemC ROP.
+// The display's line fetch is the memory system's client `scanout` as in simulate
+// (display/scanout_fetch.h): attached first, started at cycle 0 with double buffering and
+// at the run's end with single buffering.
 #pragma once
 
 #include <cstdint>
 #include <deque>
+#include <memory>
 
+#include "display/scanout_fetch.h"
 #include "ref/framebuffer.h"
 #include "ref/interpolate.h"
 #include "ref/raster_state.h"
@@ -47,11 +52,13 @@ class TbRopMemory {
   // (`resolve_cycles`, or until its last fill has arrived plus one cycle).
   uint64_t frame_end(uint64_t t, uint64_t resolve_cycles);
   // The run ended after `cycles` cycles: the frame end's accesses (if the resolve did not
-  // make them), every request drained; the functional counts and the DRAM's figures into `r`.
+  // make them), every request drained; the functional counts, the DRAM's figures and the
+  // scan-out's (add_scanout_fetch_json) into `r`.
   void finish(uint64_t cycles, CosimResult& r);
 
  private:
   MemorySystem system_;
+  std::unique_ptr<ScanoutFetch> scanout_;  // the display's line fetch (null: no display)
   Framebuffer shadow_;   // the reference ROP's framebuffer, replayed in stream order
   RasterState state_;
   RopMemoryPort port_;

@@ -9,10 +9,12 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "config/timing_params.h"
+#include "display/scanout_fetch.h"
 #include "ref/2d/draw2d.h"
 #include "ref/framebuffer.h"
 #include "ref/interpolate.h"
@@ -89,6 +91,9 @@ struct TbSetup {
   // (tb_rop_memory.h) with these caches, layout and DRAM; "fixed": the framebuffer alone.
   MemoryParams memory;
   DramParams dram;
+  // The display's line fetch on that memory system, as in simulate: the config's display
+  // (scanout_params_if_display; none when it does not resolve).
+  std::optional<ScanoutParams> scanout;
   CosimOptions opts;
 };
 

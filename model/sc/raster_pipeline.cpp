@@ -284,7 +284,7 @@ SimResult simulate_commands(CommandSource source, const ArchParams& params, cons
   if (params.memory.enabled) {
     memory = new MemorySystem(params.dram);
     if (!opts.mem_trace_path.empty()) memory->record_trace(&mem_trace.emplace(opts.mem_trace_path).stream());
-    scanout = attach_scanout_fetch(*memory, params);  // first: its requests at cycle 0 go first
+    scanout = attach_scanout_fetch(*memory, params).release();  // first: its requests at cycle 0 go first
     top->rop.attach_memory(*memory, params.memory);  // its first request: the frame's depth clear
     top->engine2d.attach_memory(top->rop.memory_port());  // draws through the ROP's colour client
   } else if (!opts.mem_trace_path.empty()) {
@@ -347,10 +347,7 @@ nlohmann::json SimResult::to_json() const {
                            {"transactions_out", s.transactions_out}};
   for (const FifoReport& f : fifos) j["fifos"][f.name] = {{"depth", f.depth}, {"transactions", f.writes}};
   if (memory) add_memory_system_json(j, *memory);
-  if (scanout) {
-    j["memory"]["clients"][kScanoutClient].update(scanout->to_json());
-    j["scanout_underrun_lines"] = scanout->underrun_lines;
-  }
+  if (scanout) add_scanout_fetch_json(j, *scanout);
   // The geometry front end's counters under its stage too, beside its cycles.
   if (render.front_end.any()) {
     nlohmann::json counters;

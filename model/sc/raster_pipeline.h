@@ -92,7 +92,7 @@ struct SimResult {
   // The timed memory system's figures (memory.model = "dram"; timing/memory_system.h), else empty.
   // render.memory holds the functional counts, equal to render's.
   std::optional<MemorySystemReport> memory;
-  // The scan-out's line fetch as a memory client (sc/scanout.h: ScanoutFetch), when the
+  // The scan-out's line fetch as a memory client (display/scanout_fetch.h: ScanoutFetch), when the
   // memory system is on and the config's display resolves.
   std::optional<ScanoutFetchReport> scanout;
 

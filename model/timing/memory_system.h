@@ -15,7 +15,7 @@
 // across clients scanout first (the display's deadline is hard), then rop_color,
 // rop_depth. Inside the DRAM model FR-FCFS decides, with no client priority.
 //
-// The scan-out's line fetch (sc/scanout.h: ScanoutFetch) is a self-timed client: it
+// The scan-out's line fetch (display/scanout_fetch.h: ScanoutFetch) is a self-timed client: it
 // makes its requests of its own accord as display time passes, so the object runs it
 // inside its event loop (step): before any other client's request enters at cycle c,
 // every scan-out request due at or before c has entered, the DRAM first advanced to c
