@@ -107,7 +107,7 @@ nlohmann::json scan_out(const ScanoutOptions& o, const ArchParams& arch, const D
     return nullptr;
   }
   // Timed: vertical blanking, then the frame (one vsync pulse each side of it).
-  const auto p = sc::scanout_params(display, arch.timing.core_mhz);
+  const auto p = scanout_params(display, arch.timing.core_mhz);
   nlohmann::json deadline =
       sc::run_scanout(p, static_cast<uint64_t>(raster_cycles), &scanout, sink, memory_underruns).to_json();
   if (arch.memory.enabled && o.timed) deadline["memory_underrun_lines"] = memory_underruns.size();

@@ -183,8 +183,8 @@ void run_simulate_command(const SimulateOptions& o) {
   // memory.model = "dram" the line fetch ran in this simulation as a memory client
   // (scanout_underrun_lines).
   try {
-    const sc::ScanoutParams sp = sc::scanout_params(DisplayParams::resolve(arch.config), arch.timing.core_mhz);
-    const uint64_t deadline = sc::scanout_deadline_cycles(sp);
+    const ScanoutParams sp = scanout_params(DisplayParams::resolve(arch.config), arch.timing.core_mhz);
+    const uint64_t deadline = scanout_deadline_cycles(sp);
     j["frame_time_cycles"] = r.cycles;
     j["frame_deadline_cycles"] = deadline;
     j["frame_deadline_met"] = r.cycles <= deadline;

@@ -32,10 +32,7 @@
 namespace rastsim::sc {
 
 // The timing parameters, the deadline and the line fetch as a DRAM client are plain C++
-// (display/scanout_fetch.h), shared with the RTL testbench; their names here too.
-using rastsim::ScanoutParams;
-using rastsim::scanout_params;
-using rastsim::scanout_deadline_cycles;
+// (display/scanout_fetch.h, namespace rastsim), shared with the RTL testbench.
 
 struct ScanoutReport {
   uint64_t frame_time_cycles = 0;     // raster finish time T_r, core cycles

@@ -17,14 +17,14 @@ namespace {
 
 // The DAC and scan-out of a default config: tests change only what they are about.
 DacConfig default_dac_config() { return dac_config_from_config(Config{}); }
-sc::ScanoutParams default_params(const char* preset, double core_mhz) {
-  sc::ScanoutParams p = sc::scanout_params(DisplayParams::resolve(Config{}), core_mhz);
+ScanoutParams default_params(const char* preset, double core_mhz) {
+  ScanoutParams p = scanout_params(DisplayParams::resolve(Config{}), core_mhz);
   p.timing = *find_timing_preset(preset);
   return p;
 }
 
-sc::ScanoutParams panel_single() {
-  sc::ScanoutParams p = default_params("panel", 100);
+ScanoutParams panel_single() {
+  ScanoutParams p = default_params("panel", 100);
   p.single_buffered = true;
   p.line_buffer_lines = 2;
   p.fetch_px_per_cycle = 4;  // 128 px a line: 32 core cycles a fetch
@@ -60,7 +60,7 @@ TEST(ScanoutSc, SlowRasterUnderrunCaughtByMonitor) {
   // The raster finishes at 1.5 ms (150000 cycles). Line y starts at (8 + y) * 122.549 us:
   // y = 4 at 1470.6 us is too early, y = 5 at 1593.1 us gets its fetch (1500.32 us).
   // So lines 0..4 underrun: 5 lines, 640 pixels.
-  const sc::ScanoutParams p = panel_single();
+  const ScanoutParams p = panel_single();
   const Dac dac(default_dac_config());
   const Framebuffer fb = scanout_test::pattern(128, 128);
   const Scanout ref(p.timing, dac, fb);
@@ -80,7 +80,7 @@ TEST(ScanoutSc, SlowRasterUnderrunCaughtByMonitor) {
 }
 
 TEST(ScanoutSc, DoubleBufferedLateRasterRepeatsFrame) {
-  sc::ScanoutParams p = panel_single();
+  ScanoutParams p = panel_single();
   p.single_buffered = false;
   // One frame at exactly 60 Hz is 1/60 s = 1666666.67 cycles at 100 MHz.
   const sc::ScanoutReport r = sc::run_scanout(p, 1700000);
@@ -91,7 +91,7 @@ TEST(ScanoutSc, DoubleBufferedLateRasterRepeatsFrame) {
 }
 
 TEST(ScanoutSc, PerPixelVgaStreamDecodesBitExact) {
-  const sc::ScanoutParams p = default_params("vga640x480@60", 200);
+  const ScanoutParams p = default_params("vga640x480@60", 200);
   const Dac dac(default_dac_config());
   const Framebuffer fb = scanout_test::pattern(640, 480);
   const Scanout ref(p.timing, dac, fb);
