@@ -6,8 +6,9 @@
 //   modulate  (T C + 127) / 255
 //   decal     (C (255 - T_a) + T T_a + 127) / 255
 // The quotient by 255 without a divider: for 0 <= y <= 255 x 255 + 127 = 65152,
-// floor(y / 255) = (y + 1 + (y >> 8)) >> 8 (checked for every such y by the unit bench;
-// the first y it misses is 65535).
+// floor(y / 255) = (y + 1 + (y >> 8)) >> 8 (true for every such y; the first y it misses
+// is 65535). The unit bench feeds every (T, C) of modulate and every (C, T, T_a) of
+// decal, so every numerator this unit can form is checked against the reference.
 //
 // Pipeline: 2 register stages (1: the products; 2: the quotient), one fragment a cycle;
 // every stage advances while the last is empty or taken. Latency 2 cycles.
