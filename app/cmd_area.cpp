@@ -94,7 +94,9 @@ void register_area(CLI::App& app) {
                   "the front end (rast_fp32_mul, rast_fp32_add, rast_fp32_recip, rast_front_end_xform), the "
                   "reciprocal unit of perspective-correct interpolation (rast_recip, built with interp.recip_seed_bits and "
                   "interp.recip_iterations), the ROP's cache (rast_rop_cache, built with rop.color_cache_*; its "
-                  "data array counted, not synthesised) or a stage "
+                  "data array counted, not synthesised), a unit of the texture unit (rast_texture_lod, "
+                  "rast_texture_address, rast_texture_filter, rast_texture_combine; built with "
+                  "interp.texcoord_format and texture.weight_bits) or a stage "
                   "module under rast_top such as rast_fine_raster (default: rast_top and rast_engine2d)");
   cmd->add_flag("--one-process", o.one_process,
                 "Synthesise rast_top's whole hierarchy in one Yosys process (default: one process a module, its "

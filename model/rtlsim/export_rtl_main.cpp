@@ -9,6 +9,9 @@
 //              compiled into the registry of verilated models (model/rtlsim/CMakeLists.txt)
 //   rastsim_export_rtl --scanout CONFIG.toml OUT.vh
 //     OUT.vh:  the scan-out top's parameter header (scanout_rtl_params_verilog)
+//   rastsim_export_rtl --root ROOT CONFIG.toml OUT.f
+//     OUT.f:   a standalone root's parameters (root_rtl_params) as Verilator arguments,
+//              one -GName=value a line (tb/rtl_texture verilates its units with them)
 #include <fstream>
 #include <iostream>
 #include <iterator>
@@ -32,11 +35,33 @@ void write_if_changed(const std::string& path, const std::string& text) {
 
 }  // namespace
 
+// Each of root_rtl_params(root) as "-GName=value", a line each.
+std::string root_args(const std::string& root, const rastsim::ArchParams& arch) {
+  const auto params = rastsim::root_rtl_params(root, arch);
+  if (params.empty()) throw std::runtime_error("--root " + root + ": a root without config parameters");
+  std::string out;
+  for (const auto& [name, value] : params) out += "-G" + name + "=" + std::to_string(value) + "\n";
+  return out;
+}
+
 int main(int argc, char** argv) {
+  if (argc == 5 && std::string(argv[1]) == "--root") {
+    try {
+      rastsim::Config cfg;
+      cfg.load_file(argv[3]);
+      cfg.validate();
+      write_if_changed(argv[4], root_args(argv[2], rastsim::ArchParams::resolve(cfg)));
+    } catch (const std::exception& e) {
+      std::cerr << "rastsim_export_rtl: error: " << e.what() << "\n";
+      return 1;
+    }
+    return 0;
+  }
   const bool scanout = argc == 4 && std::string(argv[1]) == "--scanout";
   if (argc != 4) {
     std::cerr << "usage: rastsim_export_rtl CONFIG.toml OUT.vh OUT.inc\n"
-                 "       rastsim_export_rtl --scanout CONFIG.toml OUT.vh\n";
+                 "       rastsim_export_rtl --scanout CONFIG.toml OUT.vh\n"
+                 "       rastsim_export_rtl --root ROOT CONFIG.toml OUT.f\n";
     return 2;
   }
   try {

@@ -12,6 +12,8 @@
 #include "config/raster_state_config.h"
 #include "config/video_timing.h"
 #include "ref/memory/rop_memory.h"
+#include "config/texture_config.h"
+#include "scene/texture_file.h"
 
 namespace rastsim {
 
@@ -111,6 +113,23 @@ constexpr ParamField<RopCacheRtlParams> kRopCacheFields[] = {
     {"WordBytes", &RopCacheRtlParams::word_bytes, "bytes of a colour sample"},
 };
 
+// The texture unit's units synthesised as roots of their own (`rastsim area --top
+// rast_texture_lod`, `--top rast_texture_address`): each its own subset of TextureRtlParams.
+constexpr ParamField<TextureRtlParams> kTextureLodFields[] = {
+    {"TexW", &TextureRtlParams::tex_w, "texture coordinate s, t: 1 + I + F of interp.texcoord_format, signed"},
+    {"TexFrac", &TextureRtlParams::tex_frac, "F of interp.texcoord_format"},
+    {"SizeW", &TextureRtlParams::size_w, "bits of a texture side (up to the largest texture)"},
+    {"LevelW", &TextureRtlParams::level_w, "bits of a mip level index"},
+    {"BiasW", &TextureRtlParams::bias_w, "texlod_bias in s.8, signed"},
+};
+constexpr ParamField<TextureRtlParams> kTextureAddressFields[] = {
+    {"TexW", &TextureRtlParams::tex_w, "texture coordinate s, t: 1 + I + F of interp.texcoord_format, signed"},
+    {"TexFrac", &TextureRtlParams::tex_frac, "F of interp.texcoord_format"},
+    {"WeightBits", &TextureRtlParams::weight_bits, "texture.weight_bits"},
+    {"SizeW", &TextureRtlParams::size_w, "bits of a texture side (up to the largest texture)"},
+    {"AddrW", &TextureRtlParams::addr_w, "bits of a texel's byte address"},
+};
+
 // (name, value) of each field of `p`, in the table's order.
 template <class P, size_t N>
 std::vector<std::pair<std::string, int>> named_fields(const P& p, const ParamField<P> (&fields)[N]) {
@@ -162,12 +181,32 @@ RopCacheRtlParams rop_cache_rtl_params(const ArchParams& arch) {
   return rop_cache_rtl_params(arch.memory.color_cache, color.footprint_bytes(), kColorBytesPerSample);
 }
 
+TextureRtlParams texture_rtl_params(const ArchParams& arch) {
+  TextureRtlParams p;
+  const auto& tc = arch.raster.texcoord_format;
+  p.tex_w = tc.total_bits();
+  p.tex_frac = tc.frac_bits;
+  p.weight_bits = texture_params_from_config(arch.config).weight_bits;
+  // A side of up to kMaxTextureExtent texels; its mip chain has bit_width(extent) levels.
+  p.size_w = int(std::bit_width(unsigned(kMaxTextureExtent)));
+  p.level_w = int(std::bit_width(unsigned(p.size_w - 1)));
+  p.bias_w = int(std::bit_width(unsigned(kMaxLodBias * 256))) + 1;
+  // Textures are placed from texture.base upwards: room for the largest base and as many
+  // bytes again above it.
+  p.addr_w = int(std::bit_width(uint64_t(find_param("texture.base")->max))) + 1;
+  return p;
+}
+
 std::vector<std::string> root_rtl_param_names(const std::string& root) {
   std::vector<std::string> out;
   if (root == "rast_recip")
     for (const auto& f : kRecipFields) out.emplace_back(f.name);
   if (root == "rast_rop_cache")
     for (const auto& f : kRopCacheFields) out.emplace_back(f.name);
+  if (root == "rast_texture_lod")
+    for (const auto& f : kTextureLodFields) out.emplace_back(f.name);
+  if (root == "rast_texture_address")
+    for (const auto& f : kTextureAddressFields) out.emplace_back(f.name);
   return out;
 }
 
@@ -175,6 +214,8 @@ std::vector<std::pair<std::string, int>> root_rtl_params(const std::string& root
   if (root == "rast_recip")
     return named_fields(RecipRtlParams{arch.raster.recip_seed_bits, arch.raster.recip_iterations}, kRecipFields);
   if (root == "rast_rop_cache") return named_fields(rop_cache_rtl_params(arch), kRopCacheFields);
+  if (root == "rast_texture_lod") return named_fields(texture_rtl_params(arch), kTextureLodFields);
+  if (root == "rast_texture_address") return named_fields(texture_rtl_params(arch), kTextureAddressFields);
   return {};
 }
 

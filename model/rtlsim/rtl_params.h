@@ -139,9 +139,26 @@ RopCacheRtlParams rop_cache_rtl_params(const CacheParams& c, uint64_t surface_by
 // rop.color_cache_bytes when it is 0 (no cache to build).
 RopCacheRtlParams rop_cache_rtl_params(const ArchParams& arch);
 
+// The texture unit's datapath (rtl/rast_texture_*.sv; docs/texture.md "RTL"), standalone
+// units not yet in rast_top: `rastsim area --top rast_texture_lod` (and _address) synthesise
+// them with these, and tb/rtl_texture verilates them with the default config's
+// (`rastsim_export_rtl --root`). The filter and the combine take no parameter (RGBA8 and
+// 1/256 weights whatever the config).
+struct TextureRtlParams {
+  int tex_w = 0;        // TexW: s, t bits, 1 + I + F of interp.texcoord_format, signed
+  int tex_frac = 0;     // TexFrac: F of interp.texcoord_format
+  int weight_bits = 0;  // WeightBits: texture.weight_bits
+  int size_w = 0;       // SizeW: bits of a texture side, up to kMaxTextureExtent (scene/texture_file.h)
+  int level_w = 0;      // LevelW: bits of a mip level index (levels of the largest side)
+  int bias_w = 0;       // BiasW: bits of texlod_bias in s.8, signed (256 x kMaxLodBias)
+  int addr_w = 0;       // AddrW: bits of a texel's byte address (texture.base's schema maximum, twice)
+};
+TextureRtlParams texture_rtl_params(const ArchParams& arch);
+
 // The parameters a standalone area root (area.h) takes from the config, as (its Verilog
 // name, value) in its table's order: rast_recip's SEED_BITS and ITERATIONS, rast_rop_cache's
-// AddrW, CacheBytes, Ways, LineBytes and WordBytes; none for a root without config
+// AddrW, CacheBytes, Ways, LineBytes and WordBytes, rast_texture_lod's and
+// rast_texture_address's TextureRtlParams fields; none for a root without config
 // parameters (rast_engine2d, the binary32 units) or another name.
 std::vector<std::pair<std::string, int>> root_rtl_params(const std::string& root, const ArchParams& arch);
 // Their names alone (what the root can be given), in the same order.

@@ -454,7 +454,7 @@ class TraceParser {
     args(t, 1, "B, levels in [-16, 16]");
     const auto v = is_plain_decimal(t[1]) ? scene_text::parse_double(t[1]) : std::nullopt;
     if (!v) fail("texlod_bias " + quote(t[1]) + " is not a decimal number");
-    if (!(*v >= -16.0 && *v <= 16.0)) fail("texlod_bias " + quote(t[1]) + " is outside [-16, 16]");
+    if (!(*v >= -double(kMaxLodBias) && *v <= double(kMaxLodBias))) fail("texlod_bias " + quote(t[1]) + " is outside [-16, 16]");
     texture_.lod_bias = int32_t(std::lround(*v * 256.0));
   }
 

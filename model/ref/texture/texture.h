@@ -46,7 +46,7 @@ struct TextureState {
   TexWrap wrap_s = TexWrap::Repeat, wrap_t = TexWrap::Repeat;
   TexEnv env = TexEnv::Modulate;
   bool mipmap = false;
-  int32_t lod_bias = 0;  // level-of-detail bias, s.8 fixed point (1/256 of a level)
+  int32_t lod_bias = 0;  // level-of-detail bias, s.8 fixed point (1/256 of a level), |B| <= kMaxLodBias levels
   bool enabled() const { return image != nullptr; }
 };
 
@@ -62,6 +62,9 @@ struct TextureParams {
   int weight_bits = kMaxWeightBits;  // texture.weight_bits: bilinear weight fraction bits, 1..8
   CacheParams cache;  // texture.cache_bytes (0: no cache), texture.ways, texture.line_bytes
 };
+
+// texlod_bias B's range, levels: [-kMaxLodBias, kMaxLodBias] (s.8: 256 x that).
+inline constexpr int kMaxLodBias = 16;
 
 using Rgba8 = std::array<uint8_t, 4>;
 

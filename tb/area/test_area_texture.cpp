@@ -1,0 +1,73 @@
+// SPDX-License-Identifier: Apache-2.0
+// `rastsim area --top rast_texture_lod` / `rast_texture_address` build the texture unit's
+// LOD and address units with the config's TextureRtlParams (rtlsim/rtl_params.h
+// root_rtl_params: interp.texcoord_format, texture.weight_bits, the largest texture and
+// bias, texture.base's range); the filter and the combine take none (docs/texture.md "RTL").
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "common.h"
+#include "rtlsim/area.h"
+#include "rtlsim/rtl_params.h"
+#include "util/process.h"
+
+namespace rastsim {
+namespace {
+
+ArchParams texture_arch(const std::vector<std::string>& sets) {
+  app::ConfigOptions c;
+  c.sets = sets;
+  return ArchParams::resolve(app::load_config(c));
+}
+
+// By hand: s7.20 (the default interp.texcoord_format) is 28 bits, 20 of them fraction; a
+// side of up to 16384 texels needs 15 bits and its 15 levels (0..14) 4; 256 x 16 = 4096
+// needs 13 bits and a sign; texture.base up to 2^40 needs 41 bits, and one more.
+TEST(AreaTextureParams, FromTheConfig) {
+  using P = std::vector<std::pair<std::string, int>>;
+  const ArchParams d = texture_arch({});
+  EXPECT_EQ(root_rtl_params("rast_texture_lod", d),
+            (P{{"TexW", 28}, {"TexFrac", 20}, {"SizeW", 15}, {"LevelW", 4}, {"BiasW", 14}}));
+  EXPECT_EQ(root_rtl_params("rast_texture_address", d),
+            (P{{"TexW", 28}, {"TexFrac", 20}, {"WeightBits", 8}, {"SizeW", 15}, {"AddrW", 42}}));
+  const ArchParams n = texture_arch({"texture.weight_bits=5", "interp.texcoord_format=s3.12"});
+  EXPECT_EQ(root_rtl_params("rast_texture_address", n),
+            (P{{"TexW", 16}, {"TexFrac", 12}, {"WeightBits", 5}, {"SizeW", 15}, {"AddrW", 42}}));
+  EXPECT_TRUE(root_rtl_params("rast_texture_filter", d).empty());
+  EXPECT_TRUE(root_rtl_params("rast_texture_combine", d).empty());
+  EXPECT_EQ(root_rtl_param_names("rast_texture_lod"),
+            (std::vector<std::string>{"TexW", "TexFrac", "SizeW", "LevelW", "BiasW"}));
+}
+
+// The combine synthesised (a second or two: six 8 x 8 multipliers). Its flip-flops by
+// hand from rtl/rast_texture_combine.sv: 2 valid bits; stage 1 the three 16-bit
+// numerators (48), T's colour (24) and replace (1); stage 2 the colour (24). 99.
+TEST(AreaTexture, CombineFlipFlopsByHand) {
+  try {
+    find_yosys();
+  } catch (const std::exception&) {
+    GTEST_SKIP() << "yosys not installed";
+  }
+  const std::filesystem::path stats =
+      std::filesystem::temp_directory_path() / ("rastsim_area_texture_" + std::to_string(::getpid()) + ".json");
+  ProcessOptions po;
+  po.out = Sink::Capture;
+  po.err = Sink::Stdout;
+  const ProcessResult r = run_process(
+      {RASTSIM_BINARY, "area", "--top", "rast_texture_combine", "--no-cache", "-q", "--stats", stats.string()}, po);
+  ASSERT_TRUE(WIFEXITED(r.status) && WEXITSTATUS(r.status) == 0) << r.out;
+  const nlohmann::json j = nlohmann::json::parse(std::ifstream(stats));
+  std::filesystem::remove(stats);
+  EXPECT_EQ(j["flip_flops"], 2 + 48 + 24 + 1 + 24);
+}
+
+}  // namespace
+}  // namespace rastsim
