@@ -40,7 +40,8 @@ void add_texture_params(std::vector<ParamDef>& s) {
                "Timed texture stage: fragments through the texenv combine a cycle"});
   s.push_back({"texture.miss_cycles", T::Int, int64_t{20}, "cycles", 0, 65536, {},
                "Timed texture stage, memory.model = \"fixed\": cycles each texture-cache line miss stalls the stage "
-               "(its line read from memory); simulate refuses a textured scene with memory.model = \"dram\""});
+               "(its line read from memory); with memory.model = \"dram\" each miss is a blocking line fill through the "
+               "memory system instead (docs/texture.md, \"Timed texture stage\")"});
 }
 
 }  // namespace rastsim

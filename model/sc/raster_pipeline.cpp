@@ -24,7 +24,7 @@ namespace {
 // stops the build: -Wswitch).
 struct RasterPipeline : sc_core::sc_module {
   RasterPipeline(sc_core::sc_module_name name, SimContext& ctx, CommandSource source, const RasterState& arch,
-                 const TimingParams& p, bool memory_dram)
+                 const TimingParams& p)
       : sc_module(name),
         command_fifo(fifo_name(FifoId::Command).data(), p.fifo_entries(FifoId::Command), ctx.tracing, ctx.lockstep),
         clip_command_fifo(fifo_name(FifoId::ClipCommand).data(), p.fifo_entries(FifoId::ClipCommand), ctx.tracing,
@@ -49,7 +49,7 @@ struct RasterPipeline : sc_core::sc_module {
         coarse_raster(ctx, arch, p, setup_fifo, tile_fifo),
         fine_raster(ctx, arch, p, tile_fifo, pixel_fifo),
         interpolate(ctx, arch, p, pixel_fifo, fragment_fifo, texture_fifo, texture_done),
-        texture(ctx, arch, p, memory_dram, texture_fifo, fragment_fifo, texture_done),
+        texture(ctx, arch, p, texture_fifo, fragment_fifo, texture_done),
         rop(ctx, arch, p, fragment_fifo, grant_2d, done_2d),
         draw2d_setup(ctx, p, draw2d_fifo, op2d_fifo),
         engine2d(ctx, p, rop.framebuffer(), op2d_fifo, grant_2d, done_2d) {}
@@ -275,7 +275,7 @@ SimResult simulate_commands(CommandSource source, const ArchParams& params, cons
   // Built once and kept: SystemC does not support tearing a design down.
   static RasterPipeline* top = nullptr;
   if (top) throw std::logic_error("simulate_scene: SystemC elaborates only once per process");
-  top = new RasterPipeline("pipeline", ctx, std::move(source), arch, p, params.memory.enabled);
+  top = new RasterPipeline("pipeline", ctx, std::move(source), arch, p);
   Recorders rec;
   rec.attach(*top, opts, arch, ctx.tracing);
   static MemorySystem* memory = nullptr;  // kept, as the top: elaborated once
@@ -287,6 +287,7 @@ SimResult simulate_commands(CommandSource source, const ArchParams& params, cons
     scanout = attach_scanout_fetch(*memory, params).release();  // first: its requests at cycle 0 go first
     top->rop.attach_memory(*memory, params.memory);  // its first request: the frame's depth clear
     top->engine2d.attach_memory(top->rop.memory_port());  // draws through the ROP's colour client
+    top->texture.attach_memory(*memory);                   // its cache's line fills
   } else if (!opts.mem_trace_path.empty()) {
     throw std::invalid_argument("--mem-trace needs memory.model = \"dram\" (the DRAM requests it lists)");
   }
@@ -316,6 +317,8 @@ SimResult simulate_commands(CommandSource source, const ArchParams& params, cons
     memory->drain();
     r.memory = memory->report(r.cycles);
     if (scanout) r.scanout = scanout->report();
+    if (const TextureMemoryPort* t = top->texture.memory_port(); t && t->report().reads > 0)
+      r.texture_memory = t->report();
     if (mem_trace) mem_trace->commit();
   }
   r.fb = std::move(top->rop.framebuffer());  // moved, not copied: one framebuffer
@@ -348,6 +351,7 @@ nlohmann::json SimResult::to_json() const {
   for (const FifoReport& f : fifos) j["fifos"][f.name] = {{"depth", f.depth}, {"transactions", f.writes}};
   if (memory) add_memory_system_json(j, *memory);
   if (scanout) add_scanout_fetch_json(j, *scanout);
+  if (texture_memory) add_texture_memory_json(j, *texture_memory);
   // The geometry front end's counters under its stage too, beside its cycles.
   if (render.front_end.any()) {
     nlohmann::json counters;

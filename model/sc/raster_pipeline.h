@@ -25,6 +25,7 @@
 #include "ref/pipeline.h"
 #include "sc/command_fetch.h"
 #include "timing/memory_system.h"
+#include "timing/texture_memory_port.h"
 #include "sc/scanout.h"
 #include "scene/scene_io.h"
 #include "config/timing_params.h"
@@ -95,6 +96,9 @@ struct SimResult {
   // The scan-out's line fetch as a memory client (display/scanout_fetch.h: ScanoutFetch), when the
   // memory system is on and the config's display resolves.
   std::optional<ScanoutFetchReport> scanout;
+  // The texture cache's line fills as a memory client (timing/texture_memory_port.h), when
+  // the memory system is on and a texture line was filled.
+  std::optional<TextureMemoryReport> texture_memory;
 
   // RenderStats::to_json plus cycles, cycles_lower_bound, simulated_seconds,
   // sim_wall_seconds, simulated_cycles_per_second, rop_accesses, framebuffer_bytes,

@@ -11,15 +11,16 @@ void Texture::body() {
       continue;
     }
     const FragmentBatch& batch = *in.work;
-    if (memory_dram_)
-      throw SceneError("texture '" + batch.pixels->tri->texture.image->name +
-                       "' bound with memory.model = \"dram\": the timed texture stage serves its cache misses with "
-                       "memory.model = \"fixed\" only (texture.miss_cycles a line miss); use memory.model = \"fixed\" "
-                       "or `rastsim render` (docs/texture.md)");
+    if (mem_) mem_->begin(now());  // the batch's fills from its first cycle
     TimingParams::TextureWork work;
     LocalPtr<const FragmentBatch> out = shade(batch, work);
     if (work.fragments != 0) attribute_to(batch.fragments().front().x, batch.fragments().front().y);
-    busy(p_.texture_batch_cycles(work));
+    if (mem_) {  // the misses' cost is the memory's: the fills' stall instead of texture.miss_cycles
+      work.misses = 0;
+      busy(p_.texture_batch_cycles(work) + mem_->stall_cycles());
+    } else {
+      busy(p_.texture_batch_cycles(work));
+    }
     write(out_, FragmentItem{nullptr, std::move(out)});
   }
 }
@@ -27,7 +28,10 @@ void Texture::body() {
 // The batch's fragments through the texture unit, in order (the reference's fetch order),
 // and the work it took.
 LocalPtr<const FragmentBatch> Texture::shade(const FragmentBatch& batch, TimingParams::TextureWork& work) {
-  if (!unit_) unit_.emplace(arch_.texture);
+  if (!unit_) {
+    unit_.emplace(arch_.texture);
+    if (mem_) mem_->attach(*unit_);
+  }
   if (quads_tri_ != batch.pixels->tri) next_triangle(batch.pixels->tri);
   const SetupTriangle& tri = *batch.pixels->tri;
   const TextureStats before = unit_->stats();

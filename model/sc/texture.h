@@ -10,8 +10,10 @@
 //   (ref TriangleQuads, one a triangle: helper pixels counted as the reference counts
 //   them), and the shaded batch goes to the ROP's fragment FIFO.
 // - Cost: TimingParams::texture_batch_cycles on the batch's quads, bilinear sample slots,
-//   texel fetches, fragments and texture-cache line misses (texture.miss_cycles each:
-//   memory.model = "fixed"; with memory.model = "dram" a textured batch is refused).
+//   texel fetches, fragments and texture-cache line misses: with memory.model = "fixed"
+//   texture.miss_cycles a miss; with memory.model = "dram" (attach_memory) each miss is a
+//   blocking line fill through the memory system (timing/texture_memory_port.h: the batch
+//   is busy the miss-free cycles plus the stall until each fill has arrived).
 // - A fence (a transaction without a batch) from interpolation: every batch before it is
 //   in the fragment FIFO, so one token goes back on texture_done, at 0 cycles; interpolation
 //   writes its next untextured transaction behind it (the ROP takes them in order).
@@ -20,19 +22,25 @@
 
 #include <optional>
 
+#include <memory>
+
 #include "ref/texture/texture_unit.h"
 #include "sc/interpolate.h"
+#include "timing/texture_memory_port.h"
 
 namespace rastsim::sc {
 
 class Texture : public Stage {
  public:
   static constexpr StageId kId = StageId::Texture;
-  // memory_dram: memory.model = "dram" (textured batches refused).
-  Texture(SimContext& ctx, const RasterState& arch, const TimingParams& p, bool memory_dram,
-          Link<FragmentItem>& in, Link<FragmentItem>& out, Link<TextureFence>& done,
-          sc_core::sc_module_name name = stage_name(kId).data())
-      : Stage(name, ctx, kId), arch_(arch), p_(p), memory_dram_(memory_dram), in_(in), out_(out), done_(done) {}
+  Texture(SimContext& ctx, const RasterState& arch, const TimingParams& p, Link<FragmentItem>& in,
+          Link<FragmentItem>& out, Link<TextureFence>& done, sc_core::sc_module_name name = stage_name(kId).data())
+      : Stage(name, ctx, kId), arch_(arch), p_(p), in_(in), out_(out), done_(done) {}
+  // memory.model = "dram" (before the run): the cache's misses become line fills through
+  // `mem` (the texture client), which must outlive the run.
+  void attach_memory(MemorySystem& mem) { mem_ = std::make_unique<TextureMemoryPort>(mem); }
+  // The texture client's figures (null without attach_memory).
+  const TextureMemoryPort* memory_port() const { return mem_.get(); }
   // After the run: the last triangle's helper pixels, and the unit's counts into the
   // context's RenderStats::texture (all 0 when nothing was textured).
   void finish_texture();
@@ -44,7 +52,7 @@ class Texture : public Stage {
 
   const RasterState& arch_;
   const TimingParams& p_;
-  bool memory_dram_;
+  std::unique_ptr<TextureMemoryPort> mem_;  // memory.model = "dram", else null
   Link<FragmentItem>& in_;
   Link<FragmentItem>& out_;
   Link<TextureFence>& done_;

@@ -39,9 +39,12 @@ namespace rastsim {
 
 // The clients: the index of each one's DRAM stats and its stats name
 // (memory.clients.<name>).
-enum class MemClient { RopColor = 0, RopDepth = 1, Scanout = 2 };
+// texture: the texture cache's line fills (timing/texture_memory_port.h).
+enum class MemClient { RopColor = 0, RopDepth = 1, Scanout = 2, Texture = 3 };
 inline constexpr const char* kScanoutClient = "scanout";
-inline constexpr std::array<const char*, 3> kMemClientNames = {kRopColorClient, kRopDepthClient, kScanoutClient};
+inline constexpr const char* kTextureClient = "texture";
+inline constexpr std::array<const char*, 4> kMemClientNames = {kRopColorClient, kRopDepthClient, kScanoutClient,
+                                                               kTextureClient};
 
 // A client that makes its requests of its own accord as time passes (the scan-out's line
 // fetch): the memory system asks it for the cycle of its next request, lets it make them

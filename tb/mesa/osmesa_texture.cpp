@@ -57,7 +57,8 @@ std::vector<uint32_t> OsMesaTexture::draw(const TexturedTri& tri, const TexChain
                  GL_UNSIGNED_BYTE, tex.below[k].rgba.data());
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, GLint(tex.below.size()));  // level 0 alone: no mipmaps
   const bool nearest = filter == GlFilter::Nearest, mip = !tex.below.empty();
-  const GLint min = mip ? (nearest ? GL_NEAREST_MIPMAP_NEAREST : GL_LINEAR_MIPMAP_NEAREST) : (nearest ? GL_NEAREST : GL_LINEAR);
+  GLint min = mip ? (nearest ? GL_NEAREST_MIPMAP_NEAREST : GL_LINEAR_MIPMAP_NEAREST) : (nearest ? GL_NEAREST : GL_LINEAR);
+  if (filter == GlFilter::Trilinear) min = mip ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR;
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, min);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, nearest ? GL_NEAREST : GL_LINEAR);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, gl_wrap(wrap_s));

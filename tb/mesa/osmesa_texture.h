@@ -3,7 +3,8 @@
 // (docs/texture.md, "Checks"): the window and coordinates as OsMesaRenderer (top-left
 // origin, the power-of-two viewport that makes gallium's pixel coordinate the scene's
 // exactly), no logic op, GL_TEXTURE_2D with GL_REPLACE (texenv replace: the fragment's
-// colour is the filtered texel, so only the sampler is compared), no mipmaps.
+// colour is the filtered texel, so only the sampler is compared), mipmaps off or the
+// reference's chain uploaded level by level.
 #pragma once
 
 #include <array>
@@ -14,7 +15,9 @@
 
 namespace rastsim::mesa {
 
-enum class GlFilter { Nearest, Bilinear };      // GL_NEAREST / GL_LINEAR, min and mag
+// GL_NEAREST / GL_LINEAR, min and mag; Trilinear: GL_LINEAR_MIPMAP_LINEAR min, GL_LINEAR mag
+// (mipmapped only).
+enum class GlFilter { Nearest, Bilinear, Trilinear };
 enum class GlWrap { Repeat, Clamp, Mirror };    // GL_REPEAT, GL_CLAMP_TO_EDGE, GL_MIRRORED_REPEAT
 
 // One textured triangle: vertices on the 2^-frac_bits px grid (GridTri), each with its
@@ -45,7 +48,8 @@ class OsMesaTexture {
 
   // The image of `tri` drawn alone over a clear colour of (0, 0, 0, 0), textured with
   // `tex` (filter and wrap on both axes; mipmapped: the nearest level,
-  // GL_*_MIPMAP_NEAREST), GL_REPLACE: RGBA8 per pixel, row 0 at the top.
+  // GL_*_MIPMAP_NEAREST, or two levels blended for Trilinear), GL_REPLACE: RGBA8 per
+  // pixel, row 0 at the top.
   std::vector<uint32_t> draw(const TexturedTri& tri, const TexChain& tex, GlFilter filter, GlWrap wrap_s,
                              GlWrap wrap_t);
 

@@ -45,7 +45,9 @@ Scene reference_scene(const TexCase& c) {
   image->rgba = c.tex.base.rgba;
   CmdPrimitives prims;
   prims.texture.image = image;
-  prims.texture.filter = c.filter == GlFilter::Nearest ? TexFilter::Nearest : TexFilter::Bilinear;
+  prims.texture.filter = c.filter == GlFilter::Nearest    ? TexFilter::Nearest
+                         : c.filter == GlFilter::Bilinear ? TexFilter::Bilinear
+                                                          : TexFilter::Trilinear;
   prims.texture.wrap_s = ref_wrap(c.wrap_s), prims.texture.wrap_t = ref_wrap(c.wrap_t);
   prims.texture.env = TexEnv::Replace;
   prims.texture.mipmap = !c.tex.below.empty();
@@ -104,18 +106,67 @@ int64_t wrap_index(int64_t i, int64_t n, GlWrap w) {
   return (n - 1) - (a >= 0 ? a : -(1 + a));
 }
 
-// The exact bilinear filter (double weights, nothing rounded) at texel coordinates (u, v).
-std::array<double, 3> exact_bilinear(const TexCase& c, double u, double v) {
+// The exact bilinear filter (double weights, nothing rounded) of level `t` at its texel
+// coordinates (u, v).
+std::array<double, 3> exact_bilinear_level(const TexImage& t, GlWrap ws, GlWrap wt, double u, double v) {
   const double x = u - 0.5, y = v - 0.5, i0 = std::floor(x), j0 = std::floor(y), a = x - i0, b = y - j0;
   std::array<double, 3> out{};
   for (int dj = 0; dj < 2; ++dj)
     for (int di = 0; di < 2; ++di) {
-      const TexImage& t = c.tex.base;
-      const int64_t i = wrap_index(int64_t(i0) + di, t.width, c.wrap_s);
-      const int64_t j = wrap_index(int64_t(j0) + dj, t.height, c.wrap_t);
+      const int64_t i = wrap_index(int64_t(i0) + di, t.width, ws);
+      const int64_t j = wrap_index(int64_t(j0) + dj, t.height, wt);
       for (size_t ch = 0; ch < 3; ++ch) out[ch] += (di ? a : 1 - a) * (dj ? b : 1 - b) * t.rgba[size_t(j * t.width + i) * 4 + ch];
     }
   return out;
+}
+
+std::array<double, 3> exact_bilinear(const TexCase& c, double u, double v) {
+  return exact_bilinear_level(c.tex.base, c.wrap_s, c.wrap_t, u, v);
+}
+
+// The exact trilinear filter at (s, t) (repeats) and level of detail `lambda` (double,
+// unrounded): clamped to the chain, levels floor and floor + 1 blended by the fraction.
+std::array<double, 3> exact_trilinear(const TexCase& c, double s, double t, double lambda) {
+  const int levels = int(c.tex.below.size()) + 1;
+  const double l = std::clamp(lambda, 0.0, double(levels - 1));
+  const int k = std::min(int(std::floor(l)), levels - 1);
+  const double f = l - k;
+  const auto level = [&](int n) -> const TexImage& { return n == 0 ? c.tex.base : c.tex.below[size_t(n - 1)]; };
+  const auto at = [&](int n) {
+    const TexImage& im = level(n);
+    return exact_bilinear_level(im, c.wrap_s, c.wrap_t, s * im.width, t * im.height);
+  };
+  std::array<double, 3> out = at(k);
+  if (f > 0 && k + 1 < levels) {
+    const std::array<double, 3> next = at(k + 1);
+    for (size_t ch = 0; ch < 3; ++ch) out[ch] = out[ch] * (1 - f) + next[ch] * f;
+  }
+  return out;
+}
+
+// The range per channel of the exact trilinear filter over lambda in [lo, hi]: linear
+// between whole levels, so its extremes are at the ends and the whole levels between.
+struct Band {
+  std::array<double, 3> lo{}, hi{};
+};
+Band trilinear_band(const TexCase& c, double s, double t, double lo, double hi) {
+  Band b;
+  b.lo.fill(1e9), b.hi.fill(-1e9);
+  const auto take = [&](double l) {
+    const std::array<double, 3> v = exact_trilinear(c, s, t, l);
+    for (size_t ch = 0; ch < 3; ++ch) b.lo[ch] = std::min(b.lo[ch], v[ch]), b.hi[ch] = std::max(b.hi[ch], v[ch]);
+  };
+  take(lo);
+  take(hi);
+  for (double k = std::ceil(lo); k < hi; k += 1) take(k);
+  return b;
+}
+
+// How far (LSB) the colour `rgb` lies outside the band's range on its worst channel (0 inside).
+double outside(const Band& b, const std::array<int, 3>& rgb) {
+  double d = 0;
+  for (size_t ch = 0; ch < 3; ++ch) d = std::max({d, b.lo[ch] - rgb[ch], rgb[ch] - b.hi[ch]});
+  return d;
 }
 
 // The reference's mip chain below level 0 (ref/texture's box filter, RGBA8888: the
@@ -144,6 +195,26 @@ double exact_lambda(const TexCase& c) {
   grad(c.tri.s, c.tex.base.width, udx, udy);
   grad(c.tri.t, c.tex.base.height, vdx, vdy);
   return std::log2(std::max(std::hypot(udx, vdx), std::hypot(udy, vdy)));
+}
+
+// Trilinear: where the pixel's two colours lie against the exact filter's range over
+// the level-of-detail band (texture_compare.h), counted into `s`.
+void check_trilinear(const TexCase& c, double lambda, double s_at, double t_at, const uint8_t* ref, uint32_t lp,
+                     int diff, TexCompareStats& s) {
+  const Band b = trilinear_band(c, s_at, t_at, lambda - kTrilinearBandLow, lambda + kTrilinearBandHigh);
+  double spread = 0;
+  for (size_t ch = 0; ch < 3; ++ch) spread = std::max(spread, b.hi[ch] - b.lo[ch]);
+  s.max_band_spread = std::max(s.max_band_spread, spread);
+  const double out_ref = outside(b, {ref[0], ref[1], ref[2]});
+  const double out_lp = outside(b, {int(lp & 255), int((lp >> 8) & 255), int((lp >> 16) & 255)});
+  s.max_outside_ref = std::max(s.max_outside_ref, out_ref);
+  s.max_outside_llvmpipe = std::max(s.max_outside_llvmpipe, out_lp);
+  s.outside_band_ref += out_ref > kTrilinearSlack;
+  s.outside_band_llvmpipe += out_lp > kTrilinearSlack;
+  s.beyond_range_plus_one += diff > spread + 1;
+  s.max_diff_beyond_spread = std::max(s.max_diff_beyond_spread, diff - spread);
+  const Band finer = trilinear_band(c, s_at, t_at, lambda - 0.5 - kTrilinearBandLow, lambda - 0.5 + kTrilinearBandHigh);
+  s.outside_shifted_band_ref += outside(finer, {ref[0], ref[1], ref[2]}) > kTrilinearSlack;
 }
 
 std::string rgb_text(double r, double g, double b) {
@@ -189,6 +260,14 @@ TexCompareStats& TexCompareStats::operator+=(const TexCompareStats& o) {
   max_diff_off_tie = std::max(max_diff_off_tie, o.max_diff_off_tie);
   beyond_one_off_tie += o.beyond_one_off_tie;
   ref_max_error = std::max(ref_max_error, o.ref_max_error);
+  outside_band_ref += o.outside_band_ref;
+  outside_band_llvmpipe += o.outside_band_llvmpipe;
+  beyond_range_plus_one += o.beyond_range_plus_one;
+  max_band_spread = std::max(max_band_spread, o.max_band_spread);
+  max_outside_ref = std::max(max_outside_ref, o.max_outside_ref);
+  max_outside_llvmpipe = std::max(max_outside_llvmpipe, o.max_outside_llvmpipe);
+  max_diff_beyond_spread = std::max(max_diff_beyond_spread, o.max_diff_beyond_spread);
+  outside_shifted_band_ref += o.outside_shifted_band_ref;
   llvmpipe_max_error = std::max(llvmpipe_max_error, o.llvmpipe_max_error);
   max_channel_diff = std::max(max_channel_diff, o.max_channel_diff);
   return *this;
@@ -203,7 +282,7 @@ TexCompareStats compare_textured(const TexCase& c, const RasterState& st, OsMesa
   s.triangles = 1;
   const bool mipmap = !c.tex.below.empty();
   const double lambda = mipmap ? exact_lambda(c) : 0.0;
-  const bool lod_tie = mipmap && lambda > 0.5 - kLodTieBand && std::fabs(lambda - std::floor(lambda) - 0.5) < kLodTieBand;
+  const bool lod_tie = mipmap && c.filter != GlFilter::Trilinear && lambda > 0.5 - kLodTieBand && std::fabs(lambda - std::floor(lambda) - 0.5) < kLodTieBand;
   for (int y = 0; y < st.fb_height; ++y)
     for (int x = 0; x < st.fb_width; ++x) {
       const Bary b = barycentric(c.tri.tri, x + 0.5, y + 0.5);
@@ -225,6 +304,7 @@ TexCompareStats compare_textured(const TexCase& c, const RasterState& st, OsMesa
         }
       }
       s.max_channel_diff = std::max(s.max_channel_diff, diff);
+      if (c.filter == GlFilter::Trilinear) check_trilinear(c, lambda, s_at, t_at, r, l, diff, s);
       if (diff == 0) {
         ++s.identical;
         continue;

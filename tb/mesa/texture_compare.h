@@ -42,6 +42,16 @@ inline constexpr double kLodTieBand = 0.2;
 // band is wider than both together.
 inline constexpr double kTexelTieBand = 1.0 / 4096;
 
+// Trilinear: the levels of detail either sampler may use around the exact lambda
+// (exact_lambda below): the reference's lies in [lambda - 0.086, lambda + 0.161] (the
+// chord of log2_fixed8 low, the length approximation high: docs/texture.md) and its blend
+// weight is truncated to 1/256 of a level; the band adds that step to both ends.
+inline constexpr double kTrilinearBandLow = 0.086 + 1.0 / 256, kTrilinearBandHigh = 0.161 + 1.0 / 256;
+// How far (LSB) a trilinear colour may lie outside the exact trilinear filter's range
+// over that band: each level's rounded bilinear colour within 1.5 LSB of the exact one
+// (the bilinear bound), blended (a convex combination: still within 1.5), rounded once more.
+inline constexpr double kTrilinearSlack = 2.0;
+
 struct TexCompareStats {
   uint64_t triangles = 0;
   uint64_t interior = 0;        // interior pixel centres compared
@@ -57,6 +67,18 @@ struct TexCompareStats {
   // Bilinear: the largest |colour - exact bilinear filter| (double weights, unrounded) of
   // any channel, reference and llvmpipe.
   double ref_max_error = 0, llvmpipe_max_error = 0;
+  // Trilinear: pixels whose colour lies more than kTrilinearSlack outside the exact
+  // trilinear range over the lambda band [lambda - kTrilinearBandLow, lambda +
+  // kTrilinearBandHigh] (rastsim: its stated bound; llvmpipe: whether its level of detail
+  // falls in the same band); the pixels whose two colours are more than that range plus
+  // 1 LSB apart; the largest range.
+  uint64_t outside_band_ref = 0, outside_band_llvmpipe = 0, beyond_range_plus_one = 0;
+  double max_band_spread = 0, max_outside_ref = 0, max_outside_llvmpipe = 0;
+  // The largest difference beyond the band's range (|rastsim - llvmpipe| - range), and the
+  // negative control: rastsim pixels outside the band moved half a level finer (lambda -
+  // 1/2), as a level of detail off by half a level would be: must be many.
+  double max_diff_beyond_spread = 0;
+  uint64_t outside_shifted_band_ref = 0;
   TexCompareStats& operator+=(const TexCompareStats& o);
 };
 

@@ -78,6 +78,7 @@ void TextureUnit::fetch(uint64_t address) {
   if (!cache_) {
     ++stats_.cache_misses;
     stats_.dram_bytes += uint64_t(texel_bytes(p_.format));
+    if (on_fill) on_fill(address, uint64_t(texel_bytes(p_.format)));
     return;
   }
   SetAssocCache::Victim victim;
@@ -85,7 +86,9 @@ void TextureUnit::fetch(uint64_t address) {
     ++stats_.cache_hits;
   } else {
     ++stats_.cache_misses;
-    stats_.dram_bytes += uint64_t(cache_->line_bytes());
+    const uint64_t line = uint64_t(cache_->line_bytes());
+    stats_.dram_bytes += line;
+    if (on_fill) on_fill(address / line * line, line);
   }
 }
 

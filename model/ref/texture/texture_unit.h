@@ -16,6 +16,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -76,6 +77,12 @@ class TextureUnit {
 
   TextureStats& stats() { return stats_; }
   const TextureStats& stats() const { return stats_; }
+
+  // Called at every miss with the DRAM read it makes, in fetch order: the missed line's
+  // byte address (line number x line_bytes) and line_bytes; without a cache the texel's
+  // own address and bytes. Their bytes sum to stats().dram_bytes. Unset: nothing called
+  // (render). The timed model's memory client (timing/texture_memory_port.h) sets it.
+  std::function<void(uint64_t address, uint64_t bytes)> on_fill;
 
  private:
   struct Resident {  // one texture in memory, in the configured format
