@@ -55,6 +55,46 @@ TEST(DepthHiz, CornerBoundHandWorked) {
   EXPECT_EQ(far.lo, 0u);  // the plane goes negative at (15.5, 15.5): clamped to min z_k = 0
 }
 
+// The spilled table's bytes by hand: a 16 x 16 screen, 8 px blocks (4 blocks, row-major
+// 0 1 / 2 3), max mode, 24-bit depth: an entry is 2 x 24 + 64 = 112 bits -> 14 -> 16
+// bytes; depth.hiz_bytes = 32 keeps blocks 0 and 1 on chip, 2 and 3 spilled. One 16 px
+// tile. The quad [0, 16) x [8, 16) at z 0.5 (two triangles, each with pixels in blocks 2
+// and 3): each triangle's tile test reads entries 2 and 3 (32 bytes) and its flush reads
+// and writes both (32 + 32); the second triangle completes both blocks' layers, so their
+// max falls to 0.5. The same quad at z 0.7: both triangles' tiles are culled (32 bytes
+// read each, no write), 2 x 64 = 128 fragments. Read 2 x 64 + 64 = 192, written 64.
+TEST(DepthHiz, SpilledTableBytesHandCounted) {
+  RasterState st = raster_state_from_config(Config{});
+  st.fb_width = st.fb_height = 16;
+  st.depth_func = DepthFunc::Less;
+  st.depth_write = true;
+  st.hiz_mode = HizMode::Max;
+  st.hiz_block = 8;
+  st.hiz_bytes = 32;
+  const auto quad = [](double z) {
+    CmdPrimitives p;
+    p.vertices = {vertex(0, 8, z, 9), vertex(16, 8, z, 9), vertex(0, 16, z, 9),
+                  vertex(16, 8, z, 9), vertex(16, 16, z, 9), vertex(0, 16, z, 9)};
+    return p;
+  };
+  Scene scene;
+  scene.commands.push_back({CmdViewport{16, 16}, {"hand", 1}});
+  scene.commands.push_back({quad(0.5), {"hand", 2}});
+  scene.commands.push_back({quad(0.7), {"hand", 3}});
+  RenderStats s;
+  render_scene(scene, st, s);
+  EXPECT_EQ(HizTable(HizMode::Max, 8, 32, 16, 16, 24).entry_bytes(), 16);
+  EXPECT_EQ(HizTable(HizMode::MinMax, 16, 0, 16, 16, 24).entry_bytes(), 64);  // 4 x 24 + 256 = 352 bits -> 44 -> 64
+  EXPECT_EQ(s.hiz.tiles_tested, 4u);
+  EXPECT_EQ(s.hiz.tiles_culled, 2u);
+  EXPECT_EQ(s.hiz.fragments_culled, 128u);
+  EXPECT_EQ(s.hiz.layer_completions, 2u);
+  EXPECT_EQ(s.hiz.bytes_read, 192u);
+  EXPECT_EQ(s.hiz.bytes_written, 64u);
+  EXPECT_EQ(s.fragments_passed, 128u);
+  EXPECT_EQ(hiz_culled_fraction(s), 1.0);  // every failing fragment was culled
+}
+
 // Every Hi-Z decision checked by brute force when coarse raster makes it: each covered
 // pixel of the footprint interpolated exactly and tested against the stored depth as the
 // ROP would. A culled tile must hold no passing fragment, an accepted one no failing one.
