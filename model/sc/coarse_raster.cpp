@@ -77,7 +77,8 @@ void CoarseRaster::walk_tiled(const SetupItem& in) {
         const PixelRect fp = tile_footprint(t.bbox, tile_size_, tx, ty);
         ++c.tiles_visited;
         const TileClass cls = classify_tile(t, fp, frac_bits_);
-        const bool culled = cls != TileClass::Rejected && hiz_ && hiz_test(t, fp, cls) == HizDecision::Culled;
+        const HizDecision hiz = cls != TileClass::Rejected && hiz_ ? hiz_test(t, fp, cls) : HizDecision::Draw;
+        const bool culled = hiz == HizDecision::Culled;
         const uint64_t leave_at = walk.visit(cls != TileClass::Rejected && !culled);
         if (cls == TileClass::Rejected) {
           ++c.tiles_rejected;
@@ -89,7 +90,7 @@ void CoarseRaster::walk_tiled(const SetupItem& in) {
         attribute_to(fp.x0, fp.y0);  // the walk up to this tile, rejected tiles included
         busy(leave_at - cycles_done);
         cycles_done = leave_at;
-        write(out_, TileItem{nullptr, TileWork{in.work, fp, cls}});
+        write(out_, TileItem{nullptr, TileWork{in.work, fp, cls, false, hiz == HizDecision::Accepted}});
       }
     }
     // The rest of the walk (rejected tiles after the last written one): the last tile's.

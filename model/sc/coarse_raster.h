@@ -44,6 +44,7 @@ struct TileWork {
   PixelRect footprint;  // the tile clipped to the triangle's bounding box
   TileClass cls = TileClass::Partial;  // Accepted or Partial
   bool span = false;  // scanline: a span (one row, every pixel covered, no tests)
+  bool hiz_accepted = false;  // Hi-Z accepted it (minmax): every fragment passes, the ROP reads no depth
 };
 using TileItem = Item<TileWork>;
 

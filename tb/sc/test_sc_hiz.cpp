@@ -9,6 +9,9 @@
 #include <string>
 #include <vector>
 
+#include "config/memory_config.h"
+#include "config/raster_state_config.h"
+#include "report/stats_json.h"
 #include "scene_test.h"
 #include "sim_harness.h"
 
@@ -43,6 +46,36 @@ TEST(ScHiz, MatchesReferenceOnRandomScenes) {
       }
   EXPECT_GT(culled, 50u);  // the scenes exercise the cull and the accept
   EXPECT_GT(accepted, 10u);
+}
+
+// With the memory system (memory.model = dram) every render stat, the memory clients'
+// counts included, equals the reference's: minmax's accepted tiles read no depth in
+// either model (compare_with_reference renders without the memory system, so the
+// reference runs here with it).
+TEST(ScHiz, MemoryCountsMatchReference) {
+  uint64_t accepted = 0;
+  for (const char* mode : {"max", "minmax"})
+    for (uint64_t seed : {3u, 4u}) {
+      SCOPED_TRACE(std::string(mode) + " seed " + std::to_string(seed));
+      const Config cfg = make_config({"raster.depth_func=less", std::string("depth.hiz=") + mode, "memory.model=dram",
+                                      seed == 3 ? "depth.hiz_bytes=64" : "depth.hiz_bytes=1048576"});
+      const Scene scene = random_scene(seed, 96, 80, 80);
+      const nlohmann::json r = run_isolated([&] {
+        RenderStats ref;
+        render_scene(scene, raster_state_from_config(cfg), ref, {}, Framebuffer::kDefaultTileLog2, 1,
+                     memory_params_from_config(cfg));
+        const sc::SimResult sim = sc::simulate_scene(scene, ArchParams::resolve(cfg), {});
+        nlohmann::json a = to_json(ref), b = to_json(sim.render), diff = nlohmann::json::object();
+        for (const auto& [k, v] : a.items())
+          if (k != "wall_seconds" && b[k] != v) diff[k] = {v, b[k]};
+        return nlohmann::json{{"diff", diff}, {"accepted", a["tiles_accepted_hiz"]}, {"memory", a.contains("memory")}};
+      });
+      ASSERT_FALSE(r.contains("error")) << r["error"];
+      EXPECT_TRUE(r["memory"].get<bool>());
+      EXPECT_TRUE(r["diff"].empty()) << r["diff"].dump();
+      accepted += r["accepted"].get<uint64_t>();
+    }
+  EXPECT_GT(accepted, 0u);
 }
 
 // d full-screen layers (two triangles each) at depths 0.1, 0.2, ... drawn front to back.
