@@ -16,6 +16,7 @@
 #include "config/obj_placement.h"
 #include "config/raster_state_config.h"
 #include "ref/pipeline.h"
+#include "scene_test.h"
 #include "scene/scene_io.h"
 
 namespace rastsim {
@@ -23,14 +24,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-SceneVertex vertex(double x, double y, double z, uint8_t r) {
-  SceneVertex v;
-  v.x = Q64::from_double(x);
-  v.y = Q64::from_double(y);
-  v.z = z;
-  v.r = r;
-  return v;
-}
+using scene_test::screen_vertex;
+SceneVertex vertex(double x, double y, double z, uint8_t r) { return screen_vertex(x, y, z, r); }
 
 // The axis-aligned quad [x0, x1) x [y0, y1) (pixel edges: it covers the pixel centres
 // inside, (x1 - x0) (y1 - y0) pixels) at depth z, as two triangles.

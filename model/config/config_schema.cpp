@@ -68,6 +68,15 @@ std::vector<ParamDef> make_schema() {
   add({"depth.early", T::Bool, false, "", 1, 0, {},
        "Depth test before colour/texture interpolation where the state allows it (docs/depth.md; "
        "the same image; render only: simulate and estimate ignore it for now)"});
+  add({"depth.hiz", T::Enum, std::string("off"), "", 1, 0, {"off", "max", "minmax"},
+       "Hierarchical Z (docs/depth-culling.md): a per-block depth bound coarse raster tests tiles against; "
+       "max culls under less/lequal, minmax also under greater/gequal and accepts tiles without the depth read "
+       "(the same image; render and simulate)"});
+  add({"depth.hiz_block", T::Int, int64_t{8}, "px", 4, 16, {},
+       "Square Hi-Z block edge (4, 8 or 16)", is_power_of_two, "a power of two"});
+  add({"depth.hiz_bytes", T::Int, int64_t{16384}, "bytes", 0, int64_t{1} << 30, {},
+       "On-chip size of the Hi-Z bound table; blocks past it are read and written through memory "
+       "(memory.clients.hiz)"});
   return s;
 }
 

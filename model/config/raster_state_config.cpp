@@ -41,6 +41,10 @@ RasterState raster_state_from_config(const Config& cfg) {
   s.depth_bits = static_cast<int>(cfg.get_int("raster.depth_bits"));
   s.depth_write = cfg.get_bool("raster.depth_write");
   s.depth_early = cfg.get_bool("depth.early");
+  s.hiz_mode = pick<HizMode>(cfg.get_string("depth.hiz"),
+                             {{"off", HizMode::Off}, {"max", HizMode::Max}, {"minmax", HizMode::MinMax}});
+  s.hiz_block = static_cast<int>(cfg.get_int("depth.hiz_block"));
+  s.hiz_bytes = cfg.get_int("depth.hiz_bytes");
   s.out_of_range = cfg.get_string("raster.out_of_range") == "cull" ? OutOfRange::Cull : OutOfRange::Error;
   s.fb_width = static_cast<int>(cfg.get_int("display.width"));
   s.fb_height = static_cast<int>(cfg.get_int("display.height"));

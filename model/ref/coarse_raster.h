@@ -97,12 +97,21 @@ PixelRect tile_footprint(const PixelRect& bbox, int tile_size, int tx, int ty);
 // Early-out / early-in classification of one footprint.
 TileClass classify_tile(const SetupTriangle& t, const PixelRect& footprint, int frac_bits);
 
+// A tile filter of traverse_triangle: asked about every tile that coarse raster does not
+// reject (true: fine raster it), told when such a tile is done. The default draws every
+// tile; the reference's Hi-Z (ref/hiz.h, pipeline.cpp) culls some.
+struct NoTileFilter {
+  bool operator()(const PixelRect&, TileClass) const { return true; }
+  void done() const {}
+};
+
 // The whole traversal of one set-up triangle: tile walk, classification, fine raster.
 // emit(px, py) is called once per covered pixel, tile by tile (row-major tiles,
-// row-major pixels inside each tile).
-template <class Emit>
+// row-major pixels inside each tile). A tile the filter refuses is counted by its class
+// (tiles_accepted or tiles_partial) but not fine-rastered: no fragment, no pixel test.
+template <class Emit, class Filter = NoTileFilter>
 void traverse_triangle(const SetupTriangle& t, int tile_size, int frac_bits, TraversalCounters& c,
-                       Emit&& emit) {
+                       Emit&& emit, Filter&& filter = Filter{}) {
   const PixelRect tiles = tile_range(t.bbox, tile_size);
   for (int ty = tiles.y0; ty < tiles.y1; ++ty) {
     for (int tx = tiles.x0; tx < tiles.x1; ++tx) {
@@ -112,12 +121,16 @@ void traverse_triangle(const SetupTriangle& t, int tile_size, int frac_bits, Tra
         case TileClass::Rejected: ++c.tiles_rejected; break;
         case TileClass::Accepted:
           ++c.tiles_accepted;
+          if (!filter(fp, TileClass::Accepted)) break;
           c.count_accepted(fp.area(), t.samples);
           fine_raster_accepted(fp, emit, t.full_mask());
+          filter.done();
           break;
         case TileClass::Partial:
           ++c.tiles_partial;
+          if (!filter(fp, TileClass::Partial)) break;
           c.count_tests(fine_raster_partial(t, fp, frac_bits, counted(c, t.samples, emit)), t.samples);
+          filter.done();
           break;
       }
     }

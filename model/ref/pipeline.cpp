@@ -34,6 +34,20 @@ bool count_setup_outcome(SetupOutcome o, RenderStats& stats) {
 }
 
 namespace {
+// Of the fragments that fail the late test (culled or tested and written nowhere), the
+// fraction `removed`; 1 when none fails.
+double fraction_of_failures(const RenderStats& s, uint64_t removed) {
+  const uint64_t failed = s.hiz.fragments_culled + s.fragments_culled_early + (s.fragments_shaded - s.fragments_passed);
+  return failed ? double(removed) / double(failed) : 1.0;
+}
+}  // namespace
+
+double hiz_oracle_fraction(const RenderStats& s) {
+  return fraction_of_failures(s, s.hiz.fragments_culled + s.fragments_culled_early);
+}
+double hiz_culled_fraction(const RenderStats& s) { return fraction_of_failures(s, s.hiz.fragments_culled); }
+
+namespace {
 void apply_viewport(const CmdViewport& c, const SourceLoc& loc, RasterState& st) {
   const int64_t max_extent = max_viewport_extent(st.coord_format);
   if (c.width < 1 || c.height < 1 || c.width > st.fb_width || c.height > st.fb_height)
@@ -173,6 +187,11 @@ struct SceneRenderer::Impl {
   std::vector<std::pair<ScreenTriangle, const SourceLoc*>> chunk;  // assembled triangles of a run of primitives
   std::vector<std::vector<uint32_t>> bins;              // per region: indices into tris, in order
   std::optional<RopMemory> mem;  // the functional memory system, when on
+  std::optional<HizTable> hiz;   // the Hi-Z bound table, when hiz_applies
+  HizObserver hiz_observer;
+  // The depth function the ROP tests the current tile's fragments with: the state's, or
+  // `always` in a tile Hi-Z accepted (every fragment passes: no depth read).
+  DepthFunc tile_func = DepthFunc::Always;
 
   RopMemory* mem_ptr() { return mem ? &*mem : nullptr; }
 
@@ -186,7 +205,10 @@ struct SceneRenderer::Impl {
               fb.tile_size()}) {
     count_multisample_footprint(st, stats);
     stats.depth_early = st.depth_early;
+    stats.hiz_mode = st.hiz_mode;
+    tile_func = st.depth_func;
     if (memory.enabled) mem.emplace(memory, fb, st.depth_bits);
+    if (hiz_applies(st)) hiz.emplace(st.hiz_mode, st.hiz_block, st.hiz_bytes, st.fb_width, st.fb_height, st.depth_bits);
     // The frame starts with depth cleared to 1.0 (a clear the memory system sees); the
     // colour buffer's initial black is taken to be in memory already.
     fb.clear_depth(static_cast<uint32_t>((uint64_t{1} << st.depth_bits) - 1));
@@ -196,7 +218,7 @@ struct SceneRenderer::Impl {
     // One thread where the result depends on the order of the whole walk: the fragment
     // stream (pipeline order), the coverage check of an inexact method (per triangle) and
     // the memory system's access stream.
-    threads = (on_fragment || check || mem) ? 1 : std::max(1, n_threads);
+    threads = (on_fragment || check || mem || hiz) ? 1 : std::max(1, n_threads);
     if (threads > 1) bins.resize(size_t(grid.count()));
   }
   void run(const Command& cmd);
@@ -209,6 +231,13 @@ struct SceneRenderer::Impl {
   // tests and writes every fragment of tri, counting into s.
   void draw(const SetupTriangle& tri, const SetupTriangle& walk, RenderStats& s) {
     PixelShader shader(tri, F);  // PlaneStepper where it applies
+    if (hiz) {  // Hi-Z: the tiled walk with the bound table's test, one fragment at a time
+      traverse_triangle(walk, tp.tile_size, F, s.traversal, [&](int px, int py, uint32_t mask) {
+        if (check) pixels.emplace_back(px, py);
+        shader.shade(px, py, mask, [&](const Fragment& f) { write(tri, px, py, f, s, false, [](const Fragment& g) { return g; }); });
+      }, HizFilter{*this, tri});
+      return;
+    }
     if (shader.stepped() && !check && !on_fragment && !st.depth_early) {
       // One fragment a covered pixel, no error stats to add and nobody watching the
       // fragments: traversal's runs of pixels are shaded and written a run at a time
@@ -233,7 +262,7 @@ struct SceneRenderer::Impl {
   void write(const SetupTriangle& tri, int px, int py, const Fragment& f, RenderStats& s, bool textured,
              TextureStage&& texture) {
     if (tri.interp_method != InterpMethod::Plane) count_interp_error(f, interpolate_plane(tri, px, py, F), s);
-    if (st.depth_early && early_depth_cull(fb, f, st.depth_func, mem_ptr())) {
+    if (st.depth_early && early_depth_cull(fb, f, tile_func, mem_ptr())) {
       ++s.fragments_culled_early;
       s.interpolations_saved += kColorChannels + (textured ? kTexCoords : 0);
       s.texture_samples_saved += textured ? 1 : 0;
@@ -246,9 +275,38 @@ struct SceneRenderer::Impl {
   // The ROP: f tested and written, counted into s.
   void rop(const Fragment& f, RenderStats& s) {
     uint64_t n = 0;
-    if (rop_write(fb, f, st.depth_func, st.depth_write, &n, mem_ptr())) ++s.fragments_passed;
+    if (rop_write(fb, f, tile_func, st.depth_write, &n, mem_ptr())) {
+      ++s.fragments_passed;
+      if (hiz && st.depth_write) hiz->write(f.x, f.y, f.z);  // one sample (hiz_applies)
+    }
     count_written(s, n);
   }
+
+  // traverse_triangle's tile filter with Hi-Z: each tile coarse raster did not reject
+  // tested against the bound table with its conservative depth range; a culled tile's
+  // covered pixels counted (the oracle score's), an accepted one's fragments tested with
+  // `always`; the table's blocks the tile wrote flushed at its end.
+  struct HizFilter {
+    Impl& m;
+    const SetupTriangle& tri;
+    bool operator()(const PixelRect& fp, TileClass cls) {
+      const HizDecision d = m.hiz->test(fp, tile_depth_range(tri, fp, m.F), m.st.depth_func);
+      if (m.hiz_observer && d != HizDecision::Draw) m.hiz_observer({tri, fp, d, m.fb, m.st.depth_func});
+      if (d == HizDecision::Culled) {
+        uint64_t n = 0;
+        if (cls == TileClass::Accepted) n = uint64_t(fp.area());
+        else fine_raster_partial(tri, fp, m.F, [&](int, int, uint32_t) { ++n; });
+        m.hiz->stats.fragments_culled += n;
+        return false;
+      }
+      m.tile_func = d == HizDecision::Accepted ? DepthFunc::Always : m.st.depth_func;
+      return true;
+    }
+    void done() {
+      m.hiz->flush();
+      m.tile_func = m.st.depth_func;
+    }
+  };
   // n samples written by the ROP: their colour and, with raster.depth_write, their depth.
   void count_written(RenderStats& s, uint64_t n) const {
     s.samples_passed += n;
@@ -276,6 +334,8 @@ SceneRenderer::~SceneRenderer() = default;
 
 int SceneRenderer::threads() const { return impl_->threads; }
 
+void SceneRenderer::set_hiz_observer(HizObserver observer) { impl_->hiz_observer = std::move(observer); }
+
 void SceneRenderer::run(std::span<const Command> commands) {
   const auto t0 = std::chrono::steady_clock::now();
   if (impl_->threads > 1) impl_->run_parallel(commands);
@@ -285,7 +345,10 @@ void SceneRenderer::run(std::span<const Command> commands) {
 }
 
 void SceneRenderer::Impl::run(const Command& cmd) {
-  const auto state = [&] { apply_state_command(cmd, st, fb, mem_ptr()); };
+  const auto state = [&] {
+    apply_state_command(cmd, st, fb, mem_ptr());
+    if (hiz && std::holds_alternative<CmdClearDepth>(cmd.body)) hiz->clear(fb.cleared_depth());  // exact bounds
+  };
   visit_command(cmd, Overloaded{
       state_commands(state),
       [&](const CmdPrimitives& prims) { draw_triangles(cmd, prims); },
@@ -311,6 +374,7 @@ void SceneRenderer::Impl::draw_triangles(const Command& cmd, const CmdPrimitives
       if (on_fragment) on_fragment(f);
       rop(f, stats);  // the late test only (docs/depth.md)
     });
+    if (hiz) hiz->flush();  // its writes' blocks, once a command
     return;
   }
   for_each_triangle(prims, st, cmd.loc, stats.front_end, [&](const ScreenTriangle& v) {
@@ -332,14 +396,16 @@ void SceneRenderer::Impl::draw_textured(const SetupTriangle& tri, const TextureS
   PixelShader shader(tri, F);
   quads.clear();
   const int tex_frac = st.texcoord_format.frac_bits;
-  traverse(tri, tp, stats.traversal, [&](int px, int py, uint32_t mask) {
+  const auto emit = [&](int px, int py, uint32_t mask) {
     if (check) pixels.emplace_back(px, py);
     quads.add_covered(1);
     const QuadDerivatives& d = quads.derivatives(tri, px, py, F);
     shader.shade(px, py, mask, [&](const Fragment& f) {
       write(tri, px, py, f, stats, true, [&](const Fragment& g) { return tex->shade(g, d, ts, tex_frac); });
     });
-  });
+  };
+  if (hiz) traverse_triangle(tri, tp.tile_size, F, stats.traversal, emit, HizFilter{*this, tri});
+  else traverse(tri, tp, stats.traversal, emit);
   tex->stats().helper_pixels += quads.helper_pixels();
 }
 
@@ -444,6 +510,7 @@ Framebuffer SceneRenderer::finish() {
     m.stats.memory = m.mem->stats();
   }
   if (m.tex) m.stats.texture = m.tex->stats();
+  if (m.hiz) m.stats.hiz = m.hiz->stats;
   if (m.fb.samples > 1) m.fb = m.fb.resolve();  // the frame-end resolve pass
   m.stats.framebuffer_crc32 = m.fb.color_crc32();
   m.stats.wall_seconds = m.seconds + seconds_since(t0);

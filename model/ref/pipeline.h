@@ -12,6 +12,7 @@
 
 #include "ref/2d/draw2d.h"
 #include "ref/framebuffer.h"
+#include "ref/hiz.h"
 #include "ref/front_end.h"
 #include "ref/interpolate.h"
 #include "ref/memory/rop_memory.h"
@@ -44,6 +45,11 @@ struct RenderStats {
   uint64_t fragments_culled_early = 0;
   uint64_t interpolations_saved = 0;
   uint64_t texture_samples_saved = 0;
+  // Hierarchical Z (depth.hiz, ref/hiz.h, docs/depth-culling.md): the mode configured
+  // (its stats keys appear when not off) and the unit's counts (hiz.enabled: the run could
+  // use it: single sample, tiled traversal, plane interpolation, a depth function it handles).
+  HizMode hiz_mode = HizMode::Off;
+  HizStats hiz;
   // interp.method = dda only: |dda - plane| of each fragment's attributes, in LSBs of the
   // attribute (colour channels: 8-bit LSBs; depth: raster.depth_bits LSBs). 0 for plane.
   uint32_t max_attr_error_lsb = 0, max_depth_error_lsb = 0;
@@ -64,6 +70,16 @@ struct RenderStats {
   // The texture unit's counts (docs/texture.md); all 0 when no texture was bound.
   TextureStats texture;
 };
+
+// Of the fragments that fail the late depth test, the fraction early Z and Hi-Z removed
+// before fine raster or interpolation (stats key hiz_oracle_fraction,
+// docs/depth-culling.md): the culled ones over the culled ones plus those the ROP tested
+// and wrote nothing of (fragments_shaded - fragments_passed); 1 when none fails.
+// In the reference early Z tests in order against the same depth buffer as the ROP, so
+// with depth.early every late failure is removed and the score is 1: hiz_culled_fraction
+// is Hi-Z's share alone, fragments_culled_hiz over the same failures.
+double hiz_oracle_fraction(const RenderStats& s);
+double hiz_culled_fraction(const RenderStats& s);
 
 // Applies a scene's state command (viewport, scissor, clears) to the state and
 // framebuffer; returns false for a primitives command (not state). Throws SceneError
@@ -113,6 +129,18 @@ void count_interp_error(const Fragment& got, const Fragment& exact, RenderStats&
 
 using FragmentSink = std::function<void(const Fragment&)>;
 
+// One Hi-Z decision other than Draw, as coarse raster makes it: the tile footprint of
+// tri, and the framebuffer as the fragments before it left it (the tests' brute-force
+// check of conservativeness, tb/test_depth_hiz.cpp).
+struct HizEvent {
+  const SetupTriangle& tri;
+  PixelRect footprint;
+  HizDecision decision;
+  const Framebuffer& fb;
+  DepthFunc func;
+};
+using HizObserver = std::function<void(const HizEvent&)>;
+
 // Renders a whole scene into a new framebuffer of the display size.
 // `on_fragment`, if set, sees every fragment leaving interpolation, in pipeline order.
 // `fb_tile_log2`: the framebuffer's storage tiles (Framebuffer; no effect on the result).
@@ -140,6 +168,10 @@ Framebuffer render_scene(const Scene& scene, const RasterState& arch, RenderStat
 // cache in pipeline order, so it keeps one thread; `on_fragment` sees its fragments as
 // they leave interpolation, before the texture stage.
 //
+// `st.hiz_mode` != off (depth.hiz, ref/hiz.h) where hiz_applies: coarse raster tests every
+// tile against the bound table, which the ROP's depth writes and the clears update in
+// pipeline order, so it keeps one thread; the image is the same.
+//
 // `memory.enabled` (memory.model != fixed): every ROP access and clear goes through the
 // functional memory system (ref/memory/rop_memory.h), whose counts land in stats.memory
 // at finish(); the access stream is in pipeline order, so it keeps one thread too.
@@ -153,6 +185,8 @@ class SceneRenderer {
   void run(std::span<const Command> commands);
   Framebuffer finish();
   int threads() const;  // the threads the pipeline runs on (1 with a fragment sink or scanline)
+  // Sees every Hi-Z cull and accept (depth.hiz), before the tile is drawn.
+  void set_hiz_observer(HizObserver observer);
 
  private:
   struct Impl;

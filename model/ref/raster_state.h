@@ -35,6 +35,9 @@ enum class ClipMethod { Clip, Homogeneous };
 enum class RecipMethod { Exact, Newton };
 
 // Half-open pixel rectangle [x0, x1) x [y0, y1).
+// depth.hiz: no bound table, the farthest depth of a block, or its nearest and farthest.
+enum class HizMode { Off, Max, MinMax };
+
 struct PixelRect {
   int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
   bool empty() const { return x0 >= x1 || y0 >= y1; }
@@ -58,6 +61,11 @@ struct RasterState {
   // depth.early: the depth test before interpolation's colour and texture work where the
   // state allows it (docs/depth.md); the image is the same either way.
   bool depth_early = false;
+  // depth.hiz, depth.hiz_block (px), depth.hiz_bytes: hierarchical Z (ref/hiz.h,
+  // docs/depth-culling.md); the image is the same either way.
+  HizMode hiz_mode = HizMode::Off;
+  int hiz_block = 0;
+  int64_t hiz_bytes = 0;
   OutOfRange out_of_range = OutOfRange::Error;
   int fb_width = 0, fb_height = 0;  // framebuffer (display) size, px
   // 2D primitives (config keys line.*, polygon.*).

@@ -77,6 +77,27 @@ void add_memory(nlohmann::json& j, const MemoryStats& m) {
   j["memory"]["clients"][kRopDepthClient] = client_json(d);
 }
 
+namespace {
+void add_hiz(nlohmann::json& j, const RenderStats& s) {
+  const HizStats& h = s.hiz;
+  j["tiles_culled_hiz"] = h.tiles_culled;
+  j["tiles_accepted_hiz"] = h.tiles_accepted;
+  j["fragments_culled_hiz"] = h.fragments_culled;
+  j["hiz_tiles_tested"] = h.tiles_tested;
+  j["hiz_layer_completions"] = h.layer_completions;
+  j["hiz_dram_bytes_read"] = h.bytes_read;
+  j["hiz_dram_bytes_written"] = h.bytes_written;
+  j["hiz_culled_fraction"] = hiz_culled_fraction(s);
+  if (s.memory.enabled) {  // the spilled table is a memory client too
+    j["dram_bytes_read"] = j["dram_bytes_read"].get<uint64_t>() + h.bytes_read;
+    j["dram_bytes_written"] = j["dram_bytes_written"].get<uint64_t>() + h.bytes_written;
+    j["memory"]["clients"]["hiz"] = {{"accesses", h.dram_reads + h.dram_writes},
+                                      {"bytes_read", h.bytes_read},
+                                      {"bytes_written", h.bytes_written}};
+  }
+}
+}  // namespace
+
 nlohmann::json to_json(const RenderStats& s) {
   nlohmann::json j = {
       {"triangles_in", s.triangles_in},
@@ -130,6 +151,10 @@ nlohmann::json to_json(const RenderStats& s) {
   // The memory system's keys only when it ran, so that memory.model = fixed's stats are
   // the same as before it existed.
   if (s.memory.enabled) add_memory(j, s.memory);
+  // Hi-Z's keys only with depth.hiz on; the oracle score with either culling on
+  // (docs/depth-culling.md).
+  if (s.hiz_mode != HizMode::Off) add_hiz(j, s);
+  if (s.hiz_mode != HizMode::Off || s.depth_early) j["hiz_oracle_fraction"] = hiz_oracle_fraction(s);
   // The texture unit's keys only where a texture was sampled (docs/texture.md), so that an
   // untextured scene's stats are the same as before textures existed.
   if (const TextureStats& t = s.texture; t.total_samples() > 0 || t.helper_pixels > 0) {

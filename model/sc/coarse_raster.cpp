@@ -3,12 +3,15 @@
 
 #include <algorithm>
 
+#include "ref/rop.h"
+
 namespace rastsim::sc {
 
 void CoarseRaster::body() {
   ctx_.render.traversal_method = tp_.method;
   for (;;) {
     const SetupItem in = read(in_);
+    if (in.state && hiz_) hiz_state(*in.state);
     if (pass_state(in, out_)) continue;
     switch (tp_.method) {
       case Traversal::Tiled: walk_tiled(in); break;
@@ -74,16 +77,20 @@ void CoarseRaster::walk_tiled(const SetupItem& in) {
         const PixelRect fp = tile_footprint(t.bbox, tile_size_, tx, ty);
         ++c.tiles_visited;
         const TileClass cls = classify_tile(t, fp, frac_bits_);
-        const uint64_t leave_at = walk.visit(cls != TileClass::Rejected);
+        const HizDecision hiz = cls != TileClass::Rejected && hiz_ ? hiz_test(t, fp, cls) : HizDecision::Draw;
+        const bool culled = hiz == HizDecision::Culled;
+        const uint64_t leave_at = walk.visit(cls != TileClass::Rejected && !culled);
         if (cls == TileClass::Rejected) {
           ++c.tiles_rejected;
           continue;
         }
         ++(cls == TileClass::Accepted ? c.tiles_accepted : c.tiles_partial);
+        if (culled) continue;  // counted by its class, as the reference's walk does
+        if (hiz_) hiz_apply(t, fp, cls);
         attribute_to(fp.x0, fp.y0);  // the walk up to this tile, rejected tiles included
         busy(leave_at - cycles_done);
         cycles_done = leave_at;
-        write(out_, TileItem{nullptr, TileWork{in.work, fp, cls}});
+        write(out_, TileItem{nullptr, TileWork{in.work, fp, cls, false, hiz == HizDecision::Accepted}});
       }
     }
     // The rest of the walk (rejected tiles after the last written one): the last tile's.
@@ -92,6 +99,48 @@ void CoarseRaster::walk_tiled(const SetupItem& in) {
       attribute_to(last.x0, last.y0);
     }
     busy(walk.cycles() - cycles_done);
+  }
+}
+
+CoarseRaster::HizShadow::HizShadow(const RasterState& a)
+    : depth(a.fb_width, a.fb_height, 1),
+      table(a.hiz_mode, a.hiz_block, a.hiz_bytes, a.fb_width, a.fb_height, a.depth_bits) {
+  depth.clear_depth(static_cast<uint32_t>((uint64_t{1} << a.depth_bits) - 1));  // as the ROP's
+}
+
+// The reference's test (pipeline.cpp HizFilter): a culled tile's covered pixels counted.
+HizDecision CoarseRaster::hiz_test(const SetupTriangle& t, const PixelRect& fp, TileClass cls) {
+  const HizDecision d = hiz_->table.test(fp, tile_depth_range(t, fp, frac_bits_), arch_.depth_func);
+  if (d == HizDecision::Culled) {
+    uint64_t n = 0;
+    if (cls == TileClass::Accepted) n = uint64_t(fp.area());
+    else fine_raster_partial(t, fp, frac_bits_, [&](int, int, uint32_t) { ++n; });
+    hiz_->table.stats.fragments_culled += n;
+  }
+  return d;
+}
+
+// The depth writes the ROP will make for this tile, applied to the shadow and the table
+// now, then the tile's blocks flushed (the reference's order: walk order, one sample).
+void CoarseRaster::hiz_apply(const SetupTriangle& t, const PixelRect& fp, TileClass cls) {
+  HizShadow& h = *hiz_;
+  const auto pixel = [&](int px, int py, uint32_t) {
+    const uint32_t z = interpolate_plane(t, px, py, frac_bits_).z;
+    if (!depth_test(arch_.depth_func, z, std::as_const(h.depth).depth_at(px, py, 0)) || !arch_.depth_write) return;
+    h.depth.set_depth(px, py, 0, z);
+    h.table.write(px, py, z);
+  };
+  if (cls == TileClass::Accepted) fine_raster_accepted(fp, pixel);
+  else fine_raster_partial(t, fp, frac_bits_, pixel);
+  h.table.flush();
+}
+
+void CoarseRaster::hiz_state(const Command& cmd) {
+  const auto* c = std::get_if<CmdClearDepth>(&cmd.body);
+  if (!c) return;
+  if (const auto z = quantize_unorm(c->z, arch_.depth_bits)) {  // a bad value is the ROP's error to report
+    hiz_->depth.clear_depth(*z);
+    hiz_->table.clear(*z);
   }
 }
 

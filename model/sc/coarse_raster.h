@@ -10,6 +10,13 @@
 // - Rejected tiles go no further; an accepted or partial tile is written to the tile
 //   FIFO at the end of the cycle that sent it.
 // - Counts tiles_visited / rejected / accepted / partial.
+// - Hi-Z (depth.hiz where hiz_applies, docs/depth-culling.md): an accepted or partial
+//   tile is tested against the bound table with its corner depth range (ref/hiz.h); a
+//   culled tile costs its window slot as a rejected one and goes no further. The table is
+//   functional-first: this stage keeps the depth buffer and table the reference would
+//   have at this tile (each surviving tile's fragments' depths applied here, in walk
+//   order, as the ROP will), a zero-lag Hi-Z, so its decisions and counts equal the
+//   reference's and its cycles are those of an ideally synchronised table.
 // The other raster.traversal methods (docs/traversal.md), same functions as the
 // reference (ref/traverse.h):
 // - bbox: one partial "tile", the whole clipped bbox, in 1 cycle.
@@ -24,6 +31,8 @@
 
 #include <optional>
 
+#include "ref/framebuffer.h"
+#include "ref/hiz.h"
 #include "ref/study/coverage_check.h"
 #include "ref/traverse.h"
 #include "sc/tri_setup.h"
@@ -35,6 +44,7 @@ struct TileWork {
   PixelRect footprint;  // the tile clipped to the triangle's bounding box
   TileClass cls = TileClass::Partial;  // Accepted or Partial
   bool span = false;  // scanline: a span (one row, every pixel covered, no tests)
+  bool hiz_accepted = false;  // Hi-Z accepted it (minmax): every fragment passes, the ROP reads no depth
 };
 using TileItem = Item<TileWork>;
 
@@ -45,8 +55,14 @@ class CoarseRaster : public Stage {
                Link<SetupItem>& in, Link<TileItem>& out,
              sc_core::sc_module_name name = stage_name(kId).data())
       : Stage(name, ctx, kId), tile_size_(arch.tile_size), frac_bits_(arch.coord_format.frac_bits),
-        tp_(traversal_params(arch)), p_(p), in_(in), out_(out) {
+        tp_(traversal_params(arch)), p_(p), in_(in), out_(out), arch_(arch) {
     if (!traversal_is_exact(tp_.method)) check_.emplace(arch.fb_width, arch.fb_height);
+    ctx_.render.hiz_mode = arch.hiz_mode;
+    if (hiz_applies(arch)) hiz_.emplace(arch);
+  }
+  // The Hi-Z unit's counts into ctx.render.hiz (call once, after the simulation).
+  void finish_hiz() {
+    if (hiz_) ctx_.render.hiz = hiz_->table.stats;
   }
   // Counts cracks and overlaps of every triangle walked into ctx.render.coverage (call
   // once, after the simulation).
@@ -65,6 +81,18 @@ class CoarseRaster : public Stage {
   const TimingParams& p_;
   Link<SetupItem>& in_;
   Link<TileItem>& out_;
+  // Hi-Z's functional-first state: the depth the reference's ROP would hold (one sample)
+  // and the bound table.
+  struct HizShadow {
+    explicit HizShadow(const RasterState& a);
+    Framebuffer depth;
+    HizTable table;
+  };
+  RasterState arch_;  // the depth state and the table's parameters
+  std::optional<HizShadow> hiz_;
+  HizDecision hiz_test(const SetupTriangle& t, const PixelRect& fp, TileClass cls);
+  void hiz_apply(const SetupTriangle& t, const PixelRect& fp, TileClass cls);
+  void hiz_state(const Command& cmd);
 };
 
 }  // namespace rastsim::sc

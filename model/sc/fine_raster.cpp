@@ -13,6 +13,7 @@ void FineRaster::body() {
     batch->tri = tile.tri;
     batch->runs.clear();  // keeps its capacity
     batch->pixels = 0;
+    batch->hiz_accepted = tile.hiz_accepted;
     const int samples = tile.tri->samples;
     uint64_t cost = 0;
     if (tile.span) {  // one sample (the config rejects scanline with raster.samples > 1)

@@ -304,6 +304,7 @@ SimResult simulate_commands(CommandSource source, const ArchParams& params, cons
     r.timeline = rec.timeline.write_trace_json(opts.timeline_path, r.cycles, opts.timeline_max_events);
   r.heat = std::move(rec.heat);
   top->coarse_raster.finish_coverage();
+  top->coarse_raster.finish_hiz();
   top->texture.finish_texture();
   r.render = ctx.render;
   r.rop_accesses = ctx.rop_accesses;

@@ -20,7 +20,8 @@ struct RopBatchCounts {
 // memory_timing.h, memory_group_response: `group_accesses` accesses a group, a
 // fragment's accesses made by the group of its first one), the first group issued at core
 // cycle `start`; returns the cycle the last group's response comes (`start`: no access).
-uint64_t rop_write_groups(Framebuffer& fb, std::span<const Fragment> frags, const RasterState& st,
+// `func`: the batch's depth function (always in a tile Hi-Z accepted).
+uint64_t rop_write_groups(Framebuffer& fb, std::span<const Fragment> frags, DepthFunc func, bool depth_write,
                           RopMemoryPort& port, uint64_t group_accesses, uint64_t start, RopBatchCounts& n) {
   uint64_t issue = start, group_end = group_accesses;
   port.begin(issue);
@@ -31,7 +32,7 @@ uint64_t rop_write_groups(Framebuffer& fb, std::span<const Fragment> frags, cons
   };
   for (const Fragment& f : frags) {
     if (n.accesses == group_end) respond();  // f's first access opens the next group
-    n.passed += rop_write(fb, f, st.depth_func, st.depth_write, &n.samples_passed, &port.functional());
+    n.passed += rop_write(fb, f, func, depth_write, &n.samples_passed, &port.functional());
     n.accesses += TimingParams::rop_accesses(f.mask, fb.samples);
     while (n.accesses > group_end) respond();  // f's later accesses fill further groups
   }
@@ -120,11 +121,14 @@ void Rop::body() {
     }
     const FragmentBatch& batch = *in.work;
     const std::span<const Fragment> frags = batch.fragments();
+    // A tile Hi-Z accepted is tested with `always`: every fragment passes, no depth read
+    // (as the reference's ROP, docs/depth-culling.md).
+    const DepthFunc func = batch.pixels->hiz_accepted ? DepthFunc::Always : st_.depth_func;
     uint64_t accesses = 0, passed = 0, samples_passed = 0;  // summed locally, added once a batch
     uint64_t cycles = 0;
     if (mem_) {
       RopBatchCounts n;
-      cycles = rop_write_groups(fb_, frags, st_, *mem_, p_.rop_pixels_per_cycle, now(), n) - now();
+      cycles = rop_write_groups(fb_, frags, func, st_.depth_write, *mem_, p_.rop_pixels_per_cycle, now(), n) - now();
       accesses = n.accesses;
       passed = n.passed;
       samples_passed = n.samples_passed;
@@ -135,7 +139,7 @@ void Rop::body() {
       const Fragment* f = frags.data();
       for (const PixelRun& r : batch.pixels->runs) {
         const uint32_t n = rop_write_run(
-            fb_, r.y, r.x0, r.x1, [f, x0 = r.x0](int x) { return f[x - x0]; }, st_.depth_func, st_.depth_write);
+            fb_, r.y, r.x0, r.x1, [f, x0 = r.x0](int x) { return f[x - x0]; }, func, st_.depth_write);
         f += r.x1 - r.x0;
         passed += n;
         samples_passed += n;
@@ -144,7 +148,7 @@ void Rop::body() {
     } else {
       for (const Fragment& f : frags) {
         accesses += TimingParams::rop_accesses(f.mask, fb_.samples);
-        passed += rop_write(fb_, f, st_.depth_func, st_.depth_write, &samples_passed);
+        passed += rop_write(fb_, f, func, st_.depth_write, &samples_passed);
       }
     }
     if (!mem_) cycles = p_.rop_fragment_cycles(accesses);

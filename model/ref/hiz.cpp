@@ -1,0 +1,165 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "ref/hiz.h"
+
+#include <algorithm>
+#include <bit>
+
+namespace rastsim {
+
+DepthRange tile_depth_range(const SetupTriangle& t, const PixelRect& fp, int frac_bits) {
+  // The footprint's corner pixel centres (raw units): num is linear, so its extremes over
+  // the centres lie among these four.
+  const int64_t xs[2] = {t.sample_x(fp.x0, frac_bits), t.sample_x(fp.x1 - 1, frac_bits)};
+  const int64_t ys[2] = {t.sample_y(fp.y0, frac_bits), t.sample_y(fp.y1 - 1, frac_bits)};
+  i128 num_min = 0, num_max = 0;
+  bool first = true;
+  for (int64_t sx : xs)
+    for (int64_t sy : ys) {
+      // Weight of vertex k is the edge opposite it (interpolate.cpp): w = E1, E2, E0.
+      const i128 num = t.edge[1].eval(sx, sy) * t.z[0] + t.edge[2].eval(sx, sy) * t.z[1] +
+                       t.edge[0].eval(sx, sy) * t.z[2];
+      num_min = first ? num : std::min(num_min, num);
+      num_max = first ? num : std::max(num_max, num);
+      first = false;
+    }
+  const i128 lo = div_round_in<i128>(num_min, t.area2, Rounding::Floor);                 // floor
+  const i128 hi = -div_round_in<i128>(-num_max, t.area2, Rounding::Floor);               // ceil
+  const uint32_t zmin = std::min({t.z[0], t.z[1], t.z[2]}), zmax = std::max({t.z[0], t.z[1], t.z[2]});
+  return {static_cast<uint32_t>(std::max<i128>(zmin, lo)), static_cast<uint32_t>(std::min<i128>(zmax, hi))};
+}
+
+HizStats& HizStats::operator+=(const HizStats& o) {
+  for (auto m : {&HizStats::tiles_tested, &HizStats::tiles_culled, &HizStats::tiles_accepted,
+                 &HizStats::fragments_culled, &HizStats::block_updates, &HizStats::layer_completions,
+                 &HizStats::dram_reads, &HizStats::dram_writes, &HizStats::bytes_read, &HizStats::bytes_written})
+    this->*m += o.*m;
+  return *this;
+}
+
+namespace {
+// The entry's bits (ref/hiz.h): bounds and layer bounds, D bits each, and the B^2 mask,
+// padded to a power of two of bytes.
+int entry_bytes_of(HizMode mode, int block, int depth_bits) {
+  const int bounds = mode == HizMode::MinMax ? 4 : 2;
+  const int bits = bounds * depth_bits + block * block;
+  return int(std::bit_ceil(unsigned((bits + 7) / 8)));
+}
+}  // namespace
+
+HizTable::HizTable(HizMode mode, int block, int64_t onchip_bytes, int width, int height, int depth_bits)
+    : mode_(mode), B_(block), log2B_(std::countr_zero(unsigned(block))), nx_((width + block - 1) / block),
+      ny_((height + block - 1) / block), width_(width), height_(height), depth_bits_(depth_bits),
+      entry_bytes_(entry_bytes_of(mode, block, depth_bits)),
+      onchip_(std::min<int64_t>(onchip_bytes / entry_bytes_of(mode, block, depth_bits), int64_t(nx_) * ny_)),
+      blocks_(size_t(nx_) * size_t(ny_)) {
+  stats.enabled = true;
+  clear(static_cast<uint32_t>((uint64_t{1} << depth_bits) - 1));
+}
+
+int HizTable::full_count(int bx, int by) const {
+  return (std::min(width_, (bx + 1) * B_) - bx * B_) * (std::min(height_, (by + 1) * B_) - by * B_);
+}
+
+void HizTable::clear(uint32_t z) {
+  for (Block& b : blocks_) b = Block{z, z, ~0u, 0, {}, 0, false};  // exact bounds, the empty layer
+  dirty_.clear();
+}
+
+DepthRange HizTable::bounds(const PixelRect& fp) const {
+  DepthRange r{~0u, 0};
+  for (int by = fp.y0 >> log2B_; by <= (fp.y1 - 1) >> log2B_; ++by)
+    for (int bx = fp.x0 >> log2B_; bx <= (fp.x1 - 1) >> log2B_; ++bx) {
+      const Block& b = blocks_[size_t(index(bx, by))];
+      r.lo = std::min(r.lo, b.zmin);
+      r.hi = std::max(r.hi, b.zmax);
+    }
+  return r;
+}
+
+HizDecision HizTable::test(const PixelRect& fp, DepthRange z, DepthFunc func) {
+  const bool minmax = mode_ == HizMode::MinMax;
+  const bool handled = func == DepthFunc::Less || func == DepthFunc::LEqual ||
+                       (minmax && (func == DepthFunc::Greater || func == DepthFunc::GEqual));
+  if (!handled || fp.empty()) return HizDecision::Draw;
+  ++stats.tiles_tested;
+  for (int by = fp.y0 >> log2B_; by <= (fp.y1 - 1) >> log2B_; ++by)
+    for (int bx = fp.x0 >> log2B_; bx <= (fp.x1 - 1) >> log2B_; ++bx)
+      if (spilled(index(bx, by))) {
+        ++stats.dram_reads;
+        stats.bytes_read += uint64_t(entry_bytes_);
+      }
+  const DepthRange b = bounds(fp);  // b.lo: nearest stored (minmax only), b.hi: farthest
+  bool cull = false, accept = false;
+  switch (func) {
+    case DepthFunc::Less: cull = z.lo >= b.hi, accept = minmax && z.hi < b.lo; break;
+    case DepthFunc::LEqual: cull = z.lo > b.hi, accept = minmax && z.hi <= b.lo; break;
+    case DepthFunc::Greater: cull = z.hi <= b.lo, accept = z.lo > b.hi; break;
+    case DepthFunc::GEqual: cull = z.hi < b.lo, accept = z.lo >= b.hi; break;
+    default: break;
+  }
+  if (cull) {
+    ++stats.tiles_culled;
+    return HizDecision::Culled;
+  }
+  if (accept) {
+    ++stats.tiles_accepted;
+    return HizDecision::Accepted;
+  }
+  return HizDecision::Draw;
+}
+
+void HizTable::write(int x, int y, uint32_t z) {
+  const int bx = x >> log2B_, by = y >> log2B_, i = index(bx, by);
+  Block& b = blocks_[size_t(i)];
+  b.zmax = std::max(b.zmax, z);
+  b.zmin = std::min(b.zmin, z);
+  b.lmax = std::max(b.lmax, z);
+  b.lmin = std::min(b.lmin, z);
+  const int bit = ((y - by * B_) << log2B_) + (x - bx * B_);
+  uint64_t& w = b.mask[size_t(bit >> 6)];
+  const uint64_t m = uint64_t{1} << (bit & 63);
+  if (!(w & m)) {
+    w |= m;
+    if (++b.written == full_count(bx, by)) {  // every pixel written during the layer
+      b.zmax = std::min(b.zmax, b.lmax);
+      b.zmin = std::max(b.zmin, b.lmin);
+      b.mask = {};
+      b.written = 0;
+      b.lmin = ~0u;
+      b.lmax = 0;
+      ++stats.layer_completions;
+    }
+  }
+  if (!b.dirty) {
+    b.dirty = true;
+    dirty_.push_back(i);
+  }
+}
+
+void HizTable::flush() {
+  for (int i : dirty_) {
+    blocks_[size_t(i)].dirty = false;
+    ++stats.block_updates;
+    if (!spilled(i)) continue;
+    ++stats.dram_reads;  // the read-modify-write of the entry
+    ++stats.dram_writes;
+    stats.bytes_read += uint64_t(entry_bytes_);
+    stats.bytes_written += uint64_t(entry_bytes_);
+  }
+  dirty_.clear();
+}
+
+bool hiz_applies(const RasterState& st) {
+  if (st.hiz_mode == HizMode::Off || st.samples != 1 || st.traversal != Traversal::Tiled ||
+      st.interp_method != InterpMethod::Plane)
+    return false;
+  switch (st.depth_func) {
+    case DepthFunc::Less:
+    case DepthFunc::LEqual: return true;
+    case DepthFunc::Greater:
+    case DepthFunc::GEqual: return st.hiz_mode == HizMode::MinMax;
+    default: return false;
+  }
+}
+
+}  // namespace rastsim

@@ -1,0 +1,114 @@
+// SPDX-License-Identifier: Apache-2.0
+// Hierarchical Z (depth.hiz, docs/depth-culling.md): a per-block depth bound kept beside
+// the depth buffer, tested by coarse raster against each tile's conservative depth range
+// so whole tiles fail (culled) or, with "minmax", pass (accepted: no per-pixel depth
+// read) before fine raster. Functional and exact: the image is the one without it.
+//
+// Blocks: depth.hiz_block = B px squares aligned to the framebuffer origin, row-major.
+// A block holds (D = raster.depth_bits):
+//   - its bound(s): zmax >= every stored depth of the block ("max" and "minmax"), zmin <=
+//     every stored depth ("minmax" only), D bits each;
+//   - the layer: a B x B mask of the pixels written since the layer started and the
+//     largest (and smallest, minmax) depth written since, D bits each.
+// Update rule, on every depth write of z at a pixel of the block (any depth function):
+//   zmax = max(zmax, z); zmin = min(zmin, z); mask |= pixel; lmax = max(lmax, z);
+//   lmin = min(lmin, z); when the mask covers every on-screen pixel of the block, each
+//   pixel's depth was written during the layer, so lies in [lmin, lmax]: zmax = min(zmax,
+//   lmax), zmin = max(zmin, lmin), and the layer restarts empty. So a bound only tightens
+//   (max falls, min rises) when the whole block is known written; a depth clear to c
+//   sets zmin = zmax = c exactly.
+// Entry encoding: the bits above, 2D + B^2 (max) or 4D + B^2 (minmax), padded to the
+// next power of two of bytes (entry_bytes). The first floor(depth.hiz_bytes /
+// entry_bytes) blocks (row-major) are on chip; the rest are spilled to DRAM at byte
+// offset (i - on_chip) x entry_bytes of the table: a test of a spilled block reads its
+// entry, a tile's update of it reads and writes it (memory.clients.hiz).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "ref/raster_state.h"
+#include "ref/tri_setup.h"
+
+namespace rastsim {
+
+// The conservative depth range of a triangle's fragments over a tile footprint (one
+// sample a pixel, plane interpolation): every fragment z = round_half_up(num / area2)
+// with num = E1 z0 + E2 z1 + E0 z2 linear in the sample position, so over the
+// footprint's pixel centres num lies between its values at the four corner centres;
+// lo = max(min z_k, floor(num_min / area2)), hi = min(max z_k, ceil(num_max / area2))
+// (round_half_up of a value in [a, b] lies in [floor a, ceil b]; inside the triangle the
+// rational lies between the vertex depths).
+struct DepthRange {
+  uint32_t lo = 0, hi = 0;
+};
+DepthRange tile_depth_range(const SetupTriangle& t, const PixelRect& fp, int frac_bits);
+
+// A tile's Hi-Z outcome: drawn as usual, culled (every fragment fails the depth test),
+// or accepted (every fragment passes it: the ROP need not read the stored depth).
+enum class HizDecision { Draw, Culled, Accepted };
+
+// The counts of the Hi-Z unit (stats keys tiles_culled_hiz, tiles_accepted_hiz,
+// fragments_culled_hiz, memory.clients.hiz.*).
+struct HizStats {
+  bool enabled = false;          // depth.hiz != off and the run can use it (single sample)
+  uint64_t tiles_tested = 0;     // tiles coarse raster tested against the table
+  uint64_t tiles_culled = 0, tiles_accepted = 0;
+  uint64_t fragments_culled = 0;  // covered pixels of the culled tiles
+  uint64_t block_updates = 0;     // (tile, block) updates written back
+  uint64_t layer_completions = 0;  // blocks whose layer covered them (a bound tightened)
+  uint64_t dram_reads = 0, dram_writes = 0;  // spilled entries moved
+  uint64_t bytes_read = 0, bytes_written = 0;
+  HizStats& operator+=(const HizStats& o);
+};
+
+class HizTable {
+ public:
+  // mode Max or MinMax; block a power of two; depth cleared to the largest value.
+  HizTable(HizMode mode, int block, int64_t onchip_bytes, int width, int height, int depth_bits);
+
+  int entry_bytes() const { return entry_bytes_; }
+  int64_t blocks() const { return int64_t(nx_) * ny_; }
+  int64_t onchip_blocks() const { return onchip_; }
+
+  // The decision for fragments of depth range r over footprint fp under `func`; counts
+  // the entry reads of spilled blocks. Draw for a function Hi-Z does not handle.
+  HizDecision test(const PixelRect& fp, DepthRange r, DepthFunc func);
+  // One depth write of z at pixel (x, y): the update rule above (on chip at once; the
+  // block is marked for flush()).
+  void write(int x, int y, uint32_t z);
+  // A depth clear to z: every bound exact.
+  void clear(uint32_t z);
+  // The end of a tile (or of a command): every block written since is written back once.
+  void flush();
+  // Every bound of the blocks fp overlaps (farthest max, nearest min): the tests' view.
+  DepthRange bounds(const PixelRect& fp) const;
+
+  HizStats stats;
+
+ private:
+  struct Block {
+    uint32_t zmin = 0, zmax = 0, lmin = 0, lmax = 0;
+    std::array<uint64_t, 4> mask{};  // B^2 <= 256 bits, pixel (i, j) of the block at bit j B + i
+    int written = 0;             // bits set in mask
+    bool dirty = false;
+  };
+  int index(int bx, int by) const { return by * nx_ + bx; }
+  int full_count(int bx, int by) const;  // the block's on-screen pixels
+  bool spilled(int i) const { return i >= onchip_; }
+
+  HizMode mode_;
+  int B_, log2B_, nx_, ny_, width_, height_, depth_bits_, entry_bytes_;
+  int64_t onchip_;
+  std::vector<Block> blocks_;
+  std::vector<int> dirty_;
+};
+
+// True when the Hi-Z test may run for a draw with this state (docs/depth-culling.md):
+// single sample, tiled traversal, plane interpolation (a clip.method = homogeneous
+// command has no tile walk and is never tested), and a depth
+// function the mode handles (max: less, lequal; minmax: also greater, gequal).
+bool hiz_applies(const RasterState& st);
+
+}  // namespace rastsim
