@@ -33,6 +33,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -79,14 +80,11 @@ FrameSampledResult extrapolate_frames(const FramePlan& plan, const std::vector<d
 FrameSampledResult simulate_frame_sampled(const Scene& scene, const ArchParams& arch, double fraction,
                                           double confidence = kDefaultConfidence);
 
-// The SystemC run of the whole scene with each frame's cycles (frames[].cycles): from
-// command fetch starting the frame's first command to its starting the next frame's
-// (the last frame: to the end of the run). They sum to the run's cycles.
-struct FrameCycles {
-  std::vector<uint64_t> cycles;
-};
-// on_fetch for a run of `scene` (the scene object the run reads): records into `starts`
-// the cycle command fetch started each command (by index), the first time.
+// A frame's cycles (frames[].cycles) run from command fetch starting its first command
+// to its starting the next frame's (the last frame: to the end of the run), so they sum
+// to the run's cycles. on_fetch for a run of `scene` (the scene object the run reads):
+// records into `starts` the cycle command fetch started each command (by index), the
+// first time.
 std::function<void(const Command&, size_t, uint64_t)> record_command_starts(const Scene& scene,
                                                                            std::vector<uint64_t>& starts);
 // Each span's cycles from the recorded starts: [start of its first command, start of the

@@ -177,7 +177,9 @@ TEST(ScFrames, FrameSampledIntervalCoversTheFullRun) {
   EXPECT_EQ(every["cycles"], full["cycles"]);
   EXPECT_EQ(every["cycles_error_bound"].get<double>(), 0.0);
   EXPECT_EQ(s["frames_total"], 40);
-  EXPECT_LE(s["frames_simulated"].get<int>(), 6);  // 2 certain + ceil(0.1 x 38) = 4
+  // 2 certain + ceil(0.1 x 38) = 4 allocated, at least 2 a stratum (bottleneck stage):
+  // 8 here (the random frames' bottleneck is the ROP or fine raster).
+  EXPECT_LE(s["frames_simulated"].get<int>(), 10);
   const double truth = full["cycles"].get<double>();
   EXPECT_LE(s["cycles_ci_low"].get<double>(), truth) << s;
   EXPECT_GE(s["cycles_ci_high"].get<double>(), truth) << s;
