@@ -226,9 +226,9 @@ void register_simulate(CLI::App& app) {
   add_frames_option(cmd, o.frames);
   cmd->add_option_function<double>(
       "--frame-sample", [](double f) { o.frame_sample = f; },
-      "Frame-sampled level (multi-frame traces): cluster the frames on the analytic walk's per-frame work, "
-      "simulate the first, the last and one representative of each of ceil(F x the rest) clusters, estimate "
-      "the rest; stats fidelity_level = frame-sampled, frames_total, frames_simulated, cycles, "
+      "Frame-sampled level (multi-frame traces): simulate the first and the last frame and ceil(F x the rest) "
+      "representatives (strata by the frames' analytic bottleneck stage, at least 2 a stratum; equal-count "
+      "clusters on its busy cycles, deterministic), estimate the rest by ratio; stats fidelity_level = frame-sampled, frames_total, frames_simulated, cycles, "
       "cycles_error_bound, cycles_ci_low/high (95 %; docs/fidelity.md, Frame sampling)")
       ->type_name("F");
   cmd->add_option("--stats", o.stats_path,

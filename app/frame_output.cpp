@@ -11,7 +11,8 @@ void add_frames_option(CLI::App* cmd, std::string& frames) {
   cmd->add_option("--frames", frames,
                   "Run frames A..B-1 of a multi-frame trace (`frame` ends a frame; numbered from 0, B excluded; "
                   "'A:' to the last, 'A' one frame): the frames before A are replayed by the reference model "
-                  "(untimed: raster state, framebuffer colour and depth carried; caches start cold), "
+                  "(untimed: raster state, framebuffer colour and depth carried; simulate's pipeline and caches start "
+                  "empty), "
                   "stats frames[] lists the range (docs/trace-format.md, Frames)")
       ->type_name("A:B");
 }

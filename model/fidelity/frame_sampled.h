@@ -8,8 +8,9 @@
 //   bottleneck work).
 // - Certain frames, always simulated: the first (the pipeline fills, the state is set)
 //   and the last (the drain and the frame-end resolve and flush are in its cycles).
-// - Strata: the other M frames by their analytic bottleneck stage (a frame whose 2D
-//   fill or clear dominates is not timed like one whose fragments do). n = ceil(F M)
+// - Strata: the other M frames by their analytic bottleneck stage and the set of stages
+//   with any work (a frame whose 2D fill or clear dominates, or that has one at all, is
+//   not timed like one whose fragments do). n = ceil(F M)
 //   frames are allocated to strata in proportion to their x total, at least 2 a
 //   stratum; a stratum of fewer than 4 frames, or one given all its frames, is certain.
 // - Clusters (deterministic, no seed): a stratum's frames sorted by x (ties by frame
@@ -49,7 +50,7 @@ struct FramePlan {
   std::vector<double> x;        // each frame's analytic bottleneck busy cycles
   std::vector<bool> chosen;     // simulated in detail
   std::vector<bool> certain;    // the first and the last frame
-  std::vector<int> stratum;     // the frame's bottleneck stage (stage index); -1 for a certain frame
+  std::vector<int> stratum;     // bottleneck stage << 24 | mask of stages with work; -1: certain
   std::vector<int> cluster;     // -1 for a certain frame
   size_t clusters = 0;
 };
