@@ -6,6 +6,7 @@
 #include <string>
 
 #include "common.h"
+#include "frame_output.h"
 #include "estimate/estimate.h"
 #include "report/stats_json.h"
 #include "scene/scene_io.h"
@@ -14,9 +15,29 @@ namespace rastsim::app {
 
 void run_estimate_command(const EstimateOptions& o) {
   const ArchParams arch = resolve_arch(o.config, o.scene_path);
-  const Scene scene = load_scene(o.scene_path, arch.placement);
-  const EstimateResult r = estimate_scene(scene, arch);
+  const Scene whole = load_scene(o.scene_path, arch.placement);
+  FrameOutput out(o.frames, "");
+  const std::vector<fidelity::FrameSpan> spans = fidelity::frame_spans(whole.commands);
+  out.range = fidelity::check_frame_range(out.range, spans.size());
+  // --frames A:B: the range with the viewport and scissor before it (the estimate does not
+  // depend on the framebuffer's contents: the ROP's work follows from the coverage alone).
+  const fidelity::FrameSlice slice = fidelity::slice_frames(whole, spans, out.range);
+  const Scene& scene = out.range.given ? slice.scene : whole;
+  EstimateResult r;
+  std::vector<fidelity::FrameWork> work = fidelity::frame_work(scene, arch, &r);
+  if (out.range.given && slice.prefix > 0) work.erase(work.begin());
+  if (spans.size() > 1 || out.range.given) {
+    out.frames_seen = spans.size();
+    for (size_t k = 0; k < work.size(); ++k) {
+      nlohmann::json f = {{"frame", out.range.first + k}, {"line", spans[out.range.first + k].line},
+                          {"triangles_in", work[k].triangles}, {"fragments", work[k].fragments},
+                          {"bottleneck_busy", work[k].bottleneck()}};
+      fidelity::add_frame_work(f, work[k]);
+      out.frames.push_back(f);
+    }
+  }
   nlohmann::json j = r.to_json();
+  out.add_to(j);
   j["config"] = arch.config.source_name();
   j["scene"] = o.scene_path;
   j["provenance"] = provenance(o.config, arch.config, o.scene_path);
@@ -45,6 +66,7 @@ void register_estimate(CLI::App& app) {
                   "cycles_estimate, wall_seconds, stages.<stage>.busy, the geometry counters, and with "
                   "memory.model = \"dram\" dram_bytes_read, dram_bytes_written, dram_peak_bytes_per_cycle, "
                   "dram_lower_bound (docs/estimate.md)");
+  add_frames_option(cmd, o.frames);
   add_quiet_flag(cmd, o.quiet, "the summary line");
   cmd->callback([] { run_estimate_command(o); });
 }

@@ -5,6 +5,7 @@
 #include <thread>
 
 #include "common.h"
+#include "frame_output.h"
 #include "ref/pipeline.h"
 #include "report/stats_json.h"
 #include "scene/scene_io.h"
@@ -20,9 +21,8 @@ constexpr size_t kSceneBatchCommands = 4096;  // commands parsed ahead of the pi
 
 void run_render_command(const RenderOptions& o) {
   const ArchParams params = resolve_arch(o.config, o.scene_path);
-  const RasterState& arch = params.raster;
   for (const std::string* p : {&o.out_path, &o.stats_path}) check_writable(*p);  // before the run, creating nothing
-  if (!o.out_path.empty()) check_image_path(o.out_path);
+  FrameOutput frames(o.frames, o.out_path);  // checks -o's name (a pattern: its first frame's)
   RenderStats stats;
   std::unique_ptr<AtomicFile> frag_file;  // renamed into place only when the run succeeds
   FragmentSink sink;
@@ -31,14 +31,18 @@ void run_render_command(const RenderOptions& o) {
     sink = [os = &frag_file->stream()](const Fragment& f) { *os << fragment_trace_line(f) << '\n'; };
   }
   // The scene streamed in bounded batches (scene_io.h): memory does not grow with the file.
+  // Split at each `frame` (fidelity/frames.h): a single-frame scene runs as one batch stream.
   const int threads = o.threads > 0 ? o.threads : int(std::max(1u, std::thread::hardware_concurrency()));
-  SceneRenderer renderer(arch, stats, sink, Framebuffer::kDefaultTileLog2, threads, params.memory);
+  fidelity::FrameRenderer renderer(
+      params, stats, [&](const fidelity::FrameCounts& c, const Framebuffer& fb) { frames.on_frame(c, fb); }, threads,
+      sink);
+  renderer.stop_at(frames.range.last);
   uint64_t done = 0;
   bool drawing = false;  // an error of the pipeline itself, not of the reader, passes unchanged
   try {
     const CommandBatchFn draw = [&](std::vector<Command>& batch) {
       drawing = true;
-      renderer.run(batch);
+      renderer.feed(batch);
       drawing = false;
       done += batch.size();
     };
@@ -50,8 +54,10 @@ void run_render_command(const RenderOptions& o) {
                      " commands of the scene were drawn; no image or stats written)");
   }
   const Framebuffer fb = renderer.finish();
-  if (!o.out_path.empty()) write_image(fb, o.out_path);
+  frames.check_done();
+  if (!o.out_path.empty() && !frames.pattern) write_image(fb, o.out_path);  // the last frame run
   nlohmann::json j = to_json(stats);
+  frames.add_to(j);
   j["config"] = params.config.source_name();
   j["scene"] = o.scene_path;
   j["provenance"] = provenance(o.config, params.config, o.scene_path);
@@ -74,7 +80,10 @@ void register_render(CLI::App& app) {
   static RenderOptions o;
   add_config_options(cmd, o.config);
   add_scene_option(cmd, o.scene_path);
-  cmd->add_option("-o,--output", o.out_path, "Image to write: .png or .ppm (colour buffer, RGB)");
+  cmd->add_option("-o,--output", o.out_path,
+                  "Image to write: .png or .ppm (colour buffer, RGB); a name with one integer conversion "
+                  "(out_%04d.png) writes one image a frame of a multi-frame trace, a plain name the last frame run");
+  add_frames_option(cmd, o.frames);
   cmd->add_option("--stats", o.stats_path, "Write the stats as JSON to this file ('-' for stdout)");
   cmd->add_option("--fragments", o.frag_path,
                   "Write every fragment leaving interpolation, one 'x y z r g b' line each, in pipeline order");

@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "common.h"
+#include "frame_output.h"
 #include "estimate/estimate.h"
 #include "fidelity/run_child.h"
 #include "fidelity/sampled.h"
@@ -151,9 +152,16 @@ void run_simulate_command(const SimulateOptions& o) {
     throw std::runtime_error("--sample: the fraction F must be in (0, 1], got " + got.str());
   }
   check_one_stdout({{"--stats", o.stats_path}, {"--heatmap-data", o.heatmap_data_path}});
+  if (o.frame_sample) return run_simulate_frame_sample(o, arch);
+  if (!o.frames.empty() && (o.sample || !o.tolerance.empty()))
+    throw std::runtime_error("--frames excludes --sample and --tolerance");
   if (o.sample || !o.tolerance.empty()) return run_level_mode(o, arch);
+  if (!o.frames.empty() || (!o.out_path.empty() && fidelity::is_frame_pattern(o.out_path)))
+    return run_simulate_frames(o, arch);
   std::unique_ptr<AtomicFile> frag_file;
-  const sc::SimOptions sim = sim_options(o, frag_file);
+  sc::SimOptions sim = sim_options(o, frag_file);
+  std::vector<uint64_t> frame_starts;  // a multi-frame trace's frames (frames[])
+  sim.on_fetch = record_frame_starts(frame_starts);
   // Fails before a long simulation, not after it, when an output cannot be written.
   for (const std::string* p :
        {&o.out_path, &o.stats_path, &o.timeline_path, &o.heatmap_path, &o.heatmap_data_path, &o.mem_trace_path})
@@ -166,6 +174,7 @@ void run_simulate_command(const SimulateOptions& o) {
   if (!o.out_path.empty()) write_image(r.fb, o.out_path);
   nlohmann::json j = r.to_json();
   j["fidelity_level"] = "systemc";
+  add_frames_of_run(j, o, arch, frame_starts, r.cycles);
   j["config"] = arch.config.source_name();
   j["scene"] = o.scene_path;
   j["provenance"] = provenance(o.config, arch.config, o.scene_path);
@@ -188,6 +197,8 @@ void run_simulate_command(const SimulateOptions& o) {
     j["frame_time_cycles"] = r.cycles;
     j["frame_deadline_cycles"] = deadline;
     j["frame_deadline_met"] = r.cycles <= deadline;
+    if (j.contains("frames"))  // a multi-frame trace: each frame's cycles against the same deadline
+      for (auto& f : j["frames"]) f["deadline_met"] = f["cycles"].get<uint64_t>() <= deadline;
   } catch (const std::exception& e) {
     j["frame_deadline_error"] = e.what();
   }
@@ -209,7 +220,17 @@ void register_simulate(CLI::App& app) {
   static SimulateOptions o;
   add_config_options(cmd, o.config);
   add_scene_option(cmd, o.scene_path);
-  cmd->add_option("-o,--output", o.out_path, "Image to write: .png or .ppm (bit-identical to `render`)");
+  cmd->add_option("-o,--output", o.out_path,
+                  "Image to write: .png or .ppm (bit-identical to `render`); out_%04d.png: one image a frame of a "
+                  "multi-frame trace (the reference model's, whose last equals this run's)");
+  add_frames_option(cmd, o.frames);
+  cmd->add_option_function<double>(
+      "--frame-sample", [](double f) { o.frame_sample = f; },
+      "Frame-sampled level (multi-frame traces): simulate the first and the last frame and ceil(F x the rest) "
+      "representatives (strata by the frames' analytic bottleneck stage, at least 2 a stratum; equal-count "
+      "clusters on its busy cycles, deterministic), estimate the rest by ratio; stats fidelity_level = frame-sampled, frames_total, frames_simulated, cycles, "
+      "cycles_error_bound, cycles_ci_low/high (95 %; docs/fidelity.md, Frame sampling)")
+      ->type_name("F");
   cmd->add_option("--stats", o.stats_path,
                   "Write the stats as JSON ('-' for stdout): render's, plus cycles, cycles_lower_bound, "
                   "stages.<stage>.{busy,stalled,starved}, sim_wall_seconds, simulated_cycles_per_second; with "

@@ -67,6 +67,7 @@ struct RenderOptions {
   std::string scene_path, out_path, stats_path, frag_path;
   bool quiet = false;
   int threads = 0;  // render --threads: 0 = every core (std::thread::hardware_concurrency)
+  std::string frames;  // --frames A:B ("" = every frame; app/frame_output.h)
 };
 void run_render_command(const RenderOptions& o);
 
@@ -83,6 +84,8 @@ struct SimulateOptions {
   std::optional<double> sample;  // --sample F in (0, 1]: the sampled level (docs/fidelity.md)
   uint64_t seed = 1;             // --seed: the stall injection's and --sample/--tolerance's random choices
   std::string tolerance;         // --tolerance P%: the cheapest level within P ("" = off)
+  std::string frames;            // --frames A:B ("" = every frame; app/frame_output.h)
+  std::optional<double> frame_sample;  // --frame-sample F: the frame-sampled level
   bool quiet = false;
 };
 void run_simulate_command(const SimulateOptions& o);
@@ -91,6 +94,7 @@ void run_simulate_command(const SimulateOptions& o);
 struct EstimateOptions {
   ConfigOptions config;
   std::string scene_path, stats_path;
+  std::string frames;  // --frames A:B ("" = every frame)
   bool quiet = false;
 };
 void run_estimate_command(const EstimateOptions& o);

@@ -501,6 +501,13 @@ void SceneRenderer::Impl::draw_chunk() {
   for (const RenderStats& s : part) add_draw_stats(stats, s);
 }
 
+const Framebuffer& SceneRenderer::frame_so_far() {
+  Impl& m = *impl_;
+  if (m.mem) m.stats.memory = m.mem->stats();
+  if (m.tex) m.stats.texture = m.tex->stats();
+  return m.fb;
+}
+
 Framebuffer SceneRenderer::finish() {
   const auto t0 = std::chrono::steady_clock::now();
   Impl& m = *impl_;

@@ -183,6 +183,10 @@ class SceneRenderer {
   SceneRenderer(const SceneRenderer&) = delete;
   SceneRenderer& operator=(const SceneRenderer&) = delete;
   void run(std::span<const Command> commands);
+  // A present (the trace's `frame`, docs/trace-format.md) without ending the run: the
+  // framebuffer as drawn so far (unresolved), and the memory system's and texture unit's
+  // counts up to here in the stats (the caches are not flushed: finish() writes them back).
+  const Framebuffer& frame_so_far();
   Framebuffer finish();
   int threads() const;  // the threads the pipeline runs on (1 with a fragment sink or scanline)
   // Sees every Hi-Z cull and accept (depth.hiz), before the tile is drawn.

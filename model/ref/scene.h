@@ -131,6 +131,11 @@ using CommandBody = std::variant<CmdViewport, CmdClear, CmdClearDepth, CmdScisso
 struct Command {
   CommandBody body;
   SourceLoc loc;
+  // > 0: this command is the first of a new frame, and this is the line of the trace's
+  // `frame` command (present: the frame before it ends, docs/trace-format.md) that
+  // started it. The pipeline does not act on it (a present changes no raster state);
+  // the multi-frame runs split the stream here (model/fidelity/frames.h).
+  int frame_line = 0;
 };
 
 // Every walk of the command stream visits a command through one overload set:

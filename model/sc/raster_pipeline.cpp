@@ -276,6 +276,7 @@ SimResult simulate_commands(CommandSource source, const ArchParams& params, cons
   static RasterPipeline* top = nullptr;
   if (top) throw std::logic_error("simulate_scene: SystemC elaborates only once per process");
   top = new RasterPipeline("pipeline", ctx, std::move(source), arch, p);
+  if (opts.initial_fb) top->rop.framebuffer() = *opts.initial_fb;  // engine2d holds the same object
   Recorders rec;
   rec.attach(*top, opts, arch, ctx.tracing);
   static MemorySystem* memory = nullptr;  // kept, as the top: elaborated once

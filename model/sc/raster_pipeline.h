@@ -54,6 +54,10 @@ struct SimOptions {
   // Every DRAM request in DRAMsim3's format (timing/dram_trace.h; "" = none): needs
   // memory.model = "dram". Written atomically after a successful run.
   std::string mem_trace_path;
+  // The framebuffer the ROP starts from, colour and depth (arch's size and samples; null:
+  // the initial one). `--frames A:B` replays frames 0..A-1 in the reference model and
+  // times frames A.. from their framebuffer (model/fidelity/frames.h).
+  const Framebuffer* initial_fb = nullptr;
 };
 
 struct StageReport {

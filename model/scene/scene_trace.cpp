@@ -106,7 +106,9 @@ class TraceParser {
         {"texture", &TraceParser::texture, true},   {"bindtexture", &TraceParser::bindtexture, true},
         {"texfilter", &TraceParser::texfilter, true}, {"texwrap", &TraceParser::texwrap, true},
         {"texenv", &TraceParser::texenv, true},     {"mipmap", &TraceParser::mipmap, true},
-        {"texlod_bias", &TraceParser::texlod_bias, true}};
+        {"texlod_bias", &TraceParser::texlod_bias, true},
+        // Present (docs/trace-format.md, "Frames"): the frame so far ends.
+        {"frame", &TraceParser::frame, true}};
     for (const Entry& e : kCommands) {
       if (e.keyword != t[0]) continue;
       if (e.emits && open_)
@@ -284,7 +286,22 @@ class TraceParser {
   void emit(CommandBody body, int line) {
     drew_ = drew_ || std::holds_alternative<CmdPrimitives>(body) || std::holds_alternative<CmdDraw2d>(body);
     if (auto* p = std::get_if<CmdPrimitives>(&body)) p->texture = texture_;
-    scene_.commands.push_back({std::move(body), SourceLoc{name_, line}});
+    scene_.commands.push_back({std::move(body), SourceLoc{name_, line}, frame_line_});
+    frame_line_ = 0;
+    frame_has_command_ = true;
+  }
+
+  // `frame`: present. The next command emitted begins a new frame (Command::frame_line);
+  // a `frame` at the end of the file ends the last frame and adds nothing. A frame with
+  // no command is an error: a present of nothing is a truncated or misordered trace.
+  void frame(const Tokens& t) {
+    args(t, 0, "none: it ends the frame drawn so far");
+    if (!frame_has_command_)
+      fail(frame_line_ ? "'frame' right after the 'frame' at line " + std::to_string(frame_line_) +
+                             ": a frame needs at least one command"
+                       : std::string("'frame' before any command: the first frame needs at least one command"));
+    frame_line_ = line_;
+    frame_has_command_ = false;
   }
 
   void viewport(const Tokens& t) {
@@ -734,6 +751,8 @@ class TraceParser {
   ClipState clip_;  // viewport_xform (whole viewport), depth_range (0 1), point_sprite (off)
   bool open_ = false;                    // inside strip/fan ... end
   bool drew_ = false;                    // a draw command was emitted
+  int frame_line_ = 0;              // the pending `frame` line: the next command begins a frame
+  bool frame_has_command_ = false;  // a command was emitted since the last `frame` (or the start)
   std::string open_kw_;
   int open_line_ = 0, first_vertex_line_ = 0;
   int drained_line_ = 0;  // the line of the last drain (batches bounded by lines too)

@@ -1,0 +1,56 @@
+// SPDX-License-Identifier: Apache-2.0
+// What render, simulate and estimate share for multi-frame scenes (docs/trace-format.md
+// "Frames"): `--frames A:B`, `-o out_%04d.png` (one image a frame) and the stats' frames[].
+#pragma once
+
+#include <string>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "common.h"
+#include "config/arch_params.h"
+#include "fidelity/frames.h"
+
+namespace rastsim::app {
+
+// --frames on a command (its --help text).
+void add_frames_option(CLI::App* cmd, std::string& frames);
+
+// The frames a run reports and the images it writes.
+struct FrameOutput {
+  fidelity::FrameRange range;    // --frames (all when not given)
+  std::string image;             // -o: a pattern writes frames; a plain name only the last image
+  bool pattern = false;
+  nlohmann::json frames = nlohmann::json::array();  // frames[] of the frames in range
+  size_t frames_seen = 0;        // frames ended so far (in range or not)
+
+  FrameOutput(const std::string& frames_text, const std::string& image_path);
+  bool wanted(size_t frame) const { return frame >= range.first && frame < range.last; }
+  // A frame of the reference run ended: its entry, and its image under a pattern.
+  void on_frame(const fidelity::FrameCounts& c, const Framebuffer& unresolved);
+  // frames[] (and frames_range) into the stats when the scene has more than one frame or
+  // --frames was given; an error when --frames asked for frames the scene lacks.
+  void add_to(nlohmann::json& j) const;
+  // After the run: a pattern that wrote nothing, or a range past the scene, is an error.
+  void check_done() const;
+};
+
+// The reference model over `scene`'s frames [0, out.range.last) (functional): out gets
+// the frames in range; `before`, if given, receives the framebuffer (unresolved) the
+// frames before out.range.first left, the state a timed run of the range starts from.
+void replay_frames(const Scene& scene, const ArchParams& arch, FrameOutput& out, Framebuffer* before = nullptr);
+
+// `rastsim simulate`'s multi-frame parts (app/simulate_frames.cpp). on_fetch of a full run:
+// the cycle each frame after the first starts (command fetch starting its first command).
+std::function<void(const Command&, size_t, uint64_t)> record_frame_starts(std::vector<uint64_t>& starts);
+// frames[] of a full run from those starts (nothing for one frame): the reference
+// model's counts, the cycles, the analytic walk's per-stage busy.
+void add_frames_of_run(nlohmann::json& j, const SimulateOptions& o, const ArchParams& arch,
+                       const std::vector<uint64_t>& starts, uint64_t end_cycle);
+// --frames A:B or an -o pattern: the whole scene loaded, the range timed.
+void run_simulate_frames(const SimulateOptions& o, const ArchParams& arch);
+// --frame-sample F: the frame-sampled level.
+void run_simulate_frame_sample(const SimulateOptions& o, const ArchParams& arch);
+
+}  // namespace rastsim::app

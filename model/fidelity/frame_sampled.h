@@ -1,0 +1,96 @@
+// SPDX-License-Identifier: Apache-2.0
+// Frame sampling, the frame-sampled fidelity level (`rastsim simulate --frame-sample F`,
+// docs/fidelity.md "Frame sampling"): of a multi-frame scene, the SystemC model runs a
+// few representative frames and the rest are estimated from the analytic walk's work.
+//
+// - Features (functional, model/fidelity/frames.h frame_work): each frame's per-stage
+//   busy cycles from the analytic walk; x = the busiest stage's (the frame's analytic
+//   bottleneck work).
+// - Certain frames, always simulated: the first (the pipeline fills, the state is set)
+//   and the last (the drain and the frame-end resolve and flush are in its cycles).
+// - Strata: the other M frames by their analytic bottleneck stage and the set of stages
+//   with any work (a frame whose 2D fill or clear dominates, or that has one at all, is
+//   not timed like one whose fragments do). n = ceil(F M)
+//   frames are allocated to strata in proportion to their x total, at least 2 a
+//   stratum; a stratum of fewer than 4 frames, or one given all its frames, is certain.
+// - Clusters (deterministic, no seed): a stratum's frames sorted by x (ties by frame
+//   number) and cut into n_h runs of consecutive frames of equal size (sizes differing
+//   by at most one): one-dimensional clustering by equal counts. Each cluster's
+//   representative is its member whose x is nearest the cluster's mean x (ties: the
+//   lower frame number).
+// - One SystemC run of the chosen frames in program order; a frame left out contributes
+//   its viewport and scissor commands (carried state) and, when the frame after it is
+//   chosen, its last W triangles (W = the FIFOs' entries, triangle_path_entries; whole
+//   commands): a warm-up, simulated, not measured, so the chosen frame starts with the
+//   backlog it has in the full run.
+//   A chosen frame's y: from command fetch starting its first command to command fetch
+//   starting the next command after it (the last: to the end), as frames[].cycles of the
+//   full run.
+// - Estimator: y of the certain frames + per stratum the ratio estimator X_h (sum y /
+//   sum x) over its representatives; variance M_h^2 (1 - n_h/M_h) s_e^2 / n_h from the
+//   ratio residuals e = y - R_h x (a simple random sample's formula); Student t with
+//   Satterthwaite's degrees of freedom at the confidence asked.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "config/arch_params.h"
+#include "fidelity/frames.h"
+#include "fidelity/sampled.h"
+#include "ref/scene.h"
+
+namespace rastsim::fidelity {
+
+struct FramePlan {
+  std::vector<double> x;        // each frame's analytic bottleneck busy cycles
+  std::vector<bool> chosen;     // simulated in detail
+  std::vector<bool> certain;    // the first and the last frame
+  std::vector<int> stratum;     // bottleneck stage << 24 | mask of stages with work; -1: certain
+  std::vector<int> cluster;     // -1 for a certain frame
+  size_t clusters = 0;
+};
+// The plan for `work` (frame_work's) at fraction F in (0, 1]. F = 1 chooses every frame.
+FramePlan plan_frames(const std::vector<FrameWork>& work, double fraction);
+
+struct FrameSampledResult {
+  double cycles = 0, ci_low = 0, ci_high = 0, confidence = kDefaultConfidence;
+  double fraction = 0;
+  size_t frames_total = 0, frames_simulated = 0, clusters = 0;
+  std::vector<size_t> simulated;  // the frames simulated in detail
+  std::vector<double> y;          // their measured cycles, in the same order
+  uint64_t cycles_simulated = 0;  // the sub-run's own cycles
+  size_t warm_triangles = 0;      // simulated unmeasured: the tails before chosen frames
+  double wall_seconds = 0;
+  // cycles, cycles_ci_low/high, cycles_error_bound (the interval's farther end from
+  // cycles, relative), confidence, frames_total, frames_simulated, frame_sample,
+  // frames_simulated_list, fidelity_level = "frame-sampled", ...
+  nlohmann::json to_json() const;
+};
+
+// From the measured y of the chosen frames (y[k], ignored where !chosen[k]).
+FrameSampledResult extrapolate_frames(const FramePlan& plan, const std::vector<double>& y,
+                                      double confidence = kDefaultConfidence);
+
+// The whole level: features, plan, one SystemC run of the chosen frames (elaborates:
+// once per process), extrapolation. A scene of fewer than 4 frames is simulated whole.
+FrameSampledResult simulate_frame_sampled(const Scene& scene, const ArchParams& arch, double fraction,
+                                          double confidence = kDefaultConfidence);
+
+// A frame's cycles (frames[].cycles) run from command fetch starting its first command
+// to its starting the next frame's (the last frame: to the end of the run), so they sum
+// to the run's cycles. on_fetch for a run of `scene` (the scene object the run reads):
+// records into `starts` the cycle command fetch started each command (by index), the
+// first time.
+std::function<void(const Command&, size_t, uint64_t)> record_command_starts(const Scene& scene,
+                                                                           std::vector<uint64_t>& starts);
+// Each span's cycles from the recorded starts: [start of its first command, start of the
+// first command after it), the last to `end_cycle`.
+std::vector<uint64_t> span_cycles(const std::vector<FrameSpan>& spans, const std::vector<uint64_t>& starts,
+                                  uint64_t end_cycle);
+
+}  // namespace rastsim::fidelity

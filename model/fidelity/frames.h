@@ -1,0 +1,119 @@
+// SPDX-License-Identifier: Apache-2.0
+// Multi-frame scenes (the trace's `frame` command, docs/trace-format.md "Frames"): where
+// each frame's commands lie, the reference model run frame by frame (a present's image
+// and counters), the analytic walk's per-frame work, `--frames A:B` and `-o out_%04d.png`.
+//
+// A frame is the commands from one `frame` (or the start) to the next (or the end):
+// Command::frame_line marks each frame's first command. An OBJ mesh is one frame.
+// Between frames everything carries over, as one long command stream: the raster state
+// (viewport, scissor; the texture state rides on each primitives command), the
+// framebuffer's colour and depth (a present does not clear: a frame that wants a clean
+// buffer clears it, as the generated sequences do), and the memory system's caches.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "config/arch_params.h"
+#include "estimate/estimate.h"
+#include "ref/framebuffer.h"
+#include "ref/pipeline.h"
+#include "ref/scene.h"
+#include "timing/stage_table.h"
+
+namespace rastsim::fidelity {
+
+// Frame k: commands [begin, end) of the scene; `line` its first command's line.
+struct FrameSpan {
+  size_t begin = 0, end = 0;
+  int line = 0;
+};
+std::vector<FrameSpan> frame_spans(const std::vector<Command>& commands);
+
+// `--frames A:B`: frames A..B-1, numbered from 0 (B excluded, as a Python slice); "A:" runs
+// to the last frame, "A" alone is frame A. Throws std::runtime_error naming the text.
+struct FrameRange {
+  size_t first = 0, last = SIZE_MAX;  // [first, last)
+  bool given = false;
+};
+FrameRange parse_frame_range(const std::string& text);
+// The range clipped to `frames` frames; an error when it is empty or starts past the end.
+FrameRange check_frame_range(FrameRange r, size_t frames);
+
+// `-o` with one printf integer conversion (%d, %04d, %i, %u; `%%` a literal %): one image
+// a frame, the conversion replaced by the frame number. A name without one, given more
+// than one frame to write, is an error (frame_image_path).
+bool is_frame_pattern(const std::string& path);
+std::string frame_image_path(const std::string& pattern, size_t frame);
+
+// One frame's counts from the reference model (functional, exact).
+struct FrameCounts {
+  size_t index = 0;
+  int line = 0;
+  uint64_t commands = 0, triangles_in = 0, triangles_rasterized = 0, tiles_visited = 0, pixel_tests = 0,
+           fragments = 0, fragments_passed = 0, dram_bytes_read = 0, dram_bytes_written = 0;
+  uint32_t crc32 = 0;  // the colour buffer at the frame's end (resolved when multisampled)
+};
+
+// The reference model fed a stream of commands (whole or in batches, in order), calling
+// on_frame at each frame's end with its counts and the framebuffer (unresolved) as the
+// present left it. finish() ends the last frame and the run (resolve, flush) and
+// returns the final framebuffer (resolved, as render_scene's).
+class FrameRenderer {
+ public:
+  using OnFrame = std::function<void(const FrameCounts&, const Framebuffer& unresolved)>;
+  FrameRenderer(const ArchParams& arch, RenderStats& stats, OnFrame on_frame, int threads = 1,
+                const FragmentSink& on_fragment = {});
+  ~FrameRenderer();
+  void feed(std::span<const Command> commands);
+  Framebuffer finish();
+  size_t frames_done() const { return index_; }
+  // Frames from stop_at on are not drawn (--frames A:B stops after B - 1): feed ignores
+  // their commands, and finish() ends no further frame.
+  void stop_at(size_t frame) { stop_at_ = frame; }
+  int threads() const;
+
+ private:
+  void end_frame(const Framebuffer* last);
+  RenderStats& stats_;
+  RenderStats at_start_;  // the counters when the current frame began
+  OnFrame on_frame_;
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  size_t index_ = 0, stop_at_ = SIZE_MAX;
+  uint64_t commands_ = 0;
+  int line_ = 0;
+};
+
+// The analytic walk's work of each frame (model/estimate): per-stage busy cycles and
+// the ROP's framebuffer bytes, differences of the walk's running totals at the frames'
+// first commands (busy equal to the SystemC stages', docs/estimate.md).
+struct FrameWork {
+  std::array<uint64_t, kStageCount> busy{};
+  uint64_t framebuffer_bytes = 0, triangles = 0, fragments = 0;
+  uint64_t bottleneck() const;  // the busiest stage's busy cycles
+};
+std::vector<FrameWork> frame_work(const Scene& scene, const ArchParams& arch, EstimateResult* whole = nullptr);
+
+// The commands of frames [r.first, r.last), preceded by the raster state the frames
+// before them left (their last viewport and scissor, if any): `prefix` says how many
+// leading commands are that carried state (timed, not measured).
+struct FrameSlice {
+  Scene scene;
+  size_t prefix = 0;
+};
+FrameSlice slice_frames(const Scene& scene, const std::vector<FrameSpan>& spans, FrameRange r);
+
+// frames[] entries: the counts, plus (when given) the frame's cycles and per-stage busy.
+nlohmann::json frame_json(const FrameCounts& c);
+void add_frame_work(nlohmann::json& j, const FrameWork& w);
+
+}  // namespace rastsim::fidelity

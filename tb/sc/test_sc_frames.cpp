@@ -1,0 +1,192 @@
+// SPDX-License-Identifier: Apache-2.0
+// Multi-frame runs and frame sampling (model/fidelity/frames.h, frame_sampled.h;
+// docs/fidelity.md "Frame sampling"):
+//
+// - per-frame counts, analytic busy and cycles sum to the whole run's, each against an
+//   independent run of the whole scene (render_scene, estimate_scene, the SystemC run);
+// - `--frames A:B`: the SystemC model started from the reference model's replay of the
+//   frames before A draws the same last image as the full run's frame B-1 (CRC), and
+//   0:N is the full run to the cycle;
+// - the frame plan worked by hand, the estimator's interval worked by hand, and the
+//   frame-sampled interval covering the full run on a small varied sequence.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "estimate/estimate.h"
+#include "fidelity/frame_sampled.h"
+#include "fidelity/frames.h"
+#include "report/stats_json.h"
+#include "sim_harness.h"
+
+namespace rastsim::sctest {
+namespace {
+
+// `frames` frames of random_scene (96 x 64, 60..220 triangles: the load varies), each
+// with its viewport and clears, except every third frame, which keeps no clear and so
+// draws over the frame before it (the replay must carry the framebuffer). Scissor
+// changes inside a frame carry into the next one.
+Scene frames_scene(int frames, uint64_t seed) {
+  Scene s;
+  s.source = "frames";
+  for (int k = 0; k < frames; ++k) {
+    const Scene f = random_scene(seed + uint64_t(k), 96, 64, 60 + 40 * (k % 5));
+    bool first = true;
+    for (size_t i = 0; i < f.commands.size(); ++i) {
+      if (k % 3 == 2 && (i == 1 || i == 2)) continue;  // no clear: draws over frame k - 1
+      s.commands.push_back(f.commands[i]);
+      s.commands.back().frame_line = first && k > 0 ? 1000 + k : 0;
+      first = false;
+    }
+  }
+  return s;
+}
+
+ArchParams arch_of(const Config& cfg) { return ArchParams::resolve(cfg); }
+
+TEST(ScFrames, PerFrameCountsAndCyclesSumToTheWholeRun) {
+  const Config cfg = make_config({"raster.depth_func=less"});
+  const ArchParams arch = arch_of(cfg);
+  const Scene scene = frames_scene(7, 11);
+  RenderStats whole, per;
+  const Framebuffer fb = render_scene(scene, arch.raster, whole);
+  std::vector<fidelity::FrameCounts> frames;
+  fidelity::FrameRenderer fr(arch, per, [&](const fidelity::FrameCounts& c, const Framebuffer&) { frames.push_back(c); });
+  fr.feed(scene.commands);
+  fr.finish();
+  ASSERT_EQ(frames.size(), 7u);
+  fidelity::FrameCounts sum;
+  for (const auto& c : frames) {
+    sum.triangles_in += c.triangles_in;
+    sum.fragments += c.fragments;
+    sum.fragments_passed += c.fragments_passed;
+    sum.tiles_visited += c.tiles_visited;
+    sum.pixel_tests += c.pixel_tests;
+    sum.commands += c.commands;
+  }
+  EXPECT_EQ(sum.triangles_in, whole.triangles_in);
+  EXPECT_EQ(sum.fragments, whole.traversal.fragments);
+  EXPECT_EQ(sum.fragments_passed, whole.fragments_passed);
+  EXPECT_EQ(sum.tiles_visited, whole.traversal.tiles_visited);
+  EXPECT_EQ(sum.pixel_tests, whole.traversal.pixel_tests);
+  EXPECT_EQ(sum.commands, scene.commands.size());
+  EXPECT_EQ(frames.back().crc32, fb.color_crc32());
+  // The analytic walk's per-frame busy against its whole-scene totals.
+  const EstimateResult e = estimate_scene(scene, arch);
+  const std::vector<fidelity::FrameWork> work = fidelity::frame_work(scene, arch);
+  for (size_t s = 0; s < kStageCount; ++s) {
+    uint64_t busy = 0;
+    for (const auto& w : work) busy += w.busy[s];
+    EXPECT_EQ(busy, e.stages[s].busy) << kStages[s].name;
+  }
+  // The SystemC run's frames: every frame has cycles, and they add up to the run.
+  const nlohmann::json j = run_isolated([&] {
+    std::vector<uint64_t> starts;
+    sc::SimOptions o;
+    o.on_fetch = fidelity::record_command_starts(scene, starts);
+    const sc::SimResult r = sc::simulate_scene(scene, arch, o);
+    return nlohmann::json{{"cycles", r.cycles},
+                          {"frames", fidelity::span_cycles(fidelity::frame_spans(scene.commands), starts, r.cycles)}};
+  });
+  ASSERT_FALSE(j.contains("error")) << j;
+  uint64_t total = 0;
+  for (uint64_t c : j["frames"].get<std::vector<uint64_t>>()) {
+    EXPECT_GT(c, 0u);
+    total += c;
+  }
+  EXPECT_EQ(total, j["cycles"].get<uint64_t>());
+}
+
+// The timed run of frames [a, b) from the reference model's replay of the frames before.
+nlohmann::json range_run(const Scene& scene, const ArchParams& arch, size_t a, size_t b) {
+  return run_isolated([&] {
+    const auto spans = fidelity::frame_spans(scene.commands);
+    Framebuffer before(arch.raster.fb_width, arch.raster.fb_height, arch.raster.samples);
+    RenderStats st;
+    fidelity::FrameRenderer fr(arch, st, [&](const fidelity::FrameCounts& c, const Framebuffer& fb) {
+      if (c.index + 1 == a) before = fb;
+    });
+    fr.stop_at(a);
+    fr.feed(scene.commands);
+    const fidelity::FrameSlice slice = fidelity::slice_frames(scene, spans, {a, b, true});
+    std::vector<uint64_t> starts;
+    sc::SimOptions o;
+    o.on_fetch = fidelity::record_command_starts(slice.scene, starts);
+    if (a > 0) o.initial_fb = &before;
+    const sc::SimResult r = sc::simulate_scene(slice.scene, arch, o);
+    return nlohmann::json{{"crc", crc32_hex(r.render.framebuffer_crc32)},
+                          {"cycles", r.cycles - starts.at(slice.prefix)}};
+  });
+}
+
+TEST(ScFrames, RangeRunDrawsTheFullRunsFrames) {
+  const Config cfg = make_config({"raster.depth_func=less"});
+  const ArchParams arch = arch_of(cfg);
+  const Scene scene = frames_scene(6, 21);
+  std::vector<std::string> crc;  // each frame's image in the full reference run
+  RenderStats st;
+  fidelity::FrameRenderer fr(arch, st, [&](const fidelity::FrameCounts& c, const Framebuffer&) {
+    crc.push_back(crc32_hex(c.crc32));
+  });
+  fr.feed(scene.commands);
+  fr.finish();
+  const nlohmann::json full = range_run(scene, arch, 0, 6);
+  const nlohmann::json plain = run_isolated([&] { return simulate_stats(scene, cfg); });
+  ASSERT_FALSE(full.contains("error")) << full;
+  EXPECT_EQ(full["crc"], crc[5]);
+  EXPECT_EQ(full["cycles"], plain["cycles"]);  // 0:N is the full run, to the cycle
+  // Frames 2 and 5 keep no clear: their images need the replayed framebuffer.
+  for (const auto& [a, b] : std::vector<std::pair<size_t, size_t>>{{2, 3}, {2, 4}, {3, 6}, {5, 6}}) {
+    const nlohmann::json r = range_run(scene, arch, a, b);
+    ASSERT_FALSE(r.contains("error")) << r;
+    EXPECT_EQ(r["crc"], crc[b - 1]) << a << ":" << b;
+  }
+}
+
+TEST(ScFrames, PlanAndEstimatorWorkedByHand) {
+  // x = 5 1 9 3 7 2 8 4: frames 0 and 7 certain; the rest sorted by x: f1 (1), f5 (2),
+  // f3 (3), f4 (7), f6 (8), f2 (9); F = 0.5 of 6 -> 3 clusters of 2: {f1, f5} mean 1.5,
+  // {f3, f4} mean 5, {f6, f2} mean 8.5: each a tie, broken to the lower frame: f1, f3, f2.
+  std::vector<fidelity::FrameWork> work(8);
+  const uint64_t x[] = {5, 1, 9, 3, 7, 2, 8, 4};
+  for (size_t k = 0; k < 8; ++k) work[k].busy[3] = x[k];
+  const fidelity::FramePlan p = fidelity::plan_frames(work, 0.5);
+  EXPECT_EQ(p.chosen, (std::vector<bool>{true, true, true, true, false, false, false, true}));
+  EXPECT_EQ(p.clusters, 3u);
+  // y: certain 10 + 20; chosen f1 2, f3 6, f2 21. R = 29 / 13; X (uncertain) = 30.
+  // cycles = 30 + 30 * 29 / 13; residuals -3/13, -9/13, 12/13: s2 = (234/169) / 2 = 9/13;
+  // var = 6^2 (1 - 3/6) (9/13) / 3 = 54/13; t(0.975, 2 df) = 4.302652729749...
+  std::vector<double> y = {10, 2, 21, 6, 0, 0, 0, 20};
+  const fidelity::FrameSampledResult r = fidelity::extrapolate_frames(p, y);
+  EXPECT_NEAR(r.cycles, 30 + 30.0 * 29 / 13, 1e-9);
+  EXPECT_NEAR(r.ci_high - r.cycles, 4.302652729749464 * std::sqrt(54.0 / 13), 1e-6);
+  EXPECT_EQ(r.frames_simulated, 5u);
+  // Every frame chosen: the plain sum, zero width.
+  const fidelity::FramePlan all = fidelity::plan_frames(work, 1.0);
+  EXPECT_EQ(std::count(all.chosen.begin(), all.chosen.end(), true), 8);
+}
+
+TEST(ScFrames, FrameSampledIntervalCoversTheFullRun) {
+  const Config cfg = make_config({"raster.depth_func=less"});
+  const ArchParams arch = arch_of(cfg);
+  Scene scene = frames_scene(40, 5);
+  const nlohmann::json full = run_isolated([&] { return simulate_stats(scene, cfg); });
+  const nlohmann::json every = run_isolated([&] { return fidelity::simulate_frame_sampled(scene, arch, 1.0).to_json(); });
+  const nlohmann::json s = run_isolated([&] { return fidelity::simulate_frame_sampled(scene, arch, 0.1).to_json(); });
+  ASSERT_FALSE(s.contains("error") || every.contains("error")) << s << every;
+  EXPECT_EQ(every["cycles"], full["cycles"]);
+  EXPECT_EQ(every["cycles_error_bound"].get<double>(), 0.0);
+  EXPECT_EQ(s["frames_total"], 40);
+  // 2 certain + ceil(0.1 x 38) = 4 allocated, at least 2 a stratum (bottleneck stage):
+  // 8 here (the random frames' bottleneck is the ROP or fine raster).
+  EXPECT_LE(s["frames_simulated"].get<int>(), 10);
+  const double truth = full["cycles"].get<double>();
+  EXPECT_LE(s["cycles_ci_low"].get<double>(), truth) << s;
+  EXPECT_GE(s["cycles_ci_high"].get<double>(), truth) << s;
+  std::printf("frame-sampled: %s of 40 frames, %.0f cycles [%.0f, %.0f] against %.0f (%+.2f %%)\n",
+              s["frames_simulated"].dump().c_str(), s["cycles"].get<double>(), s["cycles_ci_low"].get<double>(),
+              s["cycles_ci_high"].get<double>(), truth, 100 * (s["cycles"].get<double>() - truth) / truth);
+}
+
+}  // namespace
+}  // namespace rastsim::sctest
