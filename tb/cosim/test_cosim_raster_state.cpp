@@ -105,7 +105,7 @@ class RasterStateCosim : public ::testing::TestWithParam<StateCase> {};
 
 TEST_P(RasterStateCosim, MixedWindingsMatchReference) {
   const StateCase& k = GetParam();
-  Config cfg = load_shipped_config("default");
+  Config cfg = load_shipped_config_fixed_memory("default");
   cfg.apply_override(std::string("raster.fill_rule=") + k.fill);
   cfg.apply_override(std::string("raster.cull=") + k.cull);
   cfg.apply_override(std::string("raster.front_face=") + k.front);
