@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "config/config.h"
+#include "config/video_timing.h"
 
 namespace rastsim {
 namespace {
@@ -123,6 +124,28 @@ TEST(ConfigToml, ShippedConfigsRoundTripUnderRandomOverrides) {
   }
   EXPECT_GE(checked, 6u * 60u);
   EXPECT_GE(overrides, checked * 2);  // most random values are allowed
+}
+
+// `config --toml` writes every key, the explicit timing keys too: its text must resolve to
+// the same video timing (a stats JSON's config_toml reran without the scan-out before, which
+// changes simulate's cycles with memory.model = dram), while an explicit key set to
+// anything but its default beside a preset is still refused.
+TEST(ConfigToml, TextKeepsTheVideoTimingAndAPresetRefusesExplicitKeys) {
+  for (const auto& path : shipped_configs()) {
+    SCOPED_TRACE(path);
+    Config cfg;
+    cfg.load_file(path);
+    Config back;
+    back.load_toml(config_toml(cfg), "round_trip.toml");
+    EXPECT_EQ(video_timing_from_config(back), video_timing_from_config(cfg));
+  }
+  Config cfg;
+  cfg.load_file(std::string(RASTSIM_SOURCE_DIR) + "/configs/default.toml");  // timing panel, 128 px
+  Config same = cfg, other = cfg;
+  same.apply_override("display.h_active_px=128");  // the default
+  other.apply_override("display.h_active_px=640");
+  EXPECT_NO_THROW(video_timing_from_config(same));
+  EXPECT_THROW(video_timing_from_config(other), ConfigError);
 }
 
 TEST(ConfigToml, StringsWithQuotesAndBackslashesReadBack) {

@@ -69,8 +69,10 @@ VideoTiming video_timing_from_config(const Config& cfg) {
   VideoTiming t;
   if (const VideoTiming* p = find_timing_preset(name)) {
     t = *p;
+    // A key set to its default is no conflict: `config --toml` writes every key, so its
+    // text (and a stats JSON's config_toml) reads back with them all set.
     for (const char* k : kExplicitKeys)
-      if (cfg.origin(k) != "default")
+      if (cfg.origin(k) != "default" && !(cfg.get(k) == find_param(k)->default_value))
         throw ConfigError(cfg.origin(k) + ": " + k + " is set, but display.timing = " + name + " (" +
                           cfg.origin("display.timing") +
                           ") is a preset; set display.timing = \"custom\" to use the explicit keys");

@@ -166,17 +166,23 @@ printf 'viewport 64 64\ntri 0 0 10 0 0 zz\n' | gzip -c > "$TMP/badline.trace.gz"
 expect_error "error line in a gzip scene" "badline.trace.gz:2:" -- "$BIN" render --scene "$TMP/badline.trace.gz"
 
 # 6. estimate: bounds and per-stage busy in the stats, lower <= estimate <= upper; a bad
-#    config is one error line naming the file and line.
-if "$BIN" estimate --config "$CFG" --scene "$SCENE" --stats "$TMP/e.json" -q; then
-  for k in cycles_lower_bound cycles_upper_bound cycles_estimate wall_seconds; do
-    json_field "$TMP/e.json" "$k" >/dev/null 2>&1 && pass || fail "estimate stats lack $k"
-  done
-  /usr/bin/python3 -c "import json,sys; j=json.load(open(sys.argv[1]))
-assert j['cycles_lower_bound'] <= j['cycles_estimate'] <= j['cycles_upper_bound'], j
-assert j['stages']['rop']['busy'] > 0" "$TMP/e.json" && pass || fail "estimate bounds out of order"
-else
-  fail "estimate of the demo scene failed"
-fi
+#    config is one error line naming the file and line. The shipped config models DRAM:
+#    there the upper bound is null and the bandwidth bound is part of the lower; with
+#    memory.model = fixed both bounds hold.
+for mem in dram fixed; do
+  if "$BIN" estimate --config "$CFG" --scene "$SCENE" --set memory.model=$mem --stats "$TMP/e.json" -q; then
+    for k in cycles_lower_bound cycles_upper_bound cycles_estimate bandwidth_lower_bound wall_seconds; do
+      json_field "$TMP/e.json" "$k" >/dev/null 2>&1 && pass || fail "estimate ($mem) stats lack $k"
+    done
+    /usr/bin/python3 -c "import json,sys; j=json.load(open(sys.argv[1])); up=j['cycles_upper_bound']
+assert j['cycles_lower_bound'] <= j['cycles_estimate'], j
+assert (up is None) == (sys.argv[2] == 'dram') and (up is None or j['cycles_estimate'] <= up), j
+assert (j['bandwidth_lower_bound'] > 0) == (sys.argv[2] == 'dram'), j
+assert j['stages']['rop']['busy'] > 0" "$TMP/e.json" $mem && pass || fail "estimate ($mem) bounds out of order"
+  else
+    fail "estimate of the demo scene ($mem) failed"
+  fi
+done
 "$BIN" estimate --help | grep -q -- "cycles_upper_bound" && pass || fail "estimate --help"
 printf '[fine]\nsamples_per_cycle = 0\n' > "$TMP/bad_est.toml"
 expect_error "estimate bad config" "bad_est.toml:2:.*samples_per_cycle" -- "$BIN" estimate --config "$TMP/bad_est.toml" --scene "$SCENE"

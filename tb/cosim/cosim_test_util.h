@@ -25,6 +25,19 @@ inline Config load_shipped_config(const std::string& name) {
   return c;
 }
 
+// The shipped config with memory.model = fixed, for tests of the raster's arithmetic
+// (random and directed scenes under backpressure: fragments, masks and CRCs against the
+// reference): with the configs' own dram the RTL would also run every DRAM wait, 2-10x
+// the cycles (minutes a test on CI's 2 cores). The RTL through the DRAM model is tested
+// with the configs' dram by ctest cosim.cycles.*, cosim.3d.*, cosim.msaa.*, cosim.state.*,
+// cosim.stress.* and the stage-by-stage tests (test_stages.cpp).
+inline Config load_shipped_config_fixed_memory(const std::string& name) {
+  Config c = load_shipped_config(name);
+  c.apply_override("memory.model=fixed");
+  c.validate();
+  return c;
+}
+
 // A vertex at (x, y) px with a random depth in [0, 1] and a random colour; with
 // color_frac_bits F > 0 the colour is a random unsigned 8.F (as a vertex clipping made:
 // its fraction bits exercise the affine colour dividers' shifted denominator).

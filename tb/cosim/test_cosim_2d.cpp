@@ -27,8 +27,11 @@ nlohmann::json cosim(const std::string& trace, const std::string& name, const st
   std::filesystem::create_directories(dir);
   const auto trace_path = dir / (name + ".trace"), stats_path = dir / (name + ".json");
   std::ofstream(trace_path) << trace;
+  // memory.model = fixed: cosim refuses 2D commands with dram (the RTL 2D engine cannot
+  // wait for a line fill; docs/memory.md "RTL co-simulation").
   std::vector<std::string> argv{RASTSIM_BINARY, "cosim", "--config", std::string(RASTSIM_SOURCE_DIR) + "/configs/default.toml",
-                                "--scene", trace_path.string(), "--stats", stats_path.string(), "--max-error", "0.02"};
+                                "--set", "memory.model=fixed", "--scene", trace_path.string(), "--stats",
+                                stats_path.string(), "--max-error", "0.02"};
   std::istringstream words(sets);  // " --set K=V ..." (no value holds a space)
   for (std::string w; words >> w;) argv.push_back(w);
   rastsim::ProcessOptions o;

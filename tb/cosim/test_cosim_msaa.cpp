@@ -30,8 +30,11 @@
 namespace rastsim::rtlsim {
 namespace {
 
+// memory.model = fixed: these tests check masks, fragments, resolved CRCs and the fixed
+// cost's equations (cosim_test_util.h, load_shipped_config_fixed_memory; the ctest
+// cosim.msaa.* tests co-simulate multisampling with the configs' dram).
 Config with_samples(const char* config, int samples) {
-  Config cfg = load_shipped_config(config);
+  Config cfg = load_shipped_config_fixed_memory(config);
   cfg.apply_override("raster.samples=" + std::to_string(samples));
   cfg.validate();
   return cfg;
@@ -126,7 +129,7 @@ TEST(MsaaTiming, OneTileAddsTheEquationsCycles) {
       uint64_t cycles_rtl, fine, interp, rop, resolve;
     };
     auto work = [&](int samples) {
-      const Config cfg = with_samples(config, samples);
+      const Config cfg = with_samples(config, samples);  // fixed: the equations are the ROP's fixed cost
       const RasterState st = raster_state_from_config(cfg);
       const TimingParams tp = TimingParams::from_config(cfg);
       const auto* prims = std::get_if<CmdPrimitives>(&scene.commands[0].body);
