@@ -208,22 +208,19 @@ void DramModel::queue_burst(Channel& ch, const Burst& b) {
 // The first clock at which an offer's command meets every constraint (docs/memory.md,
 // "Timing equations"): the burst's eligible clock and the bank's own state (offer.ready),
 // the command bus, the other banks through its bank group's bounds (Channel::group) and
-// the activate windows (the bus and the windows held in `floor`, worked out once a decision).
-inline DramModel::Floors DramModel::floors(const Channel& ch) const {
-  const int64_t bus = ch.last_cmd + 1;
-  return {bus, std::max({bus, ch.acts[(ch.next_act + 28) % ch.acts.size()] + p_.tFAW,
-                         ch.acts[ch.next_act] + p_.t32AW})};
-}
-
-inline int64_t DramModel::earliest(const Channel& ch, const Floors& floor, const Bank::Offer& offer) const {
+// the activate windows.
+inline int64_t DramModel::earliest(const Channel& ch, const Bank::Offer& offer) const {
   const GroupBounds& group = ch.group[size_t(offer.group)];
+  const int64_t t = std::max(offer.ready, ch.last_cmd + 1);
   switch (offer.cmd) {
-    case Cmd::Pre: return std::max(offer.ready, floor.bus);
-    case Cmd::Act: return std::max({offer.ready, floor.act, group.act});
-    case Cmd::Read: return std::max({offer.ready, floor.bus, group.read});
-    case Cmd::Write: return std::max({offer.ready, floor.bus, group.write});
+    case Cmd::Pre: return t;
+    case Cmd::Act:
+      return std::max({t, group.act, ch.acts[(ch.next_act + 28) % ch.acts.size()] + p_.tFAW,
+                       ch.acts[ch.next_act] + p_.t32AW});
+    case Cmd::Read: return std::max(t, group.read);
+    case Cmd::Write: return std::max(t, group.write);
   }
-  return std::max(offer.ready, floor.bus);
+  return t;
 }
 
 // Raises every bank group's bounds for a command `cmd` issued at clock `at` in group
@@ -254,13 +251,12 @@ void DramModel::raise_group_bounds(Channel& ch, int from, Cmd cmd, int64_t at) {
 }
 
 // choose() for bank k (its queue not empty): its offers against the best so far.
-inline void DramModel::consider(const Channel& ch, const Floors& floor, int k, Choice& best, uint64_t& best_seq,
-                                bool& best_column) const {
+inline void DramModel::consider(const Channel& ch, int k, Choice& best, uint64_t& best_seq, bool& best_column) const {
   const Bank& bank = ch.banks[size_t(k)];
   if (!bank.offers_fresh) make_offers(bank);
   for (int o = 0; o < bank.offer_count; ++o) {
     const Bank::Offer& offer = bank.offers[size_t(o)];
-    const int64_t at = earliest(ch, floor, offer);
+    const int64_t at = earliest(ch, offer);
     const bool column = offer.cmd == Cmd::Read || offer.cmd == Cmd::Write;
     const bool better = best.at < 0 || at < best.at ||
                         (at == best.at && (column != best_column ? column : offer.seq < best_seq));
@@ -278,11 +274,10 @@ DramModel::Choice DramModel::choose(const Channel& ch) const {
   Choice best;
   uint64_t best_seq = 0;
   bool best_column = false;
-  const Floors floor = floors(ch);
   for (size_t word = 0; word < ch.busy_banks.size(); ++word)
     for (uint64_t bits = ch.busy_banks[word]; bits != 0; bits &= bits - 1) {
       const int k = int(word * 64) + std::countr_zero(bits);
-      consider(ch, floor, k, best, best_seq, best_column);
+      consider(ch, k, best, best_seq, best_column);
     }
   ch.choice = best;
   ch.choice_valid = true;

@@ -237,18 +237,11 @@ class DramModel {
     }
   };
 
-  // The clocks every offer of a channel is held to at a decision (earliest()): the
-  // command bus's next free clock, and that or the activate windows for an ACT.
-  struct Floors {
-    int64_t bus = 0, act = 0;
-  };
-  Floors floors(const Channel& ch) const;
   Choice choose(const Channel& ch) const;
-  void consider(const Channel& ch, const Floors& floor, int k, Choice& best, uint64_t& best_seq,
-                bool& best_column) const;
+  void consider(const Channel& ch, int k, Choice& best, uint64_t& best_seq, bool& best_column) const;
   void make_offers(const Bank& bank) const;
   static void touch(Channel& ch, Bank& bank) { bank.offers_fresh = false, ch.choice_valid = false; }
-  int64_t earliest(const Channel& ch, const Floors& floor, const Bank::Offer& offer) const;
+  int64_t earliest(const Channel& ch, const Bank::Offer& offer) const;
   void queue_burst(Channel& ch, const Burst& b);
   void issue(Channel& ch, const Choice& c);
   void issue_column(Channel& ch, Burst b, int64_t at);
