@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "sc/rop.h"
 
+#include <algorithm>
 #include <span>
 
 #include "ref/pipeline.h"
@@ -35,6 +36,36 @@ uint64_t rop_write_groups(Framebuffer& fb, std::span<const Fragment> frags, Dept
     n.passed += rop_write(fb, f, func, depth_write, &n.samples_passed, &port.functional());
     n.accesses += TimingParams::rop_accesses(f.mask, fb.samples);
     while (n.accesses > group_end) respond();  // f's later accesses fill further groups
+  }
+  return n.accesses ? memory_group_response(issue, port.end()) : start;
+}
+
+// rop_write_groups for a one-sample batch (every fragment one access), a run at a time:
+// rop_write_run makes the same accesses as rop_write on each fragment in turn, with the
+// storage tile looked up once a run; a run is cut where a group ends.
+uint64_t rop_write_group_runs(Framebuffer& fb, const FragmentBatch& batch, DepthFunc func, bool depth_write,
+                              RopMemoryPort& port,
+                              uint64_t group_accesses, uint64_t start, RopBatchCounts& n) {
+  uint64_t issue = start, in_group = 0;
+  port.begin(issue);
+  const Fragment* f = batch.fragments().data();
+  for (const PixelRun& r : batch.pixels->runs) {
+    const auto frag = [f, x0 = r.x0](int x) { return f[x - x0]; };
+    for (int x = r.x0; x < r.x1;) {
+      if (in_group == group_accesses) {  // the next fragment opens the next group
+        issue = memory_group_response(issue, port.end());
+        port.begin(issue);
+        in_group = 0;
+      }
+      const int end = x + int(std::min(uint64_t(r.x1 - x), group_accesses - in_group));
+      const uint32_t written = rop_write_run(fb, r.y, x, end, frag, func, depth_write, &port.functional());
+      n.passed += written;
+      n.samples_passed += written;
+      n.accesses += uint64_t(end - x);
+      in_group += uint64_t(end - x);
+      x = end;
+    }
+    f += r.x1 - r.x0;
   }
   return n.accesses ? memory_group_response(issue, port.end()) : start;
 }
@@ -128,7 +159,10 @@ void Rop::body() {
     uint64_t cycles = 0;
     if (mem_) {
       RopBatchCounts n;
-      cycles = rop_write_groups(fb_, frags, func, st_.depth_write, *mem_, p_.rop_pixels_per_cycle, now(), n) - now();
+      cycles = (batch.one_per_pixel() && fb_.samples == 1
+                    ? rop_write_group_runs(fb_, batch, func, st_.depth_write, *mem_, p_.rop_pixels_per_cycle, now(), n)
+                    : rop_write_groups(fb_, frags, func, st_.depth_write, *mem_, p_.rop_pixels_per_cycle, now(), n)) -
+               now();
       accesses = n.accesses;
       passed = n.passed;
       samples_passed = n.samples_passed;

@@ -147,6 +147,7 @@ DramModel::DramModel(DramParams params) : p_(std::move(params)), decode_(p_) {
   channels_.resize(size_t(p_.channels));
   for (Channel& ch : channels_) {
     ch.banks.resize(size_t(p_.banks()));
+    ch.busy_banks.assign((ch.banks.size() + 63) / 64, 0);
     ch.group.assign(size_t(p_.bank_groups), GroupBounds{kNever, kNever, kNever});
     ch.acts.fill(kNever);
     ch.next_refresh = p_.tREFI;
@@ -195,8 +196,10 @@ void DramModel::enqueue(const DramRequest& r, uint64_t cycle) {
 }
 
 void DramModel::queue_burst(Channel& ch, const Burst& b) {
-  Bank& bank = ch.banks[size_t(bank_index(b.at))];
+  const size_t k = size_t(bank_index(b.at));
+  Bank& bank = ch.banks[k];
   bank.queue.push_back(b);
+  ch.busy_banks[k / 64] |= uint64_t{1} << (k % 64);
   if (b.at.row == bank.open_row) ++bank.hits[b.write];
   ++ch.queued;
   touch(ch, bank);
@@ -247,29 +250,35 @@ void DramModel::raise_group_bounds(Channel& ch, int from, Cmd cmd, int64_t at) {
   }
 }
 
+// choose() for bank k (its queue not empty): its offers against the best so far.
+inline void DramModel::consider(const Channel& ch, int k, Choice& best, uint64_t& best_seq, bool& best_column) const {
+  const Bank& bank = ch.banks[size_t(k)];
+  if (!bank.offers_fresh) make_offers(bank);
+  for (int o = 0; o < bank.offer_count; ++o) {
+    const Bank::Offer& offer = bank.offers[size_t(o)];
+    const int64_t at = earliest(ch, offer);
+    const bool column = offer.cmd == Cmd::Read || offer.cmd == Cmd::Write;
+    const bool better = best.at < 0 || at < best.at ||
+                        (at == best.at && (column != best_column ? column : offer.seq < best_seq));
+    if (better) best = {at, k, offer.index, offer.cmd}, best_seq = offer.seq, best_column = column;
+  }
+}
+
 // FR-FCFS: the command that can issue first; at the same clock a column command (a row
 // hit) before an activate or precharge, then the oldest burst. A precharge that would
 // close a row some queued burst still wants waits. Each bank offers only the oldest
 // burst of each command it has (dram.h, Bank: the others cannot win); the answer is
-// kept until the channel changes.
+// kept until the channel changes. Only the banks with queued bursts are visited.
 DramModel::Choice DramModel::choose(const Channel& ch) const {
   if (ch.choice_valid) return ch.choice;
   Choice best;
   uint64_t best_seq = 0;
   bool best_column = false;
-  for (int k = 0; k < int(ch.banks.size()); ++k) {
-    const Bank& bank = ch.banks[size_t(k)];
-    if (bank.queue.empty()) continue;
-    if (!bank.offers_fresh) make_offers(bank);
-    for (int o = 0; o < bank.offer_count; ++o) {
-      const Bank::Offer& offer = bank.offers[size_t(o)];
-      const int64_t at = earliest(ch, offer);
-      const bool column = offer.cmd == Cmd::Read || offer.cmd == Cmd::Write;
-      const bool better = best.at < 0 || at < best.at ||
-                          (at == best.at && (column != best_column ? column : offer.seq < best_seq));
-      if (better) best = {at, k, offer.index, offer.cmd}, best_seq = offer.seq, best_column = column;
+  for (size_t word = 0; word < ch.busy_banks.size(); ++word)
+    for (uint64_t bits = ch.busy_banks[word]; bits != 0; bits &= bits - 1) {
+      const int k = int(word * 64) + std::countr_zero(bits);
+      consider(ch, k, best, best_seq, best_column);
     }
-  }
   ch.choice = best;
   ch.choice_valid = true;
   return best;
@@ -296,10 +305,6 @@ void DramModel::make_offers(const Bank& bank) const {
     (b.write ? write : read) = true;
     offer(i, b.write ? Cmd::Write : Cmd::Read);
   }
-}
-
-void DramModel::note(const Channel& ch, int64_t at, DramCommand::Kind kind, const DramAddress& a) {
-  if (log_) log_->push_back({at, kind, int(&ch - channels_.data()), a.bank_group, a.bank, a.row});
 }
 
 void DramModel::issue(Channel& ch, const Choice& c) {
@@ -336,6 +341,7 @@ void DramModel::issue(Channel& ch, const Choice& c) {
     case Cmd::Write: {
       const Burst done = b;
       bank.queue.erase(bank.queue.begin() + std::ptrdiff_t(c.index));
+      if (bank.queue.empty()) ch.busy_banks[size_t(c.bank) / 64] &= ~(uint64_t{1} << (size_t(c.bank) % 64));
       --bank.hits[done.write];
       --ch.queued;
       issue_column(ch, done, c.at);

@@ -145,6 +145,8 @@ class DramModel {
   // The completions at or before the last advance_to() cycle, by cycle then arrival;
   // valid until the next call.
   const std::vector<DramCompletion>& take_completions();
+  // take_completions() would return some.
+  bool has_completions() const { return !done_.empty() && done_.top().completion.cycle <= advanced_; }
 
   // Appends every command issued from now on to *log (nullptr: stop).
   void log_commands(std::vector<DramCommand>* log) { log_ = log; }
@@ -208,6 +210,9 @@ class DramModel {
   };
   struct Channel {
     std::vector<Bank> banks;
+    // Bit k of word k / 64: bank k's queue is not empty (choose() visits those banks only,
+    // in bank order).
+    std::vector<uint64_t> busy_banks;
     size_t queued = 0;           // bursts in the banks' queues together: at most queue_depth
     std::deque<Burst> backlog;   // waiting for a queue slot, in arrival order
     mutable Choice choice;       // choose()'s answer while choice_valid
@@ -233,6 +238,7 @@ class DramModel {
   };
 
   Choice choose(const Channel& ch) const;
+  void consider(const Channel& ch, int k, Choice& best, uint64_t& best_seq, bool& best_column) const;
   void make_offers(const Bank& bank) const;
   static void touch(Channel& ch, Bank& bank) { bank.offers_fresh = false, ch.choice_valid = false; }
   int64_t earliest(const Channel& ch, const Bank::Offer& offer) const;
@@ -242,7 +248,9 @@ class DramModel {
   void raise_group_bounds(Channel& ch, int group, Cmd cmd, int64_t at);
   void refresh(Channel& ch);
   void admit(Channel& ch, int64_t at);
-  void note(const Channel& ch, int64_t at, DramCommand::Kind kind, const DramAddress& a);
+  void note(const Channel& ch, int64_t at, DramCommand::Kind kind, const DramAddress& a) {
+    if (log_) log_->push_back({at, kind, int(&ch - channels_.data()), a.bank_group, a.bank, a.row});
+  }
   int bank_index(const DramAddress& a) const { return a.bank_group * p_.banks_per_group + a.bank; }
   Pending& pending(size_t request) { return pending_[request - first_pending_]; }
 

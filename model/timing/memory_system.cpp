@@ -63,7 +63,7 @@ bool MemorySystem::step(uint64_t limit) {
   }
   dram_.advance_to(e);
   floor_ = std::max(floor_, e);
-  take_completions();
+  if (dram_.has_completions()) take_completions();
   return true;
 }
 

@@ -11,7 +11,7 @@ RopMemoryPort::RopMemoryPort(MemorySystem& mem, const MemoryParams& p, const Fra
   for (size_t k = 0; k < surfaces_.size(); ++k) {
     Surface& s = surfaces_[k];
     s.client = MemClient(k);
-    clients[k]->on_access = [this, &s](uint64_t, bool) { settle(s); };
+    clients[k]->on_access_after_transfer = [this, &s] { settle(s); };
     clients[k]->on_transfer = [&s](const MemoryTransfer& t) { s.pending.push_back(t); };
   }
 }

@@ -15,7 +15,7 @@ SetAssocCache::SetAssocCache(const CacheParams& p) : n_ways_(p.ways), line_bytes
   ways_.resize(size_t(p.bytes / uint64_t(p.line_bytes)));
 }
 
-bool SetAssocCache::access(uint64_t line, bool write, Victim& victim) {
+bool SetAssocCache::access_set(uint64_t line, bool write, Victim& victim) {
   Way* set = &ways_[size_t(line & set_mask_) * size_t(n_ways_)];
   ++uses_;
   Way* lru = set;
@@ -24,6 +24,7 @@ bool SetAssocCache::access(uint64_t line, bool write, Victim& victim) {
     if (w.valid && w.line == line) {
       w.last_use = uses_;
       w.dirty = w.dirty || write;
+      mru_ = size_t(&w - ways_.data());
       return true;
     }
     // An invalid way first (last_use 0 never wins against a used way otherwise).
@@ -31,6 +32,7 @@ bool SetAssocCache::access(uint64_t line, bool write, Victim& victim) {
   }
   victim = {lru->valid, lru->valid && lru->dirty, lru->line};
   *lru = {line, uses_, true, write};
+  mru_ = size_t(lru - ways_.data());
   return false;
 }
 
@@ -43,6 +45,7 @@ bool SetAssocCache::holds(uint64_t line) const {
 
 void SetAssocCache::invalidate_all() {
   for (Way& w : ways_) w = Way{};
+  mru_ = kNoWay;
 }
 
 }  // namespace rastsim

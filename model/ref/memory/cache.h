@@ -29,7 +29,16 @@ class SetAssocCache {
 
   // One access to `line`: true on a hit. On a miss the line is allocated (write-allocate)
   // and the line it replaced, if any, is returned in `victim`. A write marks it dirty.
-  bool access(uint64_t line, bool write, Victim& victim);
+  // Inline fast path: the line the previous access used is the most recently used of its
+  // set already, so a repeat hit (consecutive samples of a line) leaves the LRU order as
+  // it is and only marks the line dirty (LRU compares last_use values, never reads uses_).
+  bool access(uint64_t line, bool write, Victim& victim) {
+    if (mru_ != kNoWay && ways_[mru_].line == line) {
+      ways_[mru_].dirty = ways_[mru_].dirty || write;
+      return true;
+    }
+    return access_set(line, write, victim);
+  }
   bool holds(uint64_t line) const;
 
   // f(line) for every dirty line, set by set, ways in order; then every line is clean.
@@ -54,7 +63,13 @@ class SetAssocCache {
     uint64_t last_use = 0;  // access number of its last use: the smallest in a set is the LRU
     bool valid = false, dirty = false;
   };
+  bool access_set(uint64_t line, bool write, Victim& victim);  // access() past the fast path
+
   std::vector<Way> ways_;  // set-major: set k's ways at [k ways, (k + 1) ways)
+  // The valid way the last access used (an index: the cache may be copied); kNoWay after
+  // invalidate_all.
+  static constexpr size_t kNoWay = ~size_t{0};
+  size_t mru_ = kNoWay;
   int n_ways_ = 1;
   int line_bytes_ = 64;
   uint64_t set_mask_ = 0;

@@ -2,6 +2,7 @@
 #include "ref/memory/surface_client.h"
 
 #include <algorithm>
+#include <bit>
 #include <utility>
 
 #include "ref/framebuffer.h"
@@ -15,7 +16,10 @@ SurfaceClient::SurfaceClient(const SurfaceLayout& layout, const CacheParams& cac
       blocks_x_((layout.width() + block_width - 1) / block_width),
       blocks_y_((layout.height() + block_height - 1) / block_height),
       flagged_(size_t(blocks_x_) * size_t(blocks_y_), 0) {
-  if (cache.bytes > 0) cache_.emplace(cache);
+  if (cache.bytes > 0) {
+    cache_.emplace(cache);
+    line_shift_ = std::countr_zero(unsigned(cache_->line_bytes()));
+  }
 }
 
 void SurfaceClient::compress_planes(const Framebuffer* fb, int depth_bits) {
@@ -30,13 +34,7 @@ uint64_t SurfaceClient::block_bytes(size_t block) const {
   return w * h * uint64_t(layout_.samples()) * uint64_t(layout_.bytes_per_sample());
 }
 
-void SurfaceClient::cached_access(uint64_t offset, bool write) {
-  const uint64_t line = offset / uint64_t(cache_->line_bytes());
-  SetAssocCache::Victim victim;
-  if (cache_->access(line, write, victim)) {
-    ++stats_.hits;
-    return;
-  }
+void SurfaceClient::cached_miss(uint64_t line, const SetAssocCache::Victim& victim) {
   ++stats_.misses;
   if (victim.valid) ++stats_.evictions;
   if (victim.dirty) {

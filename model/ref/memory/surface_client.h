@@ -62,6 +62,10 @@ class SurfaceClient {
   // One access to sample s of pixel (x, y).
   void access(int x, int y, int s, bool write) {
     const uint64_t off = layout_.offset_of(x, y, s);
+    if (reported_) {  // transfers were reported since the previous access
+      reported_ = false;
+      if (on_access_after_transfer) on_access_after_transfer();
+    }
     if (on_access) on_access(layout_.base() + off, write);
     ++stats_.accesses;
     if (cache_) return cached_access(off, write);
@@ -77,7 +81,7 @@ class SurfaceClient {
   // Bytes written from `address` by a stream that bypasses the cache (the resolved image).
   void count_streamed_write(uint64_t address, uint64_t bytes) {
     stats_.bytes_written += bytes;
-    if (on_transfer && bytes > 0) on_transfer({address, bytes, true});
+    report({address, bytes, true});
   }
 
   const MemoryClientStats& stats() const { return stats_; }
@@ -88,16 +92,34 @@ class SurfaceClient {
   // write-back and any block it materialises before its fill); the bytes of the
   // transfers sum to bytes_read and bytes_written. The timed model issues them.
   std::function<void(const MemoryTransfer&)> on_transfer;
+  // Called at the first access after on_transfer has seen a transfer (before on_access),
+  // not at the others: the timed model issues a surface's reported transfers then
+  // (timing/rop_memory_port.h) without a call on every access.
+  std::function<void()> on_access_after_transfer;
 
  private:
-  void cached_access(uint64_t offset, bool write);
+  // A cached access: a hit stays inline (SetAssocCache::access's repeat-line fast path),
+  // a miss goes to cached_miss.
+  void cached_access(uint64_t offset, bool write) {
+    const uint64_t line = offset >> line_shift_;
+    SetAssocCache::Victim victim;
+    if (cache_->access(line, write, victim)) {
+      ++stats_.hits;
+      return;
+    }
+    cached_miss(line, victim);
+  }
+  void cached_miss(uint64_t line, const SetAssocCache::Victim& victim);
   // Counts a transfer at byte offset `offset` of the surface and reports it.
   void fill(uint64_t offset, uint64_t bytes) {
     stats_.bytes_read += bytes;
     transfer(offset, bytes, false);
   }
-  void transfer(uint64_t offset, uint64_t bytes, bool write) const {
-    if (on_transfer && bytes > 0) on_transfer({layout_.base() + offset, bytes, write});
+  void transfer(uint64_t offset, uint64_t bytes, bool write) { report({layout_.base() + offset, bytes, write}); }
+  void report(const MemoryTransfer& t) {
+    if (!on_transfer || t.bytes == 0) return;
+    on_transfer(t);
+    reported_ = true;
   }
   uint64_t fill_range_bytes(uint64_t offset, uint64_t len) const;  // a fill's DRAM reads
   void write_back_range(uint64_t offset, uint64_t len);
@@ -108,6 +130,8 @@ class SurfaceClient {
 
   SurfaceLayout layout_;
   std::optional<SetAssocCache> cache_;
+  int line_shift_ = 0;     // log2 of the cache's line bytes (a power of two)
+  bool reported_ = false;  // a transfer went to on_transfer since the last access
   bool fast_clear_;
   int block_w_, block_h_, blocks_x_, blocks_y_;
   std::vector<uint8_t> flagged_;  // per block: fast-cleared, not yet written to DRAM
