@@ -64,6 +64,7 @@ std::vector<ParamDef> make_schema() {
   add_dram_params(s);
   add_memory_params(s);
   add_texture_params(s);
+  add_binning_params(s);
   // ---- depth: culling ahead of the ROP (docs/depth.md) ----
   add({"depth.early", T::Bool, false, "", 1, 0, {},
        "Depth test before colour/texture interpolation where the state allows it (docs/depth.md; "

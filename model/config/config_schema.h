@@ -32,6 +32,7 @@ void add_dram_params(std::vector<ParamDef>& schema);  // config_schema_dram.cpp
 void add_memory_params(std::vector<ParamDef>& schema);  // config_schema_memory.cpp
 // Keys of the texture unit (texel format, layout, base address, texture cache).
 void add_texture_params(std::vector<ParamDef>& schema);  // config_schema_texture.cpp
+void add_binning_params(std::vector<ParamDef>& schema);  // config_schema_binning.cpp
 // An integer key's check: a power of two (config_schema.cpp).
 bool is_power_of_two(const ParamValue& v);
 // An address key's check: a multiple of 4096, a DRAM page (config_schema.cpp).

@@ -24,6 +24,39 @@ DepthFunc depth_func_from_name(const std::string& name) {
                                 {"notequal", DepthFunc::NotEqual}, {"always", DepthFunc::Always}});
 }
 
+namespace {
+// pipeline.mode and bin.* (docs/binning.md); the tile buffer must hold one bin's colour
+// (4 bytes) and depth (2 or 4 bytes, as the memory system's depth surface) per sample.
+BinParams bin_params_from_config(const Config& cfg, const RasterState& s) {
+  BinParams b;
+  b.mode = cfg.get_string("pipeline.mode") == "binned" ? PipelineMode::Binned : PipelineMode::Immediate;
+  b.width = static_cast<int>(cfg.get_int("bin.width"));
+  b.height = static_cast<int>(cfg.get_int("bin.height"));
+  b.tile_buffer_bytes = static_cast<uint64_t>(cfg.get_int("bin.tile_buffer_bytes"));
+  b.parameter_buffer_bytes = static_cast<uint64_t>(cfg.get_int("bin.parameter_buffer_bytes"));
+  b.parameter_buffer_base = static_cast<uint64_t>(cfg.get_int("bin.parameter_buffer_base"));
+  b.rule = cfg.get_string("bin.binning") == "exact" ? BinningRule::Exact : BinningRule::Bbox;
+  b.load_color = cfg.get_bool("bin.load_color");
+  b.load_depth = cfg.get_bool("bin.load_depth");
+  b.store_depth = cfg.get_bool("bin.store_depth");
+  const uint64_t need = uint64_t(b.width) * uint64_t(b.height) * uint64_t(s.samples) *
+                        (4 + uint64_t(s.depth_bits <= 16 ? 2 : 4));
+  if (b.mode == PipelineMode::Binned && need > b.tile_buffer_bytes)
+    throw ConfigError("bin.tile_buffer_bytes = " + std::to_string(b.tile_buffer_bytes) + " does not hold a " +
+                      std::to_string(b.width) + "x" + std::to_string(b.height) + " bin at raster.samples = " +
+                      std::to_string(s.samples) + " (colour + depth: " + std::to_string(need) + " bytes)");
+  if (b.mode == PipelineMode::Binned && s.traversal == Traversal::Scanline)
+    throw ConfigError("pipeline.mode = binned needs an exact raster.traversal (tiled, bbox, hierarchical): "
+                      "scanline's coverage is measured a whole triangle at a time (docs/binning.md)");
+  if (b.mode == PipelineMode::Binned && cfg.get_string("memory.model") != "fixed")
+    throw ConfigError("pipeline.mode = binned with memory.model = " + cfg.get_string("memory.model") +
+                      ": the binned ROP writes its tile buffer, not the ROP caches; binned counts its own "
+                      "DRAM bytes (dram_bytes_geometry, dram_bytes_framebuffer) with memory.model = fixed "
+                      "(docs/binning.md)");
+  return b;
+}
+}  // namespace
+
 RasterState raster_state_from_config(const Config& cfg) {
   cfg.validate();
   RasterState s;
@@ -74,6 +107,7 @@ RasterState raster_state_from_config(const Config& cfg) {
   s.texcoord_format = FixedFormat::parse(cfg.get_string("interp.texcoord_format"));
   s.color_frac_bits = static_cast<int>(cfg.get_int("interp.color_frac_bits"));
   s.texture = texture_params_from_config(cfg);
+  s.bin = bin_params_from_config(cfg, s);
   s.viewport_width = s.fb_width;
   s.viewport_height = s.fb_height;
   return s;

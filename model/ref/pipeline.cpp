@@ -192,6 +192,7 @@ struct SceneRenderer::Impl {
   // The depth function the ROP tests the current tile's fragments with: the state's, or
   // `always` in a tile Hi-Z accepted (every fragment passes: no depth read).
   DepthFunc tile_func = DepthFunc::Always;
+  std::optional<Binner> binner;  // pipeline.mode = binned
 
   RopMemory* mem_ptr() { return mem ? &*mem : nullptr; }
 
@@ -218,10 +219,15 @@ struct SceneRenderer::Impl {
     // One thread where the result depends on the order of the whole walk: the fragment
     // stream (pipeline order), the coverage check of an inexact method (per triangle) and
     // the memory system's access stream.
-    threads = (on_fragment || check || mem || hiz) ? 1 : std::max(1, n_threads);
+    if (st.bin.mode == PipelineMode::Binned)
+      binner.emplace(
+          st, tp, fb, [this](const SetupTriangle& tri, const SetupTriangle& walk) { draw(tri, walk, stats); },
+          stats.bin);
+    threads = (on_fragment || check || mem || hiz || binner) ? 1 : std::max(1, n_threads);
     if (threads > 1) bins.resize(size_t(grid.count()));
   }
   void run(const Command& cmd);
+  void run_binned(const Command& cmd);
   void draw_triangles(const Command& cmd, const CmdPrimitives& prims);
   void run_parallel(std::span<const Command> commands);
   void draw_primitives(std::span<const Command> commands);
@@ -345,6 +351,7 @@ void SceneRenderer::run(std::span<const Command> commands) {
 }
 
 void SceneRenderer::Impl::run(const Command& cmd) {
+  if (binner) return run_binned(cmd);
   const auto state = [&] {
     apply_state_command(cmd, st, fb, mem_ptr());
     if (hiz && std::holds_alternative<CmdClearDepth>(cmd.body)) hiz->clear(fb.cleared_depth());  // exact bounds
@@ -357,6 +364,20 @@ void SceneRenderer::Impl::run(const Command& cmd) {
         draw_2d(d2, cmd.loc, st, fb, stats.draw2d, mem ? &mem->color : nullptr);  // through the colour client
       },
   });
+}
+
+// pipeline.mode = binned: viewport and scissor applied now (setup, in the binning pass,
+// clips each box to them); clears recorded in every bin's list; triangles binned.
+void SceneRenderer::Impl::run_binned(const Command& cmd) {
+  check_binned_command(cmd, st);
+  if (const auto* c = std::get_if<CmdClear>(&cmd.body)) return binner->add_clear_color(c->r, c->g, c->b, cmd.loc);
+  if (const auto* c = std::get_if<CmdClearDepth>(&cmd.body)) {
+    const auto z = quantize_unorm(c->z, st.depth_bits);
+    if (!z) throw SceneError(cmd.loc.str() + ": clear depth must be in [0, 1]");
+    return binner->add_clear_depth(*z, cmd.loc);
+  }
+  if (const auto* p = std::get_if<CmdPrimitives>(&cmd.body)) return draw_triangles(cmd, *p);
+  apply_state_command(cmd, st, fb, nullptr);
 }
 
 // One primitives command's triangles on this thread, in order.
@@ -381,6 +402,7 @@ void SceneRenderer::Impl::draw_triangles(const Command& cmd, const CmdPrimitives
     ++stats.triangles_in;
     SetupTriangle tri;
     if (!count_setup_outcome(setup_triangle(v, st, cmd.loc, tri), stats)) return;
+    if (binner) return binner->add_triangle(tri, cmd.loc);
     pixels.clear();
     if (prims.texture.enabled()) draw_textured(tri, prims.texture);
     else draw(tri, tri, stats);
@@ -511,6 +533,7 @@ const Framebuffer& SceneRenderer::frame_so_far() {
 Framebuffer SceneRenderer::finish() {
   const auto t0 = std::chrono::steady_clock::now();
   Impl& m = *impl_;
+  if (m.binner) m.binner->finish();
   if (m.check) m.check->finish(m.stats.coverage);
   if (m.mem) {  // the resolve's reads, the caches' flush, the resolved image's writes
     m.mem->finish();

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "ref/2d/draw2d.h"
+#include "ref/binning.h"
 #include "ref/framebuffer.h"
 #include "ref/hiz.h"
 #include "ref/front_end.h"
@@ -69,6 +70,8 @@ struct RenderStats {
   MemoryStats memory;
   // The texture unit's counts (docs/texture.md); all 0 when no texture was bound.
   TextureStats texture;
+  // The binned pipeline's counts (pipeline.mode = binned; docs/binning.md).
+  BinStats bin;
 };
 
 // Of the fragments that fail the late depth test, the fraction early Z and Hi-Z removed
@@ -175,6 +178,10 @@ Framebuffer render_scene(const Scene& scene, const RasterState& arch, RenderStat
 // `memory.enabled` (memory.model != fixed): every ROP access and clear goes through the
 // functional memory system (ref/memory/rop_memory.h), whose counts land in stats.memory
 // at finish(); the access stream is in pipeline order, so it keeps one thread too.
+//
+// pipeline.mode = binned (ref/binning.h, docs/binning.md): set-up triangles and clears
+// go to the Binner, which draws each bin's list with draw() at finish() or on overflow;
+// one thread, and fragments reach `on_fragment` in bin order.
 class SceneRenderer {
  public:
   SceneRenderer(const RasterState& arch, RenderStats& stats, const FragmentSink& on_fragment = {},

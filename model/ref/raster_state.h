@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "ref/bin_params.h"
 #include "ref/fixed_point.h"
 #include "ref/2d/line_raster.h"
 #include "ref/2d/polygon_fill.h"
@@ -94,6 +95,7 @@ struct RasterState {
   int recip_iterations = 0;     // interp.recip_iterations: Newton-Raphson steps
   FixedFormat texcoord_format;  // interp.texcoord_format: s, t out of interpolation
   int color_frac_bits = 0;      // interp.color_frac_bits: vertex colour unsigned 8.F into setup (0: RGB8)
+  BinParams bin;               // pipeline.mode, bin.*: the binned pipeline (docs/binning.md)
   TextureParams texture;        // texture.*: texel format, layout, base address, cache (docs/texture.md)
 
   // Scene state (from commands).

@@ -144,6 +144,19 @@ nlohmann::json to_json(const RenderStats& s) {
     j["interpolations_saved"] = s.interpolations_saved;
     j["texture_samples_saved"] = s.texture_samples_saved;
   }
+  // The binned pipeline's keys only with pipeline.mode = binned (docs/binning.md).
+  if (s.bin.enabled) {
+    j["bins"] = s.bin.bins;
+    j["primitives_per_bin_mean"] = s.bin.primitives_per_bin_mean();
+    j["bin_overflows"] = s.bin.bin_overflows;
+    j["dram_bytes_geometry"] = s.bin.dram_bytes_geometry();
+    j["dram_bytes_framebuffer"] = s.bin.dram_bytes_framebuffer();
+    j["bin"] = {{"bins_rendered", s.bin.bins_rendered},
+                {"geometry_bytes_written", s.bin.geometry_bytes_written},
+                {"geometry_bytes_read", s.bin.geometry_bytes_read},
+                {"framebuffer_bytes_written", s.bin.framebuffer_bytes_written},
+                {"framebuffer_bytes_read", s.bin.framebuffer_bytes_read}};
+  }
   if (s.samples > 1) j["aa_mode"] = s.aa_mode == AaMode::Ssaa ? "ssaa" : "msaa";
   // The geometry front end's keys only where a clip-space primitive was drawn, so that a
   // screen-space scene's stats are the same as before clip space existed.

@@ -1,0 +1,167 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "ref/binning.h"
+
+#include <algorithm>
+
+#include "ref/homogeneous.h"
+
+namespace rastsim {
+
+Binner::Binner(const RasterState& st, const TraversalParams& tp, Framebuffer& fb, DrawFn draw, BinStats& stats)
+    : st_(st), tp_(tp), fb_(fb), draw_(std::move(draw)), stats_(stats) {
+  nx_ = (st.fb_width + st.bin.width - 1) / st.bin.width;
+  ny_ = (st.fb_height + st.bin.height - 1) / st.bin.height;
+  const size_t n = size_t(nx_) * size_t(ny_);
+  lists_.resize(n);
+  color_stored_.assign(n, 0);
+  depth_stored_.assign(n, 0);
+  stats_.enabled = true;
+  stats_.bins = n;
+}
+
+PixelRect Binner::bin_rect(int b) const {
+  const int x = (b % nx_) * st_.bin.width, y = (b / nx_) * st_.bin.height;
+  return PixelRect{x, y, x + st_.bin.width, y + st_.bin.height}.intersect({0, 0, st_.fb_width, st_.fb_height});
+}
+
+std::vector<int> Binner::bins_of(const SetupTriangle& tri) const {
+  std::vector<int> out;
+  if (tri.bbox.empty()) return out;
+  const int bx0 = tri.bbox.x0 / st_.bin.width, bx1 = (tri.bbox.x1 - 1) / st_.bin.width;
+  const int by0 = tri.bbox.y0 / st_.bin.height, by1 = (tri.bbox.y1 - 1) / st_.bin.height;
+  for (int by = by0; by <= by1; ++by)
+    for (int bx = bx0; bx <= bx1; ++bx) {
+      const int b = by * nx_ + bx;
+      if (st_.bin.rule == BinningRule::Exact) {
+        // The raster's own traversal over the box clipped to the bin: listed when it
+        // finds a covered sample (its counters are scratch: binning is not drawing).
+        SetupTriangle walk = tri;
+        walk.bbox = tri.bbox.intersect(bin_rect(b));
+        TraversalCounters scratch;
+        bool covered = false;
+        traverse(walk, tp_, scratch, [&](int, int, uint32_t) { covered = true; });
+        if (!covered) continue;
+      }
+      out.push_back(b);
+    }
+  return out;
+}
+
+// Room for `bytes` more in the parameter buffer: when it is short, an overflow pass
+// renders what it holds first. A record that cannot fit an empty buffer is an error.
+void Binner::reserve(uint64_t bytes, const SourceLoc& loc) {
+  if (bytes > st_.bin.parameter_buffer_bytes)
+    throw SceneError(loc.str() + ": a primitive needs " + std::to_string(bytes) +
+                     " bytes of parameter buffer (record + bin list entries) and bin.parameter_buffer_bytes is " +
+                     std::to_string(st_.bin.parameter_buffer_bytes) + " (docs/binning.md)");
+  if (used_ + bytes > st_.bin.parameter_buffer_bytes) {
+    ++stats_.bin_overflows;
+    render_pass(false);
+  }
+  used_ += bytes;
+  stats_.geometry_bytes_written += bytes;
+}
+
+void Binner::add_triangle(const SetupTriangle& tri, const SourceLoc& loc) {
+  const std::vector<int> bins = bins_of(tri);
+  if (bins.empty()) return;  // exact binning: no covered sample anywhere, nothing to draw
+  reserve(kBinPrimitiveRecordBytes + kBinListEntryBytes * bins.size(), loc);
+  const auto index = uint32_t(tris_.size());
+  tris_.push_back(tri);
+  tri_seq_.push_back(seq_++);
+  for (int b : bins) lists_[size_t(b)].push_back(index);
+  stats_.triangle_entries += bins.size();
+}
+
+void Binner::add_clear(ClearRecord c, const SourceLoc& loc) {
+  reserve(kBinClearRecordBytes, loc);
+  c.seq = seq_++;
+  clears_.push_back(c);
+}
+
+void Binner::add_clear_color(uint8_t r, uint8_t g, uint8_t b, const SourceLoc& loc) {
+  add_clear({0, false, r, g, b, 0}, loc);
+}
+
+void Binner::add_clear_depth(uint32_t z, const SourceLoc& loc) { add_clear({0, true, 0, 0, 0, z}, loc); }
+
+void Binner::finish() { render_pass(true); }
+
+void Binner::render_pass(bool final_pass) {
+  for (int b = 0; b < nx_ * ny_; ++b) render_bin(b, final_pass);
+  tris_.clear();
+  tri_seq_.clear();
+  clears_.clear();
+  seq_ = 0;
+  for (auto& l : lists_) l.clear();
+  used_ = 0;
+}
+
+// One bin's render pass: skipped when its list is empty and the pass has no clear,
+// unless this is the last pass and the bin has never been stored (its colour, the
+// image, must reach DRAM once). Triangles and clears in record order.
+// Loads: what an earlier pass stored, or what bin.load_* asks for; stores: colour
+// always (resolved, 4 bytes a pixel, on the last pass), depth on an overflow pass or
+// with bin.store_depth.
+void Binner::render_bin(int b, bool final_pass) {
+  const auto& list = lists_[size_t(b)];
+  if (list.empty() && clears_.empty() && !(final_pass && !color_stored_[size_t(b)])) return;
+  const PixelRect r = bin_rect(b);
+  const uint64_t samples = uint64_t(r.area()) * uint64_t(st_.samples);
+  const uint64_t color = samples * 4, depth = samples * bin_depth_sample_bytes(st_.depth_bits);
+  if (color_stored_[size_t(b)] || st_.bin.load_color) stats_.framebuffer_bytes_read += color;
+  if (depth_stored_[size_t(b)] || st_.bin.load_depth) stats_.framebuffer_bytes_read += depth;
+  ++stats_.bins_rendered;
+  size_t c = 0;
+  const auto clears_before = [&](uint32_t seq) {
+    for (; c < clears_.size() && clears_[c].seq < seq; ++c) {
+      stats_.geometry_bytes_read += kBinClearRecordBytes;
+      apply_clear(clears_[c], r);
+    }
+  };
+  for (uint32_t e : list) {
+    clears_before(tri_seq_[e]);
+    stats_.geometry_bytes_read += kBinListEntryBytes + kBinPrimitiveRecordBytes;
+    const SetupTriangle& tri = tris_[e];
+    SetupTriangle walk = tri;
+    walk.bbox = tri.bbox.intersect(r);
+    if (!walk.bbox.empty()) draw_(tri, walk);
+  }
+  clears_before(seq_);
+  stats_.framebuffer_bytes_written += final_pass ? uint64_t(r.area()) * 4 : color;
+  color_stored_[size_t(b)] = 1;
+  if (!final_pass || st_.bin.store_depth) {
+    stats_.framebuffer_bytes_written += depth;
+    depth_stored_[size_t(b)] = 1;
+  }
+}
+
+void Binner::apply_clear(const ClearRecord& c, const PixelRect& r) {
+  for (int y = r.y0; y < r.y1; ++y)
+    for (int x = r.x0; x < r.x1; ++x)
+      for (int s = 0; s < st_.samples; ++s) {
+        if (c.depth) {
+          fb_.set_depth(x, y, s, c.z);
+          continue;
+        }
+        uint8_t* p = fb_.sample(x, y, s);
+        p[0] = c.r;
+        p[1] = c.g;
+        p[2] = c.b;
+        p[3] = 255;
+      }
+}
+
+void check_binned_command(const Command& cmd, const RasterState& st) {
+  const auto refuse = [&](const std::string& what) {
+    throw SceneError(cmd.loc.str() + ": " + what + " and pipeline.mode = binned: the binned pipeline does not draw "
+                     "it yet; use pipeline.mode = immediate (docs/binning.md)");
+  };
+  if (const auto* d2 = std::get_if<CmdDraw2d>(&cmd.body)) refuse(std::string("'") + d2->keyword + "' (2D drawing)");
+  if (const auto* p = std::get_if<CmdPrimitives>(&cmd.body)) {
+    if (p->texture.enabled()) refuse("drawn with texture '" + p->texture.image->name + "' bound");
+    if (draws_homogeneous(*p, st)) refuse("clip.method = homogeneous");
+  }
+}
+
+}  // namespace rastsim
