@@ -96,10 +96,34 @@ void add_hiz(nlohmann::json& j, const RenderStats& s) {
                                       {"bytes_written", h.bytes_written}};
   }
 }
-}  // namespace
 
-nlohmann::json to_json(const RenderStats& s) {
-  nlohmann::json j = {
+// The binned pipeline's keys (pipeline.mode = binned, docs/binning.md).
+void add_binned(nlohmann::json& j, const BinStats& b) {
+  j["bins"] = b.bins;
+  j["primitives_per_bin_mean"] = b.primitives_per_bin_mean();
+  j["bin_overflows"] = b.bin_overflows;
+  j["dram_bytes_geometry"] = b.dram_bytes_geometry();
+  j["dram_bytes_framebuffer"] = b.dram_bytes_framebuffer();
+  j["bin"] = {{"bins_rendered", b.bins_rendered},
+              {"geometry_bytes_written", b.geometry_bytes_written},
+              {"geometry_bytes_read", b.geometry_bytes_read},
+              {"framebuffer_bytes_written", b.framebuffer_bytes_written},
+              {"framebuffer_bytes_read", b.framebuffer_bytes_read}};
+}
+
+// The texture unit's keys (docs/texture.md).
+void add_texture(nlohmann::json& j, const TextureStats& t) {
+  j["texel_fetches"] = t.texel_fetches;
+  j["texture_cache_hits"] = t.cache_hits;
+  j["texture_cache_misses"] = t.cache_misses;
+  j["texture_dram_bytes"] = t.dram_bytes;
+  j["helper_pixels"] = t.helper_pixels;
+  for (int f = 0; f < kTexFilters; ++f) j["texture_samples"][to_string(TexFilter(f))] = t.samples[f];
+}
+
+// The keys every render has.
+nlohmann::json base_json(const RenderStats& s) {
+  return {
       {"triangles_in", s.triangles_in},
       {"triangles_culled", s.triangles_culled},
       {"triangles_zero_area", s.triangles_zero_area},
@@ -134,6 +158,11 @@ nlohmann::json to_json(const RenderStats& s) {
       {"framebuffer_crc32", crc32_hex(s.framebuffer_crc32)},
       {"wall_seconds", s.wall_seconds},
   };
+}
+}  // namespace
+
+nlohmann::json to_json(const RenderStats& s) {
+  nlohmann::json j = base_json(s);
   // Keys of the other traversal methods only where they apply, so that a tiled run's
   // stats are the same as before raster.traversal existed.
   if (s.traversal_method != Traversal::Tiled) j["traversal"] = to_string(s.traversal_method);
@@ -145,18 +174,7 @@ nlohmann::json to_json(const RenderStats& s) {
     j["texture_samples_saved"] = s.texture_samples_saved;
   }
   // The binned pipeline's keys only with pipeline.mode = binned (docs/binning.md).
-  if (s.bin.enabled) {
-    j["bins"] = s.bin.bins;
-    j["primitives_per_bin_mean"] = s.bin.primitives_per_bin_mean();
-    j["bin_overflows"] = s.bin.bin_overflows;
-    j["dram_bytes_geometry"] = s.bin.dram_bytes_geometry();
-    j["dram_bytes_framebuffer"] = s.bin.dram_bytes_framebuffer();
-    j["bin"] = {{"bins_rendered", s.bin.bins_rendered},
-                {"geometry_bytes_written", s.bin.geometry_bytes_written},
-                {"geometry_bytes_read", s.bin.geometry_bytes_read},
-                {"framebuffer_bytes_written", s.bin.framebuffer_bytes_written},
-                {"framebuffer_bytes_read", s.bin.framebuffer_bytes_read}};
-  }
+  if (s.bin.enabled) add_binned(j, s.bin);
   if (s.samples > 1) j["aa_mode"] = s.aa_mode == AaMode::Ssaa ? "ssaa" : "msaa";
   // The geometry front end's keys only where a clip-space primitive was drawn, so that a
   // screen-space scene's stats are the same as before clip space existed.
@@ -170,14 +188,7 @@ nlohmann::json to_json(const RenderStats& s) {
   if (s.hiz_mode != HizMode::Off || s.depth_early) j["hiz_oracle_fraction"] = hiz_oracle_fraction(s);
   // The texture unit's keys only where a texture was sampled (docs/texture.md), so that an
   // untextured scene's stats are the same as before textures existed.
-  if (const TextureStats& t = s.texture; t.total_samples() > 0 || t.helper_pixels > 0) {
-    j["texel_fetches"] = t.texel_fetches;
-    j["texture_cache_hits"] = t.cache_hits;
-    j["texture_cache_misses"] = t.cache_misses;
-    j["texture_dram_bytes"] = t.dram_bytes;
-    j["helper_pixels"] = t.helper_pixels;
-    for (int f = 0; f < kTexFilters; ++f) j["texture_samples"][to_string(TexFilter(f))] = t.samples[f];
-  }
+  if (const TextureStats& t = s.texture; t.total_samples() > 0 || t.helper_pixels > 0) add_texture(j, t);
   if (s.coverage.measured) {
     j["pixels_wrong"] = s.coverage.pixels_wrong;
     j["cracks"] = s.coverage.cracks;
