@@ -8,6 +8,7 @@
 #include <functional>
 #include <string>
 
+#include "common/screen_vertex.h"
 #include "ref/pipeline.h"
 #include "ref/scene.h"
 
@@ -33,15 +34,7 @@ inline constexpr const char* kOcta =
     "f 1 3 5\n"
     "f 2 6 4\n";
 
-// A screen-space vertex at pixel-edge coordinates (x, y), depth z in [0, 1], colour
-// (r, 0, 0): the depth tests' hand-built triangles.
-inline SceneVertex screen_vertex(double x, double y, double z, uint8_t r) {
-  SceneVertex v;
-  v.x = Q64::from_double(x);
-  v.y = Q64::from_double(y);
-  v.z = z;
-  v.r = r;
-  return v;
-}
+// The depth tests' hand-built triangles' vertices (common/screen_vertex.h).
+using ::rastsim::screen_vertex;
 
 }  // namespace rastsim::scene_test

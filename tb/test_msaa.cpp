@@ -24,6 +24,7 @@
 #include <random>
 #include <utility>
 
+#include "common/screen_vertex.h"
 #include "config/config.h"
 #include "config/raster_state_config.h"
 #include "ref/fine_raster.h"
@@ -280,15 +281,7 @@ TEST(MsaaResolve, BoxFilterRoundsHalfUp) {
 // drawing order (depth per sample). One sample: the centre (0.5, 0.5) lies on B's right
 // edge, excluded by the top-left rule: red.
 TEST(MsaaDepth, PerSampleDepthAndResolveOnAHandWorkedPixel) {
-  auto vtx = [](double x, double y, double z, uint8_t r, uint8_t b) {
-    SceneVertex v;
-    v.x = Q64::from_double(x);
-    v.y = Q64::from_double(y);
-    v.z = z;
-    v.r = r;
-    v.b = b;
-    return v;
-  };
+  auto vtx = [](double x, double y, double z, uint8_t r, uint8_t b) { return screen_vertex(x, y, z, r, 0, b); };
   CmdPrimitives a, bb;
   a.vertices = {vtx(-1, -1, 0.8, 255, 0), vtx(9, -1, 0.8, 255, 0), vtx(-1, 9, 0.8, 255, 0)};
   bb.vertices = {vtx(-4, -4, 0.2, 0, 255), vtx(0.5, -4, 0.2, 0, 255), vtx(0.5, 8, 0.2, 0, 255)};
