@@ -61,6 +61,14 @@ void apply_viewport(const CmdViewport& c, const SourceLoc& loc, RasterState& st)
   st.viewport_width = c.width;
   st.viewport_height = c.height;
 }
+
+// A depth clear's value in the depth buffer's raster.depth_bits unsigned normalised code
+// (the immediate ROP's and the binned pipeline's).
+uint32_t clear_depth_value(const CmdClearDepth& c, const SourceLoc& loc, const RasterState& st) {
+  const auto z = quantize_unorm(c.z, st.depth_bits);
+  if (!z) throw SceneError(loc.str() + ": clear depth must be in [0, 1]");
+  return *z;
+}
 }  // namespace
 
 bool apply_state_command(const Command& cmd, RasterState& st, Framebuffer& fb, RopMemory* mem) {
@@ -75,9 +83,7 @@ bool apply_state_command(const Command& cmd, RasterState& st, Framebuffer& fb, R
         return true;
       },
       [&](const CmdClearDepth& c) {
-        const auto z = quantize_unorm(c.z, st.depth_bits);
-        if (!z) throw SceneError(cmd.loc.str() + ": clear depth must be in [0, 1]");
-        fb.clear_depth(*z);
+        fb.clear_depth(clear_depth_value(c, cmd.loc, st));
         if (mem) mem->clear_depth();
         return true;
       },
@@ -371,11 +377,8 @@ void SceneRenderer::Impl::run(const Command& cmd) {
 void SceneRenderer::Impl::run_binned(const Command& cmd) {
   check_binned_command(cmd, st);
   if (const auto* c = std::get_if<CmdClear>(&cmd.body)) return binner->add_clear_color(c->r, c->g, c->b, cmd.loc);
-  if (const auto* c = std::get_if<CmdClearDepth>(&cmd.body)) {
-    const auto z = quantize_unorm(c->z, st.depth_bits);
-    if (!z) throw SceneError(cmd.loc.str() + ": clear depth must be in [0, 1]");
-    return binner->add_clear_depth(*z, cmd.loc);
-  }
+  if (const auto* c = std::get_if<CmdClearDepth>(&cmd.body))
+    return binner->add_clear_depth(clear_depth_value(*c, cmd.loc, st), cmd.loc);
   if (const auto* p = std::get_if<CmdPrimitives>(&cmd.body)) return draw_triangles(cmd, *p);
   apply_state_command(cmd, st, fb, nullptr);
 }
