@@ -17,6 +17,7 @@
 #include "config/config.h"
 #include "config/obj_placement.h"
 #include "common/screen_vertex.h"
+#include "config/memory_config.h"
 #include "config/raster_state_config.h"
 #include "ref/fine_raster.h"
 #include "ref/pipeline.h"
@@ -321,6 +322,169 @@ TEST(Binning, ConfigKeys) {
   Config scan = cfg;
   scan.apply_override("raster.traversal=scanline");
   EXPECT_THROW(raster_state_from_config(scan), ConfigError);
+}
+
+// Memory clients (ref/memory/bin_memory.h, docs/binning.md "Memory clients"): the
+// hand-worked scene's triangles through a Binner with a BinMemory, every transfer seen.
+struct Transfers {
+  std::vector<MemoryTransfer> binning, tile_store;
+  void attach(BinMemory& m) {
+    m.on_transfer = [this](BinMemory::Client c, const MemoryTransfer& t) {
+      (c == BinMemory::Client::Binning ? binning : tile_store).push_back(t);
+    };
+  }
+};
+
+MemoryParams linear_memory() {
+  Config cfg;
+  cfg.apply_override("memory.model=dram");
+  cfg.apply_override("memory.fb_layout=linear");
+  return memory_params_from_config(cfg);
+}
+
+// The hand scene's clear, D and A binned (32 x 32 bins, bbox) into a `pb`-byte buffer;
+// nothing drawn (the addresses do not depend on it).
+void bin_hand_scene(const RasterState& st, BinMemory& mem, uint64_t pb) {
+  const RasterState b = binned(st, 32, 32, BinningRule::Bbox, pb);
+  Framebuffer fb(64, 64, 1);
+  BinStats stats;
+  Binner binner(b, traversal_params(b), fb, [](const SetupTriangle&, const SetupTriangle&) {}, stats, &mem);
+  binner.add_clear_color(10, 20, 30, {"hand", 2});
+  for (double side : {62.0, 20.0}) {
+    const ScreenTriangle v{screen_vertex(2, 2, 0.5, 1), screen_vertex(side, 2, 0.5, 1), screen_vertex(2, side, 0.5, 1)};
+    SetupTriangle tri;
+    ASSERT_EQ(setup_triangle(v, b, {"hand", 3}, tri), SetupOutcome::Accepted);
+    binner.add_triangle(tri, {"hand", 3});
+  }
+  binner.finish();
+}
+
+std::vector<std::pair<uint64_t, uint64_t>> spans(const std::vector<MemoryTransfer>& ts, bool write) {
+  std::vector<std::pair<uint64_t, uint64_t>> out;
+  for (const MemoryTransfer& t : ts)
+    if (t.write == write) out.emplace_back(t.address, t.bytes);
+  return out;
+}
+
+// By hand, base B = 2^31, top T = B + 2^20: records upwards (clear 16 at B, D 64 at B + 16,
+// A 64 at B + 80), entries downwards (D's bins 0..3 at T - 4 .. T - 16, A's bin 0 at T - 20).
+// Reads bin by bin: the clear, then each entry and the record it names. Colour stores on
+// a linear 64-px-wide surface at 0: a bin row is 32 px = 128 bytes, rows 256 bytes apart,
+// so 32 transfers a bin and every byte of the 16384 written once.
+TEST(Binning, MemoryClientsHandWorked) {
+  const uint64_t B = uint64_t{1} << 31, T = B + (1 << 20);
+  BinMemory mem(linear_memory(), 64, 64, 1, 24, B, 1 << 20);
+  Transfers seen;
+  seen.attach(mem);
+  bin_hand_scene(hand_state(), mem, 1 << 20);
+  using S = std::vector<std::pair<uint64_t, uint64_t>>;
+  EXPECT_EQ(spans(seen.binning, true),
+            (S{{B, 16}, {B + 16, 64}, {T - 4, 4}, {T - 8, 4}, {T - 12, 4}, {T - 16, 4}, {B + 80, 64}, {T - 20, 4}}));
+  EXPECT_EQ(spans(seen.binning, false), (S{{B, 16}, {T - 4, 4}, {B + 16, 64}, {T - 20, 4}, {B + 80, 64},  // bin 0
+                                           {B, 16}, {T - 8, 4}, {B + 16, 64},                             // bin 1
+                                           {B, 16}, {T - 12, 4}, {B + 16, 64},                            // bin 2
+                                           {B, 16}, {T - 16, 4}, {B + 16, 64}}));                         // bin 3
+  EXPECT_EQ(mem.binning_stats().bytes_written, 164u);
+  EXPECT_EQ(mem.binning_stats().bytes_read, 404u);
+  EXPECT_EQ(seen.tile_store.size(), 128u);
+  std::vector<int> written(64 * 64 * 4, 0);
+  for (const MemoryTransfer& t : seen.tile_store) {
+    ASSERT_TRUE(t.write);
+    ASSERT_LE(t.address + t.bytes, written.size());
+    for (uint64_t a = t.address; a < t.address + t.bytes; ++a) ++written[a];
+  }
+  EXPECT_TRUE(std::all_of(written.begin(), written.end(), [](int n) { return n == 1; }));
+  EXPECT_EQ(mem.tile_store_stats().bytes_written, 16384u);
+}
+
+// A tiled colour surface (8 x 8 tiles, 4 bytes a sample, 640 px wide: 80 tiles a row,
+// tile (tx, ty) at (80 ty + tx) x 256): the 32 x 32 bin at (32, 32) covers tiles 4..7 of
+// rows 4..7, each row of 4 tiles one run of 1024 bytes at (80 ty + 4) x 256.
+TEST(Binning, MemoryClientsTiledRuns) {
+  Config cfg;
+  cfg.apply_override("memory.model=dram");
+  cfg.apply_override("memory.fb_layout=tiled");
+  cfg.apply_override("memory.fb_tile_width=8");
+  cfg.apply_override("memory.fb_tile_height=8");
+  BinMemory mem(memory_params_from_config(cfg), 640, 480, 1, 24, uint64_t{1} << 31, 4096);
+  Transfers seen;
+  seen.attach(mem);
+  mem.color({32, 32, 64, 64}, true);
+  using S = std::vector<std::pair<uint64_t, uint64_t>>;
+  S want;
+  for (uint64_t ty = 4; ty < 8; ++ty) want.emplace_back((80 * ty + 4) * 256, 1024);
+  EXPECT_EQ(spans(seen.tile_store, true), want);
+}
+
+// The 120-byte buffer: A does not fit, the overflow pass renders, and A's record and
+// entry start the buffer afresh at B and T - 4 (T = B + 120). Each bin's colour and depth
+// are stored (depth surface at memory.depth_base = 2^30, 4 bytes a sample), bin 0
+// reloads both.
+TEST(Binning, MemoryClientsOverflowAddresses) {
+  const uint64_t B = uint64_t{1} << 31, T = B + 120;
+  const MemoryParams p = linear_memory();
+  BinMemory mem(p, 64, 64, 1, 24, B, 120);
+  Transfers seen;
+  seen.attach(mem);
+  bin_hand_scene(hand_state(), mem, 120);
+  using S = std::vector<std::pair<uint64_t, uint64_t>>;
+  EXPECT_EQ(spans(seen.binning, true),
+            (S{{B, 16}, {B + 16, 64}, {T - 4, 4}, {T - 8, 4}, {T - 12, 4}, {T - 16, 4}, {B, 64}, {T - 4, 4}}));
+  uint64_t depth_written = 0, depth_read = 0, color_read = 0;
+  for (const MemoryTransfer& t : seen.tile_store) {
+    const bool depth = t.address >= p.depth_base;
+    EXPECT_LE(t.address + t.bytes, (depth ? p.depth_base : p.color_base) + 64 * 64 * 4);
+    if (depth) (t.write ? depth_written : depth_read) += t.bytes;
+    else if (!t.write) color_read += t.bytes;
+  }
+  EXPECT_EQ(depth_written, 16384u);  // 4 bins at the overflow
+  EXPECT_EQ(depth_read, 4096u);      // bin 0 reloads
+  EXPECT_EQ(color_read, 4096u);
+  EXPECT_EQ(mem.tile_store_stats().bytes_written + mem.tile_store_stats().bytes_read, 45056u);
+}
+
+// With memory.model = dram the image is the same and the clients' bytes are the binner's
+// (the ROP's clients move nothing: it writes the tile buffer), 1 and 4 samples, tiled
+// surfaces, overflow or not.
+TEST(Binning, MemoryClientsRandomScenes) {
+  std::mt19937 rng(2929);
+  const Scene scene = random_scene(rng, 200, 150, 300);
+  for (int samples : {1, 4}) {
+    Config cfg;
+    cfg.apply_override("memory.model=dram");
+    cfg.apply_override("memory.fb_layout=tiled");
+    cfg.apply_override("display.width=200");
+    cfg.apply_override("display.height=150");
+    cfg.apply_override("raster.samples=" + std::to_string(samples));
+    const MemoryParams mp = memory_params_from_config(cfg);
+    const RasterState st = raster_state_from_config(cfg);
+    RenderStats imm;
+    render_scene(scene, st, imm);
+    for (int size : {8, 32, 128})
+      for (uint64_t pb : {uint64_t{1} << 24, uint64_t{4096}}) {
+        SCOPED_TRACE("samples " + std::to_string(samples) + " bin " + std::to_string(size) + " pb " + std::to_string(pb));
+        RenderStats b;
+        render_scene(scene, binned(st, size, size, BinningRule::Bbox, pb), b, {}, Framebuffer::kDefaultTileLog2, 1, mp);
+        EXPECT_EQ(b.framebuffer_crc32, imm.framebuffer_crc32);
+        ASSERT_TRUE(b.memory.binned);
+        EXPECT_EQ(b.memory.binning.bytes_written, b.bin.geometry_bytes_written);
+        EXPECT_EQ(b.memory.binning.bytes_read, b.bin.geometry_bytes_read);
+        EXPECT_EQ(b.memory.tile_store.bytes_written, b.bin.framebuffer_bytes_written);
+        EXPECT_EQ(b.memory.tile_store.bytes_read, b.bin.framebuffer_bytes_read);
+        EXPECT_EQ(b.memory.rop_color.accesses + b.memory.rop_depth.accesses, 0u);
+      }
+  }
+}
+
+// memory.model = dram is taken in binned mode; a parameter buffer over a surface is not.
+TEST(Binning, MemoryConfig) {
+  Config cfg;
+  cfg.apply_override("pipeline.mode=binned");
+  cfg.apply_override("memory.model=dram");
+  EXPECT_EQ(raster_state_from_config(cfg).bin.mode, PipelineMode::Binned);
+  EXPECT_NO_THROW(memory_params_from_config(cfg));
+  cfg.apply_override("bin.parameter_buffer_base=4096");  // inside the colour surface at 0
+  EXPECT_THROW(memory_params_from_config(cfg), ConfigError);
 }
 
 }  // namespace

@@ -39,6 +39,23 @@ void check_overlap(const Config& cfg, const MemoryParams& p) {
                     std::to_string(d.footprint_bytes()) + " bytes) overlap: move one of them");
 }
 
+// pipeline.mode = binned: the parameter buffer (ref/memory/bin_memory.h) must not share a
+// byte with either surface.
+void check_parameter_buffer(const Config& cfg, const MemoryParams& p) {
+  if (cfg.get_string("pipeline.mode") != "binned") return;
+  const int w = int(cfg.get_int("display.width")), h = int(cfg.get_int("display.height"));
+  const int samples = int(cfg.get_int("raster.samples")), depth_bits = int(cfg.get_int("raster.depth_bits"));
+  const uint64_t base = uint64_t(cfg.get_int("bin.parameter_buffer_base"));
+  const uint64_t end = base + uint64_t(cfg.get_int("bin.parameter_buffer_bytes"));
+  for (const SurfaceLayout& s : {color_surface_layout(p, w, h, samples), depth_surface_layout(p, w, h, samples, depth_bits)}) {
+    if (end <= s.base() || s.base() + s.footprint_bytes() <= base) continue;
+    throw ConfigError(cfg.origin("bin.parameter_buffer_base") + ": the parameter buffer (bin.parameter_buffer_base = " +
+                      std::to_string(base) + ", " + std::to_string(end - base) + " bytes) overlaps the " +
+                      (s.base() == p.color_base ? "colour" : "depth") + " surface at " + std::to_string(s.base()) +
+                      " (" + std::to_string(s.footprint_bytes()) + " bytes): move it (docs/binning.md)");
+  }
+}
+
 }  // namespace
 
 MemoryParams memory_params_from_config(const Config& cfg) {
@@ -70,7 +87,10 @@ MemoryParams memory_params_from_config(const Config& cfg) {
   }
   // Only a modelled memory has addresses: a huge display with memory.model = fixed need
   // not move the surfaces apart.
-  if (p.enabled) check_overlap(cfg, p);
+  if (p.enabled) {
+    check_overlap(cfg, p);
+    check_parameter_buffer(cfg, p);
+  }
   return p;
 }
 

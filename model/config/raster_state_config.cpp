@@ -48,11 +48,6 @@ BinParams bin_params_from_config(const Config& cfg, const RasterState& s) {
   if (b.mode == PipelineMode::Binned && s.traversal == Traversal::Scanline)
     throw ConfigError("pipeline.mode = binned needs an exact raster.traversal (tiled, bbox, hierarchical): "
                       "scanline's coverage is measured a whole triangle at a time (docs/binning.md)");
-  if (b.mode == PipelineMode::Binned && cfg.get_string("memory.model") != "fixed")
-    throw ConfigError("pipeline.mode = binned with memory.model = " + cfg.get_string("memory.model") +
-                      ": the binned ROP writes its tile buffer, not the ROP caches; binned counts its own "
-                      "DRAM bytes (dram_bytes_geometry, dram_bytes_framebuffer) with memory.model = fixed "
-                      "(docs/binning.md)");
   return b;
 }
 }  // namespace

@@ -7,8 +7,9 @@
 
 namespace rastsim {
 
-Binner::Binner(const RasterState& st, const TraversalParams& tp, Framebuffer& fb, DrawFn draw, BinStats& stats)
-    : st_(st), tp_(tp), fb_(fb), draw_(std::move(draw)), stats_(stats) {
+Binner::Binner(const RasterState& st, const TraversalParams& tp, Framebuffer& fb, DrawFn draw, BinStats& stats,
+               BinMemory* mem)
+    : st_(st), tp_(tp), fb_(fb), draw_(std::move(draw)), stats_(stats), mem_(mem) {
   nx_ = (st.fb_width + st.bin.width - 1) / st.bin.width;
   ny_ = (st.fb_height + st.bin.height - 1) / st.bin.height;
   const size_t n = size_t(nx_) * size_t(ny_);
@@ -69,13 +70,22 @@ void Binner::add_triangle(const SetupTriangle& tri, const SourceLoc& loc) {
   const auto index = uint32_t(tris_.size());
   tris_.push_back(tri);
   tri_seq_.push_back(seq_++);
-  for (int b : bins) lists_[size_t(b)].push_back(index);
+  tri_offset_.push_back(record_bytes_);
+  if (mem_) mem_->record(record_bytes_, kBinPrimitiveRecordBytes, true);
+  record_bytes_ += kBinPrimitiveRecordBytes;
+  for (int b : bins) {
+    if (mem_) mem_->entry(entries_, true);
+    lists_[size_t(b)].push_back({index, uint32_t(entries_++)});
+  }
   stats_.triangle_entries += bins.size();
 }
 
 void Binner::add_clear(ClearRecord c, const SourceLoc& loc) {
   reserve(kBinClearRecordBytes, loc);
   c.seq = seq_++;
+  c.offset = record_bytes_;
+  if (mem_) mem_->record(record_bytes_, kBinClearRecordBytes, true);
+  record_bytes_ += kBinClearRecordBytes;
   clears_.push_back(c);
 }
 
@@ -91,8 +101,11 @@ void Binner::render_pass(bool final_pass) {
   for (int b = 0; b < nx_ * ny_; ++b) render_bin(b, final_pass);
   tris_.clear();
   tri_seq_.clear();
+  tri_offset_.clear();
   clears_.clear();
   seq_ = 0;
+  record_bytes_ = 0;
+  entries_ = 0;
   for (auto& l : lists_) l.clear();
   used_ = 0;
 }
@@ -107,33 +120,55 @@ void Binner::render_bin(int b, bool final_pass) {
   const auto& list = lists_[size_t(b)];
   if (list.empty() && clears_.empty() && !(final_pass && !color_stored_[size_t(b)])) return;
   const PixelRect r = bin_rect(b);
-  const uint64_t samples = uint64_t(r.area()) * uint64_t(st_.samples);
-  const uint64_t color = samples * 4, depth = samples * bin_depth_sample_bytes(st_.depth_bits);
-  if (color_stored_[size_t(b)] || st_.bin.load_color) stats_.framebuffer_bytes_read += color;
-  if (depth_stored_[size_t(b)] || st_.bin.load_depth) stats_.framebuffer_bytes_read += depth;
+  load_bin(r, color_stored_[size_t(b)] || st_.bin.load_color, depth_stored_[size_t(b)] || st_.bin.load_depth);
   ++stats_.bins_rendered;
   size_t c = 0;
   const auto clears_before = [&](uint32_t seq) {
     for (; c < clears_.size() && clears_[c].seq < seq; ++c) {
       stats_.geometry_bytes_read += kBinClearRecordBytes;
+      if (mem_) mem_->record(clears_[c].offset, kBinClearRecordBytes, false);
       apply_clear(clears_[c], r);
     }
   };
-  for (uint32_t e : list) {
-    clears_before(tri_seq_[e]);
+  for (const Entry& e : list) {
+    clears_before(tri_seq_[e.tri]);
     stats_.geometry_bytes_read += kBinListEntryBytes + kBinPrimitiveRecordBytes;
-    const SetupTriangle& tri = tris_[e];
+    if (mem_) {  // the entry, then the record it names
+      mem_->entry(e.number, false);
+      mem_->record(tri_offset_[e.tri], kBinPrimitiveRecordBytes, false);
+    }
+    const SetupTriangle& tri = tris_[e.tri];
     SetupTriangle walk = tri;
     walk.bbox = tri.bbox.intersect(r);
     if (!walk.bbox.empty()) draw_(tri, walk);
   }
   clears_before(seq_);
-  stats_.framebuffer_bytes_written += final_pass ? uint64_t(r.area()) * 4 : color;
+  const bool depth = !final_pass || st_.bin.store_depth;
+  store_bin(r, final_pass, depth);
   color_stored_[size_t(b)] = 1;
-  if (!final_pass || st_.bin.store_depth) {
-    stats_.framebuffer_bytes_written += depth;
-    depth_stored_[size_t(b)] = 1;
-  }
+  if (depth) depth_stored_[size_t(b)] = 1;
+}
+
+// A bin's loads before its pass: colour and depth, every sample (4 and 2-or-4 bytes).
+void Binner::load_bin(const PixelRect& r, bool color, bool depth) {
+  const uint64_t samples = uint64_t(r.area()) * uint64_t(st_.samples);
+  if (color) stats_.framebuffer_bytes_read += samples * 4;
+  if (depth) stats_.framebuffer_bytes_read += samples * bin_depth_sample_bytes(st_.depth_bits);
+  if (!mem_) return;
+  if (color) mem_->color(r, false);
+  if (depth) mem_->depth(r, false);
+}
+
+// A bin's stores after its pass: colour always, resolved (4 bytes a pixel) on the last
+// pass, every sample on an overflow pass; depth when `depth`.
+void Binner::store_bin(const PixelRect& r, bool final_pass, bool depth) {
+  const uint64_t samples = uint64_t(r.area()) * uint64_t(st_.samples);
+  stats_.framebuffer_bytes_written += final_pass ? uint64_t(r.area()) * 4 : samples * 4;
+  if (depth) stats_.framebuffer_bytes_written += samples * bin_depth_sample_bytes(st_.depth_bits);
+  if (!mem_) return;
+  if (final_pass && st_.samples > 1) mem_->resolved_color(r);
+  else mem_->color(r, true);
+  if (depth) mem_->depth(r, true);
 }
 
 void Binner::apply_clear(const ClearRecord& c, const PixelRect& r) {

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "ref/framebuffer.h"
+#include "ref/memory/bin_memory.h"
 #include "ref/raster_state.h"
 #include "ref/scene.h"
 #include "ref/tri_setup.h"
@@ -51,13 +52,16 @@ struct BinStats {
 
 // The bytes of one bin's pixels of a surface: colour 4 a sample, depth 2 (raster.
 // depth_bits <= 16) or 4 a sample, as the memory system's surfaces (docs/memory.md).
-inline uint64_t bin_depth_sample_bytes(int depth_bits) { return depth_bits <= 16 ? 2 : 4; }
+inline uint64_t bin_depth_sample_bytes(int depth_bits) { return uint64_t(depth_bytes_per_sample(depth_bits)); }
 
 class Binner {
  public:
   // draw(tri, walk): the renderer draws tri with walk's box (tri's, clipped to a bin).
   using DrawFn = std::function<void(const SetupTriangle& tri, const SetupTriangle& walk)>;
-  Binner(const RasterState& st, const TraversalParams& tp, Framebuffer& fb, DrawFn draw, BinStats& stats);
+  // `mem` (memory.model != fixed): the parameter buffer's and the bins' transfers at
+  // their addresses (ref/memory/bin_memory.h); null: bytes counted only.
+  Binner(const RasterState& st, const TraversalParams& tp, Framebuffer& fb, DrawFn draw, BinStats& stats,
+         BinMemory* mem = nullptr);
 
   // A set-up triangle (accepted by setup) of command `loc`, in submission order.
   void add_triangle(const SetupTriangle& tri, const SourceLoc& loc);
@@ -80,6 +84,7 @@ class Binner {
     bool depth = false;
     uint8_t r = 0, g = 0, b = 0;
     uint32_t z = 0;
+    uint64_t offset = 0;  // its byte offset in the parameter buffer
   };
 
   void reserve(uint64_t bytes, const SourceLoc& loc);
@@ -87,6 +92,8 @@ class Binner {
   void render_pass(bool final_pass);
   void render_bin(int b, bool final_pass);
   void apply_clear(const ClearRecord& c, const PixelRect& r);
+  void load_bin(const PixelRect& r, bool color, bool depth);
+  void store_bin(const PixelRect& r, bool final_pass, bool depth);
 
   RasterState st_;
   TraversalParams tp_;
@@ -95,11 +102,19 @@ class Binner {
   BinStats& stats_;
   int nx_ = 1, ny_ = 1;
   uint64_t used_ = 0;  // parameter buffer bytes holding records and entries
+  BinMemory* mem_;
   uint32_t seq_ = 0;  // records (triangles and clears) in the buffer, in submission order
+  uint64_t record_bytes_ = 0;  // bytes of records in the buffer (the next record's offset)
+  uint64_t entries_ = 0;       // list entries in the buffer (the next entry's number)
+  struct Entry {
+    uint32_t tri;    // index into tris_
+    uint32_t number; // entry number of the pass (its address: BinMemory::entry_address)
+  };
   std::vector<SetupTriangle> tris_;
   std::vector<uint32_t> tri_seq_;                           // each triangle's record number
+  std::vector<uint64_t> tri_offset_;                        // each triangle's record's byte offset
   std::vector<ClearRecord> clears_;                         // every bin reads them all
-  std::vector<std::vector<uint32_t>> lists_;                // per bin: tris_ indices, in order
+  std::vector<std::vector<Entry>> lists_;                   // per bin: its entries, in order
   std::vector<uint8_t> color_stored_, depth_stored_;        // per bin: in DRAM from an earlier pass this frame
 };
 

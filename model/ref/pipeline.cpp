@@ -199,8 +199,18 @@ struct SceneRenderer::Impl {
   // `always` in a tile Hi-Z accepted (every fragment passes: no depth read).
   DepthFunc tile_func = DepthFunc::Always;
   std::optional<Binner> binner;  // pipeline.mode = binned
+  // pipeline.mode = binned with memory.model != fixed: the binning and tile_store clients
+  // (the ROP writes the tile buffer, so `mem` stays off).
+  std::optional<BinMemory> bin_mem;
 
   RopMemory* mem_ptr() { return mem ? &*mem : nullptr; }
+  // The binned clients' counts into stats.memory (with bin_mem).
+  void bin_memory_stats() {
+    if (!bin_mem) return;
+    stats.memory.enabled = stats.memory.binned = true;
+    stats.memory.binning = bin_mem->binning_stats();
+    stats.memory.tile_store = bin_mem->tile_store_stats();
+  }
 
   Impl(const RasterState& arch, RenderStats& s, const FragmentSink& sink, int fb_tile_log2, int n_threads,
        const MemoryParams& memory)
@@ -214,7 +224,11 @@ struct SceneRenderer::Impl {
     stats.depth_early = st.depth_early;
     stats.hiz_mode = st.hiz_mode;
     tile_func = st.depth_func;
-    if (memory.enabled) mem.emplace(memory, fb, st.depth_bits);
+    const bool binned = st.bin.mode == PipelineMode::Binned;
+    if (memory.enabled && !binned) mem.emplace(memory, fb, st.depth_bits);
+    if (memory.enabled && binned)
+      bin_mem.emplace(memory, st.fb_width, st.fb_height, st.samples, st.depth_bits, st.bin.parameter_buffer_base,
+                      st.bin.parameter_buffer_bytes);
     if (hiz_applies(st)) hiz.emplace(st.hiz_mode, st.hiz_block, st.hiz_bytes, st.fb_width, st.fb_height, st.depth_bits);
     // The frame starts with depth cleared to 1.0 (a clear the memory system sees); the
     // colour buffer's initial black is taken to be in memory already.
@@ -225,10 +239,10 @@ struct SceneRenderer::Impl {
     // One thread where the result depends on the order of the whole walk: the fragment
     // stream (pipeline order), the coverage check of an inexact method (per triangle) and
     // the memory system's access stream.
-    if (st.bin.mode == PipelineMode::Binned)
+    if (binned)
       binner.emplace(
           st, tp, fb, [this](const SetupTriangle& tri, const SetupTriangle& walk) { draw(tri, walk, stats); },
-          stats.bin);
+          stats.bin, bin_mem ? &*bin_mem : nullptr);
     threads = (on_fragment || check || mem || hiz || binner) ? 1 : std::max(1, n_threads);
     if (threads > 1) bins.resize(size_t(grid.count()));
   }
@@ -529,6 +543,7 @@ void SceneRenderer::Impl::draw_chunk() {
 const Framebuffer& SceneRenderer::frame_so_far() {
   Impl& m = *impl_;
   if (m.mem) m.stats.memory = m.mem->stats();
+  m.bin_memory_stats();
   if (m.tex) m.stats.texture = m.tex->stats();
   return m.fb;
 }
@@ -542,6 +557,7 @@ Framebuffer SceneRenderer::finish() {
     m.mem->finish();
     m.stats.memory = m.mem->stats();
   }
+  m.bin_memory_stats();
   if (m.tex) m.stats.texture = m.tex->stats();
   if (m.hiz) m.stats.hiz = m.hiz->stats;
   if (m.fb.samples > 1) m.fb = m.fb.resolve();  // the frame-end resolve pass

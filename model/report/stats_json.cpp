@@ -75,6 +75,11 @@ void add_memory(nlohmann::json& j, const MemoryStats& m) {
   j["depth_compressed_bytes"] = d.compressed_bytes;
   j["memory"]["clients"][kRopColorClient] = client_json(c);
   j["memory"]["clients"][kRopDepthClient] = client_json(d);
+  if (!m.binned) return;  // pipeline.mode = binned: its clients (docs/binning.md)
+  j["dram_bytes_read"] = c.bytes_read + d.bytes_read + m.binning.bytes_read + m.tile_store.bytes_read;
+  j["dram_bytes_written"] = c.bytes_written + d.bytes_written + m.binning.bytes_written + m.tile_store.bytes_written;
+  j["memory"]["clients"][kBinningClient] = client_json(m.binning);
+  j["memory"]["clients"][kTileStoreClient] = client_json(m.tile_store);
 }
 
 namespace {

@@ -270,6 +270,9 @@ SimResult simulate_commands(CommandSource source, const ArchParams& params, cons
   setenv("SC_COPYRIGHT_MESSAGE", "DISABLE", 1);  // before the simulation context exists
   sc_core::sc_report_handler::set_actions(sc_core::SC_INFO, sc_core::SC_DO_NOTHING);
 
+  if (arch.bin.mode == PipelineMode::Binned)
+    throw std::invalid_argument("pipeline.mode = binned: the SystemC level has no binned pipeline yet; `rastsim "
+                                "render` draws it (docs/binning.md, \"Not yet\")");
   SimContext ctx;
   configure(ctx, opts, arch);
   // Built once and kept: SystemC does not support tearing a design down.

@@ -19,6 +19,10 @@ class Framebuffer;
 struct MemoryStats {
   bool enabled = false;  // memory.model != fixed: the counts below were made
   MemoryClientStats rop_color, rop_depth;
+  // pipeline.mode = binned: the ROP writes the tile buffer (rop_color, rop_depth stay 0);
+  // the parameter buffer and the bins' loads and stores (ref/memory/bin_memory.h).
+  bool binned = false;
+  MemoryClientStats binning, tile_store;
 };
 
 // The clients' public names (stats keys memory.clients.<name>), in MemoryStats' order.
