@@ -86,7 +86,8 @@ void run_import(const ImportOptions& o) {
     if (name.find('/') != std::string::npos) throw std::runtime_error("not a plain file name");
     return slurp(blobs / name);
   };
-  const std::string name = o.dump_path.empty() ? o.trace_path : o.dump_path;
+  // Errors name the line of the dump text (the capture itself is binary): "a.trace dump:58: call 2485 ...".
+  const std::string name = o.dump_path.empty() ? o.trace_path + " dump" : o.dump_path;
   const apitrace::ImportResult r = apitrace::import_apitrace_dump(slurp(dump), name, opt);
   int shown = 0;
   for (const std::string& m : r.refusals)
