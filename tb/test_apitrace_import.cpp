@@ -30,7 +30,7 @@ std::string floats(std::initializer_list<float> v) {
 }
 
 // A program (vertex shader kVs unless given), buffer 1 holding `verts`, A and B set.
-std::string preamble(const std::string& vs = kVs, const std::string& b = "{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}") {
+std::string preamble(const std::string& vs = kVs, const std::string& b = "{2, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}") {
   return "// process.name = \"/usr/bin/test\"\n"
          "1 glViewport(x = 0, y = 0, width = 200, height = 100) // fake\n"
          "2 glCreateProgram() = 1\n"
@@ -99,18 +99,22 @@ TEST(ApitraceImport, TransposedMatrixAndStripFromIndices) {
   // B transposed: row-major {1 0 0 0.5 ...}: x += 0.5 (column 3 = 0.5 0 0 1 after transpose).
   const std::string b_t = "{1, 0, 0, 0.5, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}";
   std::string d = preamble(kVs, b_t);
-  d.replace(d.find("12 glUniformMatrix4fv(location = 4, count = 1, transpose = GL_FALSE"), 68,
-            "12 glUniformMatrix4fv(location = 4, count = 1, transpose = GL_TRUE");
+  const std::string was = "transpose = GL_FALSE, value = " + b_t;
+  d.replace(d.find(was), was.size(), "transpose = GL_TRUE, value = " + b_t);
   d += "18 glBindBuffer(target = GL_ELEMENT_ARRAY_BUFFER, buffer = 1)\n"
-       "19 glDrawElements(mode = GL_TRIANGLE_STRIP, count = 3, type = GL_UNSIGNED_BYTE, indices = 0x2)\n";
+       "19 glDrawElements(mode = GL_TRIANGLE_STRIP, count = 3, type = GL_UNSIGNED_BYTE, indices = 0x2)\n"
+       "20 glDrawArrays(mode = GL_TRIANGLES, first = 0, count = 3)\n";
   // The element buffer is buffer 1 as well: bytes 2, 3, 4 of the float 1.0f (00 00 80 3f)
   // and of 0: indices 0x80, 0x3f, 0x00 -> vertex 128 lies outside the 4-vertex buffer.
   const ImportResult r = run(d);
   EXPECT_EQ(r.draws_refused, 1);
   ASSERT_EQ(r.refusals.size(), 1u);
-  EXPECT_NE(r.refusals[0].find("t.dump:19: call 19 glDrawElements refused: position vertex 128 lies outside buffer 1"),
+  EXPECT_NE(r.refusals[0].find("t.dump:20: call 19 glDrawElements refused: position vertex 128 lies outside buffer 1"),
             std::string::npos)
       << r.refusals[0];
+  // Transposed, B translates x by 0.5: A * B * (1, 0, 0.5, 1) = (2.5, 0, 0.5, 1). Read
+  // untransposed it would put 0.5 in w's row: (2, 0, 0.5, 1.5).
+  EXPECT_NE(r.trace.find("tri4 2.5 -0 0.75 1 255 255 255 "), std::string::npos) << r.trace;
 }
 
 TEST(ApitraceImport, StripBlockAndYFlippedViewport) {
@@ -167,7 +171,7 @@ TEST(ApitraceImport, MalformedLinesAreFileLineErrors) {
             "t.dump:3: call 3 glViewport: argument 'y' is not an integer: 'zero'");
   EXPECT_EQ(error_of("1 glClear()\n"), "t.dump:1: call 1 glClear: no argument 'mask'");
   EXPECT_EQ(error_of("1 glShaderSource(shader = 2, count = 1, string = &\"abc, length = NULL)\n"),
-            "t.dump:1: unterminated string (column 65)");
+            "t.dump:1: unterminated string (column 71)");
   const std::string blob_bad = preamble();
   EXPECT_NE(error_of(std::string(blob_bad).replace(blob_bad.find("blob_call15"), 11, "blob_call99")).find(
                 "t.dump:16: call 15 glBufferData: cannot read blob 'blob_call99.bin': no such blob"),
