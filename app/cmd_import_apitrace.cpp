@@ -3,6 +3,7 @@
 // OpenGL program into a rastsim trace (scene/apitrace_import.h, docs/workloads.md). Runs
 // Debian's `apitrace dump --blobs --multiline=no` in a temporary directory (the buffer and
 // texture data land there as blob_callN.bin files) and converts its text.
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cstdlib>
@@ -53,8 +54,12 @@ std::filesystem::path run_apitrace_dump(const std::string& trace, const std::fil
       err = slurp(dir / "dump.err");
     } catch (const std::exception&) {
     }
-    throw std::runtime_error(trace + ": `apitrace dump` failed (exit status " + std::to_string(rc) +
-                             "; is Debian's apitrace installed?)" + (err.empty() ? "" : ": " + err));
+    const int status = WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
+    while (!err.empty() && err.back() == '\n') err.pop_back();
+    throw std::runtime_error(trace + ": `apitrace dump` failed (" +
+                             (status == 127 ? std::string("apitrace not found: Debian's apitrace package")
+                                            : "exit status " + std::to_string(status) + ": not an apitrace capture?") +
+                             ")" + (err.empty() ? "" : ": " + err));
   }
   return dir / "dump.txt";
 }
@@ -138,7 +143,7 @@ void register_import_apitrace(CLI::App& app) {
   add_quiet_flag(cmd, o.quiet, "the summary line");
   cmd->callback([] {
     if (o.trace_path.empty() == o.dump_path.empty())
-      throw CLI::ValidationError("import-apitrace", "give a capture or --dump, not both");
+      throw CLI::ValidationError("import-apitrace", "give exactly one of: a capture, --dump");
     run_import(o);
   });
 }

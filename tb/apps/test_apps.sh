@@ -9,6 +9,14 @@
 # usage: test_apps.sh RASTSIM SOURCE_DIR
 set -euo pipefail
 RASTSIM="$1"; SRC="$2"
+# Without any tool: a malformed dump line is a file:line error, and the bad capture's.
+TMP0="$(mktemp -d)"
+printf '// process.name = "x"\n1 glViewport(x = 0, y = 0, width = 8, height = 8)\n2 glClear(mask = \n' > "$TMP0/bad.dump"
+if "$RASTSIM" import-apitrace --dump "$TMP0/bad.dump" -o "$TMP0/out.trace" 2> "$TMP0/err.txt"; then
+  echo "FAIL: a malformed dump was accepted"; exit 1
+fi
+grep -q "bad.dump:3: missing value (column 18)" "$TMP0/err.txt" || { cat "$TMP0/err.txt"; echo "FAIL: no file:line error"; exit 1; }
+rm -rf "$TMP0"
 for tool in apitrace glretrace glmark2 xvfb-run; do
   command -v "$tool" >/dev/null || { echo "skip: '$tool' not installed (scripts/setup.sh installs it)"; exit 77; }
 done
