@@ -148,6 +148,7 @@ void register_sweep(CLI::App& app);
 void register_cosim(CLI::App& app), register_export_rtl(CLI::App& app), register_area(CLI::App& app);
 void register_scanout(CLI::App& app), register_monitor(CLI::App& app);
 void register_fit(CLI::App& app);
+void register_import_apitrace(CLI::App& app);
 void register_estimate(CLI::App& app);
 void register_coverage_error(CLI::App& app);  // model/aa: masks against exact area coverage
 void register_recip_grid(CLI::App& app);  // ref/study/recip_grid: newton reciprocal settings against exact

@@ -28,6 +28,7 @@ int main(int argc, char** argv) {
   rastsim::app::register_coverage_error(app);
   rastsim::app::register_recip_grid(app);
   rastsim::app::register_dram_replay(app);
+  rastsim::app::register_import_apitrace(app);
   rastsim::install_interrupt_handler();  // Ctrl-C: children stopped, temporaries removed
   try {
     app.parse(argc, argv);

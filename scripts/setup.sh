@@ -38,6 +38,10 @@ RASTSIM_PACKAGES=(
   # models (the Stanford bunny, horse, cat; 6.6 MB download) and assimp to convert the
   # .3ds ones to OBJ (3 MB with libassimp5).
   glmark2-data assimp-utils
+  # Real programs' frames (scripts/capture_glmark2, rastsim import-apitrace,
+  # scripts/compare_llvmpipe, ctest -L apps, docs/workloads.md): glmark2 run headless under
+  # Xvfb on Mesa's llvmpipe, captured and replayed by apitrace.
+  apitrace glmark2-x11 xvfb xauth libgl1-mesa-dri
   # libFuzzer targets of the parsers (scripts/fuzz, ctest -L fuzz in build-fuzz/,
   # docs/fuzzing.md): Debian's clang 14 and its compiler-rt (libclang_rt.fuzzer*.a).
   # About 260 MB installed: libllvm14 107 MB, libclang-cpp14 57 MB, libclang1-14 30 MB,
