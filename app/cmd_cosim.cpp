@@ -8,6 +8,8 @@
 #include <iostream>
 
 #include "common.h"
+#include "fidelity/frame_sampled.h"
+#include "frame_output.h"
 #include "report/stats_json.h"
 #include "ref/pipeline.h"
 #include "rtlsim/cosim.h"
@@ -74,6 +76,7 @@ void report_stages(const std::vector<rtlsim::StageAgreement>& a, const std::stri
 struct CosimCommand {
   ConfigOptions config;
   std::string scene_path, stats_path, trace_diff_dir;
+  std::string frames;  // --frames A:B ("" = every frame; frames[] when the scene has more than one)
   rtlsim::CosimOptions run;
   bool no_model = false, build_only = false, simulate_stats = false, quiet = false;
   double max_error = -1;
@@ -109,11 +112,20 @@ void print_rtl_run(const rtlsim::CosimResult& r, const rtlsim::CosimOptions& co,
 
 // The SystemC model on the same scene: its cycles and error into `j` (with
 // --simulate-stats its whole stats under simulate's names), the per-stage comparison.
+// With frames (a multi-frame scene, --frames): it starts from their framebuffer, and
+// `frame_cycles` gets each frame's cycles.
 void compare_with_model(const Scene& scene, const ArchParams& arch, const CosimCommand& c, const rtlsim::CosimResult& r,
-                        nlohmann::json& j, std::ostream& out) {
+                        const CosimFrames* frames, std::vector<uint64_t>& frame_cycles, nlohmann::json& j,
+                        std::ostream& out) {
   sc::SimOptions so;
   so.spans = !c.trace_diff_dir.empty();
+  std::vector<uint64_t> starts;
+  if (frames) {
+    so.initial_fb = &frames->before;
+    so.on_fetch = fidelity::record_command_starts(scene, starts);
+  }
   const sc::SimResult m = sc::simulate_scene(scene, arch, so);
+  if (frames) frame_cycles = slice_cycles(frames->slice, starts, m.cycles);
   const double err = r.cycles_rtl ? (double(m.cycles) - double(r.cycles_rtl)) / double(r.cycles_rtl) : 0.0;
   j["cycles_model"] = m.cycles;
   j["cycle_error"] = err;
@@ -131,6 +143,32 @@ void compare_with_model(const Scene& scene, const ArchParams& arch, const CosimC
   report_stages(rtlsim::compare_stages(rtlsim::stage_records(m.stages), r.stages), c.trace_diff_dir, j, out);
 }
 
+// frames[] of a multi-frame run: each frame's RTL and SystemC cycles and its fragment
+// mismatches (the framebuffer check's and any unattributed ones counted on the last
+// frame, whose image it checks), and a line a frame on `out`.
+void report_frames(CosimFrames& frames, const rtlsim::CosimResult& r, const std::vector<uint64_t>& model,
+                   nlohmann::json& j, std::ostream& out) {
+  const std::vector<uint64_t> rtl = slice_cycles(frames.slice, r.command_starts, r.cycles_rtl);
+  const std::vector<fidelity::FrameSpan> spans = fidelity::frame_spans(frames.slice.scene.commands);
+  std::vector<uint64_t> bad(rtl.size(), 0);
+  uint64_t attributed = 0;
+  for (size_t k = 0, first = spans.size() - rtl.size(); k < rtl.size(); ++k)
+    for (size_t i = spans[first + k].begin; i < spans[first + k].end; ++i) {
+      bad[k] += r.command_mismatches.at(i);
+      attributed += r.command_mismatches[i];
+    }
+  if (!bad.empty()) bad.back() += r.mismatches - attributed;
+  frames.add_to(j, rtl, model, bad);
+  uint64_t sum = 0;
+  for (const uint64_t v : rtl) sum += v;
+  j["cycles_rtl_frames"] = sum;  // the frames' cycles: cycles_rtl less the carried state commands before them
+  for (const nlohmann::json& f : j["frames"]) {
+    out << "cosim: frame " << f["frame"].get<size_t>() << ": cycles_rtl " << f["cycles_rtl"].get<uint64_t>();
+    if (f.contains("cycles_model")) out << ", cycles_model " << f["cycles_model"].get<uint64_t>();
+    out << ", " << f["mismatches"].get<uint64_t>() << " mismatches\n";
+  }
+}
+
 // One `rastsim cosim` run: the RTL against the reference, then (unless --no-model) the
 // SystemC model; the stats, and the failures --max-error and a mismatch make.
 void run_cosim_command(CosimCommand& c) {
@@ -144,11 +182,20 @@ void run_cosim_command(CosimCommand& c) {
   if (c.scene_path.empty()) throw std::runtime_error("cosim: --scene is required (unless --rtl-build-only)");
   if (c.simulate_stats && c.no_model)
     throw std::runtime_error("cosim: --simulate-stats needs the SystemC model (drop --no-model)");
-  const Scene scene = load_scene(c.scene_path, arch.placement);
-  reject_textured_commands(scene.commands, "RTL");  // never a silently untextured picture
+  const Scene whole = load_scene(c.scene_path, arch.placement);
+  reject_textured_commands(whole.commands, "RTL");  // never a silently untextured picture
   if (!c.trace_diff_dir.empty() && c.no_model)
     throw std::runtime_error("--trace-diff needs the SystemC model (drop --no-model)");
   c.run.record_transactions = !c.trace_diff_dir.empty();
+  // A multi-frame scene or --frames: the range's commands, from the framebuffer the
+  // frames before it leave (replayed by the reference model), per-frame figures.
+  std::unique_ptr<CosimFrames> frames;
+  if (!c.frames.empty() || fidelity::frame_spans(whole.commands).size() > 1) {
+    frames = std::make_unique<CosimFrames>(whole, arch, c.frames);
+    if (frames->out.range.first > 0) c.run.initial_fb = &frames->before;
+    c.run.reference_fb = &frames->reference;
+  }
+  const Scene& scene = frames ? frames->slice.scene : whole;
   const rtlsim::CosimResult r = rtlsim::run_cosim(scene, arch, c.run);
   nlohmann::json j = r.to_json(c.run);
   j["config"] = arch.config.source_name();
@@ -156,7 +203,9 @@ void run_cosim_command(CosimCommand& c) {
   j["provenance"] = provenance(c.config, arch.config, c.scene_path);
   add_obj_ignored(j, c.scene_path, arch.placement.camera);
   print_rtl_run(r, c.run, out);
-  if (!c.no_model) compare_with_model(scene, arch, c, r, j, out);
+  std::vector<uint64_t> model_frames;
+  if (!c.no_model) compare_with_model(scene, arch, c, r, frames.get(), model_frames, j, out);
+  if (frames) report_frames(*frames, r, model_frames, j, out);
   if (!c.stats_path.empty()) write_json(c.stats_path, j);
   if (!c.no_model && c.max_error >= 0 && std::abs(j["cycle_error"].get<double>()) > c.max_error)
     throw std::runtime_error("cycle error of the SystemC model exceeds " + std::to_string(c.max_error));
@@ -194,13 +243,15 @@ void register_cosim(CLI::App& app) {
   add_scene_option(cmd, c.scene_path);
   cmd->get_option("--scene")->required(false);  // not with --rtl-build-only (checked below)
   add_rtl_run_options(cmd, c.run);
+  add_frames_option(cmd, c.frames);
   cmd->add_option("--stats", c.stats_path,
                   "Write cycles_rtl, cycles_model, cycle_error, fragments_compared, mismatches, per stage "
                   "stages.<name>.{busy,stalled,starved}_{rtl,model} and busy_error, stage_worst_busy_error, ...; "
                   "with memory.model = \"dram\" the RTL run's memory keys under simulate's names (dram_bytes_read, "
                   "dram_bytes_written, rop_*_cache_hits / _misses, fast_clear_blocks, depth_compressed_bytes, "
                   "dram_row_hit_rate, dram_bandwidth_utilisation, memory.dram.*, memory.clients.<client>.*; "
-                  "docs/memory.md) as JSON ('-' for stdout)");
+                  "docs/memory.md); a multi-frame trace (or --frames) also frames[].{cycles_rtl, cycles_model, "
+                  "cycle_error, mismatches} and cycles_rtl_frames, as JSON ('-' for stdout)");
   cmd->add_option("--max-error", c.max_error,
                   "Fail when |cycles_model - cycles_rtl| / cycles_rtl exceeds this (e.g. 0.05; default: report only)");
   cmd->add_flag("--no-model", c.no_model, "Do not run the SystemC model (fragment check only)");

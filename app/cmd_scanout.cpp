@@ -10,6 +10,9 @@
 
 #include "display/signal_reader.h"
 #include "common.h"
+#include "display/flip_schedule.h"
+#include "display/scanout_fetch.h"
+#include "fidelity/frames.h"
 #include "report/stats_json.h"
 #include "display/monitor.h"
 #include "ref/pipeline.h"
@@ -177,10 +180,107 @@ void print_summary(std::ostream& out, const VideoTiming& t, const MonitorResult&
               << deadline["underrun_lines"] << " underrun lines\n";
 }
 
+// ---- Multi-frame traces: flips at vertical blank (display/flip_schedule.h) ----
+
+// Each frame's image (resolved), from the reference model, frame by frame.
+std::vector<Framebuffer> frame_images(const Scene& scene, const ArchParams& arch) {
+  std::vector<Framebuffer> images;
+  RenderStats stats;
+  fidelity::FrameRenderer r(arch, stats, [&](const fidelity::FrameCounts&, const Framebuffer& fb) {
+    images.push_back(fb.samples > 1 ? fb.resolve() : fb);
+  });
+  r.feed(scene.commands);
+  r.finish();
+  return images;
+}
+
+// The signal of every display period of `fs` (its vertical blanking, then its active
+// lines from the frame it shows; `initial` before frame 0's flip), then one more
+// blanking, whose vsync closes the last period for the monitor.
+void scan_periods(const VideoTiming& t, const Dac& dac, const FlipSchedule& fs, const std::vector<Framebuffer>& images,
+                  const Framebuffer& initial, const SampleSink& sink) {
+  const auto lines = [&](const Framebuffer& fb, int from, int to) {
+    const Scanout s(t, dac, fb);
+    for (int v = from; v < to; ++v)
+      for (int h = 0; h < t.h_total; ++h) sink(s.sample(h, v));
+  };
+  for (const int k : fs.shown) {
+    const Framebuffer& fb = k < 0 ? initial : images[size_t(k)];
+    lines(fb, t.v_active, t.v_total);
+    lines(fb, 0, t.v_active);
+  }
+  lines(initial, t.v_active, t.v_total);
+}
+
+// `scanout` of a trace of more than one frame: the flip schedule (each frame's cycles
+// from a `simulate --frames k:k+1` child with --timed; untimed, every frame takes 0 cycles and flips at
+// the next vertical blank), the periods scanned out and decoded, each decoded period
+// checked against the frame it shows; -o a pattern: one image a period.
+void run_scanout_frames(const ScanoutOptions& o, const ArchParams& arch, const DisplayParams& display,
+                        const Scene& scene) {
+  if (o.raster_cycles >= 0)
+    throw std::runtime_error("--raster-cycles is one frame's finish time: a multi-frame trace takes each frame's "
+                             "cycles from --timed (or, untimed, flips every frame at the next vertical blank)");
+  if (!o.signal_path.empty()) throw std::runtime_error("--signal: a multi-frame scan-out writes no signal yet: drop it");
+  if (arch.config.get_string("scanout.buffering") != "double")
+    throw ConfigError(arch.config.origin("scanout.buffering") + ": a multi-frame trace is shown with " +
+                      "scanout.buffering = \"double\" (flips at vertical blank); single buffering would show "
+                      "frames half drawn");
+  const VideoTiming& t = display.video;
+  const Dac dac(display.dac);
+  const std::vector<Framebuffer> images = frame_images(scene, arch);
+  std::vector<uint64_t> cycles(images.size(), 0);
+  // Each frame alone, from an empty pipeline to its drain (the present waits for the
+  // flip, so the next frame starts after it): `simulate --frames k:k+1`, a child each.
+  for (size_t k = 0; o.timed && k < cycles.size(); ++k) {
+    const std::string range = std::to_string(k) + ":" + std::to_string(k + 1);
+    cycles[k] = simulate_in_child(o.config, o.scene_path, {"--frames", range}).at("cycles").get<uint64_t>();
+  }
+  const ScanoutParams sp = scanout_params(display, arch.timing.core_mhz);
+  const FlipSchedule fs = vsync_flips(cycles, sp.core_hz * scanout_frame_period_s(t));
+  Monitor mon(t, dac.config());
+  mon.keep_images(true);
+  const Framebuffer initial(arch.raster.fb_width, arch.raster.fb_height);
+  scan_periods(t, dac, fs, images, initial, [&](const VideoSample& s) { mon.push(s); });
+  const MonitorResult r = mon.finish();
+  nlohmann::json periods = nlohmann::json::array();
+  size_t wrong = 0;
+  for (size_t n = 0; n < fs.shown.size(); ++n) {
+    const int k = fs.shown[n];
+    MonitorResult one;  // the period's decoded image alone, for compare_decoded
+    one.locked = r.locked;
+    one.image = n < r.images.size() ? r.images[n] : Framebuffer(t.h_active, t.v_active);
+    const DecodeCheck d = compare_decoded(one, k < 0 ? initial : images[size_t(k)], t);
+    const bool same = n < r.images.size() && d.same;
+    wrong += !same;
+    periods.push_back({{"period", n}, {"frame", k}, {"decoded_equals_frame", same}, {"mismatched_pixels", d.mismatched}});
+    if (fidelity::is_frame_pattern(o.out_path)) write_image(one.image, fidelity::frame_image_path(o.out_path, n));
+  }
+  if (!fidelity::is_frame_pattern(o.out_path)) write_image(r.image, o.out_path);
+  nlohmann::json j = measured_json(r);
+  j.update(fs.to_json());
+  j.update({{"config", arch.config.source_name()}, {"scene", o.scene_path}, {"frames_total", images.size()},
+            {"display_periods", periods}, {"timed", o.timed}, {"decoded_equals_frames", wrong == 0},
+            {"configured", timing_json(t)}, {"provenance", provenance(o.config, arch.config, o.scene_path)}});
+  if (!o.stats_path.empty()) write_json(o.stats_path, j);
+  std::ostream& out = summary_stream(o.stats_path, o.quiet);
+  out << "scanout: " << images.size() << " frames in " << fs.shown.size() << " display periods (flips at vertical "
+      << "blank, double buffering" << (o.timed ? ", frames timed by simulate" : ", untimed") << "): shown";
+  for (const int k : fs.shown) out << " " << k;
+  out << "; " << fs.shown.size() - wrong << " of " << fs.shown.size() << " decoded periods equal their frame\n";
+  out.flush();
+  for (const auto& e : r.errors) std::cerr << "scanout: monitor: " << e << "\n";
+  if (!r.ok()) throw std::runtime_error("virtual monitor: " + std::to_string(r.errors.size()) + " timing errors (above)");
+  if (wrong) throw std::runtime_error(std::to_string(wrong) + " display periods do not show their frame");
+}
+
 void add_scanout_options(CLI::App* cmd, ScanoutOptions& o) {
   add_config_options(cmd, o.config);
   add_scene_option(cmd, o.scene_path);
-  cmd->add_option("-o,--output", o.out_path, "Decoded frame to write: .png or .ppm")->required();
+  cmd->add_option("-o,--output", o.out_path,
+                  "Decoded frame to write: .png or .ppm; a multi-frame trace (flips at vertical blank): the last "
+                  "period's, or with out_%04d.png one image a display period (docs/scanout.md)")
+      ->required();
   cmd->add_option("--signal", o.signal_path,
                   "Write the video signal (hsync, vsync, blank, codes, levels in V) of the first frame (see --signal-frames): .vcd or .fst");
   auto* lines_opt = cmd->add_option("--signal-lines", o.lines_arg, "Only lines FIRST..FIRST+COUNT-1 of the first frame in --signal")
@@ -213,6 +313,7 @@ void run_scanout_command(const ScanoutOptions& o) {
   const VideoTiming& t = display.video;
   const Dac dac(display.dac);
   const Scene scene = load_scene(o.scene_path, arch.placement);
+  if (fidelity::frame_spans(scene.commands).size() > 1) return run_scanout_frames(o, arch, display, scene);
   RenderStats rstats;
   const Framebuffer fb = render_scene(scene, arch.raster, rstats);
 

@@ -14,6 +14,7 @@
 #include "common.h"
 #include "frame_output.h"
 #include "estimate/estimate.h"
+#include "fidelity/frames.h"
 #include "fidelity/run_child.h"
 #include "fidelity/sampled.h"
 #include "fidelity/tolerance.h"
@@ -74,10 +75,13 @@ double parse_tolerance(const std::string& text) {
 void print_level(const nlohmann::json& j, std::ostream& out) {
   out << "simulate: " << j["cycles"].get<uint64_t>() << " cycles (" << j["fidelity_level"].get<std::string>()
       << " level";
+  const bool frames = j.contains("frames_total");  // frame-sampled, or a multi-frame full run
   if (j.contains("cycles_ci_low"))
     out << ", " << j["confidence"].get<double>() * 100 << " % interval [" << j["cycles_ci_low"].get<double>() << ", "
-        << j["cycles_ci_high"].get<double>() << "], " << j["units_simulated"] << " of " << j["units_total"]
-        << " units simulated";
+        << j["cycles_ci_high"].get<double>() << "]";
+  if (j.contains("cycles_ci_low") || frames)
+    out << ", " << j[frames ? "frames_simulated" : "units_simulated"] << " of " << j[frames ? "frames_total" : "units_total"]
+        << (frames ? " frames" : " units") << " simulated";
   if (j.contains("cycles_error_bound")) out << ", error bound " << j["cycles_error_bound"].get<double>() * 100 << " %";
   out << "), " << j["wall_seconds"].get<double>() << " s wall\n";
   if (j.contains("fidelity_reason")) out << "  " << j["fidelity_reason"].get<std::string>() << "\n";
@@ -112,6 +116,8 @@ void run_level_mode(const SimulateOptions& o, const ArchParams& arch) {
       const sc::SimResult r = sc::simulate_scene(scene, arch);
       j = {{"fidelity_level", "systemc"}, {"cycles", r.cycles},  {"cycles_error_bound", 0.0},
            {"fidelity_reason", reason},   {"wall_seconds", r.sim_wall_seconds}};
+      if (const size_t n = fidelity::frame_spans(scene.commands).size(); n > 1)
+        j.update({{"frames_total", n}, {"frames_simulated", n}});  // every frame in detail
     }
     j["tolerance"] = tol;
   }
@@ -276,8 +282,9 @@ void register_simulate(CLI::App& app) {
     cmd->add_option(old_name, o.seed, "Old name of --seed")->group("");
   cmd->add_option("--tolerance", o.tolerance,
                   "Answer with the cheapest level whose bound or 95 % interval is within P of the cycles, e.g. 2%: "
-                  "analytic, else sampled, else the full SystemC run (stats fidelity_level, cycles, "
-                  "cycles_error_bound, fidelity_reason; no image; docs/fidelity.md)");
+                  "analytic, else sampled (a multi-frame trace of 4 frames or more: frame-sampled, the smallest F "
+                  "its pilot predicts, with frames_total and frames_simulated), else the full SystemC run (stats "
+                  "fidelity_level, cycles, cycles_error_bound, fidelity_reason; no image; docs/fidelity.md)");
   add_quiet_flag(cmd, o.quiet, "the summary line");
   cmd->callback([] { run_simulate_command(o); });
 }

@@ -108,10 +108,12 @@ void check_one_stdout(const std::vector<std::pair<std::string, std::string>>& op
   }
 }
 
-nlohmann::json simulate_in_child(const ConfigOptions& o, const std::string& scene) {
+nlohmann::json simulate_in_child(const ConfigOptions& o, const std::string& scene,
+                                 const std::vector<std::string>& extra) {
   const TempDir dir("rastsim-sim");
   const std::string stats = dir.file("stats.json"), err = dir.file("stderr");
   std::vector<std::string> args{"simulate", "--quiet", "--scene", scene, "--stats", stats};
+  args.insert(args.end(), extra.begin(), extra.end());
   if (!o.config_path.empty()) args.insert(args.end(), {"--config", o.config_path});
   for (const auto& s : o.sets) args.insert(args.end(), {"--set", s});
   nlohmann::json j;

@@ -59,7 +59,9 @@ void check_one_stdout(const std::vector<std::pair<std::string, std::string>>& op
 
 // Runs `rastsim simulate` on `scene` with the same config options in a child process and
 // returns its stats JSON; throws with the child's error line when it fails.
-nlohmann::json simulate_in_child(const ConfigOptions& o, const std::string& scene);
+// `extra`: more simulate options (e.g. {"--frames", "3:4"}).
+nlohmann::json simulate_in_child(const ConfigOptions& o, const std::string& scene,
+                                 const std::vector<std::string>& extra = {});
 
 // `rastsim render` as a plain function: every option of the command, then the run.
 struct RenderOptions {

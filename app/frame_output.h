@@ -38,8 +38,30 @@ struct FrameOutput {
 
 // The reference model over `scene`'s frames [0, out.range.last) (functional): out gets
 // the frames in range; `before`, if given, receives the framebuffer (unresolved) the
-// frames before out.range.first left, the state a timed run of the range starts from.
-void replay_frames(const Scene& scene, const ArchParams& arch, FrameOutput& out, Framebuffer* before = nullptr);
+// frames before out.range.first left, the state a timed run of the range starts from;
+// `last`, if given, the image (resolved) the range's last frame ends with.
+void replay_frames(const Scene& scene, const ArchParams& arch, FrameOutput& out, Framebuffer* before = nullptr,
+                   Framebuffer* last = nullptr);
+
+// Each frame of a range's cycles in a timed run of its slice, from the run's per-command
+// fetch starts (fidelity::record_command_starts; the carried state commands before the
+// range excluded), the last to `end_cycle`.
+std::vector<uint64_t> slice_cycles(const fidelity::FrameSlice& slice, const std::vector<uint64_t>& starts,
+                                   uint64_t end_cycle);
+
+// `rastsim cosim` on a multi-frame scene or with --frames A:B (app/cmd_cosim.cpp): the
+// range's commands (the frames before it replayed by the reference model, functional),
+// the framebuffer they leave (the RTL's and the SystemC model's start), the reference
+// image after the range's last frame (the RTL's must equal it), frames[].
+struct CosimFrames {
+  FrameOutput out;
+  fidelity::FrameSlice slice;
+  Framebuffer before{1, 1}, reference{1, 1};
+  CosimFrames(const Scene& scene, const ArchParams& arch, const std::string& frames_text);
+  // frames[].{cycles_rtl, cycles_model, cycle_error, mismatches} and frames_range into j.
+  void add_to(nlohmann::json& j, const std::vector<uint64_t>& rtl, const std::vector<uint64_t>& model,
+              const std::vector<uint64_t>& mismatches);
+};
 
 // `rastsim simulate`'s multi-frame parts (app/simulate_frames.cpp). on_fetch of a full run:
 // the cycle each frame after the first starts (command fetch starting its first command).

@@ -53,9 +53,7 @@ sc::SimResult run_range(const Scene& scene, const ArchParams& arch, const FrameO
   sim.on_fetch = fidelity::record_command_starts(slice.scene, starts);
   if (out.range.first > 0) sim.initial_fb = &before;
   sc::SimResult r = sc::simulate_scene(slice.scene, arch, sim);
-  std::vector<fidelity::FrameSpan> timed = fidelity::frame_spans(slice.scene.commands);
-  if (slice.prefix > 0) timed.erase(timed.begin());  // the carried viewport and scissor: not a frame
-  cycles = fidelity::span_cycles(timed, starts, r.cycles);
+  cycles = slice_cycles(slice, starts, r.cycles);
   return r;
 }
 

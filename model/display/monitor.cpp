@@ -312,6 +312,7 @@ MonitorResult Monitor::finish() const {
       r.frame_rate_hz = r.line_rate_hz / meas.v_total;
     }
     r.no_data_pixels += a.no_data;
+    if (keep_images_) r.images.push_back(a.img);
     r.image = std::move(a.img);
     r.codes = std::move(a.codes);
     ++r.frames_decoded;

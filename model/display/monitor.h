@@ -33,6 +33,7 @@ struct MonitorResult {
   VideoTiming measured;      // first complete frame; pixel clock = the expected one
   double line_rate_hz = 0, frame_rate_hz = 0;  // pixel clock / measured totals
   Framebuffer image;         // last complete frame, expected active size (RGB, A = 255)
+  std::vector<Framebuffer> images;  // keep_images(): every complete frame decoded, in order
   std::vector<std::array<uint16_t, 3>> codes;  // same frame, the decoded DAC codes, row-major
   uint64_t no_data_pixels = 0;                 // expected active pixels that arrived blank
   uint64_t blank_level_violations = 0;         // blank pixel clocks not at 0 V (> 0.5 LSB)
@@ -49,6 +50,9 @@ class Monitor {
   // One pixel clock. Reads hsync, vsync, blank and the levels; not the codes.
   void push(const VideoSample& s);
   MonitorResult finish() const;
+  // finish() also returns every decoded frame's image (MonitorResult::images; off by
+  // default: a long recording would hold them all).
+  void keep_images(bool on) { keep_images_ = on; }
   long long samples() const { return n_; }
 
   struct Runs {  // run-length record of one wire: start sample and level of each run
@@ -65,6 +69,7 @@ class Monitor {
   Dac palette_;  // ideal DAC with the same palette, for the inverse lookup
   double half_lsb_;
   long long n_ = 0;
+  bool keep_images_ = false;
   Runs hs_, vs_, de_;
   std::vector<uint32_t> px_;  // per sample: R | G << 10 | B << 20 | DE << 30
   long long first_blank_violation_ = -1;

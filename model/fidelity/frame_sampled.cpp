@@ -216,7 +216,7 @@ FrameSampledResult simulate_frame_sampled(const Scene& scene, const ArchParams& 
   const auto t0 = std::chrono::steady_clock::now();
   const std::vector<FrameSpan> spans = frame_spans(scene.commands);
   const std::vector<FrameWork> work = frame_work(scene, arch);
-  FramePlan plan = plan_frames(work, spans.size() < 4 ? 1.0 : fraction);
+  FramePlan plan = plan_frames(work, spans.size() < kFrameSampledMinFrames ? 1.0 : fraction);
   std::vector<FrameSpan> measured;
   size_t warm_triangles = 0;
   const Scene sub = chosen_frames(scene, spans, plan.chosen, triangle_path_entries(arch.timing), measured,

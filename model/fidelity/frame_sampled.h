@@ -77,7 +77,9 @@ FrameSampledResult extrapolate_frames(const FramePlan& plan, const std::vector<d
                                       double confidence = kDefaultConfidence);
 
 // The whole level: features, plan, one SystemC run of the chosen frames (elaborates:
-// once per process), extrapolation. A scene of fewer than 4 frames is simulated whole.
+// once per process), extrapolation. A scene of fewer than kFrameSampledMinFrames frames
+// is simulated whole.
+inline constexpr size_t kFrameSampledMinFrames = 4;
 FrameSampledResult simulate_frame_sampled(const Scene& scene, const ArchParams& arch, double fraction,
                                           double confidence = kDefaultConfidence);
 

@@ -18,7 +18,9 @@ double sampled_error(const nlohmann::json& sampled_stats);
 
 // Analytic if its bounds are within tol (a fraction) of their midpoint; else sampled (a
 // pilot at F = 0.1, then the F its variance predicts, each in a forked child) if its
-// interval is; else run_full = true, reason says why, and the caller runs the full
+// interval is; on a scene of kFrameSampledMinFrames frames or more (frame_sampled.h)
+// frame-sampled instead of sampled (a pilot at F = 0.05, then the predicted F, <= 0.5);
+// else run_full = true, reason says why, and the caller runs the full
 // SystemC model (in its own process: nothing here elaborates SystemC in the caller).
 // Returns the answering level's stats: fidelity_level, cycles, cycles_error_bound,
 // fidelity_reason, wall_seconds.

@@ -143,6 +143,10 @@ CosimResult run_rtl(const Scene& scene, const ArchParams& arch, const CosimOptio
   }
   // No shipped model: an on-demand one, run as a child process that reads the scene
   // again from its file (checked first, before a build).
+  if (opts.initial_fb || opts.reference_fb)
+    throw std::runtime_error(config_label(arch) + ": no shipped RTL model fits this config, and a range of frames "
+                             "(--frames) runs on a shipped model only (the on-demand runner reads the whole scene "
+                             "from its file)");
   std::error_code ec;
   if (!std::filesystem::is_regular_file(scene.source, ec))
     throw std::runtime_error(config_label(arch) + ": no shipped RTL model fits this config, and an on-demand model "

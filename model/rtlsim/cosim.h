@@ -35,6 +35,7 @@
 
 #include "config/arch_params.h"
 #include "rtlsim/rtl_params.h"
+#include "ref/framebuffer.h"
 #include "ref/memory/rop_memory.h"
 #include "ref/scene.h"
 
@@ -69,6 +70,13 @@ struct CosimOptions {
   // A verilated model by name (rtl_registry: a shipped config, or <cfg>_circuit with the
   // divider as its circuit); "" = the first that fits, else an on-demand one.
   std::string rtl_model;
+  // `cosim --frames A:B` (app/frame_output.h): the framebuffer the ROP's memory starts
+  // from (the reference model's after frames 0..A-1; null: the initial one), and the
+  // reference image the run must end with (the reference model's after frame B-1, its
+  // frames run from the start; null: render_scene of the scene). In-process only (not
+  // sent to the on-demand runner, which refuses them): a shipped model runs them.
+  const Framebuffer* initial_fb = nullptr;
+  const Framebuffer* reference_fb = nullptr;
 };
 // The options as the on-demand runner gets them (progress stays behind).
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(CosimOptions, tile_size, stress_seed, backpressure, valid_gaps, fst_path,
@@ -116,6 +124,11 @@ struct CosimResult {
   // the RTL's stages from its handshakes (rast_top's dbg_*_o ports), the others from the
   // testbench's own accounting (command fetch, assembly, ROP, the 2D front end and engine).
   std::vector<StageRecord> stages;
+  // Per command of the scene (by index): the cycle command fetch started its first item
+  // (UINT64_MAX: never), as the SystemC model's on_fetch (fidelity::record_command_starts),
+  // for per-frame cycles; and the fragment mismatches of its triangles (the others, e.g.
+  // the framebuffer check's, counted in `mismatches` only).
+  std::vector<uint64_t> command_starts, command_mismatches;
 
   // The run's figures under `rastsim cosim --stats` names (cycles_rtl, mismatches,
   // framebuffer_crc32_rtl, ...), with the stress options it ran under; the caller adds the
@@ -127,7 +140,7 @@ NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(CosimResult, rtl_config, rtl_mod
                                                 rtl_build_seconds, cycles_rtl, fragments_expected, fragments_compared,
                                                 mismatches, first_mismatch, triangles, markers, commands_2d, pixels_2d,
                                                 crc_rtl, crc_ref, samples, rop_accesses, resolve_cycles, memory, dram,
-                                                wall_seconds, stages)
+                                                wall_seconds, stages, command_starts, command_mismatches)
 
 // The verilated configs linked into this binary, and the parameters each was built with
 // (compiled in at configure time: no config file is read).

@@ -34,8 +34,8 @@ static_assert(int(CullMode::None) == 0 && int(CullMode::Back) == 1 && int(CullMo
 // command type.
 class StreamBuilder {
  public:
-  StreamBuilder(const ArchParams& arch, int tile_size, TbSetup& s)
-      : setup_(s), timing_(s.timing), state_(arch.raster), tile_size_(tile_size) {
+  StreamBuilder(const ArchParams& arch, int tile_size, TbSetup& s, const Command* command0)
+      : setup_(s), timing_(s.timing), state_(arch.raster), tile_size_(tile_size), command0_(command0) {
     state_.tile_size = tile_size;
   }
 
@@ -62,6 +62,7 @@ class StreamBuilder {
   const TimingParams& timing_;
   RasterState state_;  // the state the scene's commands set, as far as the walk has gone
   const int tile_size_;
+  const Command* command0_;  // the scene's first command: a command's index is its offset
   Framebuffer fb_{1, 1};  // state commands need one; the testbench ROP keeps no pixels
   TraversalCounters counters_;
   FrontEndStats front_end_;  // the testbench's front end counts here (its steps' costs)
@@ -144,6 +145,7 @@ void StreamBuilder::triangle(const Command& cmd, const CmdPrimitives& prims, siz
   it.assembly_cost = timing_.assembly_cycles_per_triangle;
   it.tri = static_cast<int>(setup_.tri_names.size());
   setup_.tri_names.push_back(cmd.loc.str() + " triangle " + std::to_string(k));
+  setup_.tri_command.push_back(size_t(&cmd - command0_));
   SetupTriangle t;
   const SetupOutcome o = setup_triangle(verts, state_, cmd.loc, t);
   // CulledOutOfRange: nothing the RTL can represent; a zero-area triangle (all vertices
@@ -198,8 +200,13 @@ void StreamBuilder::end_of_frame() {
 }
 
 void build(const Scene& scene, const ArchParams& arch, int tile_size, TbSetup& s) {
-  StreamBuilder b(arch, tile_size, s);
-  for (const Command& cmd : scene.commands) b.add(cmd);
+  StreamBuilder b(arch, tile_size, s, scene.commands.data());
+  for (size_t i = 0; i < scene.commands.size(); ++i) {
+    const size_t first = s.items.size();
+    b.add(scene.commands[i]);
+    for (size_t k = first; k < s.items.size(); ++k) s.items[k].command = int64_t(i);
+  }
+  s.commands = scene.commands.size();
   b.end_of_frame();
 }
 
@@ -258,8 +265,10 @@ void cosim_setup(const Scene& scene, const ArchParams& arch, const CosimOptions&
   s.timing = arch.timing;
   s.arch = st;
   s.arch.tile_size = tile;
+  if (opts.initial_fb && !opts.reference_fb)
+    throw std::logic_error("cosim_setup: a run from an initial framebuffer needs its reference image");
   RenderStats ref_stats;
-  s.reference = render_scene(scene, s.arch, ref_stats);
+  s.reference = opts.reference_fb ? *opts.reference_fb : render_scene(scene, s.arch, ref_stats);
   build(scene, arch, tile, s);
   s.memory = arch.memory;
   s.dram = arch.dram;

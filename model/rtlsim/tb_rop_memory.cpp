@@ -18,6 +18,7 @@ TbRopMemory::TbRopMemory(const TbSetup& s)
   // port (Rop::attach_memory), whose frame starts with the depth clear.
   if (s.scanout) scanout_ = attach_scanout_fetch(system_, *s.scanout, s.memory, s.arch);
   shadow_.clear_depth(static_cast<uint32_t>((uint64_t{1} << s.arch.depth_bits) - 1));
+  if (s.opts.initial_fb) shadow_ = *s.opts.initial_fb;  // cosim --frames, as the testbench's memory
   port_.begin(0);
   port_.functional().clear_depth();
   port_.cleared(MemClient::RopDepth);

@@ -136,6 +136,7 @@ class Testbench {
         fb_(setup.arch.fb_width, setup.arch.fb_height, setup.samples),
         depth_base_(rop_depth_base(fb_.width, fb_.height, fb_.samples)) {
     fb_.clear_depth(static_cast<uint32_t>((uint64_t{1} << setup.arch.depth_bits) - 1));  // as render_scene
+    if (setup.opts.initial_fb) fb_ = *setup.opts.initial_fb;  // cosim --frames: the frames before the range
     if (setup.memory.enabled) dram_ = std::make_unique<TbRopMemory>(setup);
     for (size_t i = 0; i < setup.items.size(); ++i)
       if (!setup.items[i].from_front_end) fetched_.push_back(i);
@@ -257,6 +258,8 @@ void Testbench::run() {
   const auto t0 = std::chrono::steady_clock::now();
   result_.stages.assign(kStageCount, StageRecord{});
   for (const StageInfo& s : kStages) record(s.id).name = std::string(s.name);
+  result_.command_starts.assign(setup_.commands, UINT64_MAX);
+  result_.command_mismatches.assign(setup_.commands, 0);
   reset();
   uint64_t counted = 0;  // cycles classified (0 .. the last one run)
   for (uint64_t t = 0;; ++t) {
@@ -741,6 +744,8 @@ void Testbench::fetch_step(uint64_t t) {
       const size_t item = fetched_[next_item_++];
       fetch_ = TbStage{true, setup_.items[item].fetch_cost, item};
       tx_begin(StageId::CommandFetch, t);
+      if (const int64_t c = setup_.items[item].command; c >= 0 && result_.command_starts[size_t(c)] == UINT64_MAX)
+        result_.command_starts[size_t(c)] = t;
     }
     if (!fetch_.active) break;
     last_busy_ = std::max(last_busy_, t);
@@ -876,11 +881,13 @@ void Testbench::compare(const Fragment& f) {
     return;
   }
   const Expected& e = setup_.expected[next_expected_++];
-  if (!(e.f == f))
+  if (!(e.f == f)) {
+    ++result_.command_mismatches[setup_.tri_command[size_t(e.tri)]];
     mismatch("fragment #" + std::to_string(next_expected_ - 1) + " of " + setup_.tri_names[e.tri] + ": pixel (" +
              std::to_string(e.f.x) + ", " + std::to_string(e.f.y) + ") expected '" + fragment_trace_line(e.f) +
              "' mask " + std::to_string(e.f.mask) + ", RTL gave '" + fragment_trace_line(f) + "' mask " +
              std::to_string(f.mask));
+  }
 }
 // Nothing left anywhere but the resolve pass: scene fetched, FIFOs and stages empty, the
 // RTL idle (its idle_o covers the interpolator's pipeline, the fragment FIFO and the ROP)

@@ -49,6 +49,7 @@ struct TbItem {
   int work2d = -1;             // 2D markers: index in TbSetup::work2d
   bool from_front_end = false; // a clip-space command's triangle: the front end hands it to assembly
   size_t first_step = 0, steps = 0;  // ClipCommand: its steps in TbSetup::front_end_steps
+  int64_t command = -1;        // the scene command it comes from (-1: the end-of-frame marker)
 };
 // One step of the geometry front end on a clip-space command (sc/front_end.cpp): busy
 // `cycles` (TimingParams::front_end_step_cycles), then a screen-FIFO entry: triangle
@@ -82,6 +83,8 @@ struct TbSetup {
   std::vector<TbItem> items;
   std::vector<Expected> expected;
   std::vector<std::string> tri_names;   // "file:line triangle k"
+  std::vector<size_t> tri_command;      // each triangle's scene command (index)
+  size_t commands = 0;                  // the scene's commands (CosimResult::command_starts)
   std::vector<TbWork2d> work2d;         // the 2D commands, in order
   std::vector<TbFrontEndStep> front_end_steps;  // the clip-space commands' steps, in order
   RasterState arch;                     // the config's state: framebuffer size, depth function and write (the ROP's static inputs)
