@@ -40,9 +40,18 @@ LocalPtr<const FragmentBatch> Texture::shade(const FragmentBatch& batch, TimingP
   out->pixels = batch.pixels;
   Fragment* o = out->reset(batch.count);
   const int coord_frac = arch_.coord_format.frac_bits, tex_frac = arch_.texcoord_format.frac_bits;
-  for (const Fragment& f : batch.fragments())
-    *o++ = unit_->shade(f, quads_.derivatives(tri, f.x, f.y, coord_frac), tri.texture, tex_frac);
+  // Every covered pixel's quad derivatives (the reference takes them before its early
+  // test); a fragment early Z culled is not sampled and goes on as it came (its flag kept).
+  for (size_t k = 0; k < batch.count; ++k) {
+    const Fragment& f = batch.storage[k];
+    const QuadDerivatives& d = quads_.derivatives(tri, f.x, f.y, coord_frac);
+    *o++ = batch.is_culled(k) ? f : unit_->shade(f, d, tri.texture, tex_frac);
+  }
   out->count = batch.count;
+  if (batch.culled_count != 0) {
+    out->culled.assign(batch.culled.begin(), batch.culled.begin() + std::ptrdiff_t(batch.count));
+    out->culled_count = batch.culled_count;
+  }
   quads_.add_covered(batch.pixels->pixels);
   const TextureStats& s = unit_->stats();
   const auto samples = [&](TexFilter f) { return s.samples[size_t(f)] - before.samples[size_t(f)]; };
@@ -51,7 +60,7 @@ LocalPtr<const FragmentBatch> Texture::shade(const FragmentBatch& batch, TimingP
                             TimingParams::texture_sample_slots(false) +
                         samples(TexFilter::Trilinear) * TimingParams::texture_sample_slots(true);
   work.texel_fetches = s.texel_fetches - before.texel_fetches;
-  work.fragments = batch.count;
+  work.fragments = batch.kept();
   work.misses = s.cache_misses - before.cache_misses;
   return out;
 }
