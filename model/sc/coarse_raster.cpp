@@ -80,7 +80,7 @@ void CoarseRaster::walk_tiled(const SetupItem& in) {
         if (mem_) mem_->begin(now());  // the tile's entry reads from now (timing/hiz_memory_port.h)
         const HizDecision hiz = cls != TileClass::Rejected && hiz_ ? hiz_->test(t, fp, cls) : HizDecision::Draw;
         const bool culled = hiz == HizDecision::Culled;
-        if (culled) hiz_stall();
+        hiz_stall();  // the test's entries
         const uint64_t leave_at = walk.visit(cls != TileClass::Rejected && !culled);
         if (cls == TileClass::Rejected) {
           ++c.tiles_rejected;
@@ -107,10 +107,11 @@ void CoarseRaster::walk_tiled(const SetupItem& in) {
   }
 }
 
-// The walk waits for the tile's spilled entries: busy the stall (timing/hiz_memory_port.h).
+// The walk waits for the step's spilled entries: busy the stall; the next step starts
+// then (timing/hiz_memory_port.h).
 void CoarseRaster::hiz_stall() {
-  if (!mem_ || mem_->stall_cycles() == 0) return;
-  busy(mem_->stall_cycles());
+  if (!mem_) return;
+  if (const uint64_t stall = mem_->wait()) busy(stall);
   mem_->begin(now());
 }
 

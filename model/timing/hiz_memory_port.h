@@ -9,9 +9,11 @@
 // Timing rule (coarse raster, sc/coarse_raster.h): a tile's test reads the entries of the
 // spilled blocks its footprint overlaps and cannot decide before they arrive; a drawn
 // tile's flush reads each spilled block it wrote and writes it back (read-modify-write).
-// Reads are blocking, one in flight, from the tile's start t0: read k issued at i_k,
-// arriving at c_k, i_1 = t0, i_{k+1} = c_k, and the walk stalls c_M - t0 cycles; the
-// write-backs are posted at the cycle of the read before them. No spilled access: no stall.
+// A step's reads (the test's, then the flush's) are issued together at its start t0 and
+// the walk waits for the last: read k arriving at core cycle c_k,
+//   stall(step) = max(0, max_k c_k - t0)     (0 when the step reads no spilled entry),
+// the flush starting when the test's reads have arrived; the write-backs are posted at
+// the flush's start.
 #pragma once
 
 #include <cstdint>
@@ -26,7 +28,7 @@ namespace rastsim {
 struct HizMemoryReport {
   uint64_t bytes_read = 0, bytes_written = 0;
   uint64_t reads = 0, writes = 0;
-  uint64_t stall_cycles = 0;  // sum over tiles of the rule's stall
+  uint64_t stall_cycles = 0;  // sum over steps of the rule's stall
 };
 
 class HizMemoryPort {
@@ -38,16 +40,17 @@ class HizMemoryPort {
   // The table's spilled accesses go through this port from now on (sets
   // HizTable::on_access); the port must outlive the table's use.
   void attach(HizTable& table);
-  // A tile starts at core cycle `cycle`: its stall restarts from 0.
-  void begin(uint64_t cycle) { start_ = cycle_ = cycle; }
-  // The stall since begin(): c_M - t0 (0 without a read).
-  uint64_t stall_cycles() const { return cycle_ - start_; }
+  // A step (a tile's test or its flush) starts at core cycle `cycle`.
+  void begin(uint64_t cycle) { start_ = cycle; }
+  // Waits for the step's reads: its stall, max_k c_k - t0 (0 without a read).
+  uint64_t wait();
   const HizMemoryReport& report() const { return report_; }
 
  private:
   void access(uint64_t address, uint64_t bytes, bool write);
   MemorySystem& mem_;
-  uint64_t start_ = 0, cycle_ = 0;
+  uint64_t start_ = 0;     // the step's t0
+  uint64_t pending_ = 0;   // its reads issued, not yet waited for
   HizMemoryReport report_;
 };
 
