@@ -55,7 +55,7 @@ LocalPtr<const FragmentBatch> Texture::shade(const FragmentBatch& batch, TimingP
   quads_.add_covered(batch.pixels->pixels);
   const TextureStats& s = unit_->stats();
   const auto samples = [&](TexFilter f) { return s.samples[size_t(f)] - before.samples[size_t(f)]; };
-  work.quads = quads_.quads() - quads_before;
+  work.quads = arch_.depth_early ? kept_quads(batch) : quads_.quads() - quads_before;
   work.bilinear_slots = (samples(TexFilter::Nearest) + samples(TexFilter::Bilinear)) *
                             TimingParams::texture_sample_slots(false) +
                         samples(TexFilter::Trilinear) * TimingParams::texture_sample_slots(true);
@@ -65,10 +65,24 @@ LocalPtr<const FragmentBatch> Texture::shade(const FragmentBatch& batch, TimingP
   return out;
 }
 
+// Early Z: the quads of the batch that hold a kept fragment and no earlier batch of the
+// triangle had (the unit's timed work; helper_pixels still counts every covered pixel's
+// quad, as the reference does).
+uint64_t Texture::kept_quads(const FragmentBatch& batch) {
+  uint64_t n = 0;
+  for (size_t k = 0; k < batch.count; ++k) {
+    if (batch.is_culled(k)) continue;
+    const Fragment& f = batch.storage[k];
+    n += kept_quads_.insert(uint64_t(uint32_t(f.y >> 1)) << 32 | uint32_t(f.x >> 1)).second;
+  }
+  return n;
+}
+
 // A new triangle's first batch: the last one's helper pixels counted, its quads dropped.
 void Texture::next_triangle(const LocalPtr<const SetupTriangle>& tri) {
   unit_->stats().helper_pixels += quads_.helper_pixels();
   quads_.clear();
+  kept_quads_.clear();
   quads_tri_ = tri;
 }
 
