@@ -118,5 +118,32 @@ TEST(DepthHizMesh, OracleFrontToBack) {
   }
 }
 
+// scene.obj_order: the cube's 12 triangles (6 quads, 2 each) front to back have
+// non-decreasing nearest corner depth face by face, back to front non-increasing, and
+// both are the file's faces, reordered (the same multiset of nearest depths).
+TEST(DepthHizMesh, ObjOrderSortsFacesByNearestCorner) {
+  std::vector<std::vector<double>> keys;
+  for (const char* order : {"file", "front_to_back", "back_to_front"}) {
+    Config cfg;
+    cfg.apply_override(std::string("scene.obj_order=") + order);
+    const Scene s = load_obj(std::string(RASTSIM_SOURCE_DIR) + "/tb/data/cube.obj", obj_placement_from_config(cfg));
+    std::vector<double> k;  // a face's nearest corner depth (its two triangles share the face's corners)
+    for (const Command& c : s.commands)
+      if (const auto* p = std::get_if<CmdPrimitives>(&c.body)) {
+        double z = 1;
+        for (const SceneVertex& v : p->vertices) z = std::min(z, v.z);
+        k.push_back(z);
+      }
+    keys.push_back(k);
+  }
+  ASSERT_EQ(keys[0].size(), 6u);  // one command a face (scene.obj_faces_per_command = 1)
+  EXPECT_TRUE(std::is_sorted(keys[1].begin(), keys[1].end()));
+  EXPECT_TRUE(std::is_sorted(keys[2].rbegin(), keys[2].rend()));
+  EXPECT_FALSE(std::is_sorted(keys[0].begin(), keys[0].end()) && std::is_sorted(keys[0].rbegin(), keys[0].rend()));
+  for (auto& k : keys) std::sort(k.begin(), k.end());
+  EXPECT_EQ(keys[0], keys[1]);
+  EXPECT_EQ(keys[0], keys[2]);
+}
+
 }  // namespace
 }  // namespace rastsim
