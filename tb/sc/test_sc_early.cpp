@@ -130,7 +130,9 @@ TEST(ScEarlyZ, CyclesDropFrontToBackAndLockstepEqual) {
       // Textured with the DRAM, decoupled and lock step differ with early Z off as well
       // (115733 and 114148 cycles with early Z off: the texture client's fills meet the
       // ROP's requests in another order), so equality is asserted where it holds.
-      if (texture.empty() || std::string(memory) == "fixed") EXPECT_EQ(on, on_lock);
+      if (texture.empty() || std::string(memory) == "fixed") {
+        EXPECT_EQ(on, on_lock);
+      }
       const uint64_t c_off = off["cycles"], c_on = on["cycles"];
       std::printf("8 layers front to back, %d x %d, %s, memory %s: %llu cycles early Z off, %llu on (%.1f %%), "
                   "interpolate busy %llu -> %llu\n",
