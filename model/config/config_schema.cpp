@@ -78,6 +78,9 @@ std::vector<ParamDef> make_schema() {
   add({"depth.hiz_bytes", T::Int, int64_t{16384}, "bytes", 0, int64_t{1} << 30, {},
        "On-chip size of the Hi-Z bound table; blocks past it are read and written through memory "
        "(memory.clients.hiz)"});
+  add({"depth.hiz_base", T::Int, int64_t{3} << 30, "bytes", 0, double(int64_t{1} << 40), {},
+       "Byte address of the spilled Hi-Z table's first entry (block depth.hiz_bytes / entry bytes, "
+       "row-major; docs/depth-culling.md)", is_page_multiple, "a multiple of 4096"});
   return s;
 }
 

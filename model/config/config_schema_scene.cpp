@@ -73,6 +73,10 @@ void add_scene_params(std::vector<ParamDef>& s) {
   s.push_back({"scene.obj_faces_per_command", T::Int, int64_t{1}, "faces", 1, 1 << 30, {},
                "OBJ reading: faces sent in one List command (1: each face its own command; "
                "larger: batched as in one draw call), same triangles in the same order"});
+  s.push_back({"scene.obj_order", T::Enum, std::string("file"), "", 1, 0, {"file", "front_to_back", "back_to_front"},
+               "OBJ reading: the order faces are drawn in: the file's, or sorted by each face's nearest corner "
+               "(nearest or farthest first, ties in file order; l and p statements after the faces): the "
+               "depth-culling studies (docs/depth-culling.md)"});
   s.push_back(obj_depth_func_param(s));
   // 3D points and lines need depth through the clip-space front end: with the
   // perspective camera they become clip-space Points / Lines commands; the orthographic

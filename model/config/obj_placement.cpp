@@ -29,6 +29,9 @@ ObjPlacement obj_placement_from_config(const Config& cfg) {
   p.pitch_deg = cfg.get_float("scene.obj_pitch_deg");
   p.fill = cfg.get_float("scene.obj_fill");
   p.faces_per_command = static_cast<int>(cfg.get_int("scene.obj_faces_per_command"));
+  const std::string& order = cfg.get_string("scene.obj_order");
+  p.order = order == "front_to_back" ? ObjOrder::FrontToBack : order == "back_to_front" ? ObjOrder::BackToFront
+                                                                                          : ObjOrder::File;
   p.coord_format = FixedFormat::parse(cfg.get_string("raster.coord_format"));
   p.lines_points = cfg.get_string("scene.obj_lines_points") == "skip" ? ObjLinesPoints::Skip : ObjLinesPoints::Error;
   p.camera = cfg.get_string("scene.camera") == "perspective" ? ObjCamera::Perspective : ObjCamera::Ortho;

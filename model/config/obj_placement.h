@@ -28,6 +28,12 @@ enum class ObjLinesPoints { Error, Skip };
 // space (docs/trace-format.md, "Perspective camera").
 enum class ObjCamera { Ortho, Perspective };
 
+// The order the OBJ faces are drawn in (scene.obj_order): the file's, or sorted by the
+// face's nearest corner (the largest view-space z of its corners, i.e. the smallest
+// depth) nearest first or farthest first, ties in file order; `l` and `p` statements
+// then follow the faces, in file order (docs/depth-culling.md: the depth-order studies).
+enum class ObjOrder { File, FrontToBack, BackToFront };
+
 // Where an OBJ mesh lands on screen: a camera looking at the mesh's bounding sphere.
 // Every value comes from the config (obj_placement_from_config); none has a default here.
 struct ObjPlacement {
@@ -38,6 +44,7 @@ struct ObjPlacement {
   // Faces sent in one List command (scene.obj_faces_per_command): 1, each face its own
   // command as a naive driver would send it; more, as a draw call would batch them.
   int faces_per_command = 0;
+  ObjOrder order = ObjOrder::File;  // scene.obj_order
   // raster.coord_format: polygon faces are triangulated on their corners snapped to it,
   // exactly as setup snaps them (docs/trace-format.md, "Polygon faces").
   FixedFormat coord_format{};

@@ -5,9 +5,12 @@
 #include <bit>
 #include <chrono>
 #include <cmath>
+#include <optional>
 
 #include "config/raster_state_config.h"
 #include "ref/framebuffer.h"
+#include "ref/hiz.h"
+#include "ref/pipeline.h"
 #include "ref/prim_assembly.h"
 #include "ref/traverse.h"
 #include "ref/tri_setup.h"
@@ -29,6 +32,7 @@ class Walker {
         depth_bytes_(uint64_t((arch.depth_bits + 7) / 8)) {
     r_.render.traversal_method = tp_.method;
     count_multisample_footprint(arch, r_.render);
+    if (hiz_applies(arch)) hiz_.emplace(arch);
   }
 
   // After the last command, with raster.samples > 1: the end-of-frame marker (fetched
@@ -66,6 +70,7 @@ class Walker {
   void state_command(const Command& cmd, uint64_t clear_bytes) {
     Framebuffer no_fb;  // clears pass to the ROP; only viewport and scissor matter here
     apply_state_command(cmd, st_, no_fb);
+    if (hiz_) hiz_->state(cmd);  // a depth clear resets the table
     work(StageId::CommandFetch, p_.fetch_header_cycles());
     r_.framebuffer_bytes += fb_pixels_ * clear_bytes;
     marker(p_.rop_state_cycles(clear_bytes != 0, fb_pixels_), false);
@@ -164,12 +169,16 @@ class Walker {
             const PixelRect fp = tile_footprint(t.bbox, tp_.tile_size, tx, ty);
             ++c.tiles_visited;
             const TileClass cls = classify_tile(t, fp, F);
-            walk.visit(cls != TileClass::Rejected);
+            // Hi-Z as sc/coarse_raster: a culled tile takes its slot and is not sent.
+            const bool culled = cls != TileClass::Rejected && hiz_ && hiz_->test(t, fp, cls) == HizDecision::Culled;
+            walk.visit(cls != TileClass::Rejected && !culled);
             if (cls == TileClass::Rejected) {
               ++c.tiles_rejected;
               continue;
             }
             ++(cls == TileClass::Accepted ? c.tiles_accepted : c.tiles_partial);
+            if (culled) continue;
+            if (hiz_) hiz_->apply(t, fp, cls);
             tile(t, fp, cls, false);
           }
         }
@@ -243,11 +252,37 @@ class Walker {
     stage(StageId::FineRaster).busy += cost;
     if (n == 0) return;  // an empty tile leaves nothing
     emit(StageId::FineRaster);
-    work(StageId::Interpolate, p_.interp_batch_cycles(shaded, t.affine));
+    // Early Z: the fragments a batch keeps are not known here; early_bounds() charges
+    // interpolation and texturing from the reference's totals instead.
+    if (st_.depth_early) emit(StageId::Interpolate);
+    else work(StageId::Interpolate, p_.interp_batch_cycles(shaded, t.affine));
     r_.latency_waits += p_.interp_pipeline_latency();
-    stage(StageId::Rop).busy += p_.rop_fragment_cycles(acc);
-    if (t.texture.enabled()) texture_batch(t.texture.filter, shaded);
+    stage(StageId::Rop).busy += p_.rop_fragment_cycles(acc);  // culled early: still its depth reads
+    if (t.texture.enabled()) {
+      if (st_.depth_early) {
+        textured_ = true;
+        emit(StageId::Texture);
+      } else {
+        texture_batch(t.texture.filter, shaded);
+      }
+    }
   }
+
+ public:
+  // depth.early: the interpolation and texture busy cycles of the fragments the early
+  // test kept (`ref`: the reference's counts of the scene), bounded from below by their
+  // totals (docs/estimate.md): sum over batches of ceil(n_b / lanes) >= ceil(sum n_b /
+  // lanes) with the affine (widest) lanes; the texture stage's fragments term alone.
+  void early_bounds(const RenderStats& ref) {
+    if (!st_.depth_early) return;
+    stage(StageId::Interpolate).busy += p_.interp_batch_cycles(ref.fragments_shaded, true);
+    if (ref.texture.total_samples() == 0) return;
+    TimingParams::TextureWork w;
+    w.fragments = ref.texture.total_samples();
+    stage(StageId::Texture).busy += p_.texture_batch_cycles(w);
+  }
+
+ private:
 
   // A textured batch of `fragments` through the texture stage (sc/texture): the terms of
   // TimingParams::texture_batch_cycles the counts give, its sample slots, its fewest texel
@@ -269,6 +304,7 @@ class Walker {
 
  private:
   bool textured_ = false;
+  std::optional<HizTracker> hiz_;  // depth.hiz where it applies: the timed coarse raster's culls
 
   RasterState st_;
   TraversalParams tp_;
@@ -283,10 +319,8 @@ class Walker {
 // too), so cycles >= bytes read / peak; posted writes may still be queued at the end, so
 // written bytes bound only the DRAM's last completion. The DRAM moves whole bursts, at
 // least the bytes counted. Floors, so rounding never lifts a bound above the truth.
-void bandwidth_bounds(const Scene& scene, const ArchParams& a, EstimateResult& r) {
+void bandwidth_bounds(const RenderStats& rs, const ArchParams& a, EstimateResult& r) {
   if (!a.memory.enabled) return;
-  RenderStats rs;
-  render_scene(scene, a.raster, rs, {}, Framebuffer::kDefaultTileLog2, 1, a.memory);
   const MemoryStats& m = rs.memory;
   r.dram_bytes_read = m.rop_color.bytes_read + m.rop_depth.bytes_read;
   r.dram_bytes_written = m.rop_color.bytes_written + m.rop_depth.bytes_written;
@@ -309,6 +343,11 @@ EstimateResult estimate_scene(const Scene& scene, const ArchParams& params, cons
   Walker walker(arch, p, r);
   for (size_t i = 0; i < scene.commands.size(); ++i) walker.command(i, scene.commands[i], progress);
   walker.end_of_frame();
+  // The reference's counts, where a bound needs them: the DRAM bytes, early Z's kept fragments.
+  RenderStats ref;
+  if (params.memory.enabled || arch.depth_early)
+    render_scene(scene, arch, ref, {}, Framebuffer::kDefaultTileLog2, 1, params.memory);
+  walker.early_bounds(ref);
 
   // Lower bound: a stage with work cannot start before its fill and is busy for all its
   // cycles (docs/estimate.md). Upper bound: until the simulation ends some stage is
@@ -320,12 +359,14 @@ EstimateResult estimate_scene(const Scene& scene, const ArchParams& params, cons
     if (r.stages[s].busy > 0)
       r.stage_lower_bound = std::max(r.stage_lower_bound, p.stage_fill_cycles(kStages[s].id) + r.stages[s].busy);
   }
-  bandwidth_bounds(scene, params, r);
+  bandwidth_bounds(ref, params, r);
   r.cycles_lower_bound = std::max(r.stage_lower_bound, r.bandwidth_lower_bound);
   // The ROP's busy cycles under DRAM include its fills' waits, which no count bounds; the
-  // texture stage's include its cache misses, which only the texture unit counts.
-  r.cycles_upper_bound =
-      params.memory.enabled || walker.textured() ? EstimateResult::kNoUpperBound : busy_sum + r.latency_waits;
+  // texture stage's include its cache misses, which only the texture unit counts; early
+  // Z's interpolation is charged a lower bound, not each batch's cycles.
+  r.cycles_upper_bound = params.memory.enabled || walker.textured() || arch.depth_early
+                             ? EstimateResult::kNoUpperBound
+                             : busy_sum + r.latency_waits;
   r.cycles_estimate = r.cycles_lower_bound;
   if (r.has_upper_bound())
     r.cycles_estimate +=

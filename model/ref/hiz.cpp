@@ -3,6 +3,12 @@
 
 #include <algorithm>
 #include <bit>
+#include <utility>
+
+#include "ref/fine_raster.h"
+#include "ref/fixed_point.h"
+#include "ref/interpolate.h"
+#include "ref/rop.h"
 
 namespace rastsim {
 
@@ -84,10 +90,7 @@ HizDecision HizTable::test(const PixelRect& fp, DepthRange z, DepthFunc func) {
   ++stats.tiles_tested;
   for (int by = fp.y0 >> log2B_; by <= (fp.y1 - 1) >> log2B_; ++by)
     for (int bx = fp.x0 >> log2B_; bx <= (fp.x1 - 1) >> log2B_; ++bx)
-      if (spilled(index(bx, by))) {
-        ++stats.dram_reads;
-        stats.bytes_read += uint64_t(entry_bytes_);
-      }
+      if (spilled(index(bx, by))) spilled_access(index(bx, by), false);
   const DepthRange b = bounds(fp);  // b.lo: nearest stored (minmax only), b.hi: farthest
   bool cull = false, accept = false;
   switch (func) {
@@ -141,12 +144,60 @@ void HizTable::flush() {
     blocks_[size_t(i)].dirty = false;
     ++stats.block_updates;
     if (!spilled(i)) continue;
-    ++stats.dram_reads;  // the read-modify-write of the entry
-    ++stats.dram_writes;
-    stats.bytes_read += uint64_t(entry_bytes_);
-    stats.bytes_written += uint64_t(entry_bytes_);
+    spilled_access(i, false);  // the read-modify-write of the entry
+    spilled_access(i, true);
   }
   dirty_.clear();
+}
+
+void HizTable::spilled_access(int i, bool write) {
+  ++(write ? stats.dram_writes : stats.dram_reads);
+  (write ? stats.bytes_written : stats.bytes_read) += uint64_t(entry_bytes_);
+  if (on_access) on_access(dram_base + uint64_t(i - onchip_) * uint64_t(entry_bytes_), uint64_t(entry_bytes_), write);
+}
+
+HizTracker::HizTracker(const RasterState& st)
+    : table(st.hiz_mode, st.hiz_block, st.hiz_bytes, st.fb_width, st.fb_height, st.depth_bits), st_(st),
+      depth_(st.fb_width, st.fb_height, 1) {
+  table.dram_base = st.hiz_base;
+  depth_.clear_depth(static_cast<uint32_t>((uint64_t{1} << st.depth_bits) - 1));  // as the ROP's
+}
+
+// The reference's test (pipeline.cpp HizFilter): a culled tile's covered pixels counted.
+HizDecision HizTracker::test(const SetupTriangle& t, const PixelRect& fp, TileClass cls) {
+  const int F = st_.coord_format.frac_bits;
+  const HizDecision d = table.test(fp, tile_depth_range(t, fp, F), st_.depth_func);
+  if (d == HizDecision::Culled) {
+    uint64_t n = 0;
+    if (cls == TileClass::Accepted) n = uint64_t(fp.area());
+    else fine_raster_partial(t, fp, F, [&](int, int, uint32_t) { ++n; });
+    table.stats.fragments_culled += n;
+  }
+  return d;
+}
+
+// The depth writes the ROP will make for this tile, applied to the copy and the table
+// now, then the tile's blocks flushed (the reference's order: walk order, one sample).
+void HizTracker::apply(const SetupTriangle& t, const PixelRect& fp, TileClass cls) {
+  const int F = st_.coord_format.frac_bits;
+  const auto pixel = [&](int px, int py, uint32_t) {
+    const uint32_t z = interpolate_plane(t, px, py, F).z;
+    if (!depth_test(st_.depth_func, z, std::as_const(depth_).depth_at(px, py, 0)) || !st_.depth_write) return;
+    depth_.set_depth(px, py, 0, z);
+    table.write(px, py, z);
+  };
+  if (cls == TileClass::Accepted) fine_raster_accepted(fp, pixel);
+  else fine_raster_partial(t, fp, F, pixel);
+  table.flush();
+}
+
+void HizTracker::state(const Command& cmd) {
+  const auto* c = std::get_if<CmdClearDepth>(&cmd.body);
+  if (!c) return;
+  if (const auto z = quantize_unorm(c->z, st_.depth_bits)) {  // a bad value is the ROP's error to report
+    depth_.clear_depth(*z);
+    table.clear(*z);
+  }
 }
 
 bool hiz_applies(const RasterState& st) {

@@ -26,9 +26,13 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
+#include "ref/coarse_raster.h"
+#include "ref/framebuffer.h"
 #include "ref/raster_state.h"
+#include "ref/scene.h"
 #include "ref/tri_setup.h"
 
 namespace rastsim {
@@ -40,6 +44,9 @@ namespace rastsim {
 // lo = max(min z_k, floor(num_min / area2)), hi = min(max z_k, ceil(num_max / area2))
 // (round_half_up of a value in [a, b] lies in [floor a, ceil b]; inside the triangle the
 // rational lies between the vertex depths).
+// The spilled table's memory client (memory.clients.hiz).
+inline constexpr const char* kHizClient = "hiz";
+
 struct DepthRange {
   uint32_t lo = 0, hi = 0;
 };
@@ -86,8 +93,15 @@ class HizTable {
   DepthRange bounds(const PixelRect& fp) const;
 
   HizStats stats;
+  // Called at every access of a spilled entry, in order: its byte address (dram_base +
+  // (i - onchip_blocks) x entry_bytes), entry_bytes, and whether it is the write of a
+  // flush's read-modify-write. Unset: nothing called (render). The timed model's memory
+  // client (timing/hiz_memory_port.h) sets it.
+  std::function<void(uint64_t address, uint64_t bytes, bool write)> on_access;
+  uint64_t dram_base = 0;  // depth.hiz_base
 
  private:
+  void spilled_access(int i, bool write);
   struct Block {
     uint32_t zmin = 0, zmax = 0, lmin = 0, lmax = 0;
     std::array<uint64_t, 4> mask{};  // B^2 <= 256 bits, pixel (i, j) of the block at bit j B + i
@@ -103,6 +117,28 @@ class HizTable {
   int64_t onchip_;
   std::vector<Block> blocks_;
   std::vector<int> dirty_;
+};
+
+// Functional-first Hi-Z for the models that walk tiles ahead of a ROP (the timed coarse
+// raster, sc/coarse_raster.h, and estimate's walk): the depth buffer and table the
+// reference would have at each tile, kept by applying each drawn tile's depth writes
+// (one sample, the plane depths, the state's function and raster.depth_write) at once,
+// in walk order: a zero-lag table (docs/depth-culling.md, "The timed model").
+class HizTracker {
+ public:
+  explicit HizTracker(const RasterState& st);
+  // The decision for tile footprint fp (class cls, not rejected) of t; a culled tile's
+  // covered pixels counted into table.stats.fragments_culled (as the reference's filter).
+  HizDecision test(const SetupTriangle& t, const PixelRect& fp, TileClass cls);
+  // A drawn tile's depth writes, then its blocks flushed.
+  void apply(const SetupTriangle& t, const PixelRect& fp, TileClass cls);
+  // A state command: a depth clear resets the depth and the table.
+  void state(const Command& cmd);
+  HizTable table;
+
+ private:
+  RasterState st_;
+  Framebuffer depth_;  // one sample, colour unused
 };
 
 // True when the Hi-Z test may run for a draw with this state (docs/depth-culling.md):

@@ -229,7 +229,10 @@ struct SceneRenderer::Impl {
     if (memory.enabled && binned)
       bin_mem.emplace(memory, st.fb_width, st.fb_height, st.samples, st.depth_bits, st.bin.parameter_buffer_base,
                       st.bin.parameter_buffer_bytes);
-    if (hiz_applies(st)) hiz.emplace(st.hiz_mode, st.hiz_block, st.hiz_bytes, st.fb_width, st.fb_height, st.depth_bits);
+    if (hiz_applies(st)) {
+      hiz.emplace(st.hiz_mode, st.hiz_block, st.hiz_bytes, st.fb_width, st.fb_height, st.depth_bits);
+      hiz->dram_base = st.hiz_base;  // the addresses the timed model's client uses
+    }
     // The frame starts with depth cleared to 1.0 (a clear the memory system sees); the
     // colour buffer's initial black is taken to be in memory already.
     fb.clear_depth(static_cast<uint32_t>((uint64_t{1} << st.depth_bits) - 1));
@@ -290,7 +293,7 @@ struct SceneRenderer::Impl {
     if (tri.interp_method != InterpMethod::Plane) count_interp_error(f, interpolate_plane(tri, px, py, F), s);
     if (st.depth_early && early_depth_cull(fb, f, tile_func, mem_ptr())) {
       ++s.fragments_culled_early;
-      s.interpolations_saved += kColorChannels + (textured ? kTexCoords : 0);
+      s.interpolations_saved += early_interpolations_saved(textured);
       s.texture_samples_saved += textured ? 1 : 0;
       return;
     }
@@ -338,8 +341,6 @@ struct SceneRenderer::Impl {
     s.samples_passed += n;
     if (st.depth_write) s.depth_writes += n;
   }
-  // The attributes interpolated a fragment besides depth: r, g, b, and s, t when textured.
-  static constexpr uint64_t kColorChannels = 3, kTexCoords = 2;
 
   // The texture stage (ref/texture/texture_unit.h, docs/texture.md): created at the first
   // textured triangle; its quads' derivatives, one triangle's.

@@ -67,6 +67,7 @@ struct RasterState {
   HizMode hiz_mode = HizMode::Off;
   int hiz_block = 0;
   int64_t hiz_bytes = 0;
+  uint64_t hiz_base = 0;  // depth.hiz_base: byte address of the spilled table in DRAM
   OutOfRange out_of_range = OutOfRange::Error;
   int fb_width = 0, fb_height = 0;  // framebuffer (display) size, px
   // 2D primitives (config keys line.*, polygon.*).

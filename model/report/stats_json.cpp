@@ -96,9 +96,9 @@ void add_hiz(nlohmann::json& j, const RenderStats& s) {
   if (s.memory.enabled) {  // the spilled table is a memory client too
     j["dram_bytes_read"] = j["dram_bytes_read"].get<uint64_t>() + h.bytes_read;
     j["dram_bytes_written"] = j["dram_bytes_written"].get<uint64_t>() + h.bytes_written;
-    j["memory"]["clients"]["hiz"] = {{"accesses", h.dram_reads + h.dram_writes},
+    j["memory"]["clients"][kHizClient].update({{"accesses", h.dram_reads + h.dram_writes},
                                       {"bytes_read", h.bytes_read},
-                                      {"bytes_written", h.bytes_written}};
+                                      {"bytes_written", h.bytes_written}});
   }
 }
 

@@ -11,7 +11,7 @@ void CoarseRaster::body() {
   ctx_.render.traversal_method = tp_.method;
   for (;;) {
     const SetupItem in = read(in_);
-    if (in.state && hiz_) hiz_state(*in.state);
+    if (in.state && hiz_) hiz_->state(*in.state);
     if (pass_state(in, out_)) continue;
     switch (tp_.method) {
       case Traversal::Tiled: walk_tiled(in); break;
@@ -77,8 +77,10 @@ void CoarseRaster::walk_tiled(const SetupItem& in) {
         const PixelRect fp = tile_footprint(t.bbox, tile_size_, tx, ty);
         ++c.tiles_visited;
         const TileClass cls = classify_tile(t, fp, frac_bits_);
-        const HizDecision hiz = cls != TileClass::Rejected && hiz_ ? hiz_test(t, fp, cls) : HizDecision::Draw;
+        if (mem_) mem_->begin(now());  // the tile's entry reads from now (timing/hiz_memory_port.h)
+        const HizDecision hiz = cls != TileClass::Rejected && hiz_ ? hiz_->test(t, fp, cls) : HizDecision::Draw;
         const bool culled = hiz == HizDecision::Culled;
+        hiz_stall();  // the test's entries
         const uint64_t leave_at = walk.visit(cls != TileClass::Rejected && !culled);
         if (cls == TileClass::Rejected) {
           ++c.tiles_rejected;
@@ -86,7 +88,10 @@ void CoarseRaster::walk_tiled(const SetupItem& in) {
         }
         ++(cls == TileClass::Accepted ? c.tiles_accepted : c.tiles_partial);
         if (culled) continue;  // counted by its class, as the reference's walk does
-        if (hiz_) hiz_apply(t, fp, cls);
+        if (hiz_) {
+          hiz_->apply(t, fp, cls);
+          hiz_stall();
+        }
         attribute_to(fp.x0, fp.y0);  // the walk up to this tile, rejected tiles included
         busy(leave_at - cycles_done);
         cycles_done = leave_at;
@@ -102,46 +107,12 @@ void CoarseRaster::walk_tiled(const SetupItem& in) {
   }
 }
 
-CoarseRaster::HizShadow::HizShadow(const RasterState& a)
-    : depth(a.fb_width, a.fb_height, 1),
-      table(a.hiz_mode, a.hiz_block, a.hiz_bytes, a.fb_width, a.fb_height, a.depth_bits) {
-  depth.clear_depth(static_cast<uint32_t>((uint64_t{1} << a.depth_bits) - 1));  // as the ROP's
-}
-
-// The reference's test (pipeline.cpp HizFilter): a culled tile's covered pixels counted.
-HizDecision CoarseRaster::hiz_test(const SetupTriangle& t, const PixelRect& fp, TileClass cls) {
-  const HizDecision d = hiz_->table.test(fp, tile_depth_range(t, fp, frac_bits_), arch_.depth_func);
-  if (d == HizDecision::Culled) {
-    uint64_t n = 0;
-    if (cls == TileClass::Accepted) n = uint64_t(fp.area());
-    else fine_raster_partial(t, fp, frac_bits_, [&](int, int, uint32_t) { ++n; });
-    hiz_->table.stats.fragments_culled += n;
-  }
-  return d;
-}
-
-// The depth writes the ROP will make for this tile, applied to the shadow and the table
-// now, then the tile's blocks flushed (the reference's order: walk order, one sample).
-void CoarseRaster::hiz_apply(const SetupTriangle& t, const PixelRect& fp, TileClass cls) {
-  HizShadow& h = *hiz_;
-  const auto pixel = [&](int px, int py, uint32_t) {
-    const uint32_t z = interpolate_plane(t, px, py, frac_bits_).z;
-    if (!depth_test(arch_.depth_func, z, std::as_const(h.depth).depth_at(px, py, 0)) || !arch_.depth_write) return;
-    h.depth.set_depth(px, py, 0, z);
-    h.table.write(px, py, z);
-  };
-  if (cls == TileClass::Accepted) fine_raster_accepted(fp, pixel);
-  else fine_raster_partial(t, fp, frac_bits_, pixel);
-  h.table.flush();
-}
-
-void CoarseRaster::hiz_state(const Command& cmd) {
-  const auto* c = std::get_if<CmdClearDepth>(&cmd.body);
-  if (!c) return;
-  if (const auto z = quantize_unorm(c->z, arch_.depth_bits)) {  // a bad value is the ROP's error to report
-    hiz_->depth.clear_depth(*z);
-    hiz_->table.clear(*z);
-  }
+// The walk waits for the step's spilled entries: busy the stall; the next step starts
+// then (timing/hiz_memory_port.h).
+void CoarseRaster::hiz_stall() {
+  if (!mem_) return;
+  if (const uint64_t stall = mem_->wait()) busy(stall);
+  mem_->begin(now());
 }
 
 }  // namespace rastsim::sc

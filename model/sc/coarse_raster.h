@@ -16,7 +16,9 @@
 //   functional-first: this stage keeps the depth buffer and table the reference would
 //   have at this tile (each surviving tile's fragments' depths applied here, in walk
 //   order, as the ROP will), a zero-lag Hi-Z, so its decisions and counts equal the
-//   reference's and its cycles are those of an ideally synchronised table.
+//   reference's and its cycles are those of an ideally synchronised table. With
+//   memory.model = "dram" the spilled entries' reads stall the walk until they arrive and
+//   the write-backs are posted (timing/hiz_memory_port.h): busy the stall too.
 // The other raster.traversal methods (docs/traversal.md), same functions as the
 // reference (ref/traverse.h):
 // - bbox: one partial "tile", the whole clipped bbox, in 1 cycle.
@@ -29,6 +31,7 @@
 //   (ref/study/coverage_check.h), where the whole triangle's pixels are known.
 #pragma once
 
+#include <memory>
 #include <optional>
 
 #include "ref/framebuffer.h"
@@ -36,6 +39,7 @@
 #include "ref/study/coverage_check.h"
 #include "ref/traverse.h"
 #include "sc/tri_setup.h"
+#include "timing/hiz_memory_port.h"
 
 namespace rastsim::sc {
 
@@ -60,6 +64,15 @@ class CoarseRaster : public Stage {
     ctx_.render.hiz_mode = arch.hiz_mode;
     if (hiz_applies(arch)) hiz_.emplace(arch);
   }
+  // memory.model = "dram" (before the run): the spilled Hi-Z table's entries become
+  // requests through `mem` (the hiz client, timing/hiz_memory_port.h), which must outlive
+  // the run. Nothing without a table.
+  void attach_memory(MemorySystem& mem) {
+    if (!hiz_) return;
+    mem_ = std::make_unique<HizMemoryPort>(mem);
+    mem_->attach(hiz_->table);
+  }
+  const HizMemoryPort* memory_port() const { return mem_.get(); }
   // The Hi-Z unit's counts into ctx.render.hiz (call once, after the simulation).
   void finish_hiz() {
     if (hiz_) ctx_.render.hiz = hiz_->table.stats;
@@ -73,6 +86,7 @@ class CoarseRaster : public Stage {
  private:
   void body() override;
   void walk_tiled(const SetupItem& in);
+  void hiz_stall();
   void walk_hierarchical(const SetupItem& in);
   void walk_scanline(const SetupItem& in);
   int tile_size_, frac_bits_;
@@ -81,18 +95,9 @@ class CoarseRaster : public Stage {
   const TimingParams& p_;
   Link<SetupItem>& in_;
   Link<TileItem>& out_;
-  // Hi-Z's functional-first state: the depth the reference's ROP would hold (one sample)
-  // and the bound table.
-  struct HizShadow {
-    explicit HizShadow(const RasterState& a);
-    Framebuffer depth;
-    HizTable table;
-  };
   RasterState arch_;  // the depth state and the table's parameters
-  std::optional<HizShadow> hiz_;
-  HizDecision hiz_test(const SetupTriangle& t, const PixelRect& fp, TileClass cls);
-  void hiz_apply(const SetupTriangle& t, const PixelRect& fp, TileClass cls);
-  void hiz_state(const Command& cmd);
+  std::optional<HizTracker> hiz_;  // functional-first Hi-Z (ref/hiz.h)
+  std::unique_ptr<HizMemoryPort> mem_;  // memory.model = "dram" with a table, else null
 };
 
 }  // namespace rastsim::sc

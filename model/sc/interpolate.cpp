@@ -2,12 +2,14 @@
 #include "sc/interpolate.h"
 
 #include "ref/pipeline.h"
+#include "ref/rop.h"
 
 namespace rastsim::sc {
 
 void Interpolate::body() {
   for (;;) {
     const PixelItem in = read(in_);
+    if (early_ && in.state) early_state(*in.state);
     if (!textured_ahead_ && pass_state(in, out_, p_.interp_pipeline_latency())) continue;
     if (in.state) {
       pass_state_behind_texture(in);
@@ -20,11 +22,13 @@ void Interpolate::body() {
     // At most one fragment a covered sample (ssaa), one a pixel otherwise.
     Fragment* const first = frags->reset(size_t(batch.pixels) * size_t(tri.samples));
     frags->count = shade(batch, first);
-    ctx_.render.fragments_shaded += frags->count;
+    if (early_) early_test(*frags);
+    ctx_.render.fragments_shaded += frags->kept();
     if (frags->count != 0) attribute_to(first->x, first->y);  // the batch's tile
-    const uint64_t cycles = p_.interp_batch_cycles(frags->count, tri.affine);
+    // Early Z: the attribute lanes shade the kept fragments only (docs/depth-culling.md).
+    const uint64_t cycles = p_.interp_batch_cycles(frags->kept(), tri.affine);
     if (!tri.affine) {  // a reciprocal a fragment (docs/clip-space.md, "Timing")
-      ctx_.recip_reciprocals += frags->count;
+      ctx_.recip_reciprocals += frags->kept();
       ctx_.recip_busy_cycles += cycles;
     }
     busy(cycles);
@@ -63,11 +67,46 @@ size_t Interpolate::shade(const PixelBatch& batch, Fragment* const first) {
         // interp.method = dda: its error against the plane equations, counted as the
         // reference's render_scene counts it (same stats keys at both levels).
         if (dda) count_interp_error(f, interpolate_plane(tri, x, r.y, frac_bits_), ctx_.render);
-        if (ctx_.on_fragment) ctx_.on_fragment(f);
+        if (ctx_.on_fragment && !early_) ctx_.on_fragment(f);  // with early Z: the kept ones, early_test
       });
     }
   }
   return size_t(out - first);
+}
+
+// The reference's early test (ref/pipeline.cpp write: early_depth_cull with the tile's
+// depth function) on each fragment in order against the depth the ROP will have then; a
+// kept fragment's test and write applied to that copy as the ROP will apply them.
+void Interpolate::early_test(FragmentBatch& frags) {
+  EarlyZ& e = *early_;
+  const PixelBatch& batch = *frags.pixels;
+  const DepthFunc func = batch.hiz_accepted ? DepthFunc::Always : e.st.depth_func;
+  if (frags.culled.size() < frags.count) frags.culled.resize(frags.count);
+  size_t culled = 0;
+  for (size_t k = 0; k < frags.count; ++k) {
+    const Fragment& f = frags.storage[k];
+    const bool cull = early_depth_cull(e.depth, f, func);
+    frags.culled[k] = cull;
+    if (cull) {
+      ++culled;
+      continue;
+    }
+    rop_write(e.depth, f, func, e.st.depth_write);
+    if (ctx_.on_fragment) ctx_.on_fragment(f);
+  }
+  frags.culled_count = culled;
+  // The work saved (ref/pipeline.cpp write): the attributes and, textured, a sample each.
+  const bool textured = batch.tri->texture.enabled();
+  ctx_.render.fragments_culled_early += culled;
+  ctx_.render.interpolations_saved += culled * early_interpolations_saved(textured);
+  ctx_.render.texture_samples_saved += textured ? culled : 0;
+}
+
+void Interpolate::early_state(const Command& cmd) {
+  const auto* c = std::get_if<CmdClearDepth>(&cmd.body);
+  if (!c) return;
+  if (const auto z = quantize_unorm(c->z, early_->st.depth_bits))  // a bad value is the ROP's error to report
+    early_->depth.clear_depth(*z);
 }
 
 // Stage::pass_state's issue cycle and latency, with the fence between them.

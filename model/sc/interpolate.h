@@ -23,6 +23,13 @@
 //   FIFO, its token comes back on texture_done (starved until then) and the transaction
 //   enters the fragment FIFO behind them, ready no earlier than its own pipeline allows.
 //   Without textures this path is never taken: the stage is timed as without a texture stage.
+// - Early Z (depth.early, docs/depth-culling.md "Early Z in the timed model"): each
+//   fragment's depth is tested before its attributes are used, in order, against a copy
+//   of the depth buffer as the ROP will have it (functional-first, zero lag); a fragment
+//   failing at every covered sample is culled (fragments_culled_early,
+//   interpolations_saved, texture_samples_saved as the reference counts them): it stays in
+//   the batch flagged, for its depth reads at the ROP's port, but costs no lane here nor a
+//   sample at the texture stage. The batch takes interp_batch_cycles(kept fragments).
 #pragma once
 
 #include <optional>
@@ -49,10 +56,19 @@ struct FragmentBatch {
   Fragment* reset(size_t n) {
     if (storage.size() < n) storage.resize(n);
     count = 0;
+    culled_count = 0;
     return storage.data();
   }
+  // Early Z (depth.early): fragment k failed the early depth test when culled[k] != 0
+  // (valid only when culled_count > 0). A culled fragment stays in the batch, in pixel
+  // order, uncoloured: the texture stage skips it and the ROP makes only its depth reads
+  // (ref/rop.h early_depth_cull), so the memory system sees the reference's access stream.
+  bool is_culled(size_t k) const { return culled_count != 0 && culled[k] != 0; }
+  size_t kept() const { return count - culled_count; }
   std::vector<Fragment> storage;
   size_t count = 0;  // fragments in storage[0, count)
+  std::vector<uint8_t> culled;
+  size_t culled_count = 0;
 };
 using FragmentItem = Item<LocalPtr<const FragmentBatch>>;
 
@@ -67,12 +83,23 @@ class Interpolate : public Stage {
               Link<PixelItem>& in, Link<FragmentItem>& out, Link<FragmentItem>& texture_out,
               Link<TextureFence>& texture_done, sc_core::sc_module_name name = stage_name(kId).data())
       : Stage(name, ctx, kId), frac_bits_(arch.coord_format.frac_bits), p_(p), in_(in), out_(out),
-        texture_out_(texture_out), texture_done_(texture_done) {}
+        texture_out_(texture_out), texture_done_(texture_done) {
+    if (arch.depth_early) early_.emplace(arch);
+  }
+  // Before the run, with depth.early: the depth the frame starts with (the ROP's).
+  void start_early_depth(const Framebuffer& fb) {
+    if (early_) early_->depth = fb;
+  }
 
  private:
   void body() override;
   // Shades the batch's fragments into `out` (one a covered sample at most); their count.
   size_t shade(const PixelBatch& batch, Fragment* out);
+  // Early Z: marks the batch's fragments that fail the depth test (counted); shows the
+  // kept ones to the fragment sink.
+  void early_test(FragmentBatch& frags);
+  // A state command on the early test's copy of the depth buffer (a depth clear).
+  void early_state(const Command& cmd);
   // A state command with textured batches ahead: its issue cycle, then behind them.
   void pass_state_behind_texture(const PixelItem& in);
   // The fence, when textured batches are ahead; then the extra latency that makes a
@@ -91,6 +118,18 @@ class Interpolate : public Stage {
   // its pooled object from being reused, so the address identifies it.
   LocalPtr<const SetupTriangle> shader_tri_;
   std::optional<PixelShader> shader_;
+  // Early Z (depth.early, docs/depth-culling.md "Early Z in the timed model"): the depth
+  // buffer as the ROP will have it at each fragment, functional-first (zero lag: the
+  // ROP's writes of the fragments ahead applied here at once, in pipeline order).
+  struct EarlyZ {
+    explicit EarlyZ(const RasterState& a)
+        : st(a), depth(a.fb_width, a.fb_height, a.samples) {
+      depth.clear_depth(static_cast<uint32_t>((uint64_t{1} << a.depth_bits) - 1));  // as the ROP's
+    }
+    RasterState st;
+    Framebuffer depth;  // colour unused
+  };
+  std::optional<EarlyZ> early_;
 };
 
 }  // namespace rastsim::sc

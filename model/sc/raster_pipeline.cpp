@@ -228,6 +228,7 @@ void configure(SimContext& ctx, const SimOptions& opts, const RasterState& arch)
   ctx.on_fragment = opts.on_fragment;
   ctx.on_fetch = opts.on_fetch;
   count_multisample_footprint(arch, ctx.render);
+  ctx.render.depth_early = arch.depth_early;  // its stats keys, as the reference's
 }
 
 // The run ends with the last stage's last step: the latest stage time (in lock-step,
@@ -280,6 +281,7 @@ SimResult simulate_commands(CommandSource source, const ArchParams& params, cons
   if (top) throw std::logic_error("simulate_scene: SystemC elaborates only once per process");
   top = new RasterPipeline("pipeline", ctx, std::move(source), arch, p);
   if (opts.initial_fb) top->rop.framebuffer() = *opts.initial_fb;  // engine2d holds the same object
+  top->interpolate.start_early_depth(top->rop.framebuffer());         // depth.early: the same start
   Recorders rec;
   rec.attach(*top, opts, arch, ctx.tracing);
   static MemorySystem* memory = nullptr;  // kept, as the top: elaborated once
@@ -292,6 +294,7 @@ SimResult simulate_commands(CommandSource source, const ArchParams& params, cons
     top->rop.attach_memory(*memory, params.memory);  // its first request: the frame's depth clear
     top->engine2d.attach_memory(top->rop.memory_port());  // draws through the ROP's colour client
     top->texture.attach_memory(*memory);                   // its cache's line fills
+    top->coarse_raster.attach_memory(*memory);             // the spilled Hi-Z table's entries
   } else if (!opts.mem_trace_path.empty()) {
     throw std::invalid_argument("--mem-trace needs memory.model = \"dram\" (the DRAM requests it lists)");
   }
@@ -324,6 +327,8 @@ SimResult simulate_commands(CommandSource source, const ArchParams& params, cons
     if (scanout) r.scanout = scanout->report();
     if (const TextureMemoryPort* t = top->texture.memory_port(); t && t->report().reads > 0)
       r.texture_memory = t->report();
+    if (const HizMemoryPort* h = top->coarse_raster.memory_port(); h && h->report().reads + h->report().writes > 0)
+      r.hiz_memory = h->report();
     if (mem_trace) mem_trace->commit();
   }
   r.fb = std::move(top->rop.framebuffer());  // moved, not copied: one framebuffer
@@ -357,6 +362,7 @@ nlohmann::json SimResult::to_json() const {
   if (memory) add_memory_system_json(j, *memory);
   if (scanout) add_scanout_fetch_json(j, *scanout);
   if (texture_memory) add_texture_memory_json(j, *texture_memory);
+  if (hiz_memory) add_hiz_memory_json(j, *hiz_memory);
   // The geometry front end's counters under its stage too, beside its cycles.
   if (render.front_end.any()) {
     nlohmann::json counters;

@@ -25,6 +25,7 @@
 #include "ref/pipeline.h"
 #include "sc/command_fetch.h"
 #include "timing/memory_system.h"
+#include "timing/hiz_memory_port.h"
 #include "timing/texture_memory_port.h"
 #include "sc/scanout.h"
 #include "scene/scene_io.h"
@@ -103,6 +104,9 @@ struct SimResult {
   // The texture cache's line fills as a memory client (timing/texture_memory_port.h), when
   // the memory system is on and a texture line was filled.
   std::optional<TextureMemoryReport> texture_memory;
+  // The spilled Hi-Z table as a memory client (timing/hiz_memory_port.h), when it made a
+  // request (memory.model = "dram").
+  std::optional<HizMemoryReport> hiz_memory;
 
   // RenderStats::to_json plus cycles, cycles_lower_bound, simulated_seconds,
   // sim_wall_seconds, simulated_cycles_per_second, rop_accesses, framebuffer_bytes,

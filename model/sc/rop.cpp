@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <span>
+#include <string>
 
 #include "ref/pipeline.h"
 #include "ref/rop.h"
@@ -17,12 +18,26 @@ struct RopBatchCounts {
   uint64_t accesses = 0, passed = 0, samples_passed = 0;
 };
 
+// Fragment k of the batch at the ROP's depth port: tested and written (rop_write), or,
+// culled by early Z (docs/depth-culling.md), only its early test's depth reads made in
+// its place in the stream (early_depth_cull, as the reference's). The early test ran on
+// a copy of this depth buffer as the ROP has it now, so the fragment must fail here too.
+bool rop_fragment(Framebuffer& fb, const FragmentBatch& batch, size_t k, DepthFunc func, bool depth_write,
+                  uint64_t* samples_passed, RopMemory* mem) {
+  const Fragment& f = batch.storage[k];
+  if (!batch.is_culled(k)) return rop_write(fb, f, func, depth_write, samples_passed, mem);
+  if (!early_depth_cull(fb, f, func, mem))
+    throw ModelError("ROP: a fragment early Z culled at (" + std::to_string(f.x) + ", " + std::to_string(f.y) +
+                     ") passes the depth test at the ROP");
+  return false;
+}
+
 // A batch's fragments through the timed memory system a group at a time (timing/
 // memory_timing.h, memory_group_response: `group_accesses` accesses a group, a
 // fragment's accesses made by the group of its first one), the first group issued at core
 // cycle `start`; returns the cycle the last group's response comes (`start`: no access).
 // `func`: the batch's depth function (always in a tile Hi-Z accepted).
-uint64_t rop_write_groups(Framebuffer& fb, std::span<const Fragment> frags, DepthFunc func, bool depth_write,
+uint64_t rop_write_groups(Framebuffer& fb, const FragmentBatch& batch, DepthFunc func, bool depth_write,
                           RopMemoryPort& port, uint64_t group_accesses, uint64_t start, RopBatchCounts& n) {
   uint64_t issue = start, group_end = group_accesses;
   port.begin(issue);
@@ -31,9 +46,10 @@ uint64_t rop_write_groups(Framebuffer& fb, std::span<const Fragment> frags, Dept
     port.begin(issue);
     group_end += group_accesses;
   };
-  for (const Fragment& f : frags) {
+  for (size_t k = 0; k < batch.count; ++k) {
+    const Fragment& f = batch.storage[k];
     if (n.accesses == group_end) respond();  // f's first access opens the next group
-    n.passed += rop_write(fb, f, func, depth_write, &n.samples_passed, &port.functional());
+    n.passed += rop_fragment(fb, batch, k, func, depth_write, &n.samples_passed, &port.functional());
     n.accesses += TimingParams::rop_accesses(f.mask, fb.samples);
     while (n.accesses > group_end) respond();  // f's later accesses fill further groups
   }
@@ -157,16 +173,18 @@ void Rop::body() {
     const DepthFunc func = batch.pixels->hiz_accepted ? DepthFunc::Always : st_.depth_func;
     uint64_t accesses = 0, passed = 0, samples_passed = 0;  // summed locally, added once a batch
     uint64_t cycles = 0;
+    // A run at a time where every fragment is one access and none was culled early.
+    const bool runs = batch.one_per_pixel() && fb_.samples == 1 && batch.culled_count == 0;
     if (mem_) {
       RopBatchCounts n;
-      cycles = (batch.one_per_pixel() && fb_.samples == 1
+      cycles = (runs
                     ? rop_write_group_runs(fb_, batch, func, st_.depth_write, *mem_, p_.rop_pixels_per_cycle, now(), n)
-                    : rop_write_groups(fb_, frags, func, st_.depth_write, *mem_, p_.rop_pixels_per_cycle, now(), n)) -
+                    : rop_write_groups(fb_, batch, func, st_.depth_write, *mem_, p_.rop_pixels_per_cycle, now(), n)) -
                now();
       accesses = n.accesses;
       passed = n.passed;
       samples_passed = n.samples_passed;
-    } else if (batch.one_per_pixel() && fb_.samples == 1) {
+    } else if (runs) {
       // A run at a time: the same tests and writes as rop_write on each fragment in turn
       // (ref/rop.h), the storage tile looked up once a run. Each fragment is one access
       // and, written, one sample.
@@ -180,9 +198,9 @@ void Rop::body() {
       }
       accesses = uint64_t(frags.size()) * TimingParams::rop_accesses(1u, 1);
     } else {
-      for (const Fragment& f : frags) {
-        accesses += TimingParams::rop_accesses(f.mask, fb_.samples);
-        passed += rop_write(fb_, f, func, st_.depth_write, &samples_passed);
+      for (size_t k = 0; k < frags.size(); ++k) {
+        accesses += TimingParams::rop_accesses(frags[k].mask, fb_.samples);
+        passed += rop_fragment(fb_, batch, k, func, st_.depth_write, &samples_passed, nullptr);
       }
     }
     if (!mem_) cycles = p_.rop_fragment_cycles(accesses);

@@ -20,6 +20,10 @@
 // - Counts fragments_passed, samples_passed, and the traffic (SimContext::rop_accesses,
 //   framebuffer_bytes, resolve_cycles): framebuffer_bytes = accesses x (4 + depth
 //   bytes) + (W H 4 a colour clear, W H depth bytes a depth clear) + resolve bytes.
+// - Early Z (depth.early, sc/interpolate.h): a fragment culled early reaches the ROP
+//   flagged, uncoloured; it takes its access slots (rop_accesses) for the early test's
+//   depth reads only, in pipeline order (ref/rop.h early_depth_cull): the early test
+//   shares the ROP's depth port, so the memory system sees the reference's stream.
 //
 // With the timed memory system (memory.model = "dram", attach_memory; docs/memory.md,
 // "Timed memory system") every access also goes through the reference's functional

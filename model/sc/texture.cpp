@@ -40,26 +40,49 @@ LocalPtr<const FragmentBatch> Texture::shade(const FragmentBatch& batch, TimingP
   out->pixels = batch.pixels;
   Fragment* o = out->reset(batch.count);
   const int coord_frac = arch_.coord_format.frac_bits, tex_frac = arch_.texcoord_format.frac_bits;
-  for (const Fragment& f : batch.fragments())
-    *o++ = unit_->shade(f, quads_.derivatives(tri, f.x, f.y, coord_frac), tri.texture, tex_frac);
+  // Every covered pixel's quad derivatives (the reference takes them before its early
+  // test); a fragment early Z culled is not sampled and goes on as it came (its flag kept).
+  for (size_t k = 0; k < batch.count; ++k) {
+    const Fragment& f = batch.storage[k];
+    const QuadDerivatives& d = quads_.derivatives(tri, f.x, f.y, coord_frac);
+    *o++ = batch.is_culled(k) ? f : unit_->shade(f, d, tri.texture, tex_frac);
+  }
   out->count = batch.count;
+  if (batch.culled_count != 0) {
+    out->culled.assign(batch.culled.begin(), batch.culled.begin() + std::ptrdiff_t(batch.count));
+    out->culled_count = batch.culled_count;
+  }
   quads_.add_covered(batch.pixels->pixels);
   const TextureStats& s = unit_->stats();
   const auto samples = [&](TexFilter f) { return s.samples[size_t(f)] - before.samples[size_t(f)]; };
-  work.quads = quads_.quads() - quads_before;
+  work.quads = arch_.depth_early ? kept_quads(batch) : quads_.quads() - quads_before;
   work.bilinear_slots = (samples(TexFilter::Nearest) + samples(TexFilter::Bilinear)) *
                             TimingParams::texture_sample_slots(false) +
                         samples(TexFilter::Trilinear) * TimingParams::texture_sample_slots(true);
   work.texel_fetches = s.texel_fetches - before.texel_fetches;
-  work.fragments = batch.count;
+  work.fragments = batch.kept();
   work.misses = s.cache_misses - before.cache_misses;
   return out;
+}
+
+// Early Z: the quads of the batch that hold a kept fragment and no earlier batch of the
+// triangle had (the unit's timed work; helper_pixels still counts every covered pixel's
+// quad, as the reference does).
+uint64_t Texture::kept_quads(const FragmentBatch& batch) {
+  uint64_t n = 0;
+  for (size_t k = 0; k < batch.count; ++k) {
+    if (batch.is_culled(k)) continue;
+    const Fragment& f = batch.storage[k];
+    n += kept_quads_.insert(uint64_t(uint32_t(f.y >> 1)) << 32 | uint32_t(f.x >> 1)).second;
+  }
+  return n;
 }
 
 // A new triangle's first batch: the last one's helper pixels counted, its quads dropped.
 void Texture::next_triangle(const LocalPtr<const SetupTriangle>& tri) {
   unit_->stats().helper_pixels += quads_.helper_pixels();
   quads_.clear();
+  kept_quads_.clear();
   quads_tri_ = tri;
 }
 

@@ -23,6 +23,7 @@
 #include <optional>
 
 #include <memory>
+#include <unordered_set>
 
 #include "ref/texture/texture_unit.h"
 #include "sc/interpolate.h"
@@ -49,6 +50,7 @@ class Texture : public Stage {
   void body() override;
   LocalPtr<const FragmentBatch> shade(const FragmentBatch& batch, TimingParams::TextureWork& work);
   void next_triangle(const LocalPtr<const SetupTriangle>& tri);
+  uint64_t kept_quads(const FragmentBatch& batch);
 
   const RasterState& arch_;
   const TimingParams& p_;
@@ -59,6 +61,7 @@ class Texture : public Stage {
   Recycler<FragmentBatch> batches_;       // the shaded batches (sc/recycler.h)
   std::optional<TextureUnit> unit_;       // created at the first textured batch, as the reference's
   TriangleQuads quads_;                   // the current triangle's quads
+  std::unordered_set<uint64_t> kept_quads_;  // early Z: its quads with a kept fragment (y/2 << 32 | x/2)
   LocalPtr<const SetupTriangle> quads_tri_;  // held: its address identifies the triangle
 };
 

@@ -30,10 +30,13 @@
 #include <filesystem>
 #include <functional>
 #include <iostream>
+#include <limits>
 #include <map>
 #include <numbers>
 #include <optional>
 #include <string_view>
+#include <utility>
+#include <vector>
 
 #include "ref/scene.h"
 #include "scene/face_triangulate.h"
@@ -557,6 +560,29 @@ CmdPrimitives line_or_point_command(const ObjFace& f, const Placed& m) {
   return p;
 }
 
+// scene.obj_order: the faces sorted by their nearest corner (the largest view z of their
+// corners), stably; `l` and `p` statements after them, in file order.
+void order_faces(std::vector<ObjFace>& faces, const std::vector<Vec3>& view, ObjOrder order) {
+  if (order == ObjOrder::File) return;
+  const auto nearest = [&](const ObjFace& f) {
+    double z = -std::numeric_limits<double>::infinity();
+    for (size_t i : f.v) z = std::max(z, view[i][2]);
+    return z;
+  };
+  const auto first = std::stable_partition(faces.begin(), faces.end(),
+                                           [](const ObjFace& f) { return f.kind == ObjKind::Face; });
+  std::vector<std::pair<double, size_t>> key;  // (nearest z, file position): the stable sort's key
+  for (auto it = faces.begin(); it != first; ++it) key.emplace_back(nearest(*it), size_t(it - faces.begin()));
+  std::stable_sort(key.begin(), key.end(), [&](const auto& a, const auto& b) {
+    return order == ObjOrder::FrontToBack ? a.first > b.first : a.first < b.first;
+  });
+  std::vector<ObjFace> sorted;
+  sorted.reserve(faces.size());
+  for (const auto& k : key) sorted.push_back(std::move(faces[k.second]));
+  for (auto it = first; it != faces.end(); ++it) sorted.push_back(std::move(*it));
+  faces = std::move(sorted);
+}
+
 // Places the parsed mesh and emits its commands (see the file comment for the maths).
 Scene place(ObjParser& obj, const std::string& name, const ObjPlacement& pl) {
   for (ObjVertex& v : obj.vertices) v.p = to_y_up(v.p, pl.up);  // in place: no second copy
@@ -566,11 +592,12 @@ Scene place(ObjParser& obj, const std::string& name, const ObjPlacement& pl) {
     for (size_t i : f.v) used[i] = true;
   const std::vector<Vec3> view = view_positions(verts, used, bounding_sphere(verts, used, name), pl);
   const Placed m{obj, view, pl, PerspectiveCamera(pl), name};
+  const SourceLoc first{name, obj.faces.front().line};  // the file's first statement, before any reorder
+  order_faces(obj.faces, view, pl.order);
 
   Scene scene;
   scene.source = name;
   scene.obj_ignored = std::move(obj.ignored);
-  const SourceLoc first{name, obj.faces.front().line};
   scene.commands.push_back({CmdClear{pl.clear_r, pl.clear_g, pl.clear_b}, first});
   scene.commands.push_back({CmdClearDepth{1.0}, first});
   int faces_in_command = 0;  // faces in the List command being filled (0: start a new one)

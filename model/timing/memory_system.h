@@ -32,6 +32,7 @@
 #include <vector>
 
 #include <nlohmann/json.hpp>
+#include "ref/hiz.h"
 #include "ref/memory/rop_memory.h"
 #include "timing/dram.h"
 
@@ -39,12 +40,13 @@ namespace rastsim {
 
 // The clients: the index of each one's DRAM stats and its stats name
 // (memory.clients.<name>).
-// texture: the texture cache's line fills (timing/texture_memory_port.h).
-enum class MemClient { RopColor = 0, RopDepth = 1, Scanout = 2, Texture = 3 };
+// texture: the texture cache's line fills (timing/texture_memory_port.h); hiz: the spilled
+// Hi-Z table's entries (timing/hiz_memory_port.h, at depth.hiz_base).
+enum class MemClient { RopColor = 0, RopDepth = 1, Scanout = 2, Texture = 3, Hiz = 4 };
 inline constexpr const char* kScanoutClient = "scanout";
 inline constexpr const char* kTextureClient = "texture";
-inline constexpr std::array<const char*, 4> kMemClientNames = {kRopColorClient, kRopDepthClient, kScanoutClient,
-                                                               kTextureClient};
+inline constexpr std::array<const char*, 5> kMemClientNames = {kRopColorClient, kRopDepthClient, kScanoutClient,
+                                                               kTextureClient, kHizClient};
 
 // A client that makes its requests of its own accord as time passes (the scan-out's line
 // fetch): the memory system asks it for the cycle of its next request, lets it make them

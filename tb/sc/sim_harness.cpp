@@ -13,12 +13,24 @@
 #include "fidelity/run_child.h"
 #include "ref/prim_assembly.h"
 #include "report/stats_json.h"
+#include "config/memory_config.h"
 #include "config/raster_state_config.h"
 
 namespace rastsim::sctest {
 
 nlohmann::json run_isolated(const std::function<nlohmann::json()>& fn) {
   return fidelity::run_in_child_or_error(fn);
+}
+
+nlohmann::json diff_render_stats_with_memory(const Scene& scene, const Config& cfg) {
+  RenderStats ref;
+  render_scene(scene, raster_state_from_config(cfg), ref, {}, Framebuffer::kDefaultTileLog2, 1,
+               memory_params_from_config(cfg));
+  const sc::SimResult sim = sc::simulate_scene(scene, ArchParams::resolve(cfg), {});
+  nlohmann::json a = to_json(ref), b = to_json(sim.render), diff = nlohmann::json::object();
+  for (const auto& [k, v] : a.items())
+    if (k != "wall_seconds" && b[k] != v) diff[k] = {v, b[k]};
+  return {{"diff", diff}, {"ref", a}};
 }
 
 nlohmann::json compare_with_reference(const Scene& scene, const Config& cfg, const sc::SimOptions& opts) {

@@ -36,6 +36,12 @@ nlohmann::json compare_with_reference(const Scene& scene, const Config& cfg, con
 // stage).
 void expect_matches_reference(const nlohmann::json& r);
 
+// Call in a child (run_isolated): renders `scene` with the reference and its memory
+// system (memory_params_from_config; compare_with_reference renders without it) and
+// simulates it; returns {"diff": {key: [reference, simulate]} of the render stats that
+// differ (wall time aside), "ref": the reference's stats}.
+nlohmann::json diff_render_stats_with_memory(const Scene& scene, const Config& cfg);
+
 // In a child: the stats of one simulation (SimResult::to_json).
 nlohmann::json simulate_stats(const Scene& scene, const Config& cfg, const sc::SimOptions& opts = {});
 

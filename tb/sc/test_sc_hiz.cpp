@@ -60,20 +60,11 @@ TEST(ScHiz, MemoryCountsMatchReference) {
       const Config cfg = make_config({"raster.depth_func=less", std::string("depth.hiz=") + mode, "memory.model=dram",
                                       seed == 3 ? "depth.hiz_bytes=64" : "depth.hiz_bytes=1048576"});
       const Scene scene = random_scene(seed, 96, 80, 80);
-      const nlohmann::json r = run_isolated([&] {
-        RenderStats ref;
-        render_scene(scene, raster_state_from_config(cfg), ref, {}, Framebuffer::kDefaultTileLog2, 1,
-                     memory_params_from_config(cfg));
-        const sc::SimResult sim = sc::simulate_scene(scene, ArchParams::resolve(cfg), {});
-        nlohmann::json a = to_json(ref), b = to_json(sim.render), diff = nlohmann::json::object();
-        for (const auto& [k, v] : a.items())
-          if (k != "wall_seconds" && b[k] != v) diff[k] = {v, b[k]};
-        return nlohmann::json{{"diff", diff}, {"accepted", a["tiles_accepted_hiz"]}, {"memory", a.contains("memory")}};
-      });
+      const nlohmann::json r = run_isolated([&] { return diff_render_stats_with_memory(scene, cfg); });
       ASSERT_FALSE(r.contains("error")) << r["error"];
-      EXPECT_TRUE(r["memory"].get<bool>());
+      EXPECT_TRUE(r["ref"].contains("memory"));
       EXPECT_TRUE(r["diff"].empty()) << r["diff"].dump();
-      accepted += r["accepted"].get<uint64_t>();
+      accepted += r["ref"]["tiles_accepted_hiz"].get<uint64_t>();
     }
   EXPECT_GT(accepted, 0u);
 }
@@ -116,6 +107,53 @@ TEST(ScHiz, CyclesDropFrontToBackAndLockstepEqual) {
   EXPECT_LT(c_max, c_off);
   EXPECT_EQ(max["fragments_culled_hiz"].get<uint64_t>(), 7u * 128u * 96u);  // every hidden fragment
   EXPECT_GE(c_max, max["cycles_lower_bound"].get<uint64_t>());
+}
+
+// The spilled table through the timed memory system (memory.model = dram, client hiz,
+// timing/hiz_memory_port.h): 8 layers front to back with the whole table spilled
+// (depth.hiz_bytes = 0) make exactly the reference's entry bytes as DRAM requests (one
+// burst each: entries of 16 bytes); the walk's stalls make the run slower than with the
+// table on chip, whose client makes no request; the images and every render stat but the
+// table's traffic are the same.
+TEST(ScHiz, SpilledTableTimedThroughMemory) {
+  const Scene scene = layers_front_to_back(128, 96, 8);
+  const auto run = [&](const char* bytes) {
+    const Config cfg = make_config({"raster.depth_func=less", "depth.hiz=max", "memory.model=dram",
+                                    std::string("depth.hiz_bytes=") + bytes});
+    return run_isolated([&] {
+      RenderStats ref;
+      render_scene(scene, raster_state_from_config(cfg), ref, {}, Framebuffer::kDefaultTileLog2, 1,
+                   memory_params_from_config(cfg));
+      nlohmann::json j = simulate_stats(scene, cfg);
+      j["ref"] = to_json(ref);
+      return j;
+    });
+  };
+  const nlohmann::json spilled = run("0"), onchip = run("1048576");
+  ASSERT_FALSE(spilled.contains("error")) << spilled["error"];
+  ASSERT_FALSE(onchip.contains("error")) << onchip["error"];
+  const nlohmann::json& hiz = spilled["memory"]["clients"]["hiz"];
+  const uint64_t read = spilled["ref"]["hiz_dram_bytes_read"], written = spilled["ref"]["hiz_dram_bytes_written"];
+  std::printf("8 layers, 128 x 96, table spilled: %llu bytes read, %llu written, %llu stall cycles; "
+              "%llu cycles (on chip: %llu)\n",
+              (unsigned long long)read, (unsigned long long)written,
+              (unsigned long long)hiz["stall_cycles"].get<uint64_t>(),
+              (unsigned long long)spilled["cycles"].get<uint64_t>(), (unsigned long long)onchip["cycles"].get<uint64_t>());
+  EXPECT_GT(read, 0u);
+  EXPECT_GT(written, 0u);
+  EXPECT_EQ(hiz["bytes_read"].get<uint64_t>(), read);  // the functional count, as render's
+  EXPECT_EQ(hiz["bytes_written"].get<uint64_t>(), written);
+  EXPECT_EQ(hiz["reads"].get<uint64_t>() * 16, read);  // 16-byte entries (24-bit depth, 8 px blocks)
+  EXPECT_EQ(hiz["writes"].get<uint64_t>() * 16, written);
+  EXPECT_EQ(hiz["bursts_read"], hiz["reads"]);  // each entry one request of one burst
+  EXPECT_EQ(hiz["bursts_written"], hiz["writes"]);
+  EXPECT_GT(hiz["stall_cycles"].get<uint64_t>(), 0u);
+  EXPECT_GT(spilled["cycles"].get<uint64_t>(), onchip["cycles"].get<uint64_t>());
+  EXPECT_FALSE(onchip["memory"]["clients"].contains("hiz") && onchip["memory"]["clients"]["hiz"].contains("reads"));
+  EXPECT_EQ(spilled["dram_bytes_read"], spilled["ref"]["dram_bytes_read"]);
+  EXPECT_EQ(spilled["framebuffer_crc32"], onchip["framebuffer_crc32"]);
+  EXPECT_EQ(spilled["tiles_culled_hiz"], onchip["tiles_culled_hiz"]);
+  EXPECT_GE(spilled["cycles"].get<uint64_t>(), spilled["cycles_lower_bound"].get<uint64_t>());
 }
 
 }  // namespace
