@@ -145,7 +145,6 @@ void run_cosim_command(CosimCommand& c) {
   if (c.simulate_stats && c.no_model)
     throw std::runtime_error("cosim: --simulate-stats needs the SystemC model (drop --no-model)");
   const Scene scene = load_scene(c.scene_path, arch.placement);
-  reject_textured_commands(scene.commands, "RTL");  // never a silently untextured picture
   if (!c.trace_diff_dir.empty() && c.no_model)
     throw std::runtime_error("--trace-diff needs the SystemC model (drop --no-model)");
   c.run.record_transactions = !c.trace_diff_dir.empty();

@@ -1,9 +1,26 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "sc/interpolate.h"
 
+#include <algorithm>
+#include <vector>
+
 #include "ref/pipeline.h"
 
 namespace rastsim::sc {
+
+namespace {
+// The pixels a textured batch puts through the interpolator: its 2x2 quads (pixels
+// 2x..2x+1, 2y..2y+1) whole, helper pixels included (the RTL's fine raster closes the
+// tile's mask over quads: rtl/rast_fine_raster.sv; docs/texture.md "RTL").
+uint64_t quad_pixels(const PixelBatch& batch) {
+  std::vector<uint64_t> quads;
+  for (const PixelRun& r : batch.runs)
+    for (int qx = r.x0 >> 1; qx <= (r.x1 - 1) >> 1; ++qx)
+      quads.push_back(uint64_t(uint32_t(r.y >> 1)) << 32 | uint32_t(qx));
+  std::sort(quads.begin(), quads.end());
+  return 4 * uint64_t(std::unique(quads.begin(), quads.end()) - quads.begin());
+}
+}  // namespace
 
 void Interpolate::body() {
   for (;;) {
@@ -22,7 +39,8 @@ void Interpolate::body() {
     frags->count = shade(batch, first);
     ctx_.render.fragments_shaded += frags->count;
     if (frags->count != 0) attribute_to(first->x, first->y);  // the batch's tile
-    const uint64_t cycles = p_.interp_batch_cycles(frags->count, tri.affine);
+    const uint64_t cycles =
+        p_.interp_batch_cycles(tri.texture.enabled() ? quad_pixels(batch) : frags->count, tri.affine);
     if (!tri.affine) {  // a reciprocal a fragment (docs/clip-space.md, "Timing")
       ctx_.recip_reciprocals += frags->count;
       ctx_.recip_busy_cycles += cycles;
