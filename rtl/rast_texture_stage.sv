@@ -193,11 +193,17 @@ module rast_texture_stage #(
   logic [7:0]      alpha_q [Depth], beta_q [Depth];  // the address unit's weights, by request
   logic [PtrW-1:0] wr_q, req_q, flt_q, cmb_q, out_q;
   frag_t           pushed;
+  frag_t           req_e, flt_e, cmb_e, out_e;  // the entries at the read pointers
   logic            req_take, flt_take, cmb_take, out_take;
   always_comb begin
     pushed = pend_q;
     pushed.last = pend_q.last || tail;
   end
+  assign req_e = ring_q[req_q];
+  assign flt_e = ring_q[flt_q];
+  assign cmb_e = ring_q[cmb_q];
+  assign out_e = ring_q[out_q];
+  wire unused_e = &{1'b0, req_e, flt_e, cmb_e, out_e};  // each pointer reads only some fields
   logic ring_full_q;  // wr_q == out_q with Depth entries
   assign count = (PtrW + 1)'(PtrW'(wr_q - out_q)) + ((PtrW + 1)'(ring_full_q) << PtrW);
   always_ff @(posedge clk_i or negedge rst_ni) begin
@@ -230,7 +236,7 @@ module rast_texture_stage #(
     .addr_o(tex_req_addr_o));
   wire unused_ij = &{1'b0, addr_i, addr_j};  // the texels' indices: the testbench's view only
   assign tex_req_valid_o = addr_valid;
-  assign tex_req_count_o = ring_q[req_q].bilinear ? 3'd4 : 3'd1;
+  assign tex_req_count_o = req_e.bilinear ? 3'd4 : 3'd1;
   assign tex_req_format_o = format_i;
   assign req_take = addr_valid && tex_req_ready_i;
   always_ff @(posedge clk_i) begin
@@ -245,7 +251,7 @@ module rast_texture_stage #(
   logic [31:0] flt_color;
   rast_texture_filter u_filter (
     .clk_i, .rst_ni, .in_valid_i(tex_rsp_valid_i), .in_ready_o(flt_in_ready), .texels_i(tex_rsp_texels_i),
-    .alpha_i(alpha_q[flt_q]), .beta_i(beta_q[flt_q]), .bilinear_i(ring_q[flt_q].bilinear), .blend_i(1'b0),
+    .alpha_i(alpha_q[flt_q]), .beta_i(beta_q[flt_q]), .bilinear_i(flt_e.bilinear), .blend_i(1'b0),
     .prev_i('0), .frac_i('0), .out_valid_o(flt_valid), .out_ready_i(cmb_in_ready), .color_o(flt_color));
   assign tex_rsp_ready_o = flt_in_ready;
   assign flt_take = tex_rsp_valid_i && flt_in_ready;
@@ -255,7 +261,7 @@ module rast_texture_stage #(
   logic [23:0] cmb_color;
   rast_texture_combine u_combine (
     .clk_i, .rst_ni, .in_valid_i(flt_valid), .in_ready_o(cmb_in_ready), .tex_i(flt_color),
-    .color_i(ring_q[cmb_q].rgb), .env_i(ring_q[cmb_q].env), .out_valid_o(cmb_valid), .out_ready_i(out_ready_i),
+    .color_i(cmb_e.rgb), .env_i(cmb_e.env), .out_valid_o(cmb_valid), .out_ready_i(out_ready_i),
     .color_o(cmb_color));
   assign cmb_take = flt_valid && cmb_in_ready;
   assign out_take = cmb_valid && out_ready_i;
@@ -269,15 +275,15 @@ module rast_texture_stage #(
     if (cmb_valid) begin
       out_valid_o  = 1'b1;
       out_marker_o = 1'b0;
-      out_last_o   = ring_q[out_q].last;
+      out_last_o   = out_e.last;
       out_lanes_o  = Lanes'(1);
-      out_x_o      = (Lanes*PixelW)'(ring_q[out_q].x);
-      out_y_o      = (Lanes*PixelW)'(ring_q[out_q].y);
-      out_z_o      = (Lanes*DepthW)'(ring_q[out_q].z);
+      out_x_o      = (Lanes*PixelW)'(out_e.x);
+      out_y_o      = (Lanes*PixelW)'(out_e.y);
+      out_z_o      = (Lanes*DepthW)'(out_e.z);
       out_rgb_o    = (Lanes*24)'(cmb_color);
-      out_s_o      = (Lanes*TexW)'(ring_q[out_q].s);
-      out_t_o      = (Lanes*TexW)'(ring_q[out_q].t);
-      out_smask_o  = (Lanes*MaxSamples)'(ring_q[out_q].smask);
+      out_s_o      = (Lanes*TexW)'(out_e.s);
+      out_t_o      = (Lanes*TexW)'(out_e.t);
+      out_smask_o  = (Lanes*MaxSamples)'(out_e.smask);
     end else begin
       out_valid_o  = pass;
       out_marker_o = in_marker_i;

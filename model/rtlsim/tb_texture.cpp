@@ -9,8 +9,27 @@ TbTexture::TbTexture(const TbSetup& s) : s_(s) {
   if (s.texture.cache.bytes > 0) cache_.emplace(s.texture.cache);
 }
 
+void TbTexture::issue(uint64_t t) {
+  for (Pending& p : queue_) {
+    if (p.issued) continue;
+    const uint64_t start = std::max(p.taken + 1, last_due_ + 1);
+    if (start > t) return;
+    uint64_t stall = uint64_t(p.misses) * s_.timing.texture_miss_cycles;
+    if (mem_) {
+      mem_->begin(start);
+      const uint64_t bytes = cache_ ? uint64_t(cache_->line_bytes()) : uint64_t(texel_bytes(s_.texture.format));
+      for (int k = 0; k < p.misses; ++k) mem_->fill(p.fills[size_t(k)], bytes);
+      stall = mem_->stall_cycles();
+    }
+    p.due = start + stall;
+    p.issued = true;
+    last_due_ = p.due;
+  }
+}
+
 void TbTexture::drive(uint64_t t, RastPorts& ports) {
-  offered_ = !queue_.empty() && queue_.front().due <= t;
+  issue(t);
+  offered_ = !queue_.empty() && queue_.front().issued && queue_.front().due <= t;
   ports.drive_texture_response(offered_, offered_ ? queue_.front().texels : std::array<uint32_t, 4>{});
   ports.drive_texture_ready(true);
 }
@@ -23,9 +42,7 @@ void TbTexture::serve(uint64_t t, RastPorts& ports, std::string& error) {
   if (q.count != 1 && q.count != 4) error = at() + " of " + std::to_string(q.count) + " texels (1 or 4)";
   if (q.format != int(s_.texture.format)) error = at() + " in format " + std::to_string(q.format);
   Pending p;
-  const uint64_t start = std::max(t + 1, last_due_ + 1);
-  uint64_t m = 0;
-  if (mem_) mem_->begin(start);
+  p.taken = t;
   for (int k = 0; k < std::min(q.count, 4); ++k) {
     const uint64_t a = q.addr[size_t(k)];
     const auto it = s_.texels.find(a);
@@ -38,13 +55,8 @@ void TbTexture::serve(uint64_t t, RastPorts& ports, std::string& error) {
       continue;
     }
     ++misses_;
-    ++m;
-    if (!mem_) continue;
-    if (cache_) mem_->fill(a / uint64_t(cache_->line_bytes()) * uint64_t(cache_->line_bytes()), uint64_t(cache_->line_bytes()));
-    else mem_->fill(a, uint64_t(texel_bytes(s_.texture.format)));
+    p.fills[size_t(p.misses++)] = cache_ ? a / uint64_t(cache_->line_bytes()) * uint64_t(cache_->line_bytes()) : a;
   }
-  p.due = start + (mem_ ? mem_->stall_cycles() : m * s_.timing.texture_miss_cycles);
-  last_due_ = p.due;
   queue_.push_back(p);
 }
 

@@ -13,7 +13,9 @@
 // memory.model = "fixed" stall = m texture.miss_cycles (TimingParams::texture_batch_cycles);
 // with "dram" the misses are the fills of the memory system's client `texture`, one in
 // flight, issued from s (timing/texture_memory_port.h: TextureMemoryPort, the SystemC
-// stage's own rule), stall = the last fill's arrival - s.
+// stage's own rule), stall = the last fill's arrival - s. A request's fills are issued in
+// cycle s itself (not when the request is taken), so the memory system sees the texture's
+// and the ROP's requests in time order.
 #pragma once
 
 #include <array>
@@ -45,9 +47,15 @@ class TbTexture {
 
  private:
   struct Pending {
+    uint64_t taken = 0;              // the cycle the request was taken
+    bool issued = false;             // its fills made, `due` known
     uint64_t due = 0;
     std::array<uint32_t, 4> texels{};
+    std::array<uint64_t, 4> fills{}; // the misses' DRAM reads: line (or texel) addresses
+    int misses = 0;
   };
+  // The requests whose s has come, in order: their fills made, their due set.
+  void issue(uint64_t t);
   const TbSetup& s_;
   std::optional<SetAssocCache> cache_;
   std::unique_ptr<TextureMemoryPort> mem_;  // memory.model = "dram" (null: fixed)
