@@ -196,7 +196,8 @@ void register_cosim(CLI::App& app) {
   cmd->add_option("--stats", c.stats_path,
                   "Write cycles_rtl, cycles_model, cycle_error, fragments_compared, mismatches, per stage "
                   "stages.<name>.{busy,stalled,starved}_{rtl,model} and busy_error, stage_worst_busy_error, ...; "
-                  "with memory.model = \"dram\" the RTL run's memory keys under simulate's names (dram_bytes_read, "
+                  "where a texture was sampled helper_pixels, texel_fetches, texture_cache_hits and "
+                  "texture_cache_misses (docs/texture.md \"RTL\"); with memory.model = \"dram\" the RTL run's memory keys under simulate's names (dram_bytes_read, "
                   "dram_bytes_written, rop_*_cache_hits / _misses, fast_clear_blocks, depth_compressed_bytes, "
                   "dram_row_hit_rate, dram_bandwidth_utilisation, memory.dram.*, memory.clients.<client>.*; "
                   "docs/memory.md) as JSON ('-' for stdout)");
