@@ -183,7 +183,6 @@ void run_cosim_command(CosimCommand& c) {
   if (c.simulate_stats && c.no_model)
     throw std::runtime_error("cosim: --simulate-stats needs the SystemC model (drop --no-model)");
   const Scene whole = load_scene(c.scene_path, arch.placement);
-  reject_textured_commands(whole.commands, "RTL");  // never a silently untextured picture
   if (!c.trace_diff_dir.empty() && c.no_model)
     throw std::runtime_error("--trace-diff needs the SystemC model (drop --no-model)");
   c.run.record_transactions = !c.trace_diff_dir.empty();
@@ -247,7 +246,8 @@ void register_cosim(CLI::App& app) {
   cmd->add_option("--stats", c.stats_path,
                   "Write cycles_rtl, cycles_model, cycle_error, fragments_compared, mismatches, per stage "
                   "stages.<name>.{busy,stalled,starved}_{rtl,model} and busy_error, stage_worst_busy_error, ...; "
-                  "with memory.model = \"dram\" the RTL run's memory keys under simulate's names (dram_bytes_read, "
+                  "where a texture was sampled helper_pixels, texel_fetches, texture_cache_hits and "
+                  "texture_cache_misses (docs/texture.md \"RTL\"); with memory.model = \"dram\" the RTL run's memory keys under simulate's names (dram_bytes_read, "
                   "dram_bytes_written, rop_*_cache_hits / _misses, fast_clear_blocks, depth_compressed_bytes, "
                   "dram_row_hit_rate, dram_bandwidth_utilisation, memory.dram.*, memory.clients.<client>.*; "
                   "docs/memory.md); a multi-frame trace (or --frames) also frames[].{cycles_rtl, cycles_model, "

@@ -17,6 +17,11 @@
 //   row-major: some sample covered) and a sample mask (bits [p MaxSamples +: S] of
 //   pixel bit p: its samples), with the tile's corner pixel; pushed in the tile's last
 //   cycle, and only when some pixel is covered. A marker costs one cycle.
+// - Quads (in_quads_i: the triangle is textured; docs/texture.md "Level of detail"): the
+//   pixel mask is closed over 2x2 quads (pixels 2x..2x+1, 2y..2y+1; a tile's side is even):
+//   every pixel of a quad with a covered pixel is out, the ones not covered as helper
+//   pixels (their sample mask is 0), shaded for the derivatives and never written. The
+//   tests, their cycles and the sample mask are the same.
 // - The input is popped in the tile's last cycle: the head is the tile being rastered.
 `default_nettype none
 
@@ -53,6 +58,7 @@ module rast_fine_raster #(
   input  wire logic [3*EdgeW-1:0]   in_c_i,         // edge c
   input  wire logic [2:0]           in_bias_i,      // 1 = bias -1
   input  wire logic [2*PixelW-1:0]  in_origin_i,    // pixel of raw (0, 0): {y, x}
+  input  wire logic                 in_quads_i,     // close the mask over 2x2 quads (textured)
   output      logic                 out_valid_o,    // mask or marker out
   input  wire logic                 out_ready_i,    // pixel FIFO takes it
   output      logic                 out_marker_o,   // a marker
@@ -180,9 +186,16 @@ module rast_fine_raster #(
     else                    last = (lane_y[Lanes] >= fy1);
   end
   assign out_marker_o = in_marker_i;
-  assign out_mask_o   = in_accepted_i ? fp_mask : (mask_q | lane_mask);
+  logic [MaskW-1:0] cov_mask, quad_x, quad_xy;  // covered pixels; closed over x pairs, then y pairs
+  assign cov_mask = in_accepted_i ? fp_mask : (mask_q | lane_mask);
+  always_comb begin
+    // Pixel p = (ly << tile_log2) | lx: its x partner is p ^ 1, its y partner p ^ (1 << tile_log2).
+    for (int p = 0; p < MaskW; p++) quad_x[p] = cov_mask[p] | cov_mask[p ^ 1];
+    for (int p = 0; p < MaskW; p++) quad_xy[p] = quad_x[p] | quad_x[IdxW'(p) ^ (IdxW'(1) << tile_log2_i)];
+  end
+  assign out_mask_o   = in_quads_i ? quad_xy : cov_mask;
   assign out_smask_o  = in_accepted_i ? fp_smask : (smask_q | lane_smask);
-  assign out_valid_o  = in_valid_i && last && (in_marker_i || out_mask_o != '0);
+  assign out_valid_o  = in_valid_i && last && (in_marker_i || cov_mask != '0);
   assign done         = in_valid_i && last && (!out_valid_o || out_ready_i);
   assign in_ready_o   = done;
   assign busy_o       = active_q;
@@ -206,7 +219,7 @@ module rast_fine_raster #(
       cy_q     <= lane_y[Lanes];
       cs_q     <= lane_s[Lanes];
       cnt_q    <= left - 1'b1;
-      mask_q   <= out_mask_o;
+      mask_q   <= cov_mask;
       smask_q  <= out_smask_o;
     end
   end

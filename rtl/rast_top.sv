@@ -3,7 +3,8 @@
 //
 //   triangle FIFO -> rast_tri_setup -> setup FIFO (latency) -> rast_coarse_raster
 //     -> tile FIFO -> rast_fine_raster -> pixel FIFO -> rast_interpolate
-//     -> fragment FIFO -> rast_rop -> memory request/response port
+//     -> rast_texture_stage (textured tiles: texel fetch port) -> fragment FIFO
+//     -> rast_rop -> memory request/response port
 //
 //   Each FIFO is followed by a rast_hold: a stage pops its transaction in the first
 //   cycle it works on it (the FIFO slot frees at once, as in the SystemC model).
@@ -68,6 +69,15 @@ module rast_top #(
   input  wire logic [3*TexW-1:0]                     tri_t_i,         // vertex k t
   input  wire logic [3*24-1:0]                       tri_q_i,         // vertex k perspective weight Q_k at [k*24 +: 24] (docs/clip-space.md)
   input  wire logic                                  tri_affine_i,    // interpolation needs no reciprocal (ref tri_setup's affine)
+  // The triangle's texture state (docs/texture.md "RTL"; rast_texture_stage's in_*).
+  input  wire logic                                  tri_tex_on_i,       // a texture bound: quads, the texture stage
+  input  wire logic                                  tri_tex_bilinear_i, // texfilter bilinear (else nearest)
+  input  wire logic [1:0]                            tri_tex_wrap_s_i,   // texwrap s: 0 repeat, 1 clamp, 2 mirror
+  input  wire logic [1:0]                            tri_tex_wrap_t_i,   // texwrap t
+  input  wire logic [1:0]                            tri_tex_env_i,      // texenv: 0 replace, 1 modulate, 2 decal
+  input  wire logic [TexSizeW-1:0]                   tri_tex_width_i,    // level 0 width, texels
+  input  wire logic [TexSizeW-1:0]                   tri_tex_height_i,   // level 0 height, texels
+  input  wire logic [TexAddrW-1:0]                   tri_tex_base_i,     // level 0 byte address
   input  wire logic [PixelW-1:0]                     tri_clip_x0_i,   // clip rect, half-open px
   input  wire logic [PixelW-1:0]                     tri_clip_y0_i,   //
   input  wire logic [PixelW-1:0]                     tri_clip_x1_i,   //
@@ -80,6 +90,20 @@ module rast_top #(
   input  wire logic [31:0]                           depth_base_i,    // depth surface, byte address (static)
   input  wire logic [2:0]                            depth_func_i,    // raster.depth_func as ref DepthFunc (static)
   input  wire logic                                  depth_write_i,   // raster.depth_write (static)
+  input  wire logic [1:0]                            tex_format_i,    // texture.format: 0 rgba8888, 1 rgb565, 2 l8 (static)
+  input  wire logic [1:0]                            tex_layout_i,    // texture.layout: 0 linear, 1 tiled, 2 morton (static)
+  // The texel fetch port (rast_texture_stage; docs/texture.md "RTL"), responses in order.
+  output      logic                                  tex_req_valid_o,
+  input  wire logic                                  tex_req_ready_i,
+  output      logic [4*TexAddrW-1:0]                 tex_req_addr_o,   // texel k's byte address at [k*TexAddrW +: TexAddrW]
+  output      logic [2:0]                            tex_req_count_o,  // 1 nearest, 4 bilinear
+  output      logic [1:0]                            tex_req_format_o, // texture.format
+  input  wire logic                                  tex_rsp_valid_i,
+  output      logic                                  tex_rsp_ready_o,
+  input  wire logic [127:0]                          tex_rsp_texels_i, // texel k as RGBA8 at [32k +: 32], R at [7:0]
+  output      logic [$clog2(InterpFragmentsPerCycle+1)-1:0] tex_helpers_o,  // helper pixels dropped this cycle
+  output      logic                                  dbg_tex_busy_o,    // the texture stage holds textured work
+  output      logic                                  dbg_tex_blocked_o, // its output is refused (the fragment FIFO)
   output      logic                                  frag_valid_o,    // a fragment beat or marker
   output      logic                                  frag_ready_o,    // taken by the fragment FIFO
   output      logic                                  frag_marker_o,   // the beat is a marker
@@ -138,6 +162,18 @@ module rast_top #(
   // ---- Transaction bundles: what each FIFO holds, one field a line. A FIFO's width is
   // derived from its bundle ($bits of a signal of its type: Yosys 0.23 takes $bits of a
   // signal, not of a type). Per-vertex and per-edge fields are {2, 1, 0}.
+  // A triangle's texture state (rast_texture_stage's in_tex_*), with its tiles to the
+  // texture stage.
+  typedef struct packed {
+    logic                on;
+    logic                bilinear;
+    logic [1:0]          wrap_s;
+    logic [1:0]          wrap_t;
+    logic [1:0]          env;
+    logic [TexSizeW-1:0] width;
+    logic [TexSizeW-1:0] height;
+    logic [TexAddrW-1:0] base;
+  } tex_t;
   typedef struct packed {
     logic [3*DepthW-1:0] z;       // depth, unorm
     logic [9*ColorW-1:0] rgb;     // colour {b, g, r} a vertex, ColorW bits a channel
@@ -145,6 +181,7 @@ module rast_top #(
     logic [3*TexW-1:0]   t;
     logic [3*24-1:0]     q;       // perspective weights Q_k
     logic                affine;  // no reciprocal needed
+    tex_t                tex;     // the texture state
   } attr_t;
   // A set-up triangle's edge functions E(x, y) = a x + b y + c (rast_tri_setup).
   typedef struct packed {
@@ -236,6 +273,8 @@ module rast_top #(
   logic [SampleLog2W-1:0]           samples_log2_q;  // samples_log2_i
   logic [MaxSamples*SampleOffW-1:0] sample_dx_q;     // sample_dx_i
   logic [MaxSamples*SampleOffW-1:0] sample_dy_q;     // sample_dy_i
+  logic [1:0]                       tex_format_q;    // tex_format_i
+  logic [1:0]                       tex_layout_q;    // tex_layout_i
   always_ff @(posedge clk_i) begin
     tile_log2_q    <= tile_log2_i;
     fill_rule_q    <= fill_rule_i;
@@ -244,6 +283,8 @@ module rast_top #(
     samples_log2_q <= samples_log2_i;
     sample_dx_q    <= sample_dx_i;
     sample_dy_q    <= sample_dy_i;
+    tex_format_q   <= tex_format_i;
+    tex_layout_q   <= tex_layout_i;
   end
 
   // ---- The sample offsets' bounding box {dy_max, dy_min, dx_max, dx_min} (static) ----
@@ -284,6 +325,8 @@ module rast_top #(
   assign t_push.attr.t = tri_t_i;
   assign t_push.attr.q = tri_q_i;
   assign t_push.attr.affine = tri_affine_i;
+  assign t_push.attr.tex = {tri_tex_on_i, tri_tex_bilinear_i, tri_tex_wrap_s_i, tri_tex_wrap_t_i, tri_tex_env_i,
+                            tri_tex_width_i, tri_tex_height_i, tri_tex_base_i};
   rast_fifo #(.Width(TriW), .Depth(TriangleFifoDepth)) u_triangle_fifo (
     .clk_i, .rst_ni, .in_valid_i(tri_valid_i), .in_ready_o(tri_ready_o), .in_data_i(t_push),
     .out_valid_o(t_valid), .out_ready_i(t_ready), .out_data_o(t_in), .empty_o(t_empty));
@@ -382,7 +425,8 @@ module rast_top #(
     .clk_i, .rst_ni, .tile_log2_i(tile_log2_q), .samples_log2_i(samples_log2_q), .sample_dx_i(sample_dx_q),
     .sample_dy_i(sample_dy_q), .in_valid_i(f_valid), .in_ready_o(f_ready), .in_marker_i(f_in.marker),
     .in_accepted_i(f_in.accepted), .in_fp_i(f_in.fp), .in_a_i(f_in.edges.a), .in_b_i(f_in.edges.b),
-    .in_c_i(f_in.edges.c), .in_bias_i(f_in.edges.bias), .in_origin_i(f_in.origin), .out_valid_o(m_valid),
+    .in_c_i(f_in.edges.c), .in_bias_i(f_in.edges.bias), .in_origin_i(f_in.origin), .in_quads_i(f_in.attr.tex.on),
+    .out_valid_o(m_valid),
     .out_ready_i(m_ready), .out_marker_o(m_marker), .out_mask_o(m_mask), .out_smask_o(m_smask),
     .out_tile_o(m_tile), .busy_o(f_busy));
   assign m_push.marker = m_marker;
@@ -398,16 +442,39 @@ module rast_top #(
 
   // ---- Pixel FIFO (fifo.pixel_depth; one entry = one tile's coverage mask) ----
   logic p_valid, p_ready, p_empty, p_busy;
-  logic p_fifo_valid, p_fifo_ready;
+  logic p_fifo_valid, p_fifo_ready, p_hold_ready;
   pix_t p_fifo_data, p_in;
   rast_fifo #(.Width(PixW), .Depth(PixelFifoDepth)) u_pixel_fifo (
     .clk_i, .rst_ni, .in_valid_i(m_valid), .in_ready_o(m_ready), .in_data_i(m_push),
     .out_valid_o(p_fifo_valid), .out_ready_i(p_fifo_ready), .out_data_o(p_fifo_data), .empty_o(p_empty));
+  logic ts_room, ts_valid, ts_empty, ts_pop;  // the tile texture-state FIFO (below)
+  assign p_fifo_ready = p_hold_ready && ts_room;  // a tile enters the hold with room for its state
   rast_hold #(.Width(PixW)) u_interp_hold (
-    .clk_i, .rst_ni, .in_valid_i(p_fifo_valid), .in_ready_o(p_fifo_ready), .in_data_i(p_fifo_data),
+    .clk_i, .rst_ni, .in_valid_i(p_fifo_valid && ts_room), .in_ready_o(p_hold_ready), .in_data_i(p_fifo_data),
     .out_valid_o(p_valid), .out_ready_i(p_ready), .out_data_o(p_in));
 
-  // ---- Interpolation ----
+  // ---- Tile texture-state FIFO: a tile's texture state from the interpolator's input
+  // (pushed as its hold takes the tile: the first cycle the interpolator works on it,
+  // before any of its beats leaves) to the texture stage (popped with the tile's last beat).
+  // TileStateDepth tiles cover the interpolator's pipeline (Latency + RecipLatency
+  // stages, a tile at least a cycle) and its output hold. ----
+  localparam int TileStateDepth = 32;
+  tex_t ts_push, ts_head;
+  localparam int TexStateW = $bits(ts_push);  // derived
+  assign ts_push = p_fifo_data.attr.tex;
+  rast_fifo #(.Width(TexStateW), .Depth(TileStateDepth)) u_tile_state_fifo (
+    .clk_i, .rst_ni, .in_valid_i(p_fifo_valid && p_fifo_ready && !p_fifo_data.marker), .in_ready_o(ts_room), .in_data_i(ts_push),
+    .out_valid_o(ts_valid), .out_ready_i(ts_pop), .out_data_o(ts_head), .empty_o(ts_empty));
+  wire unused_ts_valid = ts_valid;  // a non-marker beat always has its tile's state
+
+  // ---- Interpolation (out: i_*, into the texture stage) ----
+  logic                                  i_valid, i_ready, i_marker, i_last;
+  logic [Lanes-1:0]                      i_lanes;
+  logic [Lanes*PixelW-1:0]               i_x, i_y;
+  logic [Lanes*DepthW-1:0]               i_z;
+  logic [Lanes*24-1:0]                   i_rgb;
+  logic [Lanes*TexW-1:0]                 i_s, i_t;
+  logic [Lanes*MaxSamples-1:0]           i_smask;
   rast_interpolate #(
     .CoordW(CoordW), .CoordFrac(CoordFrac), .CoefW(CoefW), .EdgeW(EdgeW), .AreaW(AreaW),
     .ColorNumW(ColorNumW), .DepthNumW(DepthNumW), .DepthW(DepthW), .PixelW(PixelW),
@@ -420,9 +487,30 @@ module rast_top #(
     .in_c_i(p_in.c), .in_origin_i(p_in.origin), .in_area2_i(p_in.area2), .in_z_i(p_in.attr.z),
     .in_rgb_i(p_in.attr.rgb), .in_s_i(p_in.attr.s), .in_t_i(p_in.attr.t), .in_q_i(p_in.attr.q),
     .in_affine_i(p_in.attr.affine),
+    .out_valid_o(i_valid), .out_ready_i(i_ready), .out_marker_o(i_marker),
+    .out_last_o(i_last), .out_lanes_o(i_lanes), .out_x_o(i_x), .out_y_o(i_y),
+    .out_z_o(i_z), .out_rgb_o(i_rgb), .out_s_o(i_s), .out_t_o(i_t), .out_smask_o(i_smask), .busy_o(p_busy));
+
+  // ---- Texture stage (textured tiles; the rest passes through) ----
+  logic x_busy;
+  rast_texture_stage #(
+    .Lanes(Lanes), .PixelW(PixelW), .DepthW(DepthW), .MaxSamples(MaxSamples), .TexW(TexW), .TexFrac(TexFrac),
+    .WeightBits(TexWeightBits), .SizeW(TexSizeW), .AddrW(TexAddrW)
+  ) u_texture (
+    .clk_i, .rst_ni, .format_i(tex_format_q), .layout_i(tex_layout_q),
+    .in_valid_i(i_valid), .in_ready_o(i_ready), .in_marker_i(i_marker), .in_last_i(i_last), .in_lanes_i(i_lanes),
+    .in_x_i(i_x), .in_y_i(i_y), .in_z_i(i_z), .in_rgb_i(i_rgb), .in_s_i(i_s), .in_t_i(i_t), .in_smask_i(i_smask),
+    .in_tex_on_i(ts_head.on), .in_bilinear_i(ts_head.bilinear), .in_wrap_s_i(ts_head.wrap_s),
+    .in_wrap_t_i(ts_head.wrap_t), .in_env_i(ts_head.env), .in_width_i(ts_head.width), .in_height_i(ts_head.height),
+    .in_base_i(ts_head.base),
     .out_valid_o(frag_valid_o), .out_ready_i(frag_ready_o), .out_marker_o(frag_marker_o),
     .out_last_o(frag_last_o), .out_lanes_o(frag_lanes_o), .out_x_o(frag_x_o), .out_y_o(frag_y_o),
-    .out_z_o(frag_z_o), .out_rgb_o(frag_rgb_o), .out_s_o(frag_s_o), .out_t_o(frag_t_o), .out_smask_o(frag_mask_o), .busy_o(p_busy));
+    .out_z_o(frag_z_o), .out_rgb_o(frag_rgb_o), .out_s_o(frag_s_o), .out_t_o(frag_t_o), .out_smask_o(frag_mask_o),
+    .tex_req_valid_o, .tex_req_ready_i, .tex_req_addr_o, .tex_req_count_o, .tex_req_format_o,
+    .tex_rsp_valid_i, .tex_rsp_ready_o, .tex_rsp_texels_i, .helpers_o(tex_helpers_o), .busy_o(x_busy));
+  assign ts_pop = i_valid && i_ready && !i_marker && i_last;
+  assign dbg_tex_busy_o = x_busy;
+  assign dbg_tex_blocked_o = x_busy && frag_valid_o && !frag_ready_o;
 
   // ---- Fragment FIFO (beats; whole tiles: FragmentFifoEntries of them waiting) ----
   // batches_q: complete tiles (a tile's last beat or a marker pushed) whose first beat
@@ -567,12 +655,12 @@ module rast_top #(
   // one may start in the cycle another finishes).
   assign dbg_has_o     = {rop_has, p_valid, f_valid, c_valid, t_valid || s_busy};
   assign dbg_done_o    = {rop_done, p_valid && p_ready, f_valid && f_ready, c_valid && c_ready, s_done};
-  assign dbg_blocked_o = {rop_blocked, frag_valid_o && !frag_ready_o, m_valid && !m_ready, k_valid && !k_ready,
+  assign dbg_blocked_o = {rop_blocked, i_valid && !i_ready, m_valid && !m_ready, k_valid && !k_ready,
                           s_valid && !s_ready};
 
   // A held transaction shows as valid at the stage's input.
   assign idle_o = t_empty && !s_busy && c_empty && !c_valid && !c_busy && f_empty && !f_valid && !f_busy &&
-                  p_empty && !p_valid && !p_busy && r_fifo_empty && rop_idle;
+                  p_empty && !p_valid && !p_busy && ts_empty && !x_busy && r_fifo_empty && rop_idle;
 endmodule
 
 `default_nettype wire

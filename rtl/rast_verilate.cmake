@@ -8,11 +8,11 @@
 #   an on-demand model is verilated exactly as a shipped one.
 
 # rast_rtl_files(DIR <top> <engine> <waivers>): the sources under DIR (rtl/ or the cache
-# project's copy): rast_top with its stages (the 2D units, the ROP's cache and the
-# texture unit's units, not yet in rast_top, stand alone), the 2D engine with its units, and the lint waivers (lint/rast_*.vlt).
+# project's copy): rast_top with its stages, the texture unit's units included (the 2D
+# units and the ROP's cache, not in rast_top, stand alone), the 2D engine with its units, and the lint waivers (lint/rast_*.vlt).
 function(rast_rtl_files dir top_var engine_var waiver_var)
   file(GLOB top CONFIGURE_DEPENDS ${dir}/rast_*.sv)
-  list(FILTER top EXCLUDE REGEX "/(rast_line|rast_rop3|rast_pattern|rast_engine2d|rast_rop_cache|rast_rop_cache_data|rast_texture_[a-z]+)\\.sv$")
+  list(FILTER top EXCLUDE REGEX "/(rast_line|rast_rop3|rast_pattern|rast_engine2d|rast_rop_cache|rast_rop_cache_data)\\.sv$")
   file(GLOB waivers CONFIGURE_DEPENDS ${dir}/lint/rast_*.vlt)
   set(${top_var} ${top} PARENT_SCOPE)
   set(${engine_var} ${dir}/rast_engine2d.sv ${dir}/rast_line.sv ${dir}/rast_pattern.sv ${dir}/rast_rop3.sv

@@ -161,10 +161,13 @@ struct TimingParams {
   // stage"): its four units run in a pipeline, so the slowest sets the batch's cycles,
   // and each texture-cache line miss stalls the whole pipeline texture.miss_cycles:
   //   max(ceil(Q / quads_per_cycle), ceil(B / bilinear_per_cycle),
-  //       ceil(T / texels_per_cycle), ceil(N / combine_per_cycle)) + M miss_cycles
+  //       ceil(T / texels_per_cycle), ceil(N / combine_per_cycle), B) + M miss_cycles
   // Q the batch's 2x2 quads (helper pixels ride in their quad's lanes), B its bilinear
   // sample slots (a nearest or bilinear sample 1, a trilinear sample 2: half rate), T its
-  // texel fetches, N its fragments, M its line misses. At least 1 cycle a batch.
+  // texel fetches, N its fragments, M its line misses. At least 1 cycle a batch. The
+  // term B alone: the texel fetch port takes one level sample (1 or 4 texels) a cycle
+  // (rast_top's one tex_req port, the texture cache's interface), whatever the lanes
+  // behind it.
   struct TextureWork {
     uint64_t quads = 0, bilinear_slots = 0, texel_fetches = 0, fragments = 0, misses = 0;
   };
@@ -172,7 +175,8 @@ struct TimingParams {
     const uint64_t rate = std::max({ceil_div(w.quads, texture_quads_per_cycle),
                                     ceil_div(w.bilinear_slots, texture_bilinear_per_cycle),
                                     ceil_div(w.texel_fetches, texture_texels_per_cycle),
-                                    ceil_div(w.fragments, texture_combine_per_cycle), uint64_t{1}});
+                                    ceil_div(w.fragments, texture_combine_per_cycle), w.bilinear_slots,
+                                    uint64_t{1}});
     return rate + w.misses * texture_miss_cycles;
   }
   // Bilinear sample slots of one sample by its filter: trilinear blends two levels' bilinear

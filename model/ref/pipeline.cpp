@@ -121,14 +121,6 @@ void reject_2d_commands(const Scene& scene, const char* level) {
                        " level yet; `rastsim render` draws it (docs/2d.md)");
 }
 
-void reject_textured_commands(std::span<const Command> commands, const char* level) {
-  for (const Command& cmd : commands)
-    if (const auto* p = std::get_if<CmdPrimitives>(&cmd.body); p && p->texture.enabled())
-      throw SceneError(cmd.loc.str() + ": drawn with texture '" + p->texture.image->name + "' bound, and the " +
-                       level + " level has no texture stage yet: use `rastsim render` or `rastsim simulate` "
-                       "(docs/texture.md)");
-}
-
 void count_interp_error(const Fragment& got, const Fragment& exact, RenderStats& stats) {
   const auto d = [](uint32_t a, uint32_t b) { return a > b ? a - b : b - a; };
   for (uint32_t e : {d(got.r, exact.r), d(got.g, exact.g), d(got.b, exact.b)}) {

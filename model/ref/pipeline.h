@@ -127,10 +127,6 @@ void check_2d_sample_count(const Command& cmd, const RasterState& st);
 // have no 2D stage yet (`level`: "SystemC", "RTL").
 void reject_2d_commands(const Scene& scene, const char* level);
 
-// Throws SceneError naming the first primitives command of `commands` drawn with a
-// texture bound, for the level that has no texture stage yet (`level`: "RTL").
-void reject_textured_commands(std::span<const Command> commands, const char* level);
-
 // Adds one fragment's attribute error (a method's fragment against interpolate_plane's)
 // to the interpolation error stats (shared with the timed model).
 void count_interp_error(const Fragment& got, const Fragment& exact, RenderStats& stats);

@@ -108,6 +108,12 @@ nlohmann::json CosimResult::to_json(const CosimOptions& opts) const {
           {"seed", opts.stress_seed},
           {"rtl_wall_seconds", wall_seconds},
           {"rtl_cycles_per_second", wall_seconds > 0 ? double(cycles_rtl) / wall_seconds : 0.0}};
+  if (texel_fetches > 0) {  // render --stats' texture keys
+    j["helper_pixels"] = helper_pixels;
+    j["texel_fetches"] = texel_fetches;
+    j["texture_cache_hits"] = texture_cache_hits;
+    j["texture_cache_misses"] = texture_cache_misses;
+  }
   if (memory.enabled) {  // render's memory keys, then the DRAM's (simulate --stats' names)
     add_memory(j, memory);
     j.merge_patch(dram);

@@ -114,6 +114,10 @@ struct CosimResult {
   int samples = 1;                 // raster.samples driven on the RTL
   uint64_t rop_accesses = 0;       // ROP accesses of the fragments (TimingParams::rop_accesses)
   uint64_t resolve_cycles = 0;     // the frame-end resolve pass (end-of-frame marker), included in cycles_rtl
+  // The texture stage (textured scenes): helper pixels the RTL dropped (render's
+  // helper_pixels) and the texel fetch port's fetches through the reference's texture
+  // cache model (testbench: tb_texture.h).
+  uint64_t helper_pixels = 0, texel_fetches = 0, texture_cache_hits = 0, texture_cache_misses = 0;
   // memory.model = "dram": the ROP's functional memory counts (render --stats' keys) and
   // the DRAM's figures (add_memory_system_json's keys: dram_row_hit_rate, memory.dram.*,
   // memory.clients.<client>.bursts_read, ...); memory.enabled false and {} with fixed.
@@ -139,7 +143,8 @@ struct CosimResult {
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(CosimResult, rtl_config, rtl_model_dir, rtl_cache_hit,
                                                 rtl_build_seconds, cycles_rtl, fragments_expected, fragments_compared,
                                                 mismatches, first_mismatch, triangles, markers, commands_2d, pixels_2d,
-                                                crc_rtl, crc_ref, samples, rop_accesses, resolve_cycles, memory, dram,
+                                                crc_rtl, crc_ref, samples, rop_accesses, resolve_cycles, helper_pixels,
+                                                texel_fetches, texture_cache_hits, texture_cache_misses, memory, dram,
                                                 wall_seconds, stages, command_starts, command_mismatches)
 
 // The verilated configs linked into this binary, and the parameters each was built with

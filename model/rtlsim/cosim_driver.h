@@ -64,6 +64,10 @@ class VerilatedRast final : public RastPorts {
     top_->depth_base_i = rop_depth_base(s.arch.fb_width, s.arch.fb_height, s.samples);
     top_->depth_func_i = static_cast<uint8_t>(s.arch.depth_func);
     top_->depth_write_i = s.arch.depth_write;
+    top_->tex_format_i = static_cast<uint8_t>(s.texture.format);
+    top_->tex_layout_i = static_cast<uint8_t>(s.texture.layout);
+    top_->tex_req_ready_i = 0;
+    top_->tex_rsp_valid_i = 0;
     top_->tri_valid_i = 0;
     top_->cmd_valid_i = 0;
     top_->rd_ready_i = 0;
@@ -128,6 +132,14 @@ class VerilatedRast final : public RastPorts {
       set_port_bits(top_->tri_q_i, v * 24, 24, it->q[v]);
     }
     top_->tri_affine_i = it->affine;
+    top_->tri_tex_on_i = it->tex_on;
+    top_->tri_tex_bilinear_i = it->tex_bilinear;
+    top_->tri_tex_wrap_s_i = static_cast<uint8_t>(it->tex_wrap_s);
+    top_->tri_tex_wrap_t_i = static_cast<uint8_t>(it->tex_wrap_t);
+    top_->tri_tex_env_i = static_cast<uint8_t>(it->tex_env);
+    top_->tri_tex_width_i = static_cast<uint16_t>(it->tex_width);
+    top_->tri_tex_height_i = static_cast<uint16_t>(it->tex_height);
+    top_->tri_tex_base_i = it->tex_base;
   }
   bool triangle_ready() const override { return top_->tri_ready_o; }
   bool fragment_taken() const override { return top_->frag_ready_o; }
@@ -152,8 +164,25 @@ class VerilatedRast final : public RastPorts {
     return f;
   }
   bool idle() const override { return top_->idle_o; }
+  TexRequest texture_request() const override {
+    TexRequest r;
+    r.valid = top_->tex_req_valid_o;
+    r.count = top_->tex_req_count_o;
+    r.format = top_->tex_req_format_o;
+    const int aw = params_.tex_addr_w;
+    for (int k = 0; k < 4; ++k) r.addr[size_t(k)] = port_bits(top_->tex_req_addr_o, k * aw, aw);
+    return r;
+  }
+  void drive_texture_ready(bool ready) override { top_->tex_req_ready_i = ready; }
+  void drive_texture_response(bool valid, const std::array<uint32_t, 4>& texels) override {
+    top_->tex_rsp_valid_i = valid;
+    for (size_t k = 0; k < 4; ++k) set_port_word(top_->tex_rsp_texels_i, k, texels[k]);
+  }
+  bool texture_response_taken() const override { return top_->tex_rsp_ready_o; }
+  int helper_pixels() const override { return top_->tex_helpers_o; }
   RtlStageBits stage_bits() const override {
-    return {top_->dbg_has_o, top_->dbg_done_o, top_->dbg_blocked_o, bool(top_->dbg_rop_start_o)};
+    return {top_->dbg_has_o, top_->dbg_done_o, top_->dbg_blocked_o, bool(top_->dbg_rop_start_o),
+            bool(top_->dbg_tex_busy_o), bool(top_->dbg_tex_blocked_o)};
   }
 
   // ---- The ROP's command and memory ports (32-bit addresses and data words) ----

@@ -6,6 +6,8 @@
 
 #include <bit>
 #include <charconv>
+#include <optional>
+#include <set>
 #include <stdexcept>
 
 #include "config/timing_params.h"
@@ -18,6 +20,7 @@
 #include "ref/coarse_raster.h"
 #include "ref/interpolate.h"
 #include "ref/sample_pattern.h"
+#include "ref/texture/texture_unit.h"
 #include "config/raster_state_config.h"
 
 namespace rastsim::rtlsim {
@@ -28,6 +31,11 @@ namespace {
 static_assert(int(FillRule::TopLeft) == 0 && int(FillRule::BottomRight) == 1 && int(FillRule::Inclusive) == 2 &&
               int(FillRule::Exclusive) == 3);
 static_assert(int(CullMode::None) == 0 && int(CullMode::Back) == 1 && int(CullMode::Front) == 2);
+// rast_top's texture state and static inputs carry these (rtl/rast_texture_stage.sv).
+static_assert(int(TexWrap::Repeat) == 0 && int(TexWrap::Clamp) == 1 && int(TexWrap::Mirror) == 2);
+static_assert(int(TexEnv::Replace) == 0 && int(TexEnv::Modulate) == 1 && int(TexEnv::Decal) == 2);
+static_assert(int(TexelFormat::Rgba8888) == 0 && int(TexelFormat::Rgb565) == 1 && int(TexelFormat::L8) == 2);
+static_assert(int(TexLayout::Linear) == 0 && int(TexLayout::Tiled) == 1 && int(TexLayout::Morton) == 2);
 
 // The scene as the testbench's command stream, and the reference model's fragments for
 // the same tile size: the same walk as ref/pipeline.cpp render_scene, one handler per
@@ -57,6 +65,7 @@ class StreamBuilder {
   void primitives(const Command& cmd, const CmdPrimitives& prims);
   void clip_space(const Command& cmd, const CmdPrimitives& prims);
   void triangle(const Command& cmd, const CmdPrimitives& prims, size_t k, const ScreenTriangle& verts);
+  void texture_state(const Command& cmd, const TextureState& ts, TbItem& it);
 
   TbSetup& setup_;
   const TimingParams& timing_;
@@ -66,7 +75,44 @@ class StreamBuilder {
   Framebuffer fb_{1, 1};  // state commands need one; the testbench ROP keeps no pixels
   TraversalCounters counters_;
   FrontEndStats front_end_;  // the testbench's front end counts here (its steps' costs)
+  // Textured triangles: the reference's texture unit (the expected fragments' texture
+  // stage and the textures' placement), one triangle's quads, the textures in memory.
+  std::optional<TextureUnit> tex_;
+  TriangleQuads quads_;
+  std::set<const TextureImage*> placed_;
 };
+
+// A textured triangle's state on rast_top's tri_tex_* ports, its texture placed as the
+// reference places it and its texels put in the testbench's texel memory at first use.
+void StreamBuilder::texture_state(const Command& cmd, const TextureState& ts, TbItem& it) {
+  if (ts.mipmap || ts.filter == TexFilter::Trilinear)
+    throw SceneError(cmd.loc.str() + ": texture '" + ts.image->name + "' drawn with " +
+                     (ts.mipmap ? "mipmap on" : "texfilter trilinear") + ": the RTL texture stage samples level 0 "
+                     "(nearest, bilinear) only so far; co-simulate with mipmap off and texfilter nearest or "
+                     "bilinear (docs/texture.md \"RTL\")");
+  if (!tex_) tex_.emplace(state_.texture);
+  const TextureUnit::Resident& r = tex_->resident(ts);
+  it.tex_on = true;
+  it.tex_bilinear = ts.filter == TexFilter::Bilinear;
+  it.tex_wrap_s = int(ts.wrap_s);
+  it.tex_wrap_t = int(ts.wrap_t);
+  it.tex_env = int(ts.env);
+  it.tex_width = r.levels[0].width;
+  it.tex_height = r.levels[0].height;
+  it.tex_base = r.level_base[0];
+  if (!placed_.insert(ts.image.get()).second) return;
+  const TextureParams& p = state_.texture;
+  const int bytes = texel_bytes(p.format);
+  for (size_t k = 0; k < r.levels.size(); ++k) {
+    const MipLevel& l = r.levels[k];
+    for (int j = 0; j < l.height; ++j)
+      for (int i = 0; i < l.width; ++i) {
+        const Rgba8 c = l.texel(i, j);
+        setup_.texels[r.level_base[k] + texel_offset(p.layout, l.width, l.height, bytes, i, j)] =
+            uint32_t(c[0]) | uint32_t(c[1]) << 8 | uint32_t(c[2]) << 16 | uint32_t(c[3]) << 24;
+      }
+  }
+}
 
 // A state command travels as a marker: fetched as a header, 1 ROP cycle (a clear: the
 // fast clear of the framebuffer).
@@ -162,6 +208,7 @@ void StreamBuilder::triangle(const Command& cmd, const CmdPrimitives& prims, siz
       it.q[v] = t.persp_q[size_t(v)];
     }
     it.affine = t.affine;
+    if (prims.texture.enabled()) texture_state(cmd, prims.texture, it);
     // The RTL builds the newton reciprocal (rtl/rast_recip.sv): a triangle that needs a
     // reciprocal under interp.recip = exact would be compared against another divider.
     if (!t.affine && t.recip != RecipMethod::Newton)
@@ -181,9 +228,24 @@ void StreamBuilder::triangle(const Command& cmd, const CmdPrimitives& prims, siz
   // Per pixel with a covered sample: its fragment (msaa: one, at the centre, with the
   // mask; one sample: interpolate() with mask 1), as render_scene shades it.
   const int F = state_.coord_format.frac_bits;
+  if (!prims.texture.enabled()) {
+    traverse_triangle(t, tile_size_, F, counters_, [&](int px, int py, uint32_t m) {
+      shade_pixel(t, px, py, m, F, [&](const Fragment& f) { setup_.expected.push_back(Expected{f, it.tri}); });
+    });
+    return;
+  }
+  // Textured (ref/pipeline.cpp draw_textured): each fragment through the texture unit with
+  // its quad's derivatives; the quads' pixels not covered are helper pixels.
+  quads_.clear();
+  const int tex_frac = state_.texcoord_format.frac_bits;
   traverse_triangle(t, tile_size_, F, counters_, [&](int px, int py, uint32_t m) {
-    shade_pixel(t, px, py, m, F, [&](const Fragment& f) { setup_.expected.push_back(Expected{f, it.tri}); });
+    quads_.add_covered(1);
+    const QuadDerivatives& d = quads_.derivatives(t, px, py, F);
+    shade_pixel(t, px, py, m, F, [&](const Fragment& f) {
+      setup_.expected.push_back(Expected{tex_->shade(f, d, prims.texture, tex_frac), it.tri});
+    });
   });
+  setup_.helper_pixels += quads_.helper_pixels();
 }
 
 // Multisampling: the frame ends with the resolve pass, ordered after every fragment by
@@ -272,6 +334,8 @@ void cosim_setup(const Scene& scene, const ArchParams& arch, const CosimOptions&
   build(scene, arch, tile, s);
   s.memory = arch.memory;
   s.dram = arch.dram;
+  s.texture = s.arch.texture;
+
   s.scanout = scanout_params_if_display(arch);
   // The RTL 2D engine reads its memory asynchronously (rtl/rast_engine2d.sv: no wait for
   // a line fill), so the timed memory system cannot serve it.

@@ -66,6 +66,10 @@ constexpr ParamField<RtlParams> kFields[] = {
     {"RecipSeedBits", &RtlParams::recip_seed_bits, "interp.recip_seed_bits"},
     {"RecipIterations", &RtlParams::recip_iterations, "interp.recip_iterations"},
     {"InterpRecipLatency", &RtlParams::interp_recip_latency, "the reciprocal unit's stages: 2 + 2 RecipIterations, 0 without it"},
+    {"TexFrac", &RtlParams::tex_frac, "F of interp.texcoord_format"},
+    {"TexWeightBits", &RtlParams::tex_weight_bits, "texture.weight_bits"},
+    {"TexSizeW", &RtlParams::tex_size_w, "bits of a texture side (up to the largest texture)"},
+    {"TexAddrW", &RtlParams::tex_addr_w, "bits of a texel's byte address"},
     {"TriangleFifoDepth", &RtlParams::fifo_triangle, "fifo.triangle_depth"},
     {"SetupFifoEntries", &RtlParams::setup_fifo_entries, "fifo.setup_depth + setup latency slots"},
     {"TileFifoDepth", &RtlParams::fifo_tile, "fifo.tile_depth"},
@@ -290,6 +294,11 @@ RtlParams rtl_params(const ArchParams& arch) {
   p.recip_seed_bits = st.recip_seed_bits;
   p.recip_iterations = st.recip_iterations;
   p.interp_recip_latency = static_cast<int>(t.interp_recip_latency());
+  const TextureRtlParams tex = texture_rtl_params(arch);
+  p.tex_frac = tex.tex_frac;
+  p.tex_weight_bits = tex.weight_bits;
+  p.tex_size_w = tex.size_w;
+  p.tex_addr_w = tex.addr_w;
   p.fifo_triangle = t.fifo_triangle;
   p.setup_fifo_entries = t.setup_fifo_entries();
   p.fifo_tile = t.fifo_tile;

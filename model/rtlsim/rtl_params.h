@@ -57,6 +57,11 @@ struct RtlParams {
   int interp_persp_lanes = 0;    // lanes with a reciprocal: TimingParams::interp_lanes(false)
   int recip_seed_bits = 0, recip_iterations = 0;  // interp.recip_seed_bits, interp.recip_iterations
   int interp_recip_latency = 0;  // TimingParams::interp_recip_latency (the RTL checks its structure against it)
+  // The texture stage (rtl/rast_texture_stage.sv; docs/texture.md "RTL"): texture_rtl_params' widths.
+  int tex_frac = 0;         // F of interp.texcoord_format
+  int tex_weight_bits = 0;  // texture.weight_bits
+  int tex_size_w = 0;       // bits of a texture side (up to kMaxTextureExtent)
+  int tex_addr_w = 0;       // bits of a texel's byte address
   int fifo_triangle = 0, fifo_tile = 0, fifo_pixel = 0;
   int setup_fifo_entries = 0;  // fifo.setup_depth + setup's latency slots (TimingParams)
   int fragment_fifo_entries = 0;  // fifo.fragment_depth + the interpolator's latency slots (TimingParams), tiles

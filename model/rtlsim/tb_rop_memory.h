@@ -55,6 +55,8 @@ class TbRopMemory {
   // make them), every request drained; the functional counts, the DRAM's figures and the
   // scan-out's (add_scanout_fetch_json) into `r`.
   void finish(uint64_t cycles, CosimResult& r);
+  // The memory system, for the texel fetch port's fills (tb_texture.h).
+  MemorySystem& system() { return system_; }
 
  private:
   MemorySystem system_;

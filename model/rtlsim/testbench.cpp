@@ -41,6 +41,7 @@
 
 #include "ref/fixed_point.h"
 #include "rtlsim/tb_rop_memory.h"
+#include "rtlsim/tb_texture.h"
 #include "ref/pipeline.h"
 #include "timing/stage_table.h"
 
@@ -134,10 +135,13 @@ class Testbench {
         clip_depth_(size_t(setup.timing.fifo_entries(FifoId::ClipCommand))),
         screen_depth_(size_t(setup.timing.fifo_entries(FifoId::Screen))),
         fb_(setup.arch.fb_width, setup.arch.fb_height, setup.samples),
-        depth_base_(rop_depth_base(fb_.width, fb_.height, fb_.samples)) {
+        depth_base_(rop_depth_base(fb_.width, fb_.height, fb_.samples)), texture_(setup) {
     fb_.clear_depth(static_cast<uint32_t>((uint64_t{1} << setup.arch.depth_bits) - 1));  // as render_scene
     if (setup.opts.initial_fb) fb_ = *setup.opts.initial_fb;  // cosim --frames: the frames before the range
-    if (setup.memory.enabled) dram_ = std::make_unique<TbRopMemory>(setup);
+    if (setup.memory.enabled) {
+      dram_ = std::make_unique<TbRopMemory>(setup);
+      texture_.attach(dram_->system());  // after the scan-out and the ROP, as simulate attaches it
+    }
     for (size_t i = 0; i < setup.items.size(); ++i)
       if (!setup.items[i].from_front_end) fetched_.push_back(i);
   }
@@ -223,6 +227,7 @@ class Testbench {
   int command_op_ = 0;                    // cmd_op_i this cycle
   uint64_t perturb_now_ = 0;              // CosimOptions::perturb_rop_*: the next read's extra latency
   std::unique_ptr<TbRopMemory> dram_;     // memory.model = "dram": the timed memory system (null: fixed)
+  TbTexture texture_;                     // the texel memory behind the texel fetch port
   // The 2D path.
   std::deque<Entry> draw2d_fifo_, op2d_fifo_;  // fetch -> front end -> engine (items: work2d indices)
   TbStage front_end_;                     // the 2D front end
@@ -287,6 +292,10 @@ void Testbench::run() {
   }
   close_stage_counts(counted);
   if (dram_) dram_->finish(result_.cycles_rtl, result_);
+  texture_.finish(result_);
+  if (result_.helper_pixels != setup_.helper_pixels)
+    mismatch("helper pixels: the RTL dropped " + std::to_string(result_.helper_pixels) + ", the reference counts " +
+             std::to_string(setup_.helper_pixels));
   end_of_run_check();
   ports_.finish();
   result_.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -310,8 +319,15 @@ bool Testbench::cycle(uint64_t t) {
   assembly_take(t);
   const bool tri_valid = assembly_.offering() && !tri_valid_stress_.low();
   ports_.drive_triangle(tri_valid ? &setup_.items[assembly_.item] : nullptr);
+  texture_.drive(t, ports_);
   ports_.clock_edge(false);
   const bool tri_taken = tri_valid && ports_.triangle_ready();
+  {
+    std::string error;
+    texture_.serve(t, ports_, error);
+    if (!error.empty()) mismatch(error);
+    result_.helper_pixels += uint64_t(ports_.helper_pixels());
+  }
   observe_rtl_stages(t);
   const FragmentBeat beat = ports_.fragment_beat();
   if (!ports_.idle() || beat.valid || fetch_.active || assembly_.active) last_busy_ = std::max(last_busy_, t);
@@ -828,7 +844,10 @@ void Testbench::observe_rtl_stages(uint64_t t) {
     count(k, !has ? Cyc::Starved : stalled ? Cyc::Stalled : Cyc::Busy);
     if (done) tx_end(k, handshake_only ? t : t + 1);
   }
-  count(StageId::Texture, Cyc::Starved);  // no texture stage in the RTL (cosim refuses textured scenes)
+  // The texture stage: busy while it holds textured work (a fragment in its serialiser or
+  // pipeline, waiting for texels included, as the SystemC stage's stall is busy), stalled
+  // while the fragment FIFO refuses its output.
+  count(StageId::Texture, !bits.tex_busy ? Cyc::Starved : bits.tex_blocked ? Cyc::Stalled : Cyc::Busy);
 }
 // The ROP: busy in a cycle it works (a group's read, a clear's write, a marker), stalled
 // while the memory refuses its request, starved otherwise; or busy in the testbench's

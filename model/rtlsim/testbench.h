@@ -10,6 +10,7 @@
 #include <array>
 #include <cstdint>
 #include <optional>
+#include <unordered_map>
 #include <string>
 #include <vector>
 
@@ -22,6 +23,7 @@
 #include "ref/raster_state.h"
 #include "ref/sample_pattern.h"
 #include "ref/scene.h"
+#include "ref/texture/texture.h"
 #include "rtlsim/cosim.h"
 #include "timing/dram.h"
 
@@ -42,6 +44,11 @@ struct TbItem {
   int32_t s[3] = {}, t[3] = {};  // texture coordinates, raw interp.texcoord_format
   uint32_t q[3] = {1, 1, 1};   // perspective weights Q_k (24 bits)
   bool affine = true;          // interpolation needs no reciprocal (ref tri_setup)
+  // The texture state (rast_top's tri_tex_*; ref/texture/texture.h's enum values).
+  bool tex_on = false, tex_bilinear = false;
+  int tex_wrap_s = 0, tex_wrap_t = 0, tex_env = 0;
+  int tex_width = 0, tex_height = 0;  // level 0, texels
+  uint64_t tex_base = 0;              // level 0's byte address (TextureUnit's placement)
   int clip[4] = {};            // x0, y0, x1, y1
   int origin[2] = {};          // x, y
   int tri = -1;                // triangle index (names in TbSetup::tri_names)
@@ -98,6 +105,12 @@ struct TbSetup {
   // (scanout_params_if_display; none when it does not resolve).
   std::optional<ScanoutParams> scanout;
   CosimOptions opts;
+  // Textured scenes: the texture unit's parameters (format, layout, cache), the texel
+  // memory (every placed texel's byte address -> its RGBA8, R in bits 7:0) and the
+  // reference's helper pixels.
+  TextureParams texture;
+  std::unordered_map<uint64_t, uint32_t> texels;
+  uint64_t helper_pixels = 0;
 };
 
 // ---- The RTL's ports (rtl/rast_top.sv, rtl/rast_engine2d.sv) as plain values ----
@@ -108,6 +121,13 @@ struct FragmentBeat {
   bool marker = false;  // frag_marker_o: the beat is a marker
   bool last = false;    // frag_last_o: a tile's last beat
 };
+// rast_top's texel fetch port this cycle (tex_req_*).
+struct TexRequest {
+  bool valid = false;
+  int count = 0;                      // 1 nearest, 4 bilinear
+  int format = 0;                     // texture.format
+  std::array<uint64_t, 4> addr{};     // texel k's byte address
+};
 // rast_top's stage observation ports (bit s: 0 setup, 1 coarse raster, 2 fine raster,
 // 3 interpolation, 4 ROP).
 struct RtlStageBits {
@@ -115,6 +135,8 @@ struct RtlStageBits {
   uint32_t done = 0;     // dbg_done_o: stage s finishes its transaction this cycle
   uint32_t blocked = 0;  // dbg_blocked_o: stage s offers an output that is not taken
   bool rop_start = false;  // dbg_rop_start_o: the ROP starts a batch or command
+  bool tex_busy = false;     // dbg_tex_busy_o: the texture stage holds textured work
+  bool tex_blocked = false;  // dbg_tex_blocked_o: its output refused
 };
 // One lane of a ROP memory request (rast_top's rd_* / wr_*): a byte address and a burst
 // length in 32-bit words.
@@ -160,6 +182,13 @@ class RastPorts {
   // Lane `lane` of the fragment port (x, y, z, colour, sample mask; samples left 1).
   virtual Fragment fragment_lane(int lane) const = 0;
   virtual bool idle() const = 0;  // idle_o
+  // The texel fetch port: the request offered, tex_req_ready_i, the response offered
+  // (tex_rsp_valid_i, texel k's RGBA8), tex_rsp_ready_o, and tex_helpers_o.
+  virtual TexRequest texture_request() const = 0;
+  virtual void drive_texture_ready(bool ready) = 0;
+  virtual void drive_texture_response(bool valid, const std::array<uint32_t, 4>& texels) = 0;
+  virtual bool texture_response_taken() const = 0;
+  virtual int helper_pixels() const = 0;
   virtual RtlStageBits stage_bits() const = 0;
 
   // The ROP's command port: cmd_ready_o (a marker waits for its command, the ROP is

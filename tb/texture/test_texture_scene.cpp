@@ -273,17 +273,5 @@ TEST(TextureRender, TexturedBoxObjRenders) {
   EXPECT_TRUE(cool);
 }
 
-// Co-simulation (the RTL has no texture stage) refuses a textured scene; simulate draws
-// it (tb/sc/test_sc_texture.cpp).
-TEST(TextureLevels, CosimRefusesATexturedScene) {
-  Scratch s;
-  s.put("r.tga", tga(4, 4, ramp4()));
-  const std::string trace = s.put("t.trace", "texture 1 r.tga\ntri 0 0 9 0 0 9\nbindtexture 1\ntri 0 0 9 0 0 9\n");
-  EXPECT_TRUE(fails_with([&] { reject_textured_commands(load_trace(trace).commands, "RTL"); }, trace + ":4:",
-                         "no texture stage yet: use `rastsim render` or `rastsim simulate`"));
-  const std::string plain = s.put("p.trace", "texture 1 r.tga\ntri 0 0 9 0 0 9\n");
-  EXPECT_NO_THROW(reject_textured_commands(load_trace(plain).commands, "RTL"));
-}
-
 }  // namespace
 }  // namespace rastsim

@@ -84,13 +84,16 @@ class TextureUnit {
   // (render). The timed model's memory client (timing/texture_memory_port.h) sets it.
   std::function<void(uint64_t address, uint64_t bytes)> on_fill;
 
- private:
   struct Resident {  // one texture in memory, in the configured format
     std::shared_ptr<const TextureImage> image;  // held, so that its address is never reused
     std::vector<MipLevel> levels;      // the whole chain (`mipmap off` samples level 0 only)
     std::vector<uint64_t> level_base;  // byte address of each level
   };
+  // ts's texture in memory, placed at its first use (the co-simulation's texel memory
+  // and the RTL's level addresses come from here: one placement).
   const Resident& resident(const TextureState& ts);
+
+ private:
   Rgba8 sample_level(const Resident& r, int level, const Fragment& f, const TextureState& ts, int frac_bits);
   void fetch(uint64_t address);
 
