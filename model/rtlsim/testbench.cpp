@@ -325,7 +325,7 @@ bool Testbench::cycle(uint64_t t) {
   rop_serve(t);
   // A grant made now (the 2D marker waits at the quiet ROP): the engine takes the port and
   // is offered its first operation in this cycle, as the model's engine reads the grant
-  // the ROP writes (answer_engine_reads evaluates it again).
+  // the ROP writes (drive_engine_read evaluates it again).
   if (!granted && rop_wait_2d_) {
     engine_take(t);
     op_valid = engine_drive();

@@ -27,8 +27,8 @@ nlohmann::json cosim(const std::string& trace, const std::string& name, const st
   std::filesystem::create_directories(dir);
   const auto trace_path = dir / (name + ".trace"), stats_path = dir / (name + ".json");
   std::ofstream(trace_path) << trace;
-  // memory.model = fixed: cosim refuses 2D commands with dram (the RTL 2D engine cannot
-  // wait for a line fill; docs/memory.md "RTL co-simulation").
+  // memory.model = fixed: the 2D engine's cycles without DRAM stalls (the test card with
+  // dram: the ctest cosim.dram.2d.test_card; docs/memory.md "RTL co-simulation").
   std::vector<std::string> argv{RASTSIM_BINARY, "cosim", "--config", std::string(RASTSIM_SOURCE_DIR) + "/configs/default.toml",
                                 "--set", "memory.model=fixed", "--scene", trace_path.string(), "--stats",
                                 stats_path.string(), "--max-error", "0.02"};
