@@ -150,6 +150,22 @@ Scene mixed_scene(const Config& cfg, uint64_t seed) {
   return s;
 }
 
+// `scene` under backpressure 0.3 and valid gaps 0.3 (seeded by `seed`): clean, every
+// fragment, 2D pixel and the image as in the `calm` run, more cycles; returns the options.
+CosimOptions expect_stress_keeps(const Scene& scene, const Config& cfg, const CosimResult& calm, uint64_t seed) {
+  CosimOptions o;
+  o.backpressure = 0.3;
+  o.valid_gaps = 0.3;
+  o.stress_seed = seed;
+  const CosimResult r = run_cosim(scene, ArchParams::resolve(cfg), o);
+  expect_clean(r);
+  EXPECT_EQ(r.fragments_compared, calm.fragments_compared);
+  EXPECT_EQ(r.pixels_2d, calm.pixels_2d);
+  EXPECT_EQ(r.crc_rtl, calm.crc_rtl);
+  EXPECT_GT(r.cycles_rtl, calm.cycles_rtl) << "the stress held inputs back";
+  return o;
+}
+
 TEST(StressCosim, ValidGapsAndBackpressureKeepEveryFragment) {
   Config cfg = load_shipped_config("default");
   cfg.apply_override("raster.out_of_range=cull");
@@ -162,16 +178,7 @@ TEST(StressCosim, ValidGapsAndBackpressureKeepEveryFragment) {
   const CosimResult calm = run_cosim(scene, ArchParams::resolve(cfg));
   expect_clean(calm);
   EXPECT_GT(calm.commands_2d, 0u);
-  CosimOptions o;
-  o.backpressure = 0.3;
-  o.valid_gaps = 0.3;
-  o.stress_seed = seed;
-  const CosimResult r = run_cosim(scene, ArchParams::resolve(cfg), o);
-  expect_clean(r);
-  EXPECT_EQ(r.fragments_compared, calm.fragments_compared);
-  EXPECT_EQ(r.pixels_2d, calm.pixels_2d);
-  EXPECT_EQ(r.crc_rtl, calm.crc_rtl);
-  EXPECT_GT(r.cycles_rtl, calm.cycles_rtl) << "the stress held inputs back";
+  CosimOptions o = expect_stress_keeps(scene, cfg, calm, seed);
   // Valid gaps alone: assembly's withheld offers are stalled cycles, and the 2D engine
   // waits for its withheld operations while it holds the framebuffer port (busy).
   o.backpressure = 0;
@@ -202,16 +209,7 @@ TEST(StressCosim, DramStressKeepsTheTwoDEngineExact) {
   EXPECT_GT(calm.commands_2d, 0u);
   EXPECT_EQ(calm.crc_rtl, fixed.crc_rtl);
   EXPECT_GT(calm.cycles_rtl, fixed.cycles_rtl) << "the fills cost cycles";
-  CosimOptions o;
-  o.backpressure = 0.3;
-  o.valid_gaps = 0.3;
-  o.stress_seed = 0x57e55001u;
-  const CosimResult r = run_cosim(scene, ArchParams::resolve(cfg), o);
-  expect_clean(r);
-  EXPECT_EQ(r.fragments_compared, calm.fragments_compared);
-  EXPECT_EQ(r.pixels_2d, calm.pixels_2d);
-  EXPECT_EQ(r.crc_rtl, calm.crc_rtl);
-  EXPECT_GT(r.cycles_rtl, calm.cycles_rtl) << "the stress held inputs back";
+  expect_stress_keeps(scene, cfg, calm, 0x57e55001u);
 }
 
 // `n` random clip-space triangles in a 64 x 64 viewport, one tri4 a line: w in [0.05, 8]
