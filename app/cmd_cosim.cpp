@@ -215,8 +215,8 @@ void run_cosim_command(CosimCommand& c) {
 void add_rtl_run_options(CLI::App* cmd, rtlsim::CosimOptions& co) {
   cmd->add_option("--fst", co.fst_path, "Write an FST waveform of the RTL");
   cmd->add_option("--backpressure", co.backpressure,
-                  "Probability that the memory refuses the ROP's request (rd_ready_i, wr_ready_i low) in a cycle (random, seeded by --seed; "
-                  "changes cycles_rtl)")
+                  "Probability that the memory refuses the ROP's or the 2D engine's request (rd_ready_i, wr_ready_i low) in a "
+                  "cycle, and delays the 2D engine's read response a cycle (random, seeded by --seed; changes cycles_rtl)")
       ->check(CLI::Range(0.0, 1.0));
   cmd->add_option("--valid-gaps", co.valid_gaps,
                   "Probability that the testbench holds an offered triangle (tri_valid_i) or 2D operation "

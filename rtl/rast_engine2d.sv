@@ -19,9 +19,18 @@
 //   read), at most one a cycle, so a row of w takes max(w, ceil(w * bytes / blit_bytes_i))
 //   cycles. Rows bottom to top when the copy moves down, pixels right to left when it
 //   moves right along its rows.
-// - Framebuffer port: asynchronous read (the memory answers mem_d_i / mem_s_i for the
-//   addresses on mem_x_o/mem_y_o (lane k at x + k) and mem_sx_o/mem_sy_o in the same
-//   cycle), write at the clock edge where mem_we_o is high, lanes in mem_wmask_o.
+// - Memory port (docs/rtl-2d.md, "Memory port"): a read channel and a write channel,
+//   each valid/ready, on the addresses mem_x_o/mem_y_o (lane k at x + k) and
+//   mem_sx_o/mem_sy_o (blit source), which hold while a request waits. A read asks for D
+//   of the lanes in rd_lanes_o and S when rd_src_o; its response (rd_rvalid_i with
+//   rd_d_i, rd_s_i) may come in the cycle the read is taken (a memory that answers at
+//   once) or any number of cycles later. A write carries byte enables (3 a lane) and the
+//   operation's last write is marked (wr_last_o). The engine stalls until a read is
+//   answered and a write taken: a beat whose code reads D sends its read in its first
+//   cycle and writes in its last, or later when the response or the write's ready comes
+//   late; a blit pixel reads and writes when its credit fires, held until both are done.
+//   With a memory that takes every request and answers at once the timing above holds
+//   cycle for cycle.
 `default_nettype none
 
 module rast_engine2d #(
@@ -61,16 +70,25 @@ module rast_engine2d #(
   input  wire logic signed [Width-1:0]    op_sy_i,
   input  wire logic        [Width-1:0]    op_w_i,
   input  wire logic        [Width-1:0]    op_h_i,
-  // Framebuffer port
+  // Memory port: addresses (both channels)
   output      logic signed [Width-1:0]    mem_x_o,          // destination of lane 0
   output      logic signed [Width-1:0]    mem_y_o,
   output      logic signed [Width-1:0]    mem_sx_o,         // blit source
   output      logic signed [Width-1:0]    mem_sy_o,
-  input  wire logic [LanesMax*24-1:0]     mem_d_i,          // D of each lane
-  input  wire logic [23:0]                mem_s_i,          // S (blit)
-  output      logic                       mem_we_o,
-  output      logic [LanesMax-1:0]        mem_wmask_o,
-  output      logic [LanesMax*24-1:0]     mem_wdata_o,
+  // Read request and response
+  output      logic                       rd_valid_o,
+  input  wire logic                       rd_ready_i,
+  output      logic [LanesMax-1:0]        rd_lanes_o,       // D read of lane k
+  output      logic                       rd_src_o,         // S read (blit)
+  input  wire logic                       rd_rvalid_i,      // the response: in or after the read's cycle
+  input  wire logic [LanesMax*24-1:0]     rd_d_i,           // D of each lane {b, g, r}
+  input  wire logic [23:0]                rd_s_i,           // S {b, g, r}
+  // Write request
+  output      logic                       wr_valid_o,
+  input  wire logic                       wr_ready_i,
+  output      logic [LanesMax*3-1:0]      wr_be_o,          // lane k's bytes at 3k .. 3k+2 ({b, g, r} low first)
+  output      logic [LanesMax*24-1:0]     wr_data_o,
+  output      logic                       wr_last_o,        // the operation's last write
   output      logic                       idle_o            // no operation in progress
 );
   typedef enum logic [2:0] {Idle, Setup, Span, Pixel, LineLoad, Line, Blit} state_e;
@@ -127,7 +145,7 @@ module rast_engine2d #(
     .x0_i(x_q), .y0_i(y_q), .x1_i(x1_q), .y1_i(y1_q), .midpoint_i(midpoint_q),
     .out_valid_o(line_out_valid), .out_ready_i(line_out_ready),
     .out_x_o(line_x), .out_y_o(line_y), .out_last_o(line_last));
-  assign line_out_ready = state_q == Line && beat_end_c;
+  assign line_out_ready = state_q == Line && beat_end_c && go_c;
 
   // Lanes of this beat (span only; the others use lane 0).
   logic [Width-1:0] lanes_c;
@@ -149,6 +167,55 @@ module rast_engine2d #(
   logic inside_c;  // lane 0 inside the clip box (pixels and line pixels)
   assign inside_c = mem_x_o >= clip_x0_i && mem_x_o < clip_x1_i && mem_y_o >= clip_y0_i && mem_y_o < clip_y1_i;
 
+  // The memory port's read: which beats read, the request, and the data (held from the
+  // response, or the response itself in the cycle it comes).
+  logic [LanesMax-1:0]     lane_c;       // lanes this beat reads and writes
+  logic                    act_c;        // the beat's write cycle (a blit pixel: its firing)
+  logic                    go_c;         // the engine moves on this cycle: no access, or the write taken
+  logic                    needs_read_c; // the current beat reads D or S
+  logic                    rd_taken_q;   // the beat's read was taken, its response not yet come
+  logic                    have_q;       // the beat's response is held in d_q, s_q
+  logic [LanesMax*24-1:0]  d_q, d_c;
+  logic [23:0]             s_q, s_c;
+  logic                    rsp_c;        // the beat's response comes this cycle
+  logic                    data_ok_c;    // the beat's write has its data
+  always_comb begin
+    needs_read_c = 1'b0;
+    unique case (state_q)
+      Span, Pixel: needs_read_c = reads_d_c;
+      Line:        needs_read_c = reads_d_c && line_out_valid;
+      Blit:        needs_read_c = (reads_d_c || reads_s_c) && blit_fire_c;
+      default: ;
+    endcase
+  end
+  assign rd_valid_o = needs_read_c && !rd_taken_q && !have_q;
+  assign rd_lanes_o = reads_d_c ? lane_c : '0;
+  assign rd_src_o   = state_q == Blit && reads_s_c;
+  assign rsp_c      = rd_rvalid_i && !have_q && (rd_taken_q || (rd_valid_o && rd_ready_i));
+  assign d_c        = have_q ? d_q : rd_d_i;
+  assign s_c        = have_q ? s_q : rd_s_i;
+  assign data_ok_c  = !needs_read_c || have_q || rsp_c;
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      rd_taken_q <= 1'b0;
+      have_q     <= 1'b0;
+    end else if (act_c && go_c) begin  // the beat's write taken: the next beat reads anew
+      rd_taken_q <= 1'b0;
+      have_q     <= 1'b0;
+    end else begin
+      if (rd_valid_o && rd_ready_i && !rsp_c) rd_taken_q <= 1'b1;
+      if (rsp_c) begin
+        rd_taken_q <= 1'b0;
+        have_q     <= 1'b1;
+      end
+    end
+  end
+  always_ff @(posedge clk_i) if (rsp_c) begin
+    d_q <= rd_d_i;
+    s_q <= rd_s_i;
+  end
+
   // Pattern and ROP3 per lane.
   logic [63:0] pattern_c;
   always_comb begin
@@ -165,31 +232,35 @@ module rast_engine2d #(
     rast_pattern #(.Width(24)) u_pattern (
       .pattern_i(pattern_c), .x_i(lx), .y_i(mem_y_o[2:0]), .fg_i, .bg_i, .p_o(p));
     rast_rop3 #(.Width(24)) u_rop3 (
-      .code_i(rop3_i), .p_i(p), .s_i(state_q == Blit ? mem_s_i : 24'd0), .d_i(mem_d_i[k*24 +: 24]),
+      .code_i(rop3_i), .p_i(p), .s_i(state_q == Blit ? s_c : 24'd0), .d_i(d_c[k*24 +: 24]),
       .r_o(r), .reads_d_o(rd), .reads_s_o(rs));
-    assign mem_wdata_o[k*24 +: 24] = r;
-    assign mem_wmask_o[k] = state_q == Span ? Width'(k) < lanes_c : (k == 0 && (state_q == Blit || inside_c));
+    assign wr_data_o[k*24 +: 24] = r;
+    assign lane_c[k]            = state_q == Span ? Width'(k) < lanes_c : (k == 0 && (state_q == Blit || inside_c));
+    assign wr_be_o[k*3 +: 3]    = {3{lane_c[k]}};
     wire unused_ok = &{1'b0, rd, rs};
   end
 
   // Writes, and the operation's last cycle.
   logic last_c;
   always_comb begin
-    mem_we_o = 1'b0;
+    act_c    = 1'b0;
     last_c   = 1'b0;
     unique case (state_q)
-      Span:  begin mem_we_o = beat_end_c; last_c = beat_end_c && left_q <= Width'(lanes_i); end
-      Pixel: begin mem_we_o = beat_end_c; last_c = beat_end_c; end
-      Line:  begin mem_we_o = beat_end_c && line_out_valid; last_c = beat_end_c && line_last; end
+      Span:  begin act_c = beat_end_c; last_c = beat_end_c && left_q <= Width'(lanes_i); end
+      Pixel: begin act_c = beat_end_c; last_c = beat_end_c; end
+      Line:  begin act_c = beat_end_c && line_out_valid; last_c = beat_end_c && line_last; end
       Blit:  begin
-        mem_we_o = blit_fire_c;
+        act_c    = blit_fire_c;
         last_c   = blit_fire_c && i_q + 1'b1 == w_q && j_q + 1'b1 == h_q;
       end
       default: ;
     endcase
   end
 
-  assign in_ready_o = state_q == Idle || last_c;
+  assign wr_valid_o = act_c && data_ok_c;
+  assign wr_last_o  = last_c;
+  assign go_c       = !act_c || (wr_valid_o && wr_ready_i);
+  assign in_ready_o = state_q == Idle || (last_c && go_c);
   assign idle_o     = state_q == Idle;
 
   // The first state of a taken operation.
@@ -207,7 +278,7 @@ module rast_engine2d #(
       state_q <= Idle;
     end else if (in_valid_i && in_ready_o) begin
       state_q <= first_state(op_kind_i, span_setup_i);
-    end else begin
+    end else if (go_c) begin
       unique case (state_q)
         Setup:    if (setup_q == 7'd1) state_q <= kind_q == 2'd0 ? Span : Blit;
         LineLoad: state_q <= Line;
@@ -239,7 +310,7 @@ module rast_engine2d #(
       credit_q        <= '0;
       rows_up_q       <= op_y0_i > op_sy_i;
       right_to_left_q <= op_y0_i == op_sy_i && op_x0_i > op_sx_i;
-    end else begin
+    end else if (go_c) begin
       unique case (state_q)
         Setup: setup_q <= setup_q - 1'b1;
         Span: begin

@@ -54,7 +54,7 @@ struct CosimOptions {
   // Random stress on the RTL's valid/ready inputs, each input its own generator seeded by
   // stress_seed (testbench.cpp): the same seed replays the same run.
   uint64_t stress_seed = 0;
-  double backpressure = 0;         // probability that the ROP's memory refuses a request (rd_ready_i, wr_ready_i low) in a cycle (0 = off)
+  double backpressure = 0;         // probability that the ROP's or the 2D engine's memory refuses a request (rd_ready_i, wr_ready_i low) in a cycle, or delays the engine's read response (0 = off)
   double valid_gaps = 0;           // probability that an offered tri_valid_i or 2D in_valid_i is held low in a cycle
   std::string fst_path;            // write an FST waveform ("" = none)
   uint64_t max_cycles = 2'000'000'000;

@@ -79,6 +79,9 @@ class VerilatedRast final : public RastPorts {
     engine_->rmw_i = static_cast<uint8_t>(s.timing.engine2d_rmw);
     engine_->blit_bytes_i = static_cast<uint8_t>(s.timing.engine2d_blit_bytes_per_cycle);
     engine_->in_valid_i = 0;
+    engine_->rd_ready_i = 0;
+    engine_->rd_rvalid_i = 0;
+    engine_->wr_ready_i = 0;
     engine_->rst_ni = 0;
   }
   void release_reset() override {
@@ -254,14 +257,25 @@ class VerilatedRast final : public RastPorts {
     return {signed_index(engine_->mem_x_o), signed_index(engine_->mem_y_o), signed_index(engine_->mem_sx_o),
             signed_index(engine_->mem_sy_o)};
   }
-  void drive_engine_read(int lane, uint32_t rgb) override { set_port_bits(engine_->mem_d_i, lane * 24, 24, rgb); }
-  void answer_engine_reads(uint32_t source_rgb) override {
-    engine_->mem_s_i = source_rgb;
+  Engine2dRead engine_read() const override {
+    return {bool(engine_->rd_valid_o), uint32_t(engine_->rd_lanes_o), bool(engine_->rd_src_o)};
+  }
+  void drive_engine_read(bool ready, bool rvalid, const std::vector<uint32_t>& d, uint32_t s) override {
+    engine_->rd_ready_i = ready;
+    engine_->rd_rvalid_i = rvalid;
+    for (size_t k = 0; k < d.size(); ++k) set_port_bits(engine_->rd_d_i, int(k) * 24, 24, d[k]);
+    engine_->rd_s_i = s;
     engine_->eval();
   }
-  Engine2dWrite engine_write() const override { return {bool(engine_->mem_we_o), uint32_t(engine_->mem_wmask_o)}; }
+  Engine2dWrite engine_write() const override {
+    return {bool(engine_->wr_valid_o), bool(engine_->wr_last_o), uint32_t(engine_->wr_be_o)};
+  }
+  void drive_engine_write_ready(bool ready) override {
+    engine_->wr_ready_i = ready;
+    engine_->eval();
+  }
   uint32_t engine_write_rgb(int lane) const override {
-    return static_cast<uint32_t>(port_bits(engine_->mem_wdata_o, lane * 24, 24));
+    return static_cast<uint32_t>(port_bits(engine_->wr_data_o, lane * 24, 24));
   }
 
  private:

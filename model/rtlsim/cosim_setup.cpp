@@ -337,12 +337,6 @@ void cosim_setup(const Scene& scene, const ArchParams& arch, const CosimOptions&
   s.texture = s.arch.texture;
 
   s.scanout = scanout_params_if_display(arch);
-  // The RTL 2D engine reads its memory asynchronously (rtl/rast_engine2d.sv: no wait for
-  // a line fill), so the timed memory system cannot serve it.
-  if (s.memory.enabled && !s.work2d.empty())
-    throw ConfigError(arch.config.origin("memory.model") + ": memory.model = \"dram\" has no RTL co-simulation of a "
-                      "2D command (" + s.work2d.front().name + "): the RTL 2D engine reads its memory without "
-                      "waiting for a line fill; co-simulate it with memory.model = \"fixed\"");
   r.fragments_expected = s.expected.size();
   for (const TbItem& it : s.items)
     (it.kind == TbItem::Marker ? r.markers : r.triangles) += it.kind == TbItem::Marker || it.kind == TbItem::Triangle;

@@ -41,6 +41,12 @@ uint64_t TbRopMemory::read(uint64_t t, uint32_t accesses) {
   return memory_group_response(t, port_.end());
 }
 
+uint64_t TbRopMemory::operation_2d(const Draw2dWork& work, const Op2d& op, uint64_t start) {
+  port_.begin(start);
+  execute_op2d(shadow_, work, op, &port_.functional().color);
+  return start + port_.transaction_cycles(0, start);
+}
+
 void TbRopMemory::command(const Command& cmd, uint64_t t) {
   port_.begin(t);
   apply_state_command(cmd, state_, shadow_, &port_.functional());

@@ -23,6 +23,7 @@
 #include <memory>
 
 #include "display/scanout_fetch.h"
+#include "ref/2d/draw2d.h"
 #include "ref/framebuffer.h"
 #include "ref/interpolate.h"
 #include "ref/raster_state.h"
@@ -46,6 +47,11 @@ class TbRopMemory {
   // The ROP's read of a group of `accesses` accesses, taken at core cycle `t`: the cycle
   // its response is due.
   uint64_t read(uint64_t t, uint32_t accesses);
+  // A 2D operation of `work` starting at core cycle `start` (the 2D engine draws through
+  // the ROP's port: the colour client, as sc/engine2d.cpp): its accesses made, its fills
+  // issued; returns the cycle its fills have been used (start + memory_transaction_cycles
+  // with no work of its own): its last write may be taken from that cycle - 1.
+  uint64_t operation_2d(const Draw2dWork& work, const Op2d& op, uint64_t start);
   // A state command taken at cycle `t` (a clear's bytes written).
   void command(const Command& cmd, uint64_t t);
   // The end-of-frame marker's command taken at cycle `t`: the resolve pass's cycles

@@ -26,7 +26,8 @@
 // from rast_top's dbg_has_o / dbg_done_o / dbg_blocked_o handshake ports.
 //
 // Stress (CosimOptions): random backpressure on the ROP's memory port (rd_ready_i and
-// wr_ready_i low) and random gaps in tri_valid_i and the 2D engine's in_valid_i, each from its own generator seeded by
+// wr_ready_i low) and the 2D engine's (its ready inputs low, its read response delayed:
+// a generator of its own, drawn only while the engine works) and random gaps in tri_valid_i and the 2D engine's in_valid_i, each from its own generator seeded by
 // CosimOptions::stress_seed, drawn only when its probability is above 0 (so a run
 // without stress, or with backpressure only, is the same run as before either existed).
 #include "rtlsim/testbench.h"
@@ -129,6 +130,7 @@ class Testbench {
         mem_ready_stress_(port_rng(setup.opts.stress_seed, 0), setup.opts.backpressure),
         tri_valid_stress_(port_rng(setup.opts.stress_seed, 1), setup.opts.valid_gaps),
         op_valid_stress_(port_rng(setup.opts.stress_seed, 2), setup.opts.valid_gaps),
+        engine_mem_stress_(port_rng(setup.opts.stress_seed, 3), setup.opts.backpressure),
         cmd_depth_(size_t(setup.timing.fifo_entries(FifoId::Command))),
         draw2d_depth_(size_t(setup.timing.fifo_entries(FifoId::Draw2d))),
         op2d_depth_(size_t(setup.timing.fifo_entries(FifoId::Op2d))),
@@ -166,6 +168,7 @@ class Testbench {
   bool engine_drive();
   uint32_t fb_rgb(int x, int y) const;
   void engine_memory_and_handshake(uint64_t t, bool op_valid);
+  void engine_read(const Engine2dAccess& a);
   void engine_write(uint64_t t, int x, int y);
   void front_end_take(uint64_t t);
   void front_end_step(uint64_t t);
@@ -202,6 +205,7 @@ class Testbench {
   RastPorts& ports_;
   CosimResult& result_;
   PortStress mem_ready_stress_, tri_valid_stress_, op_valid_stress_;
+  PortStress engine_mem_stress_;  // the 2D engine's rd_ready_i, wr_ready_i and response delay
   const size_t cmd_depth_;  // command FIFO
   const size_t draw2d_depth_, op2d_depth_;  // the 2D command and operation FIFOs
   const size_t clip_depth_, screen_depth_;  // the clip-command FIFO; the screen FIFO with the front end's latency slots
@@ -241,6 +245,10 @@ class Testbench {
   bool rop_wait_2d_ = false;              // the ROP's port is lent to the engine
   bool rop_2d_done_ = false;              // the engine is done: the 2D marker's command goes to the ROP
   int granted_work_ = -1;                 // the 2D command the ROP granted
+  bool engine_rsp_pending_ = false;       // the engine's read was taken, its response not yet driven
+  std::vector<uint32_t> engine_rsp_d_;    // that response: D of each lane, S
+  uint32_t engine_rsp_s_ = 0;
+  uint64_t engine_op_end_ = 0;            // dram: the current operation's fills used (its last write from end - 1)
   // Stage statistics.
   struct Meter {
     bool open = false;   // a transaction is in progress
@@ -336,7 +344,7 @@ bool Testbench::cycle(uint64_t t) {
   rop_serve(t);
   // A grant made now (the 2D marker waits at the quiet ROP): the engine takes the port and
   // is offered its first operation in this cycle, as the model's engine reads the grant
-  // the ROP writes (answer_engine_reads evaluates it again).
+  // the ROP writes (drive_engine_read evaluates it again).
   if (!granted && rop_wait_2d_) {
     engine_take(t);
     op_valid = engine_drive();
@@ -554,21 +562,52 @@ void Testbench::engine_memory_and_handshake(uint64_t t, bool op_valid) {
   if (!engine_busy_) return;
   last_busy_ = t;
   const Engine2dAccess a = ports_.engine_access();
-  for (int k = 0; k < engine2d_rtl_params().lanes_max; ++k) ports_.drive_engine_read(k, fb_rgb(a.x + k, a.y));
-  ports_.answer_engine_reads(fb_rgb(a.sx, a.sy));
+  engine_read(a);
   engine_write(t, a.x, a.y);
-  const size_t n = setup_.work2d[size_t(engine_work_)].work.ops.size();
-  const bool all_taken = next_op_ >= n;
+  const Draw2dWork& w = setup_.work2d[size_t(engine_work_)].work;
+  const bool all_taken = next_op_ >= w.ops.size();
   const bool ready = ports_.operation_ready();
-  if (op_valid && ready) ++next_op_;
+  if (op_valid && ready) {
+    // dram: the operation's accesses from its first cycle, t + 1 (the SystemC engine's
+    // transaction start), on the timed memory system (TbRopMemory::operation_2d).
+    if (dram_) engine_op_end_ = dram_->operation_2d(w, w.ops[next_op_], t + 1);
+    ++next_op_;
+  }
   if (all_taken && ready) engine_done(t);
 }
-// The engine's write at this cycle's edge into the framebuffer, lane k at (x + k, y).
+// The engine's read: taken unless the backpressure stress holds rd_ready_i low, its data
+// (the lanes and source asked for; 0 elsewhere) read from the framebuffer when taken,
+// the response driven at once or, under the stress, some cycles later (the engine waits
+// for it). Every read is answered at once without stress, with memory.model = "dram" too:
+// the operation's fills hold its last write instead (engine_write).
+void Testbench::engine_read(const Engine2dAccess& a) {
+  const Engine2dRead r = ports_.engine_read();
+  const bool ready = !engine_mem_stress_.low();
+  if (r.valid && ready) {
+    engine_rsp_pending_ = true;
+    engine_rsp_d_.assign(size_t(engine2d_rtl_params().lanes_max), 0);
+    for (size_t k = 0; k < engine_rsp_d_.size(); ++k)
+      if ((r.lanes >> k) & 1) engine_rsp_d_[k] = fb_rgb(a.x + int(k), a.y);
+    engine_rsp_s_ = r.source ? fb_rgb(a.sx, a.sy) : 0;
+  }
+  const bool rvalid = engine_rsp_pending_ && !engine_mem_stress_.low();
+  if (rvalid) engine_rsp_pending_ = false;
+  ports_.drive_engine_read(ready, rvalid, engine_rsp_d_, engine_rsp_s_);
+}
+// The engine's write, taken at this cycle's edge into the framebuffer, lane k at (x + k, y),
+// the bytes its enables name. wr_ready_i is low under the backpressure stress, and with
+// memory.model = "dram" for the operation's last write until its fills have been used:
+// the operation lasts max(its work, last fill + 1 - start) cycles, as the SystemC
+// engine's transaction (timing/memory_timing.h memory_transaction_cycles).
 void Testbench::engine_write(uint64_t t, int x, int y) {
   const Engine2dWrite w = ports_.engine_write();
-  if (!w.enable) return;
+  bool ready = !engine_mem_stress_.low();
+  if (dram_ && w.valid && w.last && t + 1 < engine_op_end_) ready = false;
+  ports_.drive_engine_write_ready(ready);
+  if (!w.valid || !ready) return;
   for (int k = 0; k < engine2d_rtl_params().lanes_max; ++k) {
-    if (!((w.lane_mask >> k) & 1)) continue;
+    const uint32_t be = (w.byte_enables >> (3 * k)) & 7;
+    if (be == 0) continue;
     if (x + k < 0 || y < 0 || x + k >= fb_.width || y >= fb_.height) {
       mismatch("cycle " + std::to_string(t) + ": the 2D engine wrote outside the framebuffer at (" +
                std::to_string(x + k) + ", " + std::to_string(y) + ")");
@@ -576,9 +615,8 @@ void Testbench::engine_write(uint64_t t, int x, int y) {
     }
     const uint32_t v = ports_.engine_write_rgb(k);
     uint8_t* p = fb_.pixel(x + k, y);
-    p[0] = uint8_t(v);
-    p[1] = uint8_t(v >> 8);
-    p[2] = uint8_t(v >> 16);
+    for (int b = 0; b < 3; ++b)
+      if ((be >> b) & 1) p[b] = uint8_t(v >> (8 * b));
     p[3] = 255;
     ++result_.pixels_2d;
   }

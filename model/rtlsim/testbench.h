@@ -150,15 +150,22 @@ inline uint32_t rop_depth_base(int width, int height, int samples) {
   return uint32_t(uint64_t(width) * uint64_t(height) * uint64_t(samples) * 4);
 }
 
-// The 2D engine's framebuffer reads this cycle, sign-extended pixel indices.
+// The 2D engine's memory addresses this cycle, sign-extended pixel indices.
 struct Engine2dAccess {
   int x = 0, y = 0;    // mem_x_o, mem_y_o: lane 0's destination (lane k at x + k)
   int sx = 0, sy = 0;  // mem_sx_o, mem_sy_o: the blit source
 };
-// The 2D engine's framebuffer write at this cycle's edge (its data: engine_write_rgb).
+// The 2D engine's read request this cycle (rtl/rast_engine2d.sv, "Memory port").
+struct Engine2dRead {
+  bool valid = false;  // rd_valid_o
+  uint32_t lanes = 0;  // rd_lanes_o: bit k reads D of lane k
+  bool source = false; // rd_src_o: reads S at (sx, sy)
+};
+// The 2D engine's write request this cycle (its data: engine_write_rgb).
 struct Engine2dWrite {
-  bool enable = false;     // mem_we_o
-  uint32_t lane_mask = 0;  // mem_wmask_o: bit k writes lane k (Engine2dRtlParams::lanes_max lanes)
+  bool valid = false;         // wr_valid_o
+  bool last = false;          // wr_last_o: the operation's last write
+  uint32_t byte_enables = 0;  // wr_be_o: bits 3k .. 3k+2 lane k's {r, g, b} bytes (lanes_max lanes)
 };
 
 // The verilated rast_top and rast_engine2d of one config, clocked together. Every call
@@ -215,14 +222,15 @@ class RastPorts {
   // command's paint state and clip box), or nothing (nullptr).
   virtual void drive_operation(const Draw2dWork* work, const Op2d* op) = 0;
   virtual bool operation_ready() const = 0;  // in_ready_o
+  // The engine's memory port: the addresses, the read request; rd_ready_i and the
+  // response (rd_rvalid_i, each lane's D {b, g, r} in `d`, S in `s`), which evaluates the
+  // engine again; the write request, wr_ready_i (evaluates again) and the write's data.
   virtual Engine2dAccess engine_access() const = 0;
-  // The memory's answer to engine_access (asynchronous read): each lane's destination
-  // colour {b, g, r} (mem_d_i), then the blit source's (mem_s_i), which evaluates the
-  // engine again.
-  virtual void drive_engine_read(int lane, uint32_t rgb) = 0;
-  virtual void answer_engine_reads(uint32_t source_rgb) = 0;
+  virtual Engine2dRead engine_read() const = 0;
+  virtual void drive_engine_read(bool ready, bool rvalid, const std::vector<uint32_t>& d, uint32_t s) = 0;
   virtual Engine2dWrite engine_write() const = 0;
-  virtual uint32_t engine_write_rgb(int lane) const = 0;  // mem_wdata_o lane {b, g, r}
+  virtual void drive_engine_write_ready(bool ready) = 0;
+  virtual uint32_t engine_write_rgb(int lane) const = 0;  // wr_data_o lane {b, g, r}
 };
 
 // One co-simulation run of `setup` on `ports` (cosim.h's comment): every fragment

@@ -150,18 +150,9 @@ Scene mixed_scene(const Config& cfg, uint64_t seed) {
   return s;
 }
 
-TEST(StressCosim, ValidGapsAndBackpressureKeepEveryFragment) {
-  Config cfg = load_shipped_config("default");
-  cfg.apply_override("raster.out_of_range=cull");
-  // The scene mixes 2D draws in, which cosim refuses with memory.model = dram (the RTL 2D
-  // engine cannot wait for a line fill): the fixed per-access costs.
-  cfg.apply_override("memory.model=fixed");
-  const uint64_t seed = 0x57e55000u;
-  std::cout << "seed " << seed << " (scene and stress)\n";
-  const Scene scene = mixed_scene(cfg, seed);
-  const CosimResult calm = run_cosim(scene, ArchParams::resolve(cfg));
-  expect_clean(calm);
-  EXPECT_GT(calm.commands_2d, 0u);
+// `scene` under backpressure 0.3 and valid gaps 0.3 (seeded by `seed`): clean, every
+// fragment, 2D pixel and the image as in the `calm` run, more cycles; returns the options.
+CosimOptions expect_stress_keeps(const Scene& scene, const Config& cfg, const CosimResult& calm, uint64_t seed) {
   CosimOptions o;
   o.backpressure = 0.3;
   o.valid_gaps = 0.3;
@@ -172,6 +163,22 @@ TEST(StressCosim, ValidGapsAndBackpressureKeepEveryFragment) {
   EXPECT_EQ(r.pixels_2d, calm.pixels_2d);
   EXPECT_EQ(r.crc_rtl, calm.crc_rtl);
   EXPECT_GT(r.cycles_rtl, calm.cycles_rtl) << "the stress held inputs back";
+  return o;
+}
+
+TEST(StressCosim, ValidGapsAndBackpressureKeepEveryFragment) {
+  Config cfg = load_shipped_config("default");
+  cfg.apply_override("raster.out_of_range=cull");
+  // The fixed per-access costs: the stages' cycle counts below without DRAM stalls
+  // (the DRAM model under the same stress: DramStressKeepsTheTwoDEngineExact).
+  cfg.apply_override("memory.model=fixed");
+  const uint64_t seed = 0x57e55000u;
+  std::cout << "seed " << seed << " (scene and stress)\n";
+  const Scene scene = mixed_scene(cfg, seed);
+  const CosimResult calm = run_cosim(scene, ArchParams::resolve(cfg));
+  expect_clean(calm);
+  EXPECT_GT(calm.commands_2d, 0u);
+  CosimOptions o = expect_stress_keeps(scene, cfg, calm, seed);
   // Valid gaps alone: assembly's withheld offers are stalled cycles, and the 2D engine
   // waits for its withheld operations while it holds the framebuffer port (busy).
   o.backpressure = 0;
@@ -183,6 +190,26 @@ TEST(StressCosim, ValidGapsAndBackpressureKeepEveryFragment) {
   EXPECT_GT(stage(gaps, StageId::Engine2d).busy, stage(calm, StageId::Engine2d).busy);
   // The seed replays the run, cycle for cycle.
   EXPECT_EQ(run_cosim(scene, ArchParams::resolve(cfg), o).cycles_rtl, gaps.cycles_rtl);
+}
+
+// The same mixed scene with the config's DRAM model: the 2D engine's memory port waits for
+// its operations' fills (rtl/rast_engine2d.sv, "Memory port"), and under backpressure on
+// both memory ports, delayed 2D read responses and valid gaps every fragment, 2D pixel and
+// the image are those of the calm run, which are the fixed run's (the memory system never
+// changes a pixel), and the stalls cost cycles.
+TEST(StressCosim, DramStressKeepsTheTwoDEngineExact) {
+  Config cfg = load_shipped_config("default");
+  cfg.apply_override("raster.out_of_range=cull");
+  const Scene scene = mixed_scene(cfg, 0x57e55000u);
+  Config fixed_cfg = cfg;
+  fixed_cfg.apply_override("memory.model=fixed");
+  const CosimResult fixed = run_cosim(scene, ArchParams::resolve(fixed_cfg));
+  const CosimResult calm = run_cosim(scene, ArchParams::resolve(cfg));
+  expect_clean(calm);
+  EXPECT_GT(calm.commands_2d, 0u);
+  EXPECT_EQ(calm.crc_rtl, fixed.crc_rtl);
+  EXPECT_GT(calm.cycles_rtl, fixed.cycles_rtl) << "the fills cost cycles";
+  expect_stress_keeps(scene, cfg, calm, 0x57e55001u);
 }
 
 // `n` random clip-space triangles in a 64 x 64 viewport, one tri4 a line: w in [0.05, 8]

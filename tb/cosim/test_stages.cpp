@@ -121,8 +121,8 @@ TEST_P(StageAgreementTest, RandomSceneBusyWithinTwoPercent) {
 }
 
 TEST_P(StageAgreementTest, TwoDScenesBusyWithinTwoPercent) {
-  // memory.model = fixed: cosim refuses 2D commands with dram (the RTL 2D engine cannot
-  // wait for a line fill; docs/memory.md "RTL co-simulation").
+  // memory.model = fixed: the per-stage figures without DRAM stalls (the test card with
+  // the configs' dram: the ctest cosim.dram.2d.test_card).
   const Config cfg = load_shipped_config_fixed_memory(GetParam());
   const std::filesystem::path dir = std::filesystem::path(RASTSIM_SOURCE_DIR) / "traces" / "2d";
   int scenes = 0;
