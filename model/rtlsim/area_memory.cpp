@@ -79,7 +79,7 @@ std::vector<StorageArray> texture_cache_data_storage(const ArchParams& arch) {
   const TextureRtlParams p = texture_rtl_params(arch);
   std::vector<StorageArray> out;
   for (int k = 0; k < p.ports; ++k)
-    out.push_back(cache_data_array("texture_cache.data" + std::to_string(k), uint64_t(p.cache_bytes)));
+    out.push_back(cache_data_array("texture_cache.copy" + std::to_string(k), uint64_t(p.cache_bytes)));
   return out;
 }
 

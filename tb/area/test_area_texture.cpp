@@ -75,7 +75,7 @@ TEST(AreaTextureParams, Cache) {
   const std::vector<StorageArray> data = texture_cache_data_storage(d);
   ASSERT_EQ(data.size(), 4u);
   for (size_t k = 0; k < 4; ++k) {
-    EXPECT_EQ(data[k].name, "texture_cache.data" + std::to_string(k));
+    EXPECT_EQ(data[k].name, "texture_cache.copy" + std::to_string(k) + ".data");
     EXPECT_EQ(data[k].bits, 131072u);
     EXPECT_TRUE(data[k].sram);
     EXPECT_EQ(data[k].transistors, 865075u);
