@@ -5,7 +5,8 @@
 // model/ref/texture/texture.h (decode_texel) to RGBA8.
 //
 // - A request is up to 4 texels' byte addresses (AddrW bits each, texel k at
-//   [k AddrW +: AddrW]), req_count_i of them (1 nearest, 4 bilinear; 1..4), and the
+//   [k AddrW +: AddrW]), req_count_i of them (1 nearest, 4 bilinear; 0 looks nothing up
+//   and answers texels 0, 5..7 are taken as 4), and the
 //   format (0 rgba8888, 1 rgb565, 2 l8; 3 reserved, decoded as 0). Its response is the
 //   texels decoded to RGBA8 (texel k at [32 k +: 32], R at [7:0]; texels k >= count 0),
 //   one a request, in request order. Addresses are aligned to their texel's bytes (as the
@@ -50,7 +51,7 @@ module rast_texture_cache #(
   input  wire logic                   req_valid_i,
   output      logic                   req_ready_o,
   input  wire logic [4*AddrW-1:0]     req_addr_i,       // texel k's byte address at [k AddrW +: AddrW]
-  input  wire logic [2:0]             req_count_i,      // texels, 1..4
+  input  wire logic [2:0]             req_count_i,      // texels, 1..4 (0: none; 5..7: 4)
   input  wire logic [1:0]             req_format_i,     // 0 rgba8888, 1 rgb565, 2 l8
   output      logic                   rsp_valid_o,
   input  wire logic                   rsp_ready_i,
@@ -192,8 +193,8 @@ module rast_texture_cache #(
     end
   end
   logic miss, done;  // this lookup's first texel misses; the request's last texel is taken
-  assign miss = lookup && !hit[0];
-  assign done = lookup && hit[0] && 32'(k_q) + 32'(n_take) >= 32'(cur_count_q);
+  assign miss = lookup && active[0] && !hit[0];
+  assign done = lookup && !miss && 32'(k_q) + 32'(n_take) >= 32'(cur_count_q);
 
   assign req_ready_o = !cur_valid_q || done;
   assign evt_miss_o = miss;
@@ -288,7 +289,7 @@ module rast_texture_cache #(
             rsp_valid_q <= 1'b1;
           end
         end
-        d_valid_q <= lookup && hit[0];
+        d_valid_q <= lookup && !miss;
         d_last_q <= done;
         d_take_q <= lookup ? take : '0;
         d_format_q <= cur_format_q;
@@ -309,7 +310,7 @@ module rast_texture_cache #(
           if (req_valid_i && req_ready_o) begin
             cur_valid_q <= 1'b1;
             cur_addr_q <= req_addr_i;
-            cur_count_q <= req_count_i;
+            cur_count_q <= req_count_i > 3'd4 ? 3'd4 : req_count_i;
             cur_format_q <= req_format_i;
             k_q <= '0;
           end else if (done) cur_valid_q <= 1'b0;
