@@ -105,7 +105,8 @@ Expected expect(const CacheSet& c, const std::vector<Request>& reqs) {
         e.fills.push_back(r.addr[k] / uint64_t(c.line_bytes) * uint64_t(c.line_bytes));
       }
       uint32_t stored = 0;
-      for (int b = 0; b < rastsim::texel_bytes(f); ++b) stored |= uint32_t(mem_byte(r.addr[k] + uint64_t(b))) << (8 * b);
+      for (int b = 0; b < rastsim::texel_bytes(f); ++b)
+        stored |= uint32_t(mem_byte(r.addr[k] + uint64_t(b))) << (8 * b);
       const Rgba8 x = decode_texel(stored, f);
       t[size_t(k)] = uint32_t(x[0]) | uint32_t(x[1]) << 8 | uint32_t(x[2]) << 16 | uint32_t(x[3]) << 24;
     }

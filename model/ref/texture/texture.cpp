@@ -33,7 +33,8 @@ uint8_t expand(unsigned q, int n) { return static_cast<uint8_t>((q << (8 - n)) |
 
 uint32_t encode_texel(const Rgba8& c, TexelFormat f) {
   switch (f) {
-    case TexelFormat::Rgba8888: return uint32_t(c[0]) | uint32_t(c[1]) << 8 | uint32_t(c[2]) << 16 | uint32_t(c[3]) << 24;
+    case TexelFormat::Rgba8888:
+      return uint32_t(c[0]) | uint32_t(c[1]) << 8 | uint32_t(c[2]) << 16 | uint32_t(c[3]) << 24;
     case TexelFormat::Rgb565: return quantize(c[0], 5) << 11 | quantize(c[1], 6) << 5 | quantize(c[2], 5);
     case TexelFormat::L8: return (77u * c[0] + 150u * c[1] + 29u * c[2] + 128u) >> 8;
   }
