@@ -75,6 +75,14 @@ std::vector<StorageArray> rop_cache_data_storage(const ArchParams& arch) {
   return {cache_data_array("rop_color_cache", uint64_t(rop_cache_rtl_params(arch).cache_bytes))};
 }
 
+std::vector<StorageArray> texture_cache_data_storage(const ArchParams& arch) {
+  const TextureRtlParams p = texture_rtl_params(arch);
+  std::vector<StorageArray> out;
+  for (int k = 0; k < p.ports; ++k)
+    out.push_back(cache_data_array("texture_cache.copy" + std::to_string(k), uint64_t(p.cache_bytes)));
+  return out;
+}
+
 void add_storage(AreaReport& r, const std::vector<StorageArray>& arrays) {
   for (const StorageArray& a : arrays) {
     r.storage.push_back(a);

@@ -66,6 +66,10 @@ std::vector<StorageArray> memory_storage(const ArchParams& arch);
 // The data array of rast_rop_cache as `rastsim area --top rast_rop_cache` builds it (the
 // colour cache): "rop_color_cache.data", bytes x 8 bits.
 std::vector<StorageArray> rop_cache_data_storage(const ArchParams& arch);
+// The data arrays of rast_texture_cache as `rastsim area --top rast_texture_cache` builds
+// it: Ports copies (a read port each, every fill written to all), "texture_cache.copy<p>.data",
+// texture.cache_bytes x 8 bits each.
+std::vector<StorageArray> texture_cache_data_storage(const ArchParams& arch);
 
 // Adds the arrays to the report (its storage rows) and their transistors to its total.
 void add_storage(AreaReport& r, const std::vector<StorageArray>& arrays);

@@ -133,6 +133,14 @@ constexpr ParamField<TextureRtlParams> kTextureAddressFields[] = {
     {"SizeW", &TextureRtlParams::size_w, "bits of a texture side (up to the largest texture)"},
     {"AddrW", &TextureRtlParams::addr_w, "bits of a texel's byte address"},
 };
+constexpr ParamField<TextureRtlParams> kTextureCacheFields[] = {
+    {"AddrW", &TextureRtlParams::addr_w, "bits of a texel's byte address"},
+    {"CacheBytes", &TextureRtlParams::cache_bytes, "texture.cache_bytes"},
+    {"Ways", &TextureRtlParams::ways, "texture.ways"},
+    {"LineBytes", &TextureRtlParams::line_bytes, "texture.line_bytes"},
+    {"Ports", &TextureRtlParams::ports, "texel lookups a cycle: texels_per_cycle / bilinear_per_cycle, 1..4"},
+    {"BeatBytes", &TextureRtlParams::beat_bytes, "bytes of a fill beat"},
+};
 
 // (name, value) of each field of `p`, in the table's order.
 template <class P, size_t N>
@@ -198,6 +206,18 @@ TextureRtlParams texture_rtl_params(const ArchParams& arch) {
   // Textures are placed from texture.base upwards: room for the largest base and as many
   // bytes again above it.
   p.addr_w = int(std::bit_width(uint64_t(find_param("texture.base")->max))) + 1;
+  // The cache serves one lane (a bilinear sample a cycle): the stage's texel port shared
+  // by its bilinear_per_cycle lanes, at most a request's 4 texels.
+  const CacheParams c = texture_params_from_config(arch.config).cache;
+  if (c.bytes > 0) {
+    p.cache_bytes = int(c.bytes);
+    p.ways = c.ways;
+    p.line_bytes = c.line_bytes;
+    const int64_t texels = arch.config.get_int("texture.texels_per_cycle");
+    const int64_t lanes = arch.config.get_int("texture.bilinear_per_cycle");
+    p.ports = int(std::clamp<int64_t>((texels + lanes - 1) / lanes, 1, 4));
+    p.beat_bytes = std::min(c.line_bytes, kTextureFillBeatBytes);
+  }
   return p;
 }
 
@@ -211,6 +231,8 @@ std::vector<std::string> root_rtl_param_names(const std::string& root) {
     for (const auto& f : kTextureLodFields) out.emplace_back(f.name);
   if (root == "rast_texture_address")
     for (const auto& f : kTextureAddressFields) out.emplace_back(f.name);
+  if (root == "rast_texture_cache")
+    for (const auto& f : kTextureCacheFields) out.emplace_back(f.name);
   return out;
 }
 
@@ -220,6 +242,12 @@ std::vector<std::pair<std::string, int>> root_rtl_params(const std::string& root
   if (root == "rast_rop_cache") return named_fields(rop_cache_rtl_params(arch), kRopCacheFields);
   if (root == "rast_texture_lod") return named_fields(texture_rtl_params(arch), kTextureLodFields);
   if (root == "rast_texture_address") return named_fields(texture_rtl_params(arch), kTextureAddressFields);
+  if (root == "rast_texture_cache") {
+    if (texture_params_from_config(arch.config).cache.bytes == 0)
+      throw std::runtime_error("rast_texture_cache is built with the texture cache's parameters, and "
+                               "texture.cache_bytes is 0 (no cache): set it (e.g. --set texture.cache_bytes=16384)");
+    return named_fields(texture_rtl_params(arch), kTextureCacheFields);
+  }
   return {};
 }
 

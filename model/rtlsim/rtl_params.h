@@ -157,13 +157,22 @@ struct TextureRtlParams {
   int level_w = 0;      // LevelW: bits of a mip level index (levels of the largest side)
   int bias_w = 0;       // BiasW: bits of texlod_bias in s.8, signed (256 x kMaxLodBias)
   int addr_w = 0;       // AddrW: bits of a texel's byte address (texture.base's schema maximum, twice)
+  // rast_texture_cache (texture.cache_bytes 0: all 0; root_rtl_params refuses it).
+  int cache_bytes = 0;  // CacheBytes: texture.cache_bytes
+  int ways = 0;         // Ways: texture.ways
+  int line_bytes = 0;   // LineBytes: texture.line_bytes
+  int ports = 0;        // Ports: texel lookups a cycle, ceil(texels_per_cycle / bilinear_per_cycle) in 1..4
+  int beat_bytes = 0;   // BeatBytes: a fill beat, min(line_bytes, kTextureFillBeatBytes)
 };
+// The texture cache's fill port: 16-byte (128-bit) beats, a design choice (not a config key).
+inline constexpr int kTextureFillBeatBytes = 16;
 TextureRtlParams texture_rtl_params(const ArchParams& arch);
 
 // The parameters a standalone area root (area.h) takes from the config, as (its Verilog
 // name, value) in its table's order: rast_recip's SEED_BITS and ITERATIONS, rast_rop_cache's
-// AddrW, CacheBytes, Ways, LineBytes and WordBytes, rast_texture_lod's and
-// rast_texture_address's TextureRtlParams fields; none for a root without config
+// AddrW, CacheBytes, Ways, LineBytes and WordBytes, rast_texture_lod's,
+// rast_texture_address's and rast_texture_cache's TextureRtlParams fields (the cache's
+// throws naming texture.cache_bytes when it is 0); none for a root without config
 // parameters (rast_engine2d, the binary32 units) or another name.
 std::vector<std::pair<std::string, int>> root_rtl_params(const std::string& root, const ArchParams& arch);
 // Their names alone (what the root can be given), in the same order.

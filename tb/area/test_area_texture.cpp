@@ -16,6 +16,7 @@
 
 #include "common.h"
 #include "rtlsim/area.h"
+#include "rtlsim/area_memory.h"
 #include "rtlsim/rtl_params.h"
 #include "util/process.h"
 
@@ -45,6 +46,40 @@ TEST(AreaTextureParams, FromTheConfig) {
   EXPECT_TRUE(root_rtl_params("rast_texture_combine", d).empty());
   EXPECT_EQ(root_rtl_param_names("rast_texture_lod"),
             (std::vector<std::string>{"TexW", "TexFrac", "SizeW", "LevelW", "BiasW"}));
+}
+
+// The texture cache (rtl/rast_texture_cache.sv) by hand: the default 16 KiB, 4 ways,
+// 64-byte lines; Ports = ceil(16 texels / 4 bilinear lanes) = 4, ceil(3 / 4) = 1, and
+// ceil(100 / 4) = 25 clamped to 4; BeatBytes min(line, 16). Its data: Ports copies of
+// 16384 x 8 = 131,072 bits, each 6 x 131,072 = 786,432 cell transistors + 10 % periphery
+// (78,643) = 865,075. No cache (texture.cache_bytes 0): refused, naming the key.
+TEST(AreaTextureParams, Cache) {
+  using P = std::vector<std::pair<std::string, int>>;
+  const ArchParams d = texture_arch({});
+  EXPECT_EQ(root_rtl_params("rast_texture_cache", d), (P{{"AddrW", 42}, {"CacheBytes", 16384}, {"Ways", 4},
+                                                         {"LineBytes", 64}, {"Ports", 4}, {"BeatBytes", 16}}));
+  const ArchParams n = texture_arch({"texture.texels_per_cycle=3", "texture.line_bytes=8", "texture.ways=2",
+                                     "texture.cache_bytes=256"});
+  EXPECT_EQ(root_rtl_params("rast_texture_cache", n), (P{{"AddrW", 42}, {"CacheBytes", 256}, {"Ways", 2},
+                                                         {"LineBytes", 8}, {"Ports", 1}, {"BeatBytes", 8}}));
+  EXPECT_EQ(root_rtl_params("rast_texture_cache", texture_arch({"texture.texels_per_cycle=100"}))[4],
+            (std::pair<std::string, int>{"Ports", 4}));
+  EXPECT_EQ(root_rtl_param_names("rast_texture_cache"),
+            (std::vector<std::string>{"AddrW", "CacheBytes", "Ways", "LineBytes", "Ports", "BeatBytes"}));
+  try {
+    root_rtl_params("rast_texture_cache", texture_arch({"texture.cache_bytes=0"}));
+    ADD_FAILURE() << "no cache accepted";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("texture.cache_bytes is 0"), std::string::npos) << e.what();
+  }
+  const std::vector<StorageArray> data = texture_cache_data_storage(d);
+  ASSERT_EQ(data.size(), 4u);
+  for (size_t k = 0; k < 4; ++k) {
+    EXPECT_EQ(data[k].name, "texture_cache.copy" + std::to_string(k) + ".data");
+    EXPECT_EQ(data[k].bits, 131072u);
+    EXPECT_TRUE(data[k].sram);
+    EXPECT_EQ(data[k].transistors, 865075u);
+  }
 }
 
 // The combine synthesised (a second or two: six 8 x 8 multipliers). Its flip-flops by

@@ -25,24 +25,37 @@ int texel_bytes(TexelFormat f) {
 }
 
 namespace {
-// c (0..255) to n bits rounded to nearest, and back to 8 bits by bit replication.
-uint8_t requantize(uint8_t c, int n) {
-  const unsigned q = (unsigned(c) * ((1u << n) - 1) + 127) / 255;
-  return static_cast<uint8_t>((q << (8 - n)) | (q >> (2 * n - 8)));
-}
+// c (0..255) to n bits rounded to nearest (c (2^n - 1) / 255 is never a tie).
+unsigned quantize(uint8_t c, int n) { return (unsigned(c) * ((1u << n) - 1) + 127) / 255; }
+// An n-bit channel q back to 8 bits by bit replication (n >= 4).
+uint8_t expand(unsigned q, int n) { return static_cast<uint8_t>((q << (8 - n)) | (q >> (2 * n - 8))); }
 }  // namespace
 
-Rgba8 to_texel_format(const Rgba8& c, TexelFormat f) {
+uint32_t encode_texel(const Rgba8& c, TexelFormat f) {
   switch (f) {
-    case TexelFormat::Rgba8888: return c;
-    case TexelFormat::Rgb565: return {requantize(c[0], 5), requantize(c[1], 6), requantize(c[2], 5), 255};
+    case TexelFormat::Rgba8888:
+      return uint32_t(c[0]) | uint32_t(c[1]) << 8 | uint32_t(c[2]) << 16 | uint32_t(c[3]) << 24;
+    case TexelFormat::Rgb565: return quantize(c[0], 5) << 11 | quantize(c[1], 6) << 5 | quantize(c[2], 5);
+    case TexelFormat::L8: return (77u * c[0] + 150u * c[1] + 29u * c[2] + 128u) >> 8;
+  }
+  return 0;
+}
+
+Rgba8 decode_texel(uint32_t stored, TexelFormat f) {
+  switch (f) {
+    case TexelFormat::Rgba8888:
+      return {uint8_t(stored), uint8_t(stored >> 8), uint8_t(stored >> 16), uint8_t(stored >> 24)};
+    case TexelFormat::Rgb565:
+      return {expand((stored >> 11) & 31u, 5), expand((stored >> 5) & 63u, 6), expand(stored & 31u, 5), 255};
     case TexelFormat::L8: {
-      const auto l = static_cast<uint8_t>((77u * c[0] + 150u * c[1] + 29u * c[2] + 128u) >> 8);
+      const auto l = uint8_t(stored);
       return {l, l, l, 255};
     }
   }
-  return c;
+  return {};
 }
+
+Rgba8 to_texel_format(const Rgba8& c, TexelFormat f) { return decode_texel(encode_texel(c, f), f); }
 
 namespace {
 MipLevel level_in_format(int w, int h, std::vector<uint8_t> rgba, TexelFormat f) {

@@ -73,7 +73,15 @@ int texel_bytes(TexelFormat f);
 // An RGBA8 colour stored in format f and read back as RGBA8 (docs/texture.md, "Texel
 // formats"): RGB565 rounds each channel to nearest, (c (2^n - 1) + 127) / 255, and
 // expands by bit replication; L8 is (77 R + 150 G + 29 B + 128) >> 8; both alpha 255.
+// It is decode_texel(encode_texel(c, f), f).
 Rgba8 to_texel_format(const Rgba8& c, TexelFormat f);
+// A texel as stored in memory: texel_bytes(f) bytes, little-endian (byte k = bits
+// [8k +: 8]). RGBA8888: R [7:0], G [15:8], B [23:16], A [31:24]; RGB565: B5 [4:0], G6
+// [10:5], R5 [15:11] (the rounding above); L8: L [7:0]. Bits above texel_bytes(f) are 0.
+uint32_t encode_texel(const Rgba8& c, TexelFormat f);
+// The stored bits (the low texel_bytes(f) bytes of `stored`; the rest ignored) read back
+// as RGBA8: what the texture cache's RTL decodes (rtl/rast_texture_cache.sv).
+Rgba8 decode_texel(uint32_t stored, TexelFormat f);
 
 // One mip level: width x height texels, already in the texel format (as RGBA8).
 struct MipLevel {
