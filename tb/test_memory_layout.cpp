@@ -96,7 +96,9 @@ TEST(MemoryLayout, ForEachSampleAndRunVisitWhatSampleAtFinds) {
               EXPECT_GT(n, 0u);
               const int last_x = x + int((uint64_t(s) + n - 1) / uint64_t(samples));  // the run's last pixel
               EXPECT_LT(last_x, 13);
-              if (layout == FbLayout::Tiled) EXPECT_EQ(x / 4, last_x / 4) << "run crosses a tile edge";
+              if (layout == FbLayout::Tiled) {
+                EXPECT_EQ(x / 4, last_x / 4) << "run crosses a tile edge";
+              }
               for (; n > 0; --n) {
                 runs.push_back({x, y, s});
                 if (++s == samples) s = 0, ++x;
