@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 // The framebuffer's surface layout in memory (ref/memory/surface_layout.h): addresses of a
 // few pixels worked by hand, linear and tiled, and sample_at inverting address_of over
-// whole surfaces (edge tiles' padding included), and for_each_sample's runs against it.
+// whole surfaces (edge tiles' padding included), and for_each_sample's and for_each_run's
+// runs against it.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -61,26 +62,52 @@ TEST(MemoryLayout, SampleAtInvertsAddressOf) {
     }
 }
 
-// for_each_sample's runs against sample_at on each sample of every range of a few
-// lengths and offsets (rows, tile rows and padding crossed).
-TEST(MemoryLayout, ForEachSampleVisitsWhatSampleAtFinds) {
+using Samples = std::vector<std::array<int, 3>>;
+
+// sample_at on each sample of the bytes [off, off + len) of l (bpp bytes a sample).
+Samples samples_at(const SurfaceLayout& l, uint64_t off, uint64_t len, uint64_t bpp) {
+  Samples want;
+  for (uint64_t o = off - off % bpp; o < off + len; o += bpp) {
+    int x, y, s;
+    if (l.sample_at(o, x, y, s)) want.push_back({x, y, s});
+  }
+  return want;
+}
+
+// for_each_sample's samples, and for_each_run's runs expanded a sample at a time, against
+// sample_at on each sample of every range of a few lengths and offsets (rows, tile rows
+// and padding crossed); each run stays on one row inside one tile row (linear: the row)
+// and the surface.
+TEST(MemoryLayout, ForEachSampleAndRunVisitWhatSampleAtFinds) {
   for (FbLayout layout : {FbLayout::Linear, FbLayout::Tiled})
-    for (int samples : {1, 2}) {
-      const SurfaceLayout l(layout, 4, 2, 0, 13, 7, samples, 4);
-      for (uint64_t len : {4u, 16u, 64u, 100u})
-        for (uint64_t off = 0; off < l.footprint_bytes(); off += 12) {
-          std::vector<std::array<int, 3>> want, got;
-          for (uint64_t o = off - off % 4; o < off + len; o += 4) {
-            int x, y, s;
-            if (l.sample_at(o, x, y, s)) want.push_back({x, y, s});
+    for (int samples : {1, 2, 4})
+      for (int bpp : {2, 4}) {
+        const SurfaceLayout l(layout, 4, 2, 0, 13, 7, samples, bpp);
+        for (uint64_t len : {2u, 4u, 16u, 30u, 64u, 100u, 130u})
+          for (uint64_t off = 0; off < l.footprint_bytes(); off += 6) {
+            const Samples want = samples_at(l, off, len, uint64_t(bpp));
+            Samples got, runs;
+            l.for_each_sample(off, len, [&](int x, int y, int s) {
+              got.push_back({x, y, s});
+              return true;
+            });
+            ASSERT_EQ(got, want) << "offset " << off << " length " << len;
+            l.for_each_run(off, len, [&](int x, int y, int s, uint64_t n) {
+              EXPECT_GT(n, 0u);
+              const int last_x = x + int((uint64_t(s) + n - 1) / uint64_t(samples));  // the run's last pixel
+              EXPECT_LT(last_x, 13);
+              if (layout == FbLayout::Tiled) {
+                EXPECT_EQ(x / 4, last_x / 4) << "run crosses a tile edge";
+              }
+              for (; n > 0; --n) {
+                runs.push_back({x, y, s});
+                if (++s == samples) s = 0, ++x;
+              }
+              return true;
+            });
+            ASSERT_EQ(runs, want) << "offset " << off << " length " << len;
           }
-          l.for_each_sample(off, len, [&](int x, int y, int s) {
-            got.push_back({x, y, s});
-            return true;
-          });
-          ASSERT_EQ(got, want) << "offset " << off << " length " << len;
-        }
-    }
+      }
 }
 
 }  // namespace

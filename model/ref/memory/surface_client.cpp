@@ -52,9 +52,27 @@ void SurfaceClient::cached_miss(uint64_t line, const SetAssocCache::Victim& vict
   }
 }
 
+// f(block, samples) for each piece of the bytes [offset, offset + len) that lies in one
+// fast-clear block, in address order (a run of a row cut at the blocks' edges); stops
+// early when f returns false.
+template <class F>
+void SurfaceClient::for_each_block_piece(uint64_t offset, uint64_t len, F&& f) const {
+  const int samples = layout_.samples();
+  layout_.for_each_run(offset, len, [&](int x, int y, int s, uint64_t n) {
+    const size_t row = size_t(y / block_h_) * size_t(blocks_x_);
+    for (int bx = x / block_w_; n > 0; ++bx) {
+      // The samples from (x, s) to the block's right edge, at most the run's rest.
+      const uint64_t m = std::min(n, uint64_t((bx + 1) * block_w_ - x) * uint64_t(samples) - uint64_t(s));
+      if (!f(row + size_t(bx), m)) return false;
+      n -= m, x = (bx + 1) * block_w_, s = 0;
+    }
+    return true;
+  });
+}
+
 bool SurfaceClient::range_all_flagged(uint64_t offset, uint64_t len) const {
   bool all = true;
-  layout_.for_each_sample(offset, len, [&](int x, int y, int) { return all = flagged_[block_of(x, y)] != 0; });
+  for_each_block_piece(offset, len, [&](size_t b, uint64_t) { return all = flagged_[b] != 0; });
   return all;
 }
 
@@ -70,14 +88,13 @@ void SurfaceClient::write_back_range(uint64_t offset, uint64_t len) {
   std::vector<std::pair<size_t, uint64_t>>& touched = touched_;
   touched.clear();
   const uint64_t step = uint64_t(layout_.bytes_per_sample());
-  layout_.for_each_sample(offset, len, [&](int x, int y, int) {
-    const size_t b = block_of(x, y);
+  for_each_block_piece(offset, len, [&](size_t b, uint64_t samples) {
     if (!flagged_[b]) return true;
-    if (!touched.empty() && touched.back().first == b) touched.back().second += step;
+    if (!touched.empty() && touched.back().first == b) touched.back().second += samples * step;
     else {
       auto it = std::find_if(touched.begin(), touched.end(), [&](const auto& t) { return t.first == b; });
-      if (it == touched.end()) touched.push_back({b, step});
-      else it->second += step;
+      if (it == touched.end()) touched.push_back({b, samples * step});
+      else it->second += samples * step;
     }
     return true;
   });

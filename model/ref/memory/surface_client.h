@@ -61,7 +61,10 @@ class SurfaceClient {
 
   // One access to sample s of pixel (x, y).
   void access(int x, int y, int s, bool write) {
-    const uint64_t off = layout_.offset_of(x, y, s);
+    // The ROP reads and then writes a depth sample: the second access reuses the offset.
+    if (x != last_x_ || y != last_y_ || s != last_s_)
+      last_x_ = x, last_y_ = y, last_s_ = s, last_offset_ = layout_.offset_of(x, y, s);
+    const uint64_t off = last_offset_;
     if (reported_) {  // transfers were reported since the previous access
       reported_ = false;
       if (on_access_after_transfer) on_access_after_transfer();
@@ -125,13 +128,16 @@ class SurfaceClient {
   void write_back_range(uint64_t offset, uint64_t len);
   void write_back_block(uint64_t block);  // compressed surface: one line = one block
   bool range_all_flagged(uint64_t offset, uint64_t len) const;
-  size_t block_of(int x, int y) const { return size_t(y / block_h_) * size_t(blocks_x_) + size_t(x / block_w_); }
+  template <class F>
+  void for_each_block_piece(uint64_t offset, uint64_t len, F&& f) const;
   uint64_t block_bytes(size_t block) const;  // the block's samples inside the surface, bytes
 
   SurfaceLayout layout_;
   std::optional<SetAssocCache> cache_;
   int line_shift_ = 0;     // log2 of the cache's line bytes (a power of two)
   bool reported_ = false;  // a transfer went to on_transfer since the last access
+  int last_x_ = -1, last_y_ = -1, last_s_ = -1;  // the previous access's sample (-1: none yet)
+  uint64_t last_offset_ = 0;                      // ... and its byte offset
   bool fast_clear_;
   int block_w_, block_h_, blocks_x_, blocks_y_;
   std::vector<uint8_t> flagged_;  // per block: fast-cleared, not yet written to DRAM

@@ -62,11 +62,13 @@ class SurfaceLayout {
   // for padding (a tiled surface's edge tiles beyond the surface, or past its end).
   bool sample_at(uint64_t offset, int& x, int& y, int& s) const;
 
-  // f(x, y, s) for every sample stored in the bytes [offset, offset + len), in address
-  // order, padding skipped; stops early when f returns false. One sample_at a run of
-  // pixels along a row (a fill's or write-back's line), not one a sample.
+  // f(x, y, s, n) for every run of n > 0 samples stored one after another in the bytes
+  // [offset, offset + len), in address order, padding skipped: sample s of pixel (x, y)
+  // and the n - 1 after it along row y (s counting up to samples, then the next pixel),
+  // never past the row's (linear) or the tile row's (tiled) end or the surface's right
+  // edge; stops early when f returns false. One sample_at a run, not one a sample.
   template <class F>
-  void for_each_sample(uint64_t offset, uint64_t len, F&& f) const {
+  void for_each_run(uint64_t offset, uint64_t len, F&& f) const {
     const uint64_t bpp = uint64_t(bytes_per_sample_);
     uint64_t k = offset / bpp;
     const uint64_t k_end = (offset + len + bpp - 1) / bpp;
@@ -76,18 +78,23 @@ class SurfaceLayout {
         ++k;
         continue;
       }
-      // Pixels follow one another along the row up to the row's (linear) or the tile row's
-      // (tiled) end, or the surface's right edge.
       const int run_end = layout_ == FbLayout::Linear ? width_ : std::min(width_, (x | ((1 << tw_log2_) - 1)) + 1);
-      while (k < k_end) {
-        if (!f(x, y, s)) return;
-        ++k;
-        if (++s == samples_) {
-          s = 0;
-          if (++x == run_end) break;
-        }
-      }
+      const uint64_t n = std::min(k_end - k, uint64_t(run_end - x) * uint64_t(samples_) - uint64_t(s));
+      if (!f(x, y, s, n)) return;
+      k += n;
     }
+  }
+  // f(x, y, s) for every sample of for_each_run's runs, in address order; stops early
+  // when f returns false.
+  template <class F>
+  void for_each_sample(uint64_t offset, uint64_t len, F&& f) const {
+    for_each_run(offset, len, [&](int x, int y, int s, uint64_t n) {
+      for (; n > 0; --n) {
+        if (!f(x, y, s)) return false;
+        if (++s == samples_) s = 0, ++x;
+      }
+      return true;
+    });
   }
 
   uint64_t base() const { return base_; }
