@@ -20,9 +20,9 @@
 //   lower frame number).
 // - One SystemC run of the chosen frames in program order; a frame left out contributes
 //   its viewport and scissor commands (carried state) and, when the frame after it is
-//   chosen, its last W triangles (W = the FIFOs' entries, triangle_path_entries; whole
-//   commands): a warm-up, simulated, not measured, so the chosen frame starts with the
-//   backlog it has in the full run.
+//   chosen, all of it: a warm-up, simulated, not measured, so the chosen frame starts
+//   with the backlog and the memory state (caches, fast-clear flags, DRAM) it has in the
+//   full run. The state two frames back is not replayed (docs/fidelity.md).
 //   A chosen frame's y: from command fetch starting its first command to command fetch
 //   starting the next command after it (the last: to the end), as frames[].cycles of the
 //   full run.
@@ -64,7 +64,8 @@ struct FrameSampledResult {
   std::vector<size_t> simulated;  // the frames simulated in detail
   std::vector<double> y;          // their measured cycles, in the same order
   uint64_t cycles_simulated = 0;  // the sub-run's own cycles
-  size_t warm_triangles = 0;      // simulated unmeasured: the tails before chosen frames
+  size_t warm_frames = 0;         // simulated unmeasured: the frames just before chosen ones
+  size_t warm_triangles = 0;      // the triangles those warm-up frames draw
   double wall_seconds = 0;
   // cycles, cycles_ci_low/high, cycles_error_bound (the interval's farther end from
   // cycles, relative), confidence, frames_total, frames_simulated, frame_sample,
