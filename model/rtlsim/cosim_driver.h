@@ -168,10 +168,7 @@ class VerilatedRast final : public RastPorts {
   }
   bool idle() const override { return top_->idle_o; }
   TexRequest texture_request() const override {
-    TexRequest r;
-    r.valid = top_->tex_req_valid_o;
-    r.count = top_->tex_req_count_o;
-    r.format = top_->tex_req_format_o;
+    TexRequest r{bool(top_->tex_req_valid_o), int(top_->tex_req_count_o), int(top_->tex_req_format_o), {}};
     const int aw = params_.tex_addr_w;
     for (int k = 0; k < 4; ++k) r.addr[size_t(k)] = port_bits(top_->tex_req_addr_o, k * aw, aw);
     return r;
