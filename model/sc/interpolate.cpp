@@ -10,28 +10,25 @@
 namespace rastsim::sc {
 
 namespace {
-// The pixels a textured batch puts through the interpolator: its 2x2 quads (pixels
-// 2x..2x+1, 2y..2y+1) whole, helper pixels included (the RTL's fine raster closes the
-// tile's mask over quads: rtl/rast_fine_raster.sv; docs/texture.md "RTL").
-uint64_t quad_pixels(const PixelBatch& batch) {
-  std::vector<uint64_t> quads;
-  for (const PixelRun& r : batch.runs)
-    for (int qx = r.x0 >> 1; qx <= (r.x1 - 1) >> 1; ++qx)
-      quads.push_back(uint64_t(uint32_t(r.y >> 1)) << 32 | uint32_t(qx));
-  std::sort(quads.begin(), quads.end());
-  return 4 * uint64_t(std::unique(quads.begin(), quads.end()) - quads.begin());
-}
-
-// The same for the fragments early Z kept (depth.early): the quads they lie in, whole.
-uint64_t kept_quad_pixels(const FragmentBatch& frags) {
-  std::vector<uint64_t> quads;
-  for (size_t k = 0; k < frags.count; ++k)
-    if (!frags.is_culled(k))
-      quads.push_back(uint64_t(uint32_t(frags.storage[k].y >> 1)) << 32 | uint32_t(frags.storage[k].x >> 1));
-  std::sort(quads.begin(), quads.end());
-  return 4 * uint64_t(std::unique(quads.begin(), quads.end()) - quads.begin());
-}
+uint64_t quad_key(int x, int y) { return uint64_t(uint32_t(y >> 1)) << 32 | uint32_t(x >> 1); }
 }  // namespace
+
+// A textured batch's 2x2 quads (pixels 2x..2x+1, 2y..2y+1) whole, helper pixels included
+// (the RTL's fine raster closes the tile's mask over quads: rtl/rast_fine_raster.sv;
+// docs/texture.md "RTL"); where early Z culled some fragments (depth.early), the quads
+// of the kept ones: a quad none of whose fragments is kept is not shaded.
+uint64_t Interpolate::textured_quad_pixels(const FragmentBatch& frags) {
+  quad_keys_.clear();
+  if (frags.culled_count == 0) {
+    for (const PixelRun& r : frags.pixels->runs)
+      for (int x = r.x0 & ~1; x < r.x1; x += 2) quad_keys_.push_back(quad_key(x, r.y));
+  } else {
+    for (size_t k = 0; k < frags.count; ++k)
+      if (!frags.is_culled(k)) quad_keys_.push_back(quad_key(frags.storage[k].x, frags.storage[k].y));
+  }
+  std::sort(quad_keys_.begin(), quad_keys_.end());
+  return 4 * uint64_t(std::unique(quad_keys_.begin(), quad_keys_.end()) - quad_keys_.begin());
+}
 
 void Interpolate::body() {
   for (;;) {
@@ -53,11 +50,8 @@ void Interpolate::body() {
     ctx_.render.fragments_shaded += frags->kept();
     if (frags->count != 0) attribute_to(first->x, first->y);  // the batch's tile
     // Early Z: the attribute lanes shade the kept fragments only (docs/depth-culling.md); a
-    // textured batch its whole 2x2 quads, helper pixels included (of the kept fragments
-    // where early Z culled some: a quad none of whose fragments is kept is not shaded).
-    const uint64_t shaded = !tri.texture.enabled() ? frags->kept()
-                            : frags->culled_count != 0 ? kept_quad_pixels(*frags)
-                                                       : quad_pixels(batch);
+    // textured batch its quads whole.
+    const uint64_t shaded = tri.texture.enabled() ? textured_quad_pixels(*frags) : frags->kept();
     const uint64_t cycles = p_.interp_batch_cycles(shaded, tri.affine);
     if (!tri.affine) {  // a reciprocal a fragment (docs/clip-space.md, "Timing")
       ctx_.recip_reciprocals += frags->kept();
