@@ -3,8 +3,6 @@
 // OpenGL program into a rastsim trace (scene/apitrace_import.h, docs/workloads.md). Runs
 // Debian's `apitrace dump --blobs --multiline=no` in a temporary directory (the buffer and
 // texture data land there as blob_callN.bin files) and converts its text.
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -14,6 +12,7 @@
 
 #include "common.h"
 #include "scene/apitrace_import.h"
+#include "util/process.h"
 
 namespace rastsim::app {
 
@@ -34,28 +33,21 @@ std::string slurp(const std::filesystem::path& p) {
   return s.str();
 }
 
-std::string shell_quote(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
-
-// `apitrace dump` of the capture into dir/dump.txt (its blobs beside it).
+// `apitrace dump` of the capture into dir/dump.txt (its blobs beside it), run through
+// util/process.h (an argv, no shell).
 std::filesystem::path run_apitrace_dump(const std::string& trace, const std::filesystem::path& dir) {
   const std::string abs = std::filesystem::absolute(trace).string();
   if (!std::filesystem::is_regular_file(abs)) throw std::runtime_error(trace + ": cannot open");
-  const std::string cmd = "cd " + shell_quote(dir.string()) +
-                          " && apitrace dump --blobs --multiline=no --color=never --arg-names=yes " + shell_quote(abs) +
-                          " > dump.txt 2> dump.err";
-  const int rc = std::system(cmd.c_str());
-  if (rc != 0) {
-    std::string err;
-    try {
-      err = slurp(dir / "dump.err");
-    } catch (const std::exception&) {
-    }
-    const int status = WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
+  ProcessOptions po;
+  po.cwd = dir.string();
+  po.out = Sink::File, po.out_path = (dir / "dump.txt").string();
+  po.err = Sink::Capture;
+  const ProcessResult r = run_process(
+      {"apitrace", "dump", "--blobs", "--multiline=no", "--color=never", "--arg-names=yes", abs}, po);
+  if (!r.ok()) {
+    std::string err = r.err;
     while (!err.empty() && err.back() == '\n') err.pop_back();
+    const int status = exit_code(r.status);
     throw std::runtime_error(trace + ": `apitrace dump` failed (" +
                              (status == 127 ? std::string("apitrace not found: Debian's apitrace package")
                                             : "exit status " + std::to_string(status) + ": not an apitrace capture?") +
