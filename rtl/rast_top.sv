@@ -33,9 +33,11 @@
 //   memory port (rd_*, wr_*) and command port (cmd_*: one command a marker, in stream
 //   order) are rast_top's. The fragment FIFO holds FragmentFifoEntries whole tiles (the
 //   SystemC model's fragment FIFO of batches, TimingParams::fragment_fifo_entries): the
-//   ROP starts a tile once its last beat is in (the model's ROP reads whole batches), and
-//   the interpolator's next beat waits while FragmentFifoEntries + 1 complete tiles wait
-//   for the ROP (the model's interpolator blocked in its write).
+//   ROP starts a tile once its last beat is in (the model's ROP reads whole batches). An
+//   untextured tile or a marker enters the interpolator only while at most
+//   FragmentFifoEntries tiles are between its input and the ROP (credits, the pipeline's
+//   beats included: the model's interpolator blocked in its write), and a textured
+//   tile's beat waits while FragmentFifoEntries + 1 complete tiles wait for the ROP.
 `default_nettype none
 
 module rast_top #(
@@ -448,9 +450,11 @@ module rast_top #(
     .clk_i, .rst_ni, .in_valid_i(m_valid), .in_ready_o(m_ready), .in_data_i(m_push),
     .out_valid_o(p_fifo_valid), .out_ready_i(p_fifo_ready), .out_data_o(p_fifo_data), .empty_o(p_empty));
   logic ts_room, ts_valid, ts_empty, ts_pop;  // the tile texture-state FIFO (below)
-  assign p_fifo_ready = p_hold_ready && ts_room;  // a tile enters the hold with room for its state
+  logic cr_admit;  // the fragment FIFO's credits admit the head (below, "Interpolator credits")
+  // A tile enters the hold with room for its state and, untextured, a credit.
+  assign p_fifo_ready = p_hold_ready && ts_room && cr_admit;
   rast_hold #(.Width(PixW)) u_interp_hold (
-    .clk_i, .rst_ni, .in_valid_i(p_fifo_valid && ts_room), .in_ready_o(p_hold_ready), .in_data_i(p_fifo_data),
+    .clk_i, .rst_ni, .in_valid_i(p_fifo_valid && ts_room && cr_admit), .in_ready_o(p_hold_ready), .in_data_i(p_fifo_data),
     .out_valid_o(p_valid), .out_ready_i(p_ready), .out_data_o(p_in));
 
   // ---- Tile texture-state FIFO: a tile's texture state from the interpolator's input
@@ -517,7 +521,7 @@ module rast_top #(
   // the ROP has not taken. The ROP reads a tile's beats only once the tile is complete
   // (in_tile_q: it took a tile's first beat and not yet its last). The interpolator's
   // beat is refused while FragmentFifoEntries + 1 tiles are complete and waiting (after
-  // this cycle's take by the ROP).
+  // this cycle's take by the ROP); for untextured tiles the credits below bind first.
   beat_t            r_push, r_in;
   logic             r_fifo_valid, r_fifo_empty, r_fifo_room;
   logic             r_valid, r_ready, r_take, r_first, r_end, w_end;
@@ -631,6 +635,33 @@ module rast_top #(
     end
   end
 
+  // ---- Interpolator credits: the fragment FIFO's FragmentFifoEntries slots, as the
+  // SystemC model's interpolator holds them (docs/rtl.md "Fragment FIFO"). Its fragment
+  // link has FragmentFifoEntries slots (fifo.fragment_depth + the interpolator's latency
+  // slots) and its interpolator reads the next batch only once the previous one is in
+  // the link: at most FragmentFifoEntries + 1 batches between the interpolator's input
+  // and the ROP. cr_q counts them: an untextured tile or a marker from the cycle it
+  // enters the interpolator's hold (its latency beats included: without this, the
+  // frozen pipeline held Latency + RecipLatency beats, i.e. up to 12 one-beat tiles,
+  // beyond the FIFO's tiles), a textured tile from the cycle its last fragment enters
+  // the FIFO (before, it is the texture FIFO's: rast_texture_stage, x_busy while any is
+  // in it), each until the ROP takes its first beat. An untextured tile or a marker at
+  // the pixel FIFO's head enters only while at most FragmentFifoEntries are counted
+  // (after this cycle's take); a textured one is not held here, so the texture stage,
+  // whose pushes wait on batches_q alone, never waits on a credit (no deadlock). ----
+  localparam int CrW = $clog2(2 * FragmentFifoEntries + 3);  // derived: 0 .. 2 (Entries + 1)
+  logic [CrW-1:0] cr_q;
+  logic           cr_counted, cr_take, cr_tex_end, cr_wait;
+  assign cr_counted = p_fifo_data.marker || !p_fifo_data.attr.tex.on;
+  assign cr_admit = !cr_counted || (cr_q - CrW'(r_first)) <= CrW'(FragmentFifoEntries);
+  assign cr_wait = p_fifo_valid && ts_room && !cr_admit && !p_valid;  // a tile waits for a credit
+  assign cr_take = p_fifo_valid && p_fifo_ready && cr_counted;
+  assign cr_tex_end = w_end && x_busy;  // a textured tile's last fragment pushed
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) cr_q <= '0;
+    else cr_q <= cr_q + CrW'(cr_take) + CrW'(cr_tex_end) - CrW'(r_first);
+  end
+
   // ---- ROP ----
   rast_rop #(
     .PixelW(PixelW), .DepthW(DepthW), .MaxSamples(MaxSamples), .SampleLog2W(SampleLog2W), .Lanes(Lanes),
@@ -652,10 +683,12 @@ module rast_top #(
   // interpolator is blocked when its pipeline is frozen (the fragment FIFO refuses its
   // beat). The ROP's bit is its own (rast_rop: works this cycle, finishes a tile or a
   // clear, a memory request not taken; its transactions' starts on dbg_rop_start_o, as
-  // one may start in the cycle another finishes).
-  assign dbg_has_o     = {rop_has, p_valid, f_valid, c_valid, t_valid || s_busy};
+  // one may start in the cycle another finishes). Waiting for a credit with a tile at the
+  // pixel FIFO's head (cr_wait) is blocked too: the SystemC interpolator blocked in the
+  // write of its previous batch.
+  assign dbg_has_o     = {rop_has, p_valid || cr_wait, f_valid, c_valid, t_valid || s_busy};
   assign dbg_done_o    = {rop_done, p_valid && p_ready, f_valid && f_ready, c_valid && c_ready, s_done};
-  assign dbg_blocked_o = {rop_blocked, i_valid && !i_ready, m_valid && !m_ready, k_valid && !k_ready,
+  assign dbg_blocked_o = {rop_blocked, (i_valid && !i_ready) || cr_wait, m_valid && !m_ready, k_valid && !k_ready,
                           s_valid && !s_ready};
 
   // A held transaction shows as valid at the stage's input.
