@@ -332,7 +332,7 @@ TEST(ApitraceImport, TextureFormsThatCannotBeProvenAreRefusedByCallNumber) {
       "attribute vec3 position;\\nuniform mat4 A;\\nvarying vec2 v_texcoord;\\nvoid main() {\\n"
       "  v_texcoord = asin(normalize(position).xy) / 3.14159 + 0.5;\\n  gl_Position = A * vec4(position, 1.0);\\n}\\n";
   EXPECT_EQ(refusal(texgen, kTexFs), head + "vertex shader 2's texture coordinate 'v_texcoord': "
-                                             "'v_texcoord=asin(normalize(position).xy)/3.14159+0.5' is not a pass-through "
+                                             "'v_texcoord = asin(normalize(position).xy) / 3.14159 + 0.5' is not a pass-through "
                                              "of an attribute at the top level of main()");
   // Through a texture matrix uniform: not proven, refused.
   const std::string matrix =
@@ -340,12 +340,12 @@ TEST(ApitraceImport, TextureFormsThatCannotBeProvenAreRefusedByCallNumber) {
       "varying vec2 v_texcoord;\\nvoid main() {\\n  v_texcoord = (T * vec4(texcoord, 0.0, 1.0)).xy;\\n"
       "  gl_Position = A * vec4(position, 1.0);\\n}\\n";
   EXPECT_NE(refusal(matrix, kTexFs).find(head + "vertex shader 2's texture coordinate 'v_texcoord': "
-                                               "'v_texcoord=(T*vec4(texcoord,0.0,1.0)).xy' is not a pass-through"),
+                                               "'v_texcoord = (T * vec4(texcoord, 0.0, 1.0)).xy' is not a pass-through"),
             std::string::npos);
   // A swizzle that reorders.
   std::string yx = kTexVs;
   yx.replace(yx.find("= texcoord;"), 11, "= texcoord.yx;");
-  EXPECT_EQ(refusal(yx, kTexFs), head + "vertex shader 2's texture coordinate 'v_texcoord': 'v_texcoord=texcoord.yx': "
+  EXPECT_EQ(refusal(yx, kTexFs), head + "vertex shader 2's texture coordinate 'v_texcoord': 'v_texcoord = texcoord.yx': "
                                         "the swizzle .yx is not the attribute's first components in order");
   // Two samplers in a shader of another form: which one is not known.
   const std::string two = "uniform sampler2D a;\\nuniform sampler2D b;\\nvarying vec2 v_texcoord;\\nvoid main() {\\n"
@@ -368,6 +368,29 @@ TEST(ApitraceImport, TextureFormsThatCannotBeProvenAreRefusedByCallNumber) {
   EXPECT_EQ(r.texture_notes.begin()->first,
             "texenv modulate stated for a fragment shader of another form (gl_FragColor = texture2D(tex,v_texcoord+"
             "vec2(0.5,0.0)) is neither a texture lookup nor one times a varying)");
+}
+
+TEST(ApitraceImport, GeneratedMipmapsMakeTrilinearAndANewImageDropsThem) {
+  const std::string mips =
+      "32 glTexParameteri(target = GL_TEXTURE_2D, pname = GL_TEXTURE_MIN_FILTER, param = GL_LINEAR_MIPMAP_LINEAR)\n"
+      "33 glTexParameterf(target = GL_TEXTURE_2D, pname = GL_TEXTURE_MAG_FILTER, param = 9729)\n"  // GL_LINEAR as a float
+      "34 glGenerateMipmapEXT(target = GL_TEXTURE_2D)\n"
+      "35 glTexParameteri(target = GL_TEXTURE_2D, pname = GL_TEXTURE_WRAP_T, param = GL_MIRRORED_REPEAT)\n"
+      "40 glDrawArrays(mode = GL_TRIANGLES, first = 0, count = 3)\n";
+  const ImportResult r = run_textured(textured() + mips);
+  ASSERT_EQ(r.draws_textured, 1) << (r.refusals.empty() ? "" : r.refusals[0]);
+  EXPECT_NE(r.trace.find("bindtexture 5\ntexfilter trilinear\ntexwrap clamp mirror\nmipmap on\ntexenv replace\n"
+                         "texlod_bias 0\n"),
+            std::string::npos)
+      << r.trace;
+  // A new level-0 image after glGenerateMipmap has no chain in GL until generated again.
+  const ImportResult s = run_textured(textured() + mips +
+                                      "41 glTexImage2D(target = GL_TEXTURE_2D, level = 0, internalformat = GL_RGB, width = 3, "
+                                      "height = 2, border = 0, format = GL_RGB, type = GL_UNSIGNED_BYTE, pixels = "
+                                      "blob(\"blob_call8.bin\"))\n42 glDrawArrays(mode = GL_TRIANGLES, first = 0, count = 3)\n");
+  ASSERT_EQ(s.refusals.size(), 1u);
+  EXPECT_EQ(s.refusals[0], "t.dump:38: call 42 glDrawArrays refused: texture 5: min filter GL_LINEAR_MIPMAP_LINEAR "
+                           "without mip levels (GL's texture is incomplete)");
 }
 
 TEST(ApitraceShader, FragmentForms) {

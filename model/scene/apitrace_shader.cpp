@@ -40,6 +40,20 @@ std::string no_space(const std::string& s) {
   return out;
 }
 
+// Whitespace runs as one space, none at the ends: a statement as messages quote it.
+std::string squeeze(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    if (std::isspace(static_cast<unsigned char>(c))) {
+      if (!out.empty() && out.back() != ' ') out += ' ';
+    } else {
+      out += c;
+    }
+  }
+  if (!out.empty() && out.back() == ' ') out.pop_back();
+  return out;
+}
+
 // Declarations at global scope: "QUALIFIER [precision] TYPE a, b;" -> name -> type.
 std::map<std::string, std::string> declared(const std::string& src, const std::string& qualifiers) {
   std::map<std::string, std::string> out;
@@ -220,16 +234,16 @@ VaryingSource varying_source(const std::string& vertex_source, const std::string
   static const std::regex pass("(\\w+)=(\\w+)(?:\\.(\\w+))?");
   std::smatch m;
   if (write->depth != 1 || !std::regex_match(t, m, pass) || m[1] != varying) {
-    v.reason = "'" + t + "' is not a pass-through of an attribute at the top level of main()";
+    v.reason = "'" + squeeze(write->text) + "' is not a pass-through of an attribute at the top level of main()";
     return v;
   }
   const auto a = attrs.find(m[2]);
   if (a == attrs.end()) {
-    v.reason = "'" + t + "': '" + m[2].str() + "' is not an attribute";
+    v.reason = "'" + squeeze(write->text) + "': '" + m[2].str() + "' is not an attribute";
     return v;
   }
   if (!leading_swizzle(m[3])) {
-    v.reason = "'" + t + "': the swizzle ." + m[3].str() + " is not the attribute's first components in order";
+    v.reason = "'" + squeeze(write->text) + "': the swizzle ." + m[3].str() + " is not the attribute's first components in order";
     return v;
   }
   v.ok = true;
@@ -259,7 +273,7 @@ bool plain_fragment(const std::vector<Statement>& stmts, FragmentForm& f) {
     std::smatch m;
     std::string sa, co;
     if (s.depth != 1) {
-      f.reason = "'" + t + "' is inside a block";
+      f.reason = "'" + squeeze(s.text) + "' is inside a block";
       return false;
     }
     if (std::regex_match(t, m, local) && lookup_of(m[2], sa, co) && !locals.count(m[1])) {
@@ -267,7 +281,7 @@ bool plain_fragment(const std::vector<Statement>& stmts, FragmentForm& f) {
     } else if (t.rfind("gl_FragColor=", 0) == 0 && rhs.empty()) {
       rhs = t.substr(13);
     } else {
-      f.reason = "'" + t + "' is neither a texture lookup into a local vec4 nor gl_FragColor's one assignment";
+      f.reason = "'" + squeeze(s.text) + "' is neither a texture lookup into a local vec4 nor gl_FragColor's one assignment";
       return false;
     }
   }

@@ -134,7 +134,7 @@ bool texture_call(TextureTable& t, const Call& c, const std::string& name,
     tex_image(t, c, name, bytes_of);
   } else if (f == "glTexParameteri" || f == "glTexParameterf") {
     tex_parameter(t, c, name);
-  } else if (f == "glGenerateMipmap") {
+  } else if (f == "glGenerateMipmap" || f == "glGenerateMipmapEXT" || f == "glGenerateMipmapOES") {
     const auto it = t.bound.find(t.active_unit);
     if (arg(c, name, "target").text == "GL_TEXTURE_2D" && it != t.bound.end() && it->second != 0)
       t.textures[it->second].mips = GlTexture::Mips::Generated;
