@@ -356,6 +356,12 @@ TEST(ApitraceImport, TextureFormsThatCannotBeProvenAreRefusedByCallNumber) {
                     "32 glTexParameteri(target = GL_TEXTURE_2D, pname = GL_TEXTURE_MIN_FILTER, param = GL_LINEAR_MIPMAP_LINEAR)\n"),
             "t.dump:33: call 40 glDrawArrays refused: texture 5: min filter GL_LINEAR_MIPMAP_LINEAR with mag filter "
             "GL_NEAREST has no rastsim texfilter (one filter for both)");
+  // A texture rendered into (a framebuffer attachment): its image is not the blob's any more.
+  EXPECT_EQ(refusal(kTexVs, kTexFs,
+                    "32 glFramebufferTexture2D(target = GL_FRAMEBUFFER, attachment = GL_COLOR_ATTACHMENT0, "
+                    "textarget = GL_TEXTURE_2D, texture = 5, level = 0)\n"),
+            "t.dump:33: call 40 glDrawArrays refused: texture 5: call 32 glFramebufferTexture2D: rendered to, its "
+            "image is not imported");
   // The sampler's unit (1) has no texture once unit 1 is unbound.
   EXPECT_EQ(refusal(kTexVs, kTexFs, "32 glBindTexture(target = GL_TEXTURE_2D, texture = 0)\n"),
             "t.dump:33: call 40 glDrawArrays refused: sampler 'tex' (unit 1) has no texture image bound");

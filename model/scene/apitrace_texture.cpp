@@ -138,6 +138,25 @@ bool texture_call(TextureTable& t, const Call& c, const std::string& name,
     const auto it = t.bound.find(t.active_unit);
     if (arg(c, name, "target").text == "GL_TEXTURE_2D" && it != t.bound.end() && it->second != 0)
       t.textures[it->second].mips = GlTexture::Mips::Generated;
+  } else if (f == "glCompressedTexImage2D" || f == "glCopyTexImage2D" || f == "glCopyTexSubImage2D") {
+    // Images the importer cannot rebuild: a draw that samples them is refused, not drawn
+    // with a stale image.
+    const auto it = t.bound.find(t.active_unit);
+    if (arg(c, name, "target").text == "GL_TEXTURE_2D" && it != t.bound.end() && it->second != 0) {
+      GlTexture& tex = t.textures[it->second];
+      ++tex.version;
+      tex.image_call = c.number;
+      tex.unusable = "call " + std::to_string(c.number) + " " + f + ": its image is not imported";
+    }
+  } else if (f == "glFramebufferTexture2D" || f == "glFramebufferTexture2DEXT") {
+    // Rendered into: its image is what the program draws, which the importer does not keep.
+    const auto id = integer(arg(c, name, "texture"));
+    if (id && *id != 0) {
+      GlTexture& tex = t.textures[static_cast<uint32_t>(*id)];
+      ++tex.version;
+      tex.image_call = c.number;
+      tex.unusable = "call " + std::to_string(c.number) + " " + f + ": rendered to, its image is not imported";
+    }
   } else if (f == "glPixelStorei") {
     if (arg(c, name, "pname").text == "GL_UNPACK_ALIGNMENT") {
       t.unpack_alignment = int_arg(c, name, "param");

@@ -3,7 +3,9 @@
 // "Textures"): glGenTextures/glBindTexture/glActiveTexture bindings, glTexImage2D and
 // glTexSubImage2D level 0 (RGBA, RGB, LUMINANCE, LUMINANCE_ALPHA, ALPHA of unsigned
 // bytes, rows padded to GL_UNPACK_ALIGNMENT) decoded to RGBA8, glTexParameter{i,f}
-// (filters, wraps, LOD bias) and glGenerateMipmap (and its EXT, OES names); and the trace's texture state
+// (filters, wraps, LOD bias) and glGenerateMipmap (and its EXT, OES names); a texture
+// compressed, copied from the framebuffer or attached to a framebuffer object is marked
+// unusable (draws sampling it are refused); and the trace's texture state
 // (`texfilter`, `mipmap`, `texwrap`) a texture's parameters map to, or why none does.
 //
 // Texel origin: GL's first row of pixels is t = 0 (drawn at the bottom of GL's image
