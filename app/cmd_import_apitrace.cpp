@@ -5,12 +5,14 @@
 // texture data land there as blob_callN.bin files) and converts its text.
 
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <sstream>
 
 #include "common.h"
+#include "image/image_io.h"
 #include "scene/apitrace_import.h"
 #include "util/process.h"
 
@@ -21,6 +23,7 @@ namespace {
 struct ImportOptions {
   std::string trace_path, out_path, dump_path, config_out, size;
   std::vector<int> flat{255, 255, 255};
+  std::string other_texenv = "modulate";
   int show = 10;
   bool quiet = false;
 };
@@ -31,6 +34,27 @@ std::string slurp(const std::filesystem::path& p) {
   std::ostringstream s;
   s << in.rdbuf();
   return s.str();
+}
+
+// The output's name without its directory and its .zst / .gz and .trace suffixes: the
+// texture files' prefix ("out/build.rs.trace.zst" -> "build.rs").
+std::string output_stem(const std::string& out) {
+  std::string s = std::filesystem::path(out).filename().string();
+  for (const char* suf : {".zst", ".gz", ".trace"})
+    if (s.size() > std::strlen(suf) && s.compare(s.size() - std::strlen(suf), std::strlen(suf), suf) == 0)
+      s.resize(s.size() - std::strlen(suf));
+  return s;
+}
+
+// Each texture image beside the trace, as PNG (RGBA8, rows in GL's order: the first row
+// is t = 0, docs/workloads.md "Textures").
+void write_textures(const std::vector<apitrace::TextureFile>& files, const std::string& out) {
+  const std::filesystem::path dir = std::filesystem::path(out).parent_path();
+  for (const apitrace::TextureFile& t : files) {
+    Framebuffer fb(t.width, t.height);
+    for (int y = 0; y < t.height; ++y) fb.write_row(y, t.rgba.data() + size_t(y) * size_t(t.width) * 4);
+    write_image(fb, (dir / t.file).string());
+  }
 }
 
 // `apitrace dump` of the capture into dir/dump.txt (its blobs beside it), run through
@@ -64,6 +88,8 @@ void run_import(const ImportOptions& o) {
       throw std::runtime_error("--size '" + o.size + "': expected WxH, 1..16384 each");
   }
   opt.flat_r = o.flat[0], opt.flat_g = o.flat[1], opt.flat_b = o.flat[2];
+  opt.texture_stem = output_stem(o.out_path);
+  opt.other_texenv = o.other_texenv;
   std::filesystem::path tmp, dump = o.dump_path;
   if (dump.empty()) {
     std::string templ = (std::filesystem::temp_directory_path() / "rastsim-apitrace-XXXXXX").string();
@@ -93,6 +119,7 @@ void run_import(const ImportOptions& o) {
     std::cerr << "(and " << r.refusals.size() - static_cast<size_t>(o.show) << " more refusals)\n";
   if (r.draws_imported == 0)
     throw std::runtime_error(name + ": no draw imported (" + std::to_string(r.draws_refused) + " refused)");
+  write_textures(r.textures, o.out_path);
   apitrace::write_trace_file(o.out_path, r.trace);
   std::string sets;
   for (const std::string& s : r.config_sets) sets += s + "\n";
@@ -103,13 +130,16 @@ void run_import(const ImportOptions& o) {
   if (!o.quiet)
     std::cout << "import-apitrace: " << name << " -> " << o.out_path << ": " << r.frames << " frames, " << r.draws
               << " draws (" << r.draws_imported << " imported, " << r.draws_refused << " refused), "
-              << r.clears_refused << " clears refused, " << r.triangles << " triangles; config:"
+              << r.clears_refused << " clears refused, " << r.draws_textured << " textured ("
+              << r.textures.size() << " texture files), " << r.triangles << " triangles; config:"
               << [&] {
                    std::string s;
                    for (const std::string& c : r.config_sets) s += " --set " + c;
                    return s;
                  }()
               << "\n";
+  if (!o.quiet)
+    for (const auto& [note, n] : r.texture_notes) std::cout << "import-apitrace: " << n << " textured draws: " << note << "\n";
 }
 
 }  // namespace
@@ -129,6 +159,10 @@ void register_import_apitrace(CLI::App& app) {
   cmd->add_option("--size", o.size, "Framebuffer WxH (default: the capture's first glViewport, the window)");
   cmd->add_option("--flat-color", o.flat, "R G B (0..255) of draws without a vertex colour attribute")
       ->expected(3)->check(CLI::Range(0, 255));
+  cmd->add_option("--other-texenv", o.other_texenv,
+                  "texenv of a textured draw whose fragment shader is neither a plain texture lookup nor one times a "
+                  "varying colour (default modulate; stated in the trace)")
+      ->check(CLI::IsMember({"replace", "modulate", "decal"}));
   cmd->add_option("--config-out", o.config_out,
                   "Write the config the trace needs (depth test, culling), one KEY=VALUE a line, for --set");
   cmd->add_option("--show-refusals", o.show, "Print at most this many refusal messages (default 10)");

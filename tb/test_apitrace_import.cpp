@@ -180,6 +180,251 @@ TEST(ApitraceImport, MalformedLinesAreFileLineErrors) {
             "t.dump: no glViewport in the capture (give the framebuffer size)");
 }
 
+// A textured program: vertex shader `vs` (position through A, texcoord passed through
+// unless vs says otherwise), fragment shader `fs`; buffer 1 the four positions of run(),
+// buffer 2 their texture coordinates; texture 5 a 3x2 RGB image in rows of 9 bytes padded
+// to 12 (GL_UNPACK_ALIGNMENT 4), nearest, wraps clamp / repeat.
+const char* kTexVs =
+    "attribute vec3 position;\\nattribute vec2 texcoord;\\nuniform mat4 A;\\nvarying vec2 v_texcoord;\\n"
+    "void main() {\\n  v_texcoord = texcoord;\\n  gl_Position = A * vec4(position, 1.0);\\n}\\n";
+const char* kTexFs = "uniform sampler2D tex;\\nvarying vec2 v_texcoord;\\nvoid main() {\\n"
+                     "  gl_FragColor = texture2D(tex, v_texcoord);\\n}\\n";
+
+std::string textured(const std::string& vs = kTexVs, const std::string& fs = kTexFs) {
+  return "1 glViewport(x = 0, y = 0, width = 200, height = 100) // fake\n"
+         "2 glGenTextures(n = 1, textures = &5)\n"
+         "3 glActiveTexture(texture = GL_TEXTURE1)\n"
+         "4 glBindTexture(target = GL_TEXTURE_2D, texture = 5)\n"
+         "5 glTexParameteri(target = GL_TEXTURE_2D, pname = GL_TEXTURE_MIN_FILTER, param = GL_NEAREST)\n"
+         "6 glTexParameteri(target = GL_TEXTURE_2D, pname = GL_TEXTURE_MAG_FILTER, param = GL_NEAREST)\n"
+         "7 glTexParameteri(target = GL_TEXTURE_2D, pname = GL_TEXTURE_WRAP_S, param = GL_CLAMP_TO_EDGE)\n"
+         "8 glTexImage2D(target = GL_TEXTURE_2D, level = 0, internalformat = GL_RGB, width = 3, height = 2, "
+         "border = 0, format = GL_RGB, type = GL_UNSIGNED_BYTE, pixels = blob(\"blob_call8.bin\"))\n"
+         "9 glCreateProgram() = 1\n"
+         "10 glCreateShader(type = GL_VERTEX_SHADER) = 2\n"
+         "11 glShaderSource(shader = 2, count = 1, string = &\"" + vs + "\", length = NULL)\n"
+         "12 glAttachShader(program = 1, shader = 2)\n"
+         "13 glCreateShader(type = GL_FRAGMENT_SHADER) = 3\n"
+         "14 glShaderSource(shader = 3, count = 1, string = &\"" + fs + "\", length = NULL)\n"
+         "15 glAttachShader(program = 1, shader = 3)\n"
+         "16 glBindAttribLocation(program = 1, index = 0, name = \"position\")\n"
+         "17 glBindAttribLocation(program = 1, index = 1, name = \"texcoord\")\n"
+         "18 glLinkProgram(program = 1)\n"
+         "19 glUseProgram(program = 1)\n"
+         "20 glGetUniformLocation(program = 1, name = \"A\") = 3\n"
+         "21 glUniformMatrix4fv(location = 3, count = 1, transpose = GL_FALSE, value = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1})\n"
+         "22 glGetUniformLocation(program = 1, name = \"tex\") = 4\n"
+         "23 glUniform1i(location = 4, v0 = 1)\n"
+         "24 glBindBuffer(target = GL_ARRAY_BUFFER, buffer = 1)\n"
+         "25 glBufferData(target = GL_ARRAY_BUFFER, size = 48, data = blob(\"blob_call15.bin\"), usage = GL_STATIC_DRAW)\n"
+         "26 glEnableVertexAttribArray(index = 0)\n"
+         "27 glVertexAttribPointer(index = 0, size = 3, type = GL_FLOAT, normalized = GL_FALSE, stride = 0, pointer = NULL)\n"
+         "28 glBindBuffer(target = GL_ARRAY_BUFFER, buffer = 2)\n"
+         "29 glBufferData(target = GL_ARRAY_BUFFER, size = 32, data = blob(\"blob_call29.bin\"), usage = GL_STATIC_DRAW)\n"
+         "30 glEnableVertexAttribArray(index = 1)\n"
+         "31 glVertexAttribPointer(index = 1, size = 2, type = GL_FLOAT, normalized = GL_FALSE, stride = 0, pointer = NULL)\n";
+}
+
+// The 3x2 RGB image: texel (x, y) = (10 x + 1, 10 x + 2, 100 + y) in rows of 12 bytes
+// (9 and 3 bytes of padding 0xEE). The last row needs only its 9 bytes.
+std::string rgb_blob() {
+  std::string b;
+  for (int y = 0; y < 2; ++y) {
+    for (int x = 0; x < 3; ++x) b += {char(10 * x + 1), char(10 * x + 2), char(100 + y)};
+    if (y == 0) b += std::string(3, '\xEE');
+  }
+  return b;
+}
+
+ImportResult run_textured(const std::string& dump, const std::string& rgb = rgb_blob()) {
+  apitrace::ImportOptions o;
+  o.texture_stem = "out";
+  o.read_blob = [rgb](const std::string& n) -> std::string {
+    if (n == "blob_call15.bin") return floats({1, 0, 0.5f, 0, 0.5f, -1, 0, 0, 0, 0.25f, -1, 1});
+    if (n == "blob_call29.bin") return floats({0.25f, 0.75f, 1, 0.1f, -0.5f, 2, 0, 0});
+    if (n == "blob_call8.bin") return rgb;
+    throw std::runtime_error("no such blob");
+  };
+  return apitrace::import_apitrace_dump(dump, "t.dump", o);
+}
+
+TEST(ApitraceImport, TexImage2DBlobToRgbaInGlRowOrderWithAlignment) {
+  const ImportResult r = run_textured(textured() + "40 glDrawArrays(mode = GL_TRIANGLES, first = 0, count = 3)\n");
+  EXPECT_EQ(r.draws_imported, 1) << (r.refusals.empty() ? "" : r.refusals[0]);
+  EXPECT_EQ(r.draws_textured, 1);
+  ASSERT_EQ(r.textures.size(), 1u);
+  const apitrace::TextureFile& t = r.textures[0];
+  EXPECT_EQ(t.file, "out.tex5.png");
+  ASSERT_EQ(t.width, 3);
+  ASSERT_EQ(t.height, 2);
+  ASSERT_EQ(t.rgba.size(), 24u);
+  // Row 0 is GL's first row (t = 0), unflipped; RGB gets alpha 255; row 1 starts after
+  // the 3 padding bytes: texel (2, 1) = (21, 22, 101, 255), texel (0, 0) = (1, 2, 100, 255).
+  EXPECT_EQ(std::vector<uint8_t>(t.rgba.begin(), t.rgba.begin() + 4), (std::vector<uint8_t>{1, 2, 100, 255}));
+  EXPECT_EQ(std::vector<uint8_t>(t.rgba.begin() + 20, t.rgba.end()), (std::vector<uint8_t>{21, 22, 101, 255}));
+  // The sampler is set to unit 1, where texture 5 is bound; its state, then the
+  // triangle's (s, t) as the buffer holds them (binary32, 9 digits), t unchanged.
+  EXPECT_NE(r.trace.find("texture 5 out.tex5.png\nbindtexture 5\ntexfilter nearest\ntexwrap clamp repeat\nmipmap off\n"
+                         "texenv replace\n# call 40 glDrawArrays GL_TRIANGLES, 3 vertices, flat colour 255 255 255 "
+                         "(no colour attribute); texture 5 (image of call 8, 3x2), nearest, texenv replace: the "
+                         "fragment shader is a plain texture lookup\n"
+                         "tri4 1 -0 0.75 1 255 255 255 0.25 0.75 0 -0.5 0 1 255 255 255 1 0.100000001 "
+                         "0 -0 0.5 1 255 255 255 -0.5 2\n"),
+            std::string::npos)
+      << r.trace;
+  // One row short of the padding GL_UNPACK_ALIGNMENT 4 asks (the blob 20 bytes, 21 needed):
+  // the texture cannot be read, and a draw that samples it is refused naming the call.
+  const ImportResult s = run_textured(textured() + "40 glDrawArrays(mode = GL_TRIANGLES, first = 0, count = 3)\n",
+                                      rgb_blob().substr(0, 20));
+  ASSERT_EQ(s.refusals.size(), 1u);
+  EXPECT_EQ(s.refusals[0], "t.dump:32: call 40 glDrawArrays refused: texture 5: call 8 glTexImage2D: the pixels have 20 "
+                           "bytes, 3x2 GL_RGB with rows of 12 bytes needs 21");
+  // With GL_UNPACK_ALIGNMENT 1 the rows are 9 bytes: texel (0, 1) starts at byte 9 = the padding 0xEE.
+  std::string d = textured();
+  d.insert(d.find("8 glTexImage2D"), "7 glPixelStorei(pname = GL_UNPACK_ALIGNMENT, param = 1)\n");
+  const ImportResult u = run_textured(d + "40 glDrawArrays(mode = GL_TRIANGLES, first = 0, count = 3)\n");
+  ASSERT_EQ(u.textures.size(), 1u);
+  EXPECT_EQ(u.textures[0].rgba[12], 0xEE);
+}
+
+TEST(ApitraceImport, TextureRespecifiedGetsANewFileAndModulateTakesTheColourAttribute) {
+  const std::string vs =
+      "attribute vec3 position;\\nattribute vec2 texcoord;\\nattribute vec4 vtxcolor;\\nuniform mat4 A;\\n"
+      "varying vec2 tc;\\nvarying vec4 Color;\\nvoid main() {\\n  Color = vtxcolor;\\n  tc = texcoord.st;\\n"
+      "  gl_Position = A * vec4(position, 1.0);\\n}\\n";
+  const std::string fs = "uniform sampler2D s;\\nvarying vec2 tc;\\nvarying vec4 Color;\\nvoid main() {\\n"
+                         "  vec4 texel = texture2D(s, tc);\\n  gl_FragColor = Color * texel;\\n}\\n";
+  std::string d = textured(vs, fs);
+  d.replace(d.find("name = \"tex\") = 4"), 17, "name = \"s\") = 4");
+  d += "32 glBindAttribLocation(program = 1, index = 2, name = \"vtxcolor\")\n33 glLinkProgram(program = 1)\n"
+       "34 glEnableVertexAttribArray(index = 2)\n"
+       "35 glVertexAttribPointer(index = 2, size = 4, type = GL_UNSIGNED_BYTE, normalized = GL_TRUE, stride = 0, pointer = NULL)\n"
+       "36 glDrawArrays(mode = GL_TRIANGLES, first = 0, count = 3)\n"
+       "37 glTexSubImage2D(target = GL_TEXTURE_2D, level = 0, xoffset = 1, yoffset = 1, width = 1, height = 1, "
+       "format = GL_LUMINANCE, type = GL_UNSIGNED_BYTE, pixels = blob(\"blob_call29.bin\"))\n"
+       "38 glDrawArrays(mode = GL_TRIANGLES, first = 0, count = 3)\n";
+  const ImportResult r = run_textured(d);
+  ASSERT_EQ(r.draws_imported, 2) << (r.refusals.empty() ? "" : r.refusals[0]);
+  ASSERT_EQ(r.textures.size(), 2u);
+  EXPECT_EQ(r.textures[1].file, "out.tex5-2.png");
+  // The sub-image's one LUMINANCE byte: the float 0.25f's first byte (00 00 80 3e) = 0 -> (0, 0, 0, 255) at (1, 1).
+  EXPECT_EQ(std::vector<uint8_t>(r.textures[1].rgba.begin() + 16, r.textures[1].rgba.begin() + 20),
+            (std::vector<uint8_t>{0, 0, 0, 255}));
+  EXPECT_NE(r.trace.find("\ntexture 5 out.tex5-2.png\nbindtexture 5\n# call 38"), std::string::npos) << r.trace;
+  // Modulate with vtxcolor, buffer 2's bytes as unsigned normalised: vertex 0's are the
+  // float 0.25f's bytes 00 00 80 3e -> 0 0 128 (the fourth, alpha, is not written).
+  EXPECT_NE(r.trace.find("texenv modulate\n# call 36 glDrawArrays GL_TRIANGLES, 3 vertices, vertex colour; texture 5 "
+                         "(image of call 8, 3x2), nearest, texenv modulate: the fragment shader is a texture lookup "
+                         "times the varying 'Color', the attribute 'vtxcolor' passed through\n"
+                         "tri4 1 -0 0.75 1 0 0 128 0.25 0.75 "),
+            std::string::npos)
+      << r.trace;
+}
+
+TEST(ApitraceImport, TextureFormsThatCannotBeProvenAreRefusedByCallNumber) {
+  auto refusal = [](const std::string& vs, const std::string& fs, const std::string& extra = "") {
+    const ImportResult r = run_textured(textured(vs, fs) + extra + "40 glDrawArrays(mode = GL_TRIANGLES, first = 0, count = 3)\n");
+    return r.refusals.empty() ? std::string("imported") : r.refusals[0];
+  };
+  const std::string head = "t.dump:32: call 40 glDrawArrays refused: ";
+  // glmark2's texgen: the coordinate is computed in the vertex shader.
+  const std::string texgen =
+      "attribute vec3 position;\\nuniform mat4 A;\\nvarying vec2 v_texcoord;\\nvoid main() {\\n"
+      "  v_texcoord = asin(normalize(position).xy) / 3.14159 + 0.5;\\n  gl_Position = A * vec4(position, 1.0);\\n}\\n";
+  EXPECT_EQ(refusal(texgen, kTexFs), head + "vertex shader 2's texture coordinate 'v_texcoord': "
+                                             "'v_texcoord = asin(normalize(position).xy) / 3.14159 + 0.5' is not a pass-through "
+                                             "of an attribute at the top level of main()");
+  // Through a texture matrix uniform: not proven, refused.
+  const std::string matrix =
+      "attribute vec3 position;\\nattribute vec2 texcoord;\\nuniform mat4 A;\\nuniform mat4 T;\\n"
+      "varying vec2 v_texcoord;\\nvoid main() {\\n  v_texcoord = (T * vec4(texcoord, 0.0, 1.0)).xy;\\n"
+      "  gl_Position = A * vec4(position, 1.0);\\n}\\n";
+  EXPECT_NE(refusal(matrix, kTexFs).find(head + "vertex shader 2's texture coordinate 'v_texcoord': "
+                                               "'v_texcoord = (T * vec4(texcoord, 0.0, 1.0)).xy' is not a pass-through"),
+            std::string::npos);
+  // A swizzle that reorders.
+  std::string yx = kTexVs;
+  yx.replace(yx.find("= texcoord;"), 11, "= texcoord.yx;");
+  EXPECT_EQ(refusal(yx, kTexFs), head + "vertex shader 2's texture coordinate 'v_texcoord': 'v_texcoord = texcoord.yx': "
+                                        "the swizzle .yx is not the attribute's first components in order");
+  // Two samplers in a shader of another form: which one is not known.
+  const std::string two = "uniform sampler2D a;\\nuniform sampler2D b;\\nvarying vec2 v_texcoord;\\nvoid main() {\\n"
+                          "  gl_FragColor = texture2D(a, v_texcoord) + texture2D(b, v_texcoord);\\n}\\n";
+  EXPECT_NE(refusal(kTexVs, two).find(head + "fragment shader 3 samples a texture in another form"), std::string::npos);
+  // Mipmapped min filter without mip levels: GL's texture is incomplete.
+  EXPECT_EQ(refusal(kTexVs, kTexFs,
+                    "32 glTexParameteri(target = GL_TEXTURE_2D, pname = GL_TEXTURE_MIN_FILTER, param = GL_LINEAR_MIPMAP_LINEAR)\n"),
+            "t.dump:33: call 40 glDrawArrays refused: texture 5: min filter GL_LINEAR_MIPMAP_LINEAR with mag filter "
+            "GL_NEAREST has no rastsim texfilter (one filter for both)");
+  // A texture rendered into (a framebuffer attachment): its image is not the blob's any more.
+  EXPECT_EQ(refusal(kTexVs, kTexFs,
+                    "32 glFramebufferTexture2D(target = GL_FRAMEBUFFER, attachment = GL_COLOR_ATTACHMENT0, "
+                    "textarget = GL_TEXTURE_2D, texture = 5, level = 0)\n"),
+            "t.dump:33: call 40 glDrawArrays refused: texture 5: call 32 glFramebufferTexture2D: rendered to, its "
+            "image is not imported");
+  // The sampler's unit (1) has no texture once unit 1 is unbound.
+  EXPECT_EQ(refusal(kTexVs, kTexFs, "32 glBindTexture(target = GL_TEXTURE_2D, texture = 0)\n"),
+            "t.dump:33: call 40 glDrawArrays refused: sampler 'tex' (unit 1) has no texture image bound");
+  // Another form that still names one sampler and one varying: imported, its texenv stated.
+  const std::string other = "uniform sampler2D tex;\\nvarying vec2 v_texcoord;\\nvoid main() {\\n"
+                            "  gl_FragColor = texture2D(tex, v_texcoord + vec2(0.5, 0.0));\\n}\\n";
+  const ImportResult r = run_textured(textured(kTexVs, other) + "40 glDrawArrays(mode = GL_TRIANGLES, first = 0, count = 3)\n");
+  EXPECT_EQ(r.draws_textured, 1);
+  ASSERT_EQ(r.texture_notes.size(), 1u);
+  EXPECT_EQ(r.texture_notes.begin()->first,
+            "texenv modulate stated for a fragment shader of another form (gl_FragColor = texture2D(tex,v_texcoord+"
+            "vec2(0.5,0.0)) is neither a texture lookup nor one times a varying)");
+}
+
+TEST(ApitraceImport, GeneratedMipmapsMakeTrilinearAndANewImageDropsThem) {
+  const std::string mips =
+      "32 glTexParameteri(target = GL_TEXTURE_2D, pname = GL_TEXTURE_MIN_FILTER, param = GL_LINEAR_MIPMAP_LINEAR)\n"
+      "33 glTexParameterf(target = GL_TEXTURE_2D, pname = GL_TEXTURE_MAG_FILTER, param = 9729)\n"  // GL_LINEAR as a float
+      "34 glGenerateMipmapEXT(target = GL_TEXTURE_2D)\n"
+      "35 glTexParameteri(target = GL_TEXTURE_2D, pname = GL_TEXTURE_WRAP_T, param = GL_MIRRORED_REPEAT)\n"
+      "40 glDrawArrays(mode = GL_TRIANGLES, first = 0, count = 3)\n";
+  const ImportResult r = run_textured(textured() + mips);
+  ASSERT_EQ(r.draws_textured, 1) << (r.refusals.empty() ? "" : r.refusals[0]);
+  EXPECT_NE(r.trace.find("bindtexture 5\ntexfilter trilinear\ntexwrap clamp mirror\nmipmap on\ntexenv replace\n"
+                         "texlod_bias 0\n"),
+            std::string::npos)
+      << r.trace;
+  // A new level-0 image after glGenerateMipmap has no chain in GL until generated again.
+  const ImportResult s = run_textured(textured() + mips +
+                                      "41 glTexImage2D(target = GL_TEXTURE_2D, level = 0, internalformat = GL_RGB, width = 3, "
+                                      "height = 2, border = 0, format = GL_RGB, type = GL_UNSIGNED_BYTE, pixels = "
+                                      "blob(\"blob_call8.bin\"))\n42 glDrawArrays(mode = GL_TRIANGLES, first = 0, count = 3)\n");
+  ASSERT_EQ(s.refusals.size(), 1u);
+  EXPECT_EQ(s.refusals[0], "t.dump:38: call 42 glDrawArrays refused: texture 5: min filter GL_LINEAR_MIPMAP_LINEAR "
+                           "without mip levels (GL's texture is incomplete)");
+}
+
+TEST(ApitraceShader, FragmentForms) {
+  using apitrace::FragmentForm;
+  using apitrace::recognise_fragment_shader;
+  // glmark2's light-basic-tex.frag: a lookup into a local, times the varying Color.
+  const auto tex = recognise_fragment_shader(
+      "#ifdef GL_ES\nprecision mediump float;\n#endif\nuniform sampler2D MaterialTexture0;\nvarying vec4 Color;\n"
+      "varying vec2 TextureCoord;\nvoid main(void)\n{\n    vec4 texel = texture2D(MaterialTexture0, TextureCoord);\n"
+      "    gl_FragColor = texel * Color;\n}\n");
+  EXPECT_EQ(tex.kind, FragmentForm::Kind::Modulate) << tex.reason;
+  EXPECT_EQ(tex.sampler, "MaterialTexture0");
+  EXPECT_EQ(tex.coord, "TextureCoord");
+  EXPECT_EQ(tex.colour, "Color");
+  const auto plain = recognise_fragment_shader(
+      "uniform sampler2D t;\nvarying vec2 uv;\nvoid main() { gl_FragColor = texture2D(t, uv); }");
+  EXPECT_EQ(plain.kind, FragmentForm::Kind::Replace) << plain.reason;
+  const auto none = recognise_fragment_shader("varying vec4 Color;\nvoid main() { gl_FragColor = Color; }");
+  EXPECT_EQ(none.kind, FragmentForm::Kind::Untextured);
+  // Multiplied by a uniform, not a varying: another form (one sampler, one vec2 still named).
+  const auto uni = recognise_fragment_shader(
+      "uniform sampler2D t;\nuniform vec4 k;\nvarying vec2 uv;\nvoid main() { gl_FragColor = texture2D(t, uv) * k; }");
+  EXPECT_EQ(uni.kind, FragmentForm::Kind::Other);
+  EXPECT_EQ(uni.reason, "'k' multiplied with the texture is not a varying vec4");
+  EXPECT_EQ(uni.sampler, "t");
+  EXPECT_EQ(uni.coord, "uv");
+}
+
 TEST(ApitraceShader, Glmark2FormsAndOthers) {
   using apitrace::recognise_vertex_shader;
   // glmark2's light-basic.vert with its #define prefix.

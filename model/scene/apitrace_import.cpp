@@ -9,6 +9,7 @@
 #include <map>
 #include <optional>
 #include <sstream>
+#include <tuple>
 
 #include <zstd.h>
 
@@ -17,6 +18,7 @@
 #include "ref/scene.h"
 #include "scene/apitrace_dump.h"
 #include "scene/apitrace_shader.h"
+#include "scene/apitrace_texture.h"
 #include "scene/scene_text.h"
 
 namespace rastsim::apitrace {
@@ -38,6 +40,15 @@ struct Program {
   std::map<std::string, int64_t> bound_attribs, attribs;  // glBindAttribLocation; at link / glGetAttribLocation
   std::map<std::string, int64_t> uniform_locations;       // glGetUniformLocation's answers
   std::map<int64_t, Mat4> matrices;                       // glUniformMatrix4fv by location
+  std::map<int64_t, int64_t> ints;                        // glUniform1i by location (a sampler's unit)
+};
+
+// A linked program's shaders as the importer reads them (apitrace_shader.h).
+struct ProgramForm {
+  uint32_t vs = 0, fs = 0;        // the shader objects read
+  ShaderForm vertex;              // gl_Position
+  FragmentForm fragment;          // its use of a texture
+  VaryingSource coord, colour;    // the vertex shader's source of fragment.coord, fragment.colour
 };
 
 // One GL context's objects and state (glXMakeCurrent switches between them).
@@ -46,6 +57,7 @@ struct Context {
   std::map<uint32_t, std::pair<bool, std::string>> shaders;  // shader -> (vertex?, source)
   std::map<uint32_t, Program> programs;
   std::map<int64_t, Attrib> attribs;
+  TextureTable tex;
   uint32_t array_buffer = 0, element_buffer = 0, program = 0;
   std::array<int64_t, 4> viewport{0, 0, 0, 0}, scissor{0, 0, 0, 0};
   bool scissor_test = false, depth_test = false, cull = false, blend = false, depth_mask = true;
@@ -57,6 +69,19 @@ struct Context {
 struct ClipV {
   float x, y, z, w;
   int r, g, b;
+  float s = 0, t = 0;  // texture coordinate (repeats), binary32 as the attribute holds it
+};
+
+// A draw's texture: none (untextured), or the trace state it is drawn with.
+struct DrawTexture {
+  bool on = false;
+  uint32_t id = 0;             // the GL texture (and the trace's texture ID)
+  const GlTexture* tex = nullptr;
+  SamplerState sampler;
+  std::string env;             // replace, modulate, decal
+  const Attrib* coord = nullptr;
+  const Attrib* colour = nullptr;  // a modulating varying's attribute, when it passes one through
+  std::string note;            // how the colour relates to the program's (ImportResult::texture_notes)
 };
 
 // A draw that cannot be imported: the message names the call, and it is counted.
@@ -121,7 +146,13 @@ class Importer {
   void draw_checked(const Call& c, const std::string& mode, const std::vector<uint32_t>& indices);
   std::vector<std::string> config_for_draw() const;
   Mat4 position_matrix(const Program& p, const ShaderForm& f) const;
-  const ShaderForm& form_of(uint32_t program, uint32_t* vs);
+  const ProgramForm& form_of(uint32_t program);
+  const Attrib& enabled_array(const Program& p, const std::string& attr, const char* what) const;
+  DrawTexture texture_for_draw(const Program& p, const ProgramForm& pf) const;
+  void emit_texture(const DrawTexture& d);
+  void emit_vertices(const std::string& mode, const std::vector<ClipV>& verts, bool texcoords);
+  const Attrib* named_colour(const Program& p, const ShaderForm& form) const;
+  ClipV vertex(const Mat4& m, const Attrib& pos, const Attrib* colour, const Attrib* coord, uint32_t i) const;
   std::array<double, 4> fetch(const Attrib& a, uint32_t index, const char* what) const;
   void emit_state();
   void emit(const std::string& line) {
@@ -133,7 +164,13 @@ class Importer {
   ImportOptions opt_;
   std::map<std::string, Context> contexts_;
   Context* cur_;
-  std::map<std::pair<const Context*, uint32_t>, std::pair<uint32_t, ShaderForm>> forms_;  // linked program -> form
+  std::map<std::pair<const Context*, uint32_t>, ProgramForm> forms_;  // linked program -> its forms
+  // Texture files: (context, GL texture, version) -> file; files a GL texture has had;
+  // the trace's texture ID -> file it holds now; the texture state lines last written.
+  std::map<std::tuple<const Context*, uint32_t, int>, std::string> texture_files_;
+  std::map<uint32_t, int> files_of_id_;
+  std::map<uint32_t, std::string> emitted_texture_;
+  std::map<std::string, std::string> emitted_tex_state_;
   std::ostringstream body_;
   int commands_since_frame_ = 0;
   int width_ = 0, height_ = 0;
@@ -270,6 +307,8 @@ bool Importer::program_call(const Call& c) {
     x.program = static_cast<uint32_t>(int_arg(c, "program"));
   } else if (f == "glUniformMatrix4fv") {
     uniform_matrix(c);
+  } else if (f == "glUniform1i") {
+    cur_->programs[cur_->program].ints[int_arg(c, "location")] = int_arg(c, "v0");
   } else {
     return false;
   }
@@ -326,20 +365,25 @@ std::vector<std::string> Importer::config_for_draw() const {
           "raster.front_face=" + lower_enum(x.front_face)};
 }
 
-const ShaderForm& Importer::form_of(uint32_t program, uint32_t* vs) {
+const ProgramForm& Importer::form_of(uint32_t program) {
   auto it = forms_.find({cur_, program});
   if (it == forms_.end()) {
     const Program& p = cur_->programs[program];
-    std::pair<uint32_t, ShaderForm> e{0, {}};
-    e.second.reason = "the program has no vertex shader";
+    ProgramForm e;
+    e.vertex.reason = "the program has no vertex shader";
     for (uint32_t s : p.shaders) {
       const auto sh = cur_->shaders.find(s);
-      if (sh != cur_->shaders.end() && sh->second.first) e = {s, recognise_vertex_shader(sh->second.second)};
+      if (sh == cur_->shaders.end()) continue;
+      if (sh->second.first) e.vs = s, e.vertex = recognise_vertex_shader(sh->second.second);
+      else e.fs = s, e.fragment = recognise_fragment_shader(sh->second.second);
     }
+    const auto vs = cur_->shaders.find(e.vs);
+    if (vs != cur_->shaders.end() && !e.fragment.coord.empty()) e.coord = varying_source(vs->second.second, e.fragment.coord);
+    if (vs != cur_->shaders.end() && !e.fragment.colour.empty())
+      e.colour = varying_source(vs->second.second, e.fragment.colour);
     it = forms_.emplace(std::make_pair(cur_, program), e).first;
   }
-  *vs = it->second.first;
-  return it->second.second;
+  return it->second;
 }
 
 Mat4 Importer::position_matrix(const Program& p, const ShaderForm& f) const {
@@ -445,71 +489,98 @@ void Importer::draw(const Call& c) {
   }
 }
 
-void Importer::draw_checked(const Call& c, const std::string& mode, const std::vector<uint32_t>& indices) {
-  const Context& x = *cur_;
-  if (mode != "GL_TRIANGLES" && mode != "GL_TRIANGLE_STRIP" && mode != "GL_TRIANGLE_FAN")
-    throw Refused{"mode " + mode + " is not imported (triangles, strips and fans are)"};
-  if (x.program == 0) throw Refused{"no program is bound (fixed-function drawing is not imported)"};
-  if (x.blend) throw Refused{"blending is on (the trace format has no blend state)"};
-  uint32_t vs = 0;
-  const ShaderForm& form = form_of(x.program, &vs);
-  if (!form.ok)
-    throw Refused{"program " + std::to_string(x.program) + "'s vertex shader " + std::to_string(vs) +
-                  " is not gl_Position = M * vec4(position, 1.0): " + form.reason};
-  const std::vector<std::string> cfg = config_for_draw();
-  if (r_.config_sets.empty()) r_.config_sets = cfg;
-  if (cfg != r_.config_sets) {
-    std::string want, have;
-    for (size_t k = 0; k < cfg.size(); ++k)
-      if (cfg[k] != r_.config_sets[k]) want += " " + cfg[k], have += " " + r_.config_sets[k];
-    throw Refused{"it needs" + want + " where the trace's first draw fixed" + have};
+// The enabled array in a buffer object that feeds attribute `attr` of program p.
+const Attrib& Importer::enabled_array(const Program& p, const std::string& attr, const char* what) const {
+  const auto loc = p.attribs.find(attr);
+  if (loc == p.attribs.end()) throw Refused{std::string("the location of ") + what + " attribute '" + attr + "' is unknown"};
+  const auto a = cur_->attribs.find(loc->second);
+  if (a == cur_->attribs.end() || !a->second.enabled || a->second.client)
+    throw Refused{std::string(what) + " attribute '" + attr + "' is not an enabled array in a buffer object"};
+  return a->second;
+}
+
+// The texture a draw samples and the trace state it is drawn with (the class comment in
+// apitrace_import.h); throws Refused for what cannot be proven.
+DrawTexture Importer::texture_for_draw(const Program& p, const ProgramForm& pf) const {
+  DrawTexture d;
+  const FragmentForm& f = pf.fragment;
+  if (f.kind == FragmentForm::Kind::Untextured) return d;
+  const std::string fs = "fragment shader " + std::to_string(pf.fs);
+  if (f.sampler.empty() || f.coord.empty())
+    throw Refused{fs + " samples a texture in another form (" + f.reason +
+                  ") without one sampler2D and one varying vec2 to import it by"};
+  if (!pf.coord.ok)
+    throw Refused{"vertex shader " + std::to_string(pf.vs) + "'s texture coordinate '" + f.coord + "': " + pf.coord.reason};
+  d.coord = &enabled_array(p, pf.coord.attribute, "texture coordinate");
+  if (d.coord->type != "GL_FLOAT") throw Refused{"texture coordinate of type " + d.coord->type + " is not imported"};
+  const auto loc = p.uniform_locations.find(f.sampler);
+  const auto unit_it = loc == p.uniform_locations.end() ? p.ints.end() : p.ints.find(loc->second);
+  const int64_t unit = unit_it == p.ints.end() ? 0 : unit_it->second;  // a sampler never set is unit 0
+  const auto b = cur_->tex.bound.find(unit);
+  d.id = b == cur_->tex.bound.end() ? 0 : b->second;
+  const auto t = cur_->tex.textures.find(d.id);
+  const std::string which = "sampler '" + f.sampler + "' (unit " + std::to_string(unit) + ")";
+  if (d.id == 0 || t == cur_->tex.textures.end() || t->second.version == 0)
+    throw Refused{which + " has no texture image bound"};
+  if (d.id > 65535) throw Refused{"texture " + std::to_string(d.id) + " is past the trace's texture IDs (0..65535)"};
+  d.tex = &t->second;
+  if (!d.tex->unusable.empty()) throw Refused{"texture " + std::to_string(d.id) + ": " + d.tex->unusable};
+  if (d.tex->width == 0 || d.tex->height == 0) throw Refused{"texture " + std::to_string(d.id) + " is empty"};
+  d.sampler = sampler_state(*d.tex);
+  if (!d.sampler.ok) throw Refused{"texture " + std::to_string(d.id) + ": " + d.sampler.why};
+  d.on = true;
+  if (f.kind == FragmentForm::Kind::Replace) {
+    d.env = "replace", d.note = "texenv replace: the fragment shader is a plain texture lookup";
+  } else if (f.kind == FragmentForm::Kind::Modulate && pf.colour.ok) {
+    d.env = "modulate", d.colour = &enabled_array(p, pf.colour.attribute, "colour");
+    d.note = "texenv modulate: the fragment shader is a texture lookup times the varying '" + f.colour +
+             "', the attribute '" + pf.colour.attribute + "' passed through";
+  } else if (f.kind == FragmentForm::Kind::Modulate) {
+    d.env = "modulate";
+    d.note = "texenv modulate with the draw's colour in place of the varying '" + f.colour + "' (" + pf.colour.reason + ")";
+  } else {
+    d.env = opt_.other_texenv;
+    d.note = "texenv " + d.env + " stated for a fragment shader of another form (" + f.reason + ")";
   }
-  const Program& p = x.programs.at(x.program);
-  const auto loc = p.attribs.find(form.position);
-  if (loc == p.attribs.end()) throw Refused{"the location of attribute '" + form.position + "' is unknown"};
-  const auto pa = x.attribs.find(loc->second);
-  if (pa == x.attribs.end() || !pa->second.enabled || pa->second.client)
-    throw Refused{"attribute '" + form.position + "' is not an enabled array in a buffer object"};
-  if (pa->second.type != "GL_FLOAT") throw Refused{"position of type " + pa->second.type + " is not imported"};
-  const Attrib* colour = nullptr;
-  for (const std::string& a : form.attributes) {
-    std::string l = a;
-    std::transform(l.begin(), l.end(), l.begin(), [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
-    const auto al = p.attribs.find(a);
-    if ((l.find("color") != std::string::npos || l.find("colour") != std::string::npos) && al != p.attribs.end()) {
-      const auto ca = x.attribs.find(al->second);
-      if (ca == x.attribs.end() || !ca->second.enabled || ca->second.client)
-        throw Refused{"colour attribute '" + a + "' is not an enabled array in a buffer object"};
-      colour = &ca->second;
-    }
+  return d;
+}
+
+// `texture ID FILE` where the trace's ID does not hold this image yet (its file made once
+// a GL texture and version), then the texture state lines that changed.
+void Importer::emit_texture(const DrawTexture& d) {
+  auto state = [&](const std::string& key, const std::string& line) {
+    auto& e = emitted_tex_state_[key];
+    if (e != line) emit(e = line);
+  };
+  if (!d.on) {
+    if (!emitted_tex_state_["bind"].empty()) state("bind", "bindtexture none");
+    return;
   }
-  const Mat4 m = position_matrix(p, form);
-  std::vector<ClipV> verts;
-  for (uint32_t i : indices) {
-    const auto v = fetch(pa->second, i, "position");
-    double o[4];
-    for (int row = 0; row < 4; ++row)
-      o[row] = m[row] * v[0] + m[4 + row] * v[1] + m[8 + row] * v[2] + m[12 + row];
-    ClipV cv{static_cast<float>(o[0]), static_cast<float>(-o[1]), static_cast<float>((o[2] + o[3]) / 2),
-             static_cast<float>(o[3]), opt_.flat_r, opt_.flat_g, opt_.flat_b};
-    if (colour) {
-      const auto col = fetch(*colour, i, "colour");
-      int* dst[3] = {&cv.r, &cv.g, &cv.b};
-      for (int k = 0; k < 3; ++k) {
-        const double u = colour->type == "GL_FLOAT" || colour->normalized ? col[static_cast<size_t>(k)] : col[static_cast<size_t>(k)] / 255.0;
-        *dst[k] = static_cast<int>(std::lround(std::clamp(u, 0.0, 1.0) * 255.0));
-      }
-    }
-    verts.push_back(cv);
+  const auto key = std::make_tuple(static_cast<const Context*>(cur_), d.id, d.tex->version);
+  auto f = texture_files_.find(key);
+  if (f == texture_files_.end()) {
+    const int k = ++files_of_id_[d.id];
+    const std::string file = opt_.texture_stem + ".tex" + std::to_string(d.id) + (k > 1 ? "-" + std::to_string(k) : "") + ".png";
+    r_.textures.push_back({file, d.tex->width, d.tex->height, d.tex->rgba});
+    f = texture_files_.emplace(key, file).first;
   }
-  emit_state();
-  body_ << "# call " << c.number << " " << c.function << " " << mode << ", " << indices.size() << " vertices, "
-        << (colour ? "vertex colour" : "flat colour " + std::to_string(opt_.flat_r) + " " + std::to_string(opt_.flat_g) +
-                                           " " + std::to_string(opt_.flat_b) + " (no colour attribute)")
-        << '\n';
+  if (emitted_texture_[d.id] != f->second) {
+    emit("texture " + std::to_string(d.id) + " " + (emitted_texture_[d.id] = f->second));
+    emitted_tex_state_["bind"].clear();  // a new image: bind again
+  }
+  state("bind", "bindtexture " + std::to_string(d.id));
+  state("filter", "texfilter " + d.sampler.filter);
+  state("wrap", "texwrap " + d.sampler.wrap_s + " " + d.sampler.wrap_t);
+  state("mipmap", std::string("mipmap ") + (d.sampler.mipmap ? "on" : "off"));
+  state("env", "texenv " + d.env);
+  if (d.sampler.mipmap || !emitted_tex_state_["bias"].empty())
+    state("bias", "texlod_bias " + plain_decimal(d.tex->lod_bias));
+}
+
+void Importer::emit_vertices(const std::string& mode, const std::vector<ClipV>& verts, bool texcoords) {
   auto v4 = [&](const ClipV& v) {
     return f32(v.x) + " " + f32(v.y) + " " + f32(v.z) + " " + f32(v.w) + " " + std::to_string(v.r) + " " +
-           std::to_string(v.g) + " " + std::to_string(v.b);
+           std::to_string(v.g) + " " + std::to_string(v.b) + (texcoords ? " " + f32(v.s) + " " + f32(v.t) : "");
   };
   if (mode == "GL_TRIANGLES") {
     for (size_t k = 0; k + 2 < verts.size(); k += 3) {
@@ -522,6 +593,85 @@ void Importer::draw_checked(const Call& c, const std::string& mode, const std::v
     body_ << "end\n";
     r_.triangles += verts.size() - 2;
   }
+}
+
+// The colour attribute of a draw without a modulating varying: one whose name holds
+// "color" or "colour" (docs/workloads.md, "Colours").
+const Attrib* Importer::named_colour(const Program& p, const ShaderForm& form) const {
+  const Attrib* colour = nullptr;
+  for (const std::string& a : form.attributes) {
+    std::string l = a;
+    std::transform(l.begin(), l.end(), l.begin(), [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
+    if ((l.find("color") != std::string::npos || l.find("colour") != std::string::npos) && p.attribs.count(a))
+      colour = &enabled_array(p, a, "colour");
+  }
+  return colour;
+}
+
+void Importer::draw_checked(const Call& c, const std::string& mode, const std::vector<uint32_t>& indices) {
+  const Context& x = *cur_;
+  if (mode != "GL_TRIANGLES" && mode != "GL_TRIANGLE_STRIP" && mode != "GL_TRIANGLE_FAN")
+    throw Refused{"mode " + mode + " is not imported (triangles, strips and fans are)"};
+  if (x.program == 0) throw Refused{"no program is bound (fixed-function drawing is not imported)"};
+  if (x.blend) throw Refused{"blending is on (the trace format has no blend state)"};
+  const ProgramForm& pf = form_of(x.program);
+  const ShaderForm& form = pf.vertex;
+  if (!form.ok)
+    throw Refused{"program " + std::to_string(x.program) + "'s vertex shader " + std::to_string(pf.vs) +
+                  " is not gl_Position = M * vec4(position, 1.0): " + form.reason};
+  const std::vector<std::string> cfg = config_for_draw();
+  if (r_.config_sets.empty()) r_.config_sets = cfg;
+  if (cfg != r_.config_sets) {
+    std::string want, have;
+    for (size_t k = 0; k < cfg.size(); ++k)
+      if (cfg[k] != r_.config_sets[k]) want += " " + cfg[k], have += " " + r_.config_sets[k];
+    throw Refused{"it needs" + want + " where the trace's first draw fixed" + have};
+  }
+  const Program& p = x.programs.at(x.program);
+  const Attrib& pos = enabled_array(p, form.position, "position");
+  if (pos.type != "GL_FLOAT") throw Refused{"position of type " + pos.type + " is not imported"};
+  const DrawTexture tex = texture_for_draw(p, pf);
+  const Attrib* colour = tex.colour ? tex.colour : named_colour(p, form);
+  const Mat4 m = position_matrix(p, form);
+  std::vector<ClipV> verts;
+  for (uint32_t i : indices) verts.push_back(vertex(m, pos, colour, tex.coord, i));
+  emit_state();
+  emit_texture(tex);
+  body_ << "# call " << c.number << " " << c.function << " " << mode << ", " << indices.size() << " vertices, "
+        << (colour ? "vertex colour" : "flat colour " + std::to_string(opt_.flat_r) + " " + std::to_string(opt_.flat_g) +
+                                           " " + std::to_string(opt_.flat_b) + " (no colour attribute)");
+  if (tex.on) {
+    body_ << "; texture " << tex.id << " (image of call " << tex.tex->image_call << ", " << tex.tex->width << "x"
+          << tex.tex->height << "), " << tex.sampler.filter << (tex.sampler.mipmap ? " mipmapped" : "") << ", "
+          << tex.note;
+    ++r_.draws_textured;
+    ++r_.texture_notes[tex.note];
+  }
+  body_ << '\n';
+  emit_vertices(mode, verts, tex.on);
+}
+
+// Vertex i: clip-space position through m, converted (the file comment), its colour and
+// texture coordinate.
+ClipV Importer::vertex(const Mat4& m, const Attrib& pos, const Attrib* colour, const Attrib* coord, uint32_t i) const {
+  const auto v = fetch(pos, i, "position");
+  double o[4];
+  for (int row = 0; row < 4; ++row) o[row] = m[row] * v[0] + m[4 + row] * v[1] + m[8 + row] * v[2] + m[12 + row];
+  ClipV cv{static_cast<float>(o[0]), static_cast<float>(-o[1]), static_cast<float>((o[2] + o[3]) / 2),
+           static_cast<float>(o[3]), opt_.flat_r, opt_.flat_g, opt_.flat_b};
+  if (colour) {
+    const auto col = fetch(*colour, i, "colour");
+    int* dst[3] = {&cv.r, &cv.g, &cv.b};
+    for (int k = 0; k < 3; ++k) {
+      const double u = colour->type == "GL_FLOAT" || colour->normalized ? col[static_cast<size_t>(k)] : col[static_cast<size_t>(k)] / 255.0;
+      *dst[k] = static_cast<int>(std::lround(std::clamp(u, 0.0, 1.0) * 255.0));
+    }
+  }
+  if (coord) {
+    const auto st = fetch(*coord, i, "texture coordinate");  // float: exact binary32 values
+    cv.s = static_cast<float>(st[0]), cv.t = static_cast<float>(st[1]);
+  }
+  return cv;
 }
 
 void Importer::call(const Call& c) {
@@ -541,8 +691,8 @@ void Importer::call(const Call& c) {
   } else if (f == "glDrawArrays" || f == "glDrawElements") {
     if (width_ == 0) fail(c, "a draw before any glViewport (give the framebuffer size)");
     draw(c);
-  } else if (!state_call(c) && !object_call(c)) {
-    program_call(c);
+  } else if (!state_call(c) && !object_call(c) && !program_call(c)) {
+    texture_call(cur_->tex, c, name_, [&](const Value& v) { return bytes_of(c, v); });
   }
 }
 
@@ -551,7 +701,9 @@ ImportResult Importer::finish() {
   std::ostringstream out;
   out << "# rastsim trace imported by `rastsim import-apitrace` from " << name_ << "\n"
       << "# " << r_.frames << " frames, " << r_.draws_imported << " draws imported, " << r_.draws_refused
-      << " refused, " << r_.triangles << " triangles\n# config:";
+      << " refused, " << r_.draws_textured << " textured, " << r_.triangles << " triangles\n";
+  for (const auto& [note, n] : r_.texture_notes) out << "# textured draws, " << n << ": " << note << "\n";
+  out << "# config:";
   for (const std::string& s : r_.config_sets) out << " --set " << s;
   out << "\nviewport " << width_ << " " << height_ << "\n" << body_.str();
   r_.trace = out.str();

@@ -14,10 +14,20 @@
 // State that rastsim keeps in its config, not in the trace (depth test and function,
 // depth writes, culling, front face) is fixed by the first imported draw and returned as
 // config assignments (`config_sets`); a later draw that needs other settings is refused.
+//
+// Textures (apitrace_texture.h, apitrace_shader.h's FragmentForm): a draw whose fragment
+// shader samples a texture is drawn with the texture bound to its sampler's unit, its
+// texture coordinate the vertex shader's pass-through of an attribute (binary32 s, t
+// written unchanged: the image's rows stay in GL's order, t = 0 the file's first row),
+// texenv replace for a plain lookup, modulate for a lookup times a varying colour (the
+// attribute it passes through, else the flat colour, stated), `other_texenv` otherwise
+// (stated). Each texture image a draw uses is returned in `textures`, one file a GL
+// texture and version, for the caller to write beside the trace.
 #pragma once
 
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -31,6 +41,20 @@ struct ImportOptions {
   int flat_r = 255, flat_g = 255, flat_b = 255;
   // Reads a blob file `--blobs` wrote (name as printed); throws on failure.
   std::function<std::string(const std::string&)> read_blob;
+  // Texture files are named STEM.texN.png (GL texture N; its k-th image STEM.texN-k.png),
+  // relative to the trace's directory.
+  std::string texture_stem = "trace";
+  // The texenv of a textured draw whose fragment shader is neither a plain lookup nor a
+  // lookup times a varying: replace, modulate or decal.
+  std::string other_texenv = "modulate";
+};
+
+// A texture image to write beside the trace: `file` relative to its directory, RGBA8
+// rows in GL's order (row 0 = t = 0).
+struct TextureFile {
+  std::string file;
+  int width = 0, height = 0;
+  std::vector<uint8_t> rgba;
 };
 
 struct ImportResult {
@@ -40,6 +64,11 @@ struct ImportResult {
   int draws = 0, draws_imported = 0, draws_refused = 0, clears_refused = 0;
   uint64_t triangles = 0;                // triangles written (strips and fans counted)
   std::vector<std::string> refusals;     // one message a refused draw or clear
+  int draws_textured = 0;                // imported draws drawn with a texture
+  std::vector<TextureFile> textures;     // the images the textured draws use
+  // How the textured draws' colours relate to the program's: "texenv replace: ... plain
+  // texture lookup" and every approximation stated, each with its count of draws.
+  std::map<std::string, int> texture_notes;
 };
 
 // Throws SceneError("name:line: what") on a dump line that cannot be read or a call

@@ -40,6 +40,20 @@ std::string no_space(const std::string& s) {
   return out;
 }
 
+// Whitespace runs as one space, none at the ends: a statement as messages quote it.
+std::string squeeze(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    if (std::isspace(static_cast<unsigned char>(c))) {
+      if (!out.empty() && out.back() != ' ') out += ' ';
+    } else {
+      out += c;
+    }
+  }
+  if (!out.empty() && out.back() == ' ') out.pop_back();
+  return out;
+}
+
 // Declarations at global scope: "QUALIFIER [precision] TYPE a, b;" -> name -> type.
 std::map<std::string, std::string> declared(const std::string& src, const std::string& qualifiers) {
   std::map<std::string, std::string> out;
@@ -183,6 +197,147 @@ ShaderForm recognise_vertex_shader(const std::string& source) {
   f.ok = true;
   f.matrices = factors;
   f.position = attr;
+  return f;
+}
+
+namespace {
+
+// ".xy", ".st", ".rgb", ...: the first n components in order (n >= 1), or "" (all).
+bool leading_swizzle(const std::string& sw) {
+  if (sw.empty()) return true;
+  for (const char* set : {"xyzw", "stpq", "rgba"})
+    if (sw.size() <= 4 && std::string(set).compare(0, sw.size(), sw) == 0) return true;
+  return false;
+}
+
+}  // namespace
+
+VaryingSource varying_source(const std::string& vertex_source, const std::string& varying) {
+  VaryingSource v;
+  const std::string src = strip(vertex_source);
+  const auto attrs = declared(src, "attribute|in");
+  const auto stmts = main_statements(src, v.reason);
+  const Statement* write = nullptr;
+  for (const Statement& s : stmts) {
+    if (!assigns(s.text, varying)) continue;
+    if (write) {
+      v.reason = "the varying '" + varying + "' is written more than once";
+      return v;
+    }
+    write = &s;
+  }
+  if (!write) {
+    if (v.reason.empty()) v.reason = "the vertex shader never writes the varying '" + varying + "'";
+    return v;
+  }
+  const std::string t = no_space(write->text);
+  static const std::regex pass("(\\w+)=(\\w+)(?:\\.(\\w+))?");
+  std::smatch m;
+  if (write->depth != 1 || !std::regex_match(t, m, pass) || m[1] != varying) {
+    v.reason = "'" + squeeze(write->text) + "' is not a pass-through of an attribute at the top level of main()";
+    return v;
+  }
+  const auto a = attrs.find(m[2]);
+  if (a == attrs.end()) {
+    v.reason = "'" + squeeze(write->text) + "': '" + m[2].str() + "' is not an attribute";
+    return v;
+  }
+  if (!leading_swizzle(m[3])) {
+    v.reason = "'" + squeeze(write->text) + "': the swizzle ." + m[3].str() + " is not the attribute's first components in order";
+    return v;
+  }
+  v.ok = true;
+  v.attribute = a->first;
+  v.type = a->second;
+  return v;
+}
+
+namespace {
+
+// "texture2D(S,V)" (spaces removed; GLSL 1.30's texture() too) -> S, V.
+bool lookup_of(const std::string& e, std::string& sampler, std::string& coord) {
+  static const std::regex re("texture(?:2D)?\\((\\w+),(\\w+)\\)");
+  std::smatch m;
+  if (!std::regex_match(e, m, re)) return false;
+  sampler = m[1], coord = m[2];
+  return true;
+}
+
+// The plain forms of fragment shader statements; false (with f.reason) for another.
+bool plain_fragment(const std::vector<Statement>& stmts, FragmentForm& f) {
+  std::map<std::string, std::pair<std::string, std::string>> locals;  // vec4 L = texture2D(S, V)
+  std::string rhs;
+  static const std::regex local("vec4(\\w+)=(.*)");
+  for (const Statement& s : stmts) {
+    const std::string t = no_space(s.text);
+    std::smatch m;
+    std::string sa, co;
+    if (s.depth != 1) {
+      f.reason = "'" + squeeze(s.text) + "' is inside a block";
+      return false;
+    }
+    if (std::regex_match(t, m, local) && lookup_of(m[2], sa, co) && !locals.count(m[1])) {
+      locals[m[1]] = {sa, co};
+    } else if (t.rfind("gl_FragColor=", 0) == 0 && rhs.empty()) {
+      rhs = t.substr(13);
+    } else {
+      f.reason = "'" + squeeze(s.text) + "' is neither a texture lookup into a local vec4 nor gl_FragColor's one assignment";
+      return false;
+    }
+  }
+  // A term: a lookup in place or a local holding one.
+  auto term = [&](const std::string& e) {
+    if (lookup_of(e, f.sampler, f.coord)) return true;
+    const auto l = locals.find(e);
+    if (l == locals.end()) return false;
+    f.sampler = l->second.first, f.coord = l->second.second;
+    return true;
+  };
+  std::vector<std::string> factors;
+  if (term(rhs)) {
+    f.kind = FragmentForm::Kind::Replace;
+    return true;
+  }
+  if (split_product(rhs, factors) && factors.size() == 2) {
+    for (int k = 0; k < 2; ++k)
+      if (term(factors[static_cast<size_t>(k)])) {
+        f.kind = FragmentForm::Kind::Modulate;
+        f.colour = factors[static_cast<size_t>(1 - k)];
+        return true;
+      }
+  }
+  f.reason = "gl_FragColor = " + rhs + " is neither a texture lookup nor one times a varying";
+  return false;
+}
+
+}  // namespace
+
+FragmentForm recognise_fragment_shader(const std::string& source) {
+  FragmentForm f;
+  const std::string src = strip(source);
+  static const std::regex any_lookup("\\btexture(2D)?\\s*\\(");
+  if (!std::regex_search(src, any_lookup)) return f;  // Untextured
+  std::map<std::string, std::string> samplers, vec2s;
+  for (const auto& [n, t] : declared(src, "uniform"))
+    if (t == "sampler2D") samplers[n] = t;
+  const auto varyings = declared(src, "varying|in");
+  for (const auto& [n, t] : varyings)
+    if (t == "vec2") vec2s[n] = t;
+  std::string why;
+  const auto stmts = main_statements(src, why);
+  if (plain_fragment(stmts, f)) {
+    const auto c = varyings.find(f.colour);
+    if (!samplers.count(f.sampler)) f.reason = "'" + f.sampler + "' is not a uniform sampler2D";
+    else if (!vec2s.count(f.coord)) f.reason = "'" + f.coord + "' is not a varying vec2";
+    else if (f.kind == FragmentForm::Kind::Modulate && (c == varyings.end() || c->second != "vec4"))
+      f.reason = "'" + f.colour + "' multiplied with the texture is not a varying vec4";
+    else return f;
+  }
+  if (!why.empty()) f.reason = why;
+  f.kind = FragmentForm::Kind::Other;
+  f.colour.clear();
+  f.sampler = samplers.size() == 1 ? samplers.begin()->first : "";
+  f.coord = vec2s.size() == 1 ? vec2s.begin()->first : "";
   return f;
 }
 
