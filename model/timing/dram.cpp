@@ -224,29 +224,35 @@ inline int64_t DramModel::earliest(const Channel& ch, const Bank::Offer& offer) 
 }
 
 // Raises every bank group's bounds for a command `cmd` issued at clock `at` in group
-// `from`: the same group's by the _L spacing, the others' by the _S one.
+// `from`: the same group's by the _L spacing, the others' by the _S one. A column
+// command raises both column bounds, in one pass over the groups.
 void DramModel::raise_group_bounds(Channel& ch, int from, Cmd cmd, int64_t at) {
   const int64_t burst = p_.burst_clocks();
-  // One bound of every group: at + same_group in `from`, at + other_group elsewhere.
-  const auto raise = [&](int64_t GroupBounds::*bound, int64_t same_group, int64_t other_group) {
-    for (size_t g = 0; g < ch.group.size(); ++g) {
-      int64_t& b = ch.group[g].*bound;
-      b = std::max(b, at + (int(g) == from ? same_group : other_group));
-    }
-  };
+  // The new bounds, [0] in group `from`, [1] in the others.
+  int64_t read[2] = {kNever, kNever}, write[2] = {kNever, kNever};
   switch (cmd) {
     case Cmd::Pre: return;
-    case Cmd::Act: raise(&GroupBounds::act, p_.tRRD_L, p_.tRRD_S); return;
-    case Cmd::Read: {
-      raise(&GroupBounds::read, std::max(burst, p_.tCCD_L), std::max(burst, p_.tCCD_S));
-      const int64_t turnaround = p_.tCL + burst - p_.tCWL + kReadToWriteGap;
-      raise(&GroupBounds::write, turnaround, turnaround);
+    case Cmd::Act:
+      for (size_t g = 0; g < ch.group.size(); ++g) {
+        int64_t& b = ch.group[g].act;
+        b = std::max(b, at + (int(g) == from ? p_.tRRD_L : p_.tRRD_S));
+      }
       return;
+    case Cmd::Read: {
+      read[0] = at + std::max(burst, p_.tCCD_L), read[1] = at + std::max(burst, p_.tCCD_S);
+      write[0] = write[1] = at + p_.tCL + burst - p_.tCWL + kReadToWriteGap;  // the bus turnaround
+      break;
     }
     case Cmd::Write:
-      raise(&GroupBounds::write, std::max(burst, p_.tCCD_L), std::max(burst, p_.tCCD_S));
-      raise(&GroupBounds::read, p_.tCWL + burst + p_.tWTR_L, p_.tCWL + burst + p_.tWTR_S);
-      return;
+      write[0] = at + std::max(burst, p_.tCCD_L), write[1] = at + std::max(burst, p_.tCCD_S);
+      read[0] = at + p_.tCWL + burst + p_.tWTR_L, read[1] = at + p_.tCWL + burst + p_.tWTR_S;
+      break;
+  }
+  for (size_t g = 0; g < ch.group.size(); ++g) {
+    GroupBounds& b = ch.group[g];
+    const size_t other = int(g) == from ? 0 : 1;
+    b.read = std::max(b.read, read[other]);
+    b.write = std::max(b.write, write[other]);
   }
 }
 
