@@ -224,43 +224,48 @@ inline int64_t DramModel::earliest(const Channel& ch, const Bank::Offer& offer) 
 }
 
 // Raises every bank group's bounds for a command `cmd` issued at clock `at` in group
-// `from`: the same group's by the _L spacing, the others' by the _S one.
+// `from`: the same group's by the _L spacing, the others' by the _S one. A column
+// command raises both column bounds, in one pass over the groups.
 void DramModel::raise_group_bounds(Channel& ch, int from, Cmd cmd, int64_t at) {
   const int64_t burst = p_.burst_clocks();
-  // One bound of every group: at + same_group in `from`, at + other_group elsewhere.
-  const auto raise = [&](int64_t GroupBounds::*bound, int64_t same_group, int64_t other_group) {
-    for (size_t g = 0; g < ch.group.size(); ++g) {
-      int64_t& b = ch.group[g].*bound;
-      b = std::max(b, at + (int(g) == from ? same_group : other_group));
-    }
-  };
+  // The new bounds, [0] in group `from`, [1] in the others.
+  int64_t read[2] = {kNever, kNever}, write[2] = {kNever, kNever};
   switch (cmd) {
     case Cmd::Pre: return;
-    case Cmd::Act: raise(&GroupBounds::act, p_.tRRD_L, p_.tRRD_S); return;
-    case Cmd::Read: {
-      raise(&GroupBounds::read, std::max(burst, p_.tCCD_L), std::max(burst, p_.tCCD_S));
-      const int64_t turnaround = p_.tCL + burst - p_.tCWL + kReadToWriteGap;
-      raise(&GroupBounds::write, turnaround, turnaround);
+    case Cmd::Act:
+      for (size_t g = 0; g < ch.group.size(); ++g) {
+        int64_t& b = ch.group[g].act;
+        b = std::max(b, at + (int(g) == from ? p_.tRRD_L : p_.tRRD_S));
+      }
       return;
+    case Cmd::Read: {
+      read[0] = at + std::max(burst, p_.tCCD_L), read[1] = at + std::max(burst, p_.tCCD_S);
+      write[0] = write[1] = at + p_.tCL + burst - p_.tCWL + kReadToWriteGap;  // the bus turnaround
+      break;
     }
     case Cmd::Write:
-      raise(&GroupBounds::write, std::max(burst, p_.tCCD_L), std::max(burst, p_.tCCD_S));
-      raise(&GroupBounds::read, p_.tCWL + burst + p_.tWTR_L, p_.tCWL + burst + p_.tWTR_S);
-      return;
+      write[0] = at + std::max(burst, p_.tCCD_L), write[1] = at + std::max(burst, p_.tCCD_S);
+      read[0] = at + p_.tCWL + burst + p_.tWTR_L, read[1] = at + p_.tCWL + burst + p_.tWTR_S;
+      break;
+  }
+  for (size_t g = 0; g < ch.group.size(); ++g) {
+    GroupBounds& b = ch.group[g];
+    const size_t other = int(g) == from ? 0 : 1;
+    b.read = std::max(b.read, read[other]);
+    b.write = std::max(b.write, write[other]);
   }
 }
 
-// choose() for bank k (its queue not empty): its offers against the best so far.
-inline void DramModel::consider(const Channel& ch, int k, Choice& best, uint64_t& best_seq, bool& best_column) const {
+// choose() for bank k (its queue not empty): its offers against the best so far, by
+// clock and then by the tie-break number (Bank::Offer::tie).
+inline void DramModel::consider(const Channel& ch, int k, Choice& best, uint64_t& best_tie) const {
   const Bank& bank = ch.banks[size_t(k)];
   if (!bank.offers_fresh) make_offers(bank);
   for (int o = 0; o < bank.offer_count; ++o) {
     const Bank::Offer& offer = bank.offers[size_t(o)];
     const int64_t at = earliest(ch, offer);
-    const bool column = offer.cmd == Cmd::Read || offer.cmd == Cmd::Write;
-    const bool better = best.at < 0 || at < best.at ||
-                        (at == best.at && (column != best_column ? column : offer.seq < best_seq));
-    if (better) best = {at, k, offer.index, offer.cmd}, best_seq = offer.seq, best_column = column;
+    if (at < best.at || (at == best.at && offer.tie < best_tie))
+      best = {at, k, offer.index, offer.cmd}, best_tie = offer.tie;
   }
 }
 
@@ -272,13 +277,14 @@ inline void DramModel::consider(const Channel& ch, int k, Choice& best, uint64_t
 DramModel::Choice DramModel::choose(const Channel& ch) const {
   if (ch.choice_valid) return ch.choice;
   Choice best;
-  uint64_t best_seq = 0;
-  bool best_column = false;
+  best.at = INT64_MAX;  // every offer's clock is below it (earliest() >= 0)
+  uint64_t best_tie = 0;
   for (size_t word = 0; word < ch.busy_banks.size(); ++word)
     for (uint64_t bits = ch.busy_banks[word]; bits != 0; bits &= bits - 1) {
       const int k = int(word * 64) + std::countr_zero(bits);
-      consider(ch, k, best, best_seq, best_column);
+      consider(ch, k, best, best_tie);
     }
+  if (best.at == INT64_MAX) best.at = -1;
   ch.choice = best;
   ch.choice_valid = true;
   return best;
@@ -295,7 +301,9 @@ void DramModel::make_offers(const Bank& bank) const {
                           : cmd == Cmd::Pre ? bank.pre_ok
                           : cmd == Cmd::Read ? bank.read_ok
                                              : bank.write_ok;
-    bank.offers[size_t(bank.offer_count++)] = {index, cmd, b.at.bank_group, b.seq, std::max(b.eligible, bound)};
+    const bool column = cmd == Cmd::Read || cmd == Cmd::Write;
+    bank.offers[size_t(bank.offer_count++)] = {index, cmd, b.at.bank_group, std::max(b.eligible, bound),
+                                               (column ? 0 : uint64_t{1} << 63) | b.seq};
   };
   if (bank.hits[0] + bank.hits[1] == 0) return offer(0, bank.open_row < 0 ? Cmd::Act : Cmd::Pre);
   bool read = bank.hits[0] == 0, write = bank.hits[1] == 0;
@@ -433,6 +441,18 @@ void DramModel::advance_to(uint64_t cycle) {
     }
   }
   advanced_ = std::max(advanced_, cycle);
+}
+
+// Flattened: every call below it (next_event, advance_to, choose, issue) is inlined into
+// the one loop the memory system runs each step, so an event pays no call overheads.
+[[gnu::flatten]] uint64_t DramModel::advance_events(uint64_t last) {
+  uint64_t advanced = kNoEvent;
+  for (uint64_t e = next_event(); e != kNoEvent && e <= last; e = next_event()) {
+    advance_to(e);
+    advanced = e;
+    if (has_completions()) break;
+  }
+  return advanced;
 }
 
 const std::vector<DramCompletion>& DramModel::take_completions() {

@@ -147,6 +147,13 @@ class DramModel {
   const std::vector<DramCompletion>& take_completions();
   // take_completions() would return some.
   bool has_completions() const { return !done_.empty() && done_.top().completion.cycle <= advanced_; }
+  // next_event() and advance_to() in one call, event after event: advances to each next
+  // event at or before core cycle `last` and stops after the first that leaves
+  // completions to take (or when the next event comes after `last`). Returns the cycle
+  // of the last event advanced to, kNoEvent when none was. The same calls, decisions and
+  // completions as the loop `while (next_event() <= last) { advance_to(next_event());
+  // if (has_completions()) break; }`.
+  uint64_t advance_events(uint64_t last);
 
   // Appends every command issued from now on to *log (nullptr: stop).
   void log_commands(std::vector<DramCommand>* log) { log_ = log; }
@@ -188,8 +195,10 @@ class DramModel {
       size_t index = 0;
       Cmd cmd = Cmd::Act;
       int group = 0;      // the burst's bank group
-      uint64_t seq = 0;   // the burst's
       int64_t ready = 0;  // DRAM clock: the burst's eligible clock and the bank's bound for cmd
+      // The FR-FCFS tie-break at equal clocks as one number: bit 63 set for an ACT or PRE
+      // (a column command goes first), below it the burst's seq (the oldest goes first).
+      uint64_t tie = 0;
     };
     mutable std::array<Offer, 2> offers{};
     mutable int offer_count = 0;
@@ -238,7 +247,7 @@ class DramModel {
   };
 
   Choice choose(const Channel& ch) const;
-  void consider(const Channel& ch, int k, Choice& best, uint64_t& best_seq, bool& best_column) const;
+  void consider(const Channel& ch, int k, Choice& best, uint64_t& best_tie) const;
   void make_offers(const Bank& bank) const;
   static void touch(Channel& ch, Bank& bank) { bank.offers_fresh = false, ch.choice_valid = false; }
   int64_t earliest(const Channel& ch, const Bank::Offer& offer) const;

@@ -52,18 +52,23 @@ void MemorySystem::take_completions() {
   }
 }
 
+// The DRAM's events before the self-timed client's next request s (at or before
+// `limit`) in one call, up to the first that completes a request: until a completion
+// nothing the callers' loops test changes (outstanding reads, the client's next
+// request), so this is the same as one event a step. Then the client's request at s.
 bool MemorySystem::step(uint64_t limit) {
   const uint64_t s = timed_ ? timed_->next_request_cycle() : SelfTimedClient::kNoRequest;
-  const uint64_t e = dram_.next_event();
-  const uint64_t first = std::min(s, e);
-  if (first == DramModel::kNoEvent || first > limit) return false;
-  if (s <= e) {
-    timed_->request(std::max(s, floor_));
-    return true;
+  constexpr uint64_t kNone = SelfTimedClient::kNoRequest;
+  if (s > 0) {  // the DRAM's events strictly before s (the client goes first at equal cycles)
+    const uint64_t e = dram_.advance_events(s == kNone ? limit : std::min(limit, s - 1));
+    if (e != DramModel::kNoEvent) {
+      floor_ = std::max(floor_, e);
+      if (dram_.has_completions()) take_completions();
+      return true;
+    }
   }
-  dram_.advance_to(e);
-  floor_ = std::max(floor_, e);
-  if (dram_.has_completions()) take_completions();
+  if (s == kNone || s > limit) return false;
+  timed_->request(std::max(s, floor_));
   return true;
 }
 
