@@ -64,7 +64,7 @@ FramePlan plan_frames(const std::vector<FrameWork>& work, double fraction) {
   double X = 0;
   size_t M = 0;
   for (size_t k = 0; k < N; ++k) {
-    p.x[k] = double(work[k].bottleneck());
+    p.x[k] = work[k].size();
     p.certain[k] = k == 0 || k + 1 == N;
     if (p.certain[k]) continue;
     p.stratum[k] = frame_stratum(work[k]);
@@ -212,7 +212,9 @@ FrameSampledResult simulate_frame_sampled(const Scene& scene, const ArchParams& 
                                           double confidence) {
   const auto t0 = std::chrono::steady_clock::now();
   const std::vector<FrameSpan> spans = frame_spans(scene.commands);
-  const std::vector<FrameWork> work = frame_work(scene, arch);
+  EstimateResult whole;
+  std::vector<FrameWork> work = frame_work(scene, arch, &whole);
+  add_frame_dram_reads(scene, arch, whole.dram_peak_bytes_per_cycle, work);
   FramePlan plan = plan_frames(work, spans.size() < kFrameSampledMinFrames ? 1.0 : fraction);
   std::vector<FrameSpan> measured;
   size_t warm_frames = 0, warm_triangles = 0;

@@ -5,7 +5,8 @@
 //
 // - Features (functional, model/fidelity/frames.h frame_work): each frame's per-stage
 //   busy cycles from the analytic walk; x = the busiest stage's (the frame's analytic
-//   bottleneck work).
+//   bottleneck work) plus, with memory.model = "dram", the frame's DRAM bytes read over
+//   the DRAM's peak (add_frame_dram_reads: one reference run frame by frame).
 // - Certain frames, always simulated: the first (the pipeline fills, the state is set)
 //   and the last (the drain and the frame-end resolve and flush are in its cycles).
 // - Strata: the other M frames by their analytic bottleneck stage and the set of stages
@@ -47,7 +48,7 @@
 namespace rastsim::fidelity {
 
 struct FramePlan {
-  std::vector<double> x;        // each frame's analytic bottleneck busy cycles
+  std::vector<double> x;        // each frame's FrameWork::size(), cycles
   std::vector<bool> chosen;     // simulated in detail
   std::vector<bool> certain;    // the first and the last frame
   std::vector<int> stratum;     // bottleneck stage << 24 | mask of stages with work; -1: certain

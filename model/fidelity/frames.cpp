@@ -163,6 +163,19 @@ Framebuffer FrameRenderer::finish() {
 
 uint64_t FrameWork::bottleneck() const { return *std::max_element(busy.begin(), busy.end()); }
 
+void add_frame_dram_reads(const Scene& scene, const ArchParams& arch, double peak, std::vector<FrameWork>& work) {
+  if (!arch.memory.enabled || !(peak > 0)) return;
+  RenderStats stats;
+  size_t k = 0;
+  FrameRenderer r(arch, stats, [&](const FrameCounts& c, const Framebuffer&) {
+    if (k >= work.size()) throw std::logic_error("add_frame_dram_reads: more frames than the scene's spans");
+    work[k].dram_bytes_read = c.dram_bytes_read;
+    work[k++].dram_read_cycles = double(c.dram_bytes_read) / peak;
+  });
+  r.feed(scene.commands);
+  r.finish();
+}
+
 std::vector<FrameWork> frame_work(const Scene& scene, const ArchParams& arch, EstimateResult* whole) {
   const std::vector<FrameSpan> spans = frame_spans(scene.commands);
   std::vector<FrameWork> at(spans.size() + 1);  // running totals at each frame's start, then the end
