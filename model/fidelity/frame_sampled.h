@@ -19,14 +19,17 @@
 //   by at most one): one-dimensional clustering by equal counts. Each cluster's
 //   representative is its member whose x is nearest the cluster's mean x (ties: the
 //   lower frame number).
-// - One SystemC run of the chosen frames in program order; a frame left out contributes
-//   its viewport and scissor commands (carried state) and, when the frame after it is
-//   chosen, all of it: a warm-up, simulated, not measured, so the chosen frame starts
-//   with the backlog and the memory state (caches, fast-clear flags, DRAM) it has in the
-//   full run. The state two frames back is not replayed (docs/fidelity.md).
+// - Each run of consecutive chosen frames is one SystemC run (in a child process: one
+//   elaboration a process) that starts from the reference model's state at its warm-up's
+//   start (framebuffer, the ROP caches' lines and dirty bits, fast-clear flags:
+//   SimOptions::initial_fb, warm_memory; a functional warm-up, one reference pass over the
+//   scene in all) and simulates, unmeasured, the tail of the frame before it (its last
+//   commands holding the FIFOs' entries of triangles, from its last 2D command if later:
+//   the backlog the chosen frame meets), then the frames, then the next frame's first
+//   command. The DRAM starts idle (docs/fidelity.md says what that leaves out).
 //   A chosen frame's y: from command fetch starting its first command to command fetch
-//   starting the next command after it (the last: to the end), as frames[].cycles of the
-//   full run.
+//   starting the next frame's first command (the last: to the end), as frames[].cycles of
+//   the full run.
 // - Estimator: y of the certain frames + per stratum the ratio estimator X_h (sum y /
 //   sum x) over its representatives; variance M_h^2 (1 - n_h/M_h) s_e^2 / n_h from the
 //   ratio residuals e = y - R_h x (a simple random sample's formula); Student t with
@@ -65,8 +68,10 @@ struct FrameSampledResult {
   std::vector<size_t> simulated;  // the frames simulated in detail
   std::vector<double> y;          // their measured cycles, in the same order
   uint64_t cycles_simulated = 0;  // the sub-run's own cycles
-  size_t warm_frames = 0;         // simulated unmeasured: the frames just before chosen ones
-  size_t warm_triangles = 0;      // the triangles those warm-up frames draw
+  size_t warm_frames = 0;         // frames whose tail warms a chosen frame (its predecessor, not chosen)
+  size_t warm_triangles = 0;      // the triangles those tails draw, simulated unmeasured
+  double warm_frame_share = 0;    // the tails' share of their frames' triangles, summed (frames' worth)
+  double warm_functional_seconds = 0;  // wall time of the reference run the warm-ups start from
   double wall_seconds = 0;
   // cycles, cycles_ci_low/high, cycles_error_bound (the interval's farther end from
   // cycles, relative), confidence, frames_total, frames_simulated, frame_sample,

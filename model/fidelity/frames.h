@@ -119,6 +119,9 @@ void add_frame_dram_reads(const Scene& scene, const ArchParams& arch, double pea
 // The commands of frames [r.first, r.last), preceded by the raster state the frames
 // before them left (their last viewport and scissor, if any): `prefix` says how many
 // leading commands are that carried state (timed, not measured).
+// The raster state the commands before `upto` leave: their last viewport and scissor
+// commands, if any, as commands of no frame (frame_line 0).
+std::vector<Command> carried_state(const Scene& scene, size_t upto);
 struct FrameSlice {
   Scene scene;
   size_t prefix = 0;
