@@ -24,9 +24,9 @@
 //   start (framebuffer, the ROP caches' lines and dirty bits, fast-clear flags:
 //   SimOptions::initial_fb, warm_memory; a functional warm-up, one reference pass over the
 //   scene in all) and simulates, unmeasured, the tail of the frame before it (its last
-//   commands holding the FIFOs' entries of triangles, from its last 2D command if later:
-//   the backlog the chosen frame meets), then the frames, then the next frame's first
-//   command. The DRAM starts idle (docs/fidelity.md says what that leaves out).
+//   commands holding a quarter of its triangles, at least the FIFOs' entries: the
+//   backlog and DRAM state the chosen frame meets), then the frames, then the next
+//   frame's first command. The DRAM starts idle (docs/fidelity.md says what that leaves).
 //   A chosen frame's y: from command fetch starting its first command to command fetch
 //   starting the next frame's first command (the last: to the end), as frames[].cycles of
 //   the full run.
