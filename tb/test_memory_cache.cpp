@@ -102,6 +102,36 @@ TEST(MemoryCache, TwoWayStreamByHand) {
   expect_same(c.stats(), want);
 }
 
+TEST(MemoryCache, TakeStateCarriesLinesDirtyBitsLruAndFlags) {
+  // Frame sampling's warm-up (SurfaceClient::take_state): a client that takes another's
+  // state then behaves as that one would. 2 ways x 2 sets of 16-byte lines; `a` writes
+  // lines 0 then 2 (both set 0, misses, read 2 x 16). `b` takes a's state and is fresh
+  // in its counts: W line 0 hits (a fresh client would miss), R line 4 misses and evicts
+  // the LRU line 2, dirty: written back.
+  const SurfaceLayout layout(FbLayout::Linear, 1, 1, 0, 32, 2, 1, 4);
+  SurfaceClient a(layout, {64, 2, 16}, false, 8, 8), b(layout, {64, 2, 16}, false, 8, 8);
+  a.access(0, 0, 0, true);
+  a.access(8, 0, 0, true);
+  b.take_state(a);
+  b.access(0, 0, 0, true);
+  b.access(16, 0, 0, false);
+  MemoryClientStats want;
+  want.accesses = 2, want.hits = 1, want.misses = 1, want.evictions = 1, want.writebacks = 1;
+  want.bytes_read = 16, want.bytes_written = 16;
+  expect_same(b.stats(), want);
+  // Fast-clear flags: after a's clear every block is flagged, so b's fill of line 0 is
+  // made of the clear value and reads nothing (a fresh client reads 16).
+  SurfaceClient fa(layout, {64, 2, 16}, true, 8, 8), fb(layout, {64, 2, 16}, true, 8, 8);
+  fa.clear();
+  fb.take_state(fa);
+  fb.access(0, 0, 0, false);
+  EXPECT_EQ(fb.stats().misses, 1u);
+  EXPECT_EQ(fb.stats().bytes_read, 0u);
+  // Another surface's state is refused.
+  SurfaceClient other(SurfaceLayout(FbLayout::Linear, 1, 1, 4096, 32, 2, 1, 4), {64, 2, 16}, false, 8, 8);
+  EXPECT_THROW(other.take_state(a), std::logic_error);
+}
+
 TEST(MemoryCache, TransfersNameTheirOwnLinesByHand) {
   // TwoWayStreamByHand's stream on a surface at base 4096: every fill at its missed line,
   // the write-back at the evicted line (line 2 = byte 32), the flush line by line in

@@ -6,9 +6,12 @@
 #include <map>
 #include <cmath>
 #include <numeric>
+#include <span>
 #include <stdexcept>
 
+#include "fidelity/run_child.h"
 #include "fidelity/student_t.h"
+#include "ref/pipeline.h"
 #include "ref/prim_assembly.h"
 #include "sc/raster_pipeline.h"
 
@@ -64,7 +67,7 @@ FramePlan plan_frames(const std::vector<FrameWork>& work, double fraction) {
   double X = 0;
   size_t M = 0;
   for (size_t k = 0; k < N; ++k) {
-    p.x[k] = double(work[k].bottleneck());
+    p.x[k] = work[k].size();
     p.certain[k] = k == 0 || k + 1 == N;
     if (p.certain[k]) continue;
     p.stratum[k] = frame_stratum(work[k]);
@@ -175,35 +178,124 @@ size_t command_triangles(const Command& c) {
   return p->clip_space() ? triangle_count(p->topology, p->clip_vertices.size()) : triangle_count(*p);
 }
 
-// The chosen frames' commands in order. A frame left out keeps its viewport and scissor
-// commands (the state the next frames inherit); the frame just before a chosen one is
-// kept whole, a warm-up (simulated, not measured): the chosen frame starts with the
-// backlog and the memory state (ROP caches' lines, fast-clear flags, DRAM queues and open
-// rows) its predecessor leaves in the full run. A tail of the predecessor's last W
-// triangles (the FIFOs' entries) gave the backlog but not the memory state: with
-// memory.model = "dram" frames ran -23..+63 % off their full-run cycles, against
-// -4.3..+3.3 % with the whole predecessor (docs/fidelity.md). `measured[k]`: the span of
-// chosen frame k in the sub-scene; `warm_frames`, `warm_triangles`: what the warm-ups hold.
-Scene chosen_frames(const Scene& scene, const std::vector<FrameSpan>& spans, const std::vector<bool>& chosen,
-                    std::vector<FrameSpan>& measured, size_t& warm_frames, size_t& warm_triangles) {
+// The warm-up's share of its frame's triangles, at least: the chosen frame meets the
+// DRAM's queues and open rows the predecessor's last stretch leaves, and the segment's
+// DRAM starts idle. Measured at F = 0.05 (docs/fidelity.md): bunny on default, the
+// FIFOs' entries alone (32 triangles) left its frames -7.1 .. 0 % off, a tenth of the
+// frame -3.5 .. 0 %, a quarter -1.7 .. +0.7 %.
+constexpr double kWarmShare = 0.25;
+
+// Where the warm-up in frame `s` starts: its last whole commands holding at least
+// max(`warm`, kWarmShare of its triangles) triangles (`warm`: the FIFOs' entries, the
+// backlog the next frame meets at its first fetch).
+size_t warm_start(const Scene& scene, const FrameSpan& s, size_t warm) {
+  size_t all = 0;
+  for (size_t i = s.begin; i < s.end; ++i) all += command_triangles(scene.commands[i]);
+  warm = std::max(warm, size_t(std::ceil(kWarmShare * double(all))));
+  size_t i = s.end, tri = 0;
+  while (i > s.begin && tri < warm) tri += command_triangles(scene.commands[--i]);
+  return i;
+}
+
+// A run of consecutive chosen frames [first, last), simulated from the scene's commands
+// [from, ...): `from` is the warm-up's start in frame first - 1 (frames[first].begin for
+// frame 0). The run ends with frame `last`'s first command, when there is one: its
+// fetch ends frame last - 1's cycles, as in the full run.
+struct Segment {
+  size_t first = 0, last = 0, from = 0;
+};
+
+std::vector<Segment> segments_of(const Scene& scene, const std::vector<FrameSpan>& spans,
+                                 const std::vector<bool>& chosen, size_t warm) {
+  std::vector<Segment> out;
+  for (size_t k = 0; k < spans.size(); ++k) {
+    if (!chosen[k] || (k > 0 && chosen[k - 1])) continue;
+    Segment s{k, k, k == 0 ? spans[0].begin : warm_start(scene, spans[k - 1], warm)};
+    while (s.last < spans.size() && chosen[s.last]) ++s.last;
+    out.push_back(s);
+  }
+  return out;
+}
+
+// The segment's scene (the state commands before `from`, then from `from` to the end
+// marker) and where each of its frames starts in it.
+Scene segment_scene(const Scene& scene, const std::vector<FrameSpan>& spans, const Segment& s,
+                    std::vector<size_t>& frame_at) {
   Scene sub;
   sub.source = scene.source;
-  measured.assign(spans.size(), FrameSpan{});
-  warm_frames = warm_triangles = 0;
-  for (size_t k = 0; k < spans.size(); ++k) {
-    const size_t at = sub.commands.size();
-    const bool warms = !chosen[k] && k + 1 < spans.size() && chosen[k + 1];
-    warm_frames += warms;
-    for (size_t i = spans[k].begin; i < spans[k].end; ++i) {
-      const CommandBody& b = scene.commands[i].body;
-      if (chosen[k] || warms || std::holds_alternative<CmdViewport>(b) || std::holds_alternative<CmdScissor>(b)) {
-        sub.commands.push_back(scene.commands[i]);
-        if (warms) warm_triangles += command_triangles(scene.commands[i]);
-      }
-    }
-    if (chosen[k]) measured[k] = {at, sub.commands.size(), spans[k].line};
-  }
+  sub.commands = carried_state(scene, s.from);
+  const size_t prefix = sub.commands.size();
+  const size_t end = s.last < spans.size() ? spans[s.last].begin + 1 : spans.back().end;
+  sub.commands.insert(sub.commands.end(), scene.commands.begin() + std::ptrdiff_t(s.from),
+                      scene.commands.begin() + std::ptrdiff_t(end));
+  frame_at.clear();
+  for (size_t k = s.first; k <= s.last && k < spans.size(); ++k) frame_at.push_back(prefix + spans[k].begin - s.from);
   return sub;
+}
+
+// One segment in a child process (SystemC elaborates once a process) from the reference's
+// framebuffer and memory state at its start (null: the scene's start): the frames' y.
+nlohmann::json run_segment(const Scene& sub, const std::vector<size_t>& frame_at, size_t frames,
+                           const ArchParams& arch, const Framebuffer* fb, const RopMemory* mem) {
+  return run_in_child([&] {
+    std::vector<uint64_t> starts;
+    sc::SimOptions o;
+    o.on_fetch = record_command_starts(sub, starts);
+    o.initial_fb = fb;
+    o.warm_memory = mem;
+    const sc::SimResult r = sc::simulate_scene(sub, arch, o);
+    std::vector<uint64_t> y;
+    for (size_t i = 0; i < frames; ++i) {
+      const uint64_t to = i + 1 < frame_at.size() ? starts.at(frame_at[i + 1]) : r.cycles;
+      y.push_back(to - starts.at(frame_at[i]));
+    }
+    return nlohmann::json{{"y", y}, {"cycles", r.cycles}};
+  });
+}
+
+// Every segment run, in order: the chosen frames' y and what the warm-ups cost.
+struct SegmentRuns {
+  std::vector<double> y;  // by frame; 0 where not chosen
+  uint64_t cycles = 0;    // the runs' own cycles, summed
+  size_t warm_frames = 0, warm_triangles = 0;
+  double warm_share = 0, functional_seconds = 0;
+};
+
+SegmentRuns run_segments(const Scene& scene, const std::vector<FrameSpan>& spans, const ArchParams& arch,
+                         const std::vector<Segment>& segs) {
+  // The functional warm-up: the reference model through every command before each
+  // segment's start (framebuffer, ROP caches, fast-clear flags), one pass in all.
+  RenderStats ref_stats;
+  SceneRenderer ref(arch.raster, ref_stats, {}, Framebuffer::kDefaultTileLog2, 1, arch.memory);
+  SegmentRuns out;
+  out.y.assign(spans.size(), 0.0);
+  size_t done = 0;
+  std::vector<size_t> frame_at;
+  for (const Segment& s : segs) {
+    const auto f0 = std::chrono::steady_clock::now();
+    ref.run(std::span<const Command>(scene.commands).subspan(done, s.from - done));
+    done = s.from;
+    const bool cold = s.from == 0;
+    const Framebuffer& fb = ref.frame_so_far();
+    out.functional_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - f0).count();
+    const Scene sub = segment_scene(scene, spans, s, frame_at);
+    const nlohmann::json j = run_segment(sub, frame_at, s.last - s.first, arch, cold ? nullptr : &fb,
+                                         cold ? nullptr : ref.memory());
+    const auto ys = j.at("y").get<std::vector<uint64_t>>();
+    for (size_t k = s.first; k < s.last; ++k) out.y[k] = double(ys.at(k - s.first));
+    out.cycles += j.at("cycles").get<uint64_t>();
+    if (s.first == 0) continue;
+    size_t tri = 0, all = 0;
+    for (size_t i = spans[s.first - 1].begin; i < spans[s.first - 1].end; ++i) {
+      const size_t t = command_triangles(scene.commands[i]);
+      all += t;
+      if (i >= s.from) tri += t;
+    }
+    ++out.warm_frames;
+    out.warm_triangles += tri;
+    out.warm_share += all ? double(tri) / double(all) : 1.0;
+  }
+  return out;
 }
 
 }  // namespace
@@ -212,29 +304,19 @@ FrameSampledResult simulate_frame_sampled(const Scene& scene, const ArchParams& 
                                           double confidence) {
   const auto t0 = std::chrono::steady_clock::now();
   const std::vector<FrameSpan> spans = frame_spans(scene.commands);
-  const std::vector<FrameWork> work = frame_work(scene, arch);
-  FramePlan plan = plan_frames(work, spans.size() < kFrameSampledMinFrames ? 1.0 : fraction);
-  std::vector<FrameSpan> measured;
-  size_t warm_frames = 0, warm_triangles = 0;
-  const Scene sub = chosen_frames(scene, spans, plan.chosen, measured, warm_frames, warm_triangles);
-  std::vector<uint64_t> starts;
-  sc::SimOptions opts;
-  opts.on_fetch = record_command_starts(sub, starts);
-  const sc::SimResult run = sc::simulate_scene(sub, arch, opts);
-  // A chosen frame runs to the next simulated command after it (a chosen frame, or a
-  // carried state command of one left out), the last to the end.
-  std::vector<double> y(spans.size(), 0.0);
-  for (size_t k = 0; k < spans.size(); ++k) {
-    if (!plan.chosen[k]) continue;
-    const uint64_t from = starts.at(measured[k].begin);
-    const uint64_t to = measured[k].end < starts.size() ? starts[measured[k].end] : run.cycles;
-    y[k] = double(to - from);
-  }
-  FrameSampledResult r = extrapolate_frames(plan, y, confidence);
+  EstimateResult whole;
+  std::vector<FrameWork> work = frame_work(scene, arch, &whole);
+  add_frame_dram_reads(scene, arch, whole.dram_peak_bytes_per_cycle, work);
+  const FramePlan plan = plan_frames(work, spans.size() < kFrameSampledMinFrames ? 1.0 : fraction);
+  const SegmentRuns runs =
+      run_segments(scene, spans, arch, segments_of(scene, spans, plan.chosen, triangle_path_entries(arch.timing)));
+  FrameSampledResult r = extrapolate_frames(plan, runs.y, confidence);
   r.fraction = fraction;
-  r.cycles_simulated = run.cycles;
-  r.warm_frames = warm_frames;
-  r.warm_triangles = warm_triangles;
+  r.cycles_simulated = runs.cycles;
+  r.warm_frames = runs.warm_frames;
+  r.warm_triangles = runs.warm_triangles;
+  r.warm_frame_share = runs.warm_share;
+  r.warm_functional_seconds = runs.functional_seconds;
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;
 }
@@ -256,6 +338,9 @@ nlohmann::json FrameSampledResult::to_json() const {
           {"cycles_simulated", cycles_simulated},
           {"warm_frames", warm_frames},
           {"warm_triangles", warm_triangles},
+          {"warm_frame_share", warm_frame_share},
+          {"frames_detailed", double(frames_simulated) + warm_frame_share},
+          {"warm_functional_seconds", warm_functional_seconds},
           {"wall_seconds", wall_seconds}};
 }
 

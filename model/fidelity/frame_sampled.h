@@ -5,7 +5,8 @@
 //
 // - Features (functional, model/fidelity/frames.h frame_work): each frame's per-stage
 //   busy cycles from the analytic walk; x = the busiest stage's (the frame's analytic
-//   bottleneck work).
+//   bottleneck work) plus, with memory.model = "dram", the frame's DRAM bytes read over
+//   the DRAM's peak (add_frame_dram_reads: one reference run frame by frame).
 // - Certain frames, always simulated: the first (the pipeline fills, the state is set)
 //   and the last (the drain and the frame-end resolve and flush are in its cycles).
 // - Strata: the other M frames by their analytic bottleneck stage and the set of stages
@@ -18,14 +19,17 @@
 //   by at most one): one-dimensional clustering by equal counts. Each cluster's
 //   representative is its member whose x is nearest the cluster's mean x (ties: the
 //   lower frame number).
-// - One SystemC run of the chosen frames in program order; a frame left out contributes
-//   its viewport and scissor commands (carried state) and, when the frame after it is
-//   chosen, all of it: a warm-up, simulated, not measured, so the chosen frame starts
-//   with the backlog and the memory state (caches, fast-clear flags, DRAM) it has in the
-//   full run. The state two frames back is not replayed (docs/fidelity.md).
+// - Each run of consecutive chosen frames is one SystemC run (in a child process: one
+//   elaboration a process) that starts from the reference model's state at its warm-up's
+//   start (framebuffer, the ROP caches' lines and dirty bits, fast-clear flags:
+//   SimOptions::initial_fb, warm_memory; a functional warm-up, one reference pass over the
+//   scene in all) and simulates, unmeasured, the tail of the frame before it (its last
+//   commands holding a quarter of its triangles, at least the FIFOs' entries: the
+//   backlog and DRAM state the chosen frame meets), then the frames, then the next
+//   frame's first command. The DRAM starts idle (docs/fidelity.md says what that leaves).
 //   A chosen frame's y: from command fetch starting its first command to command fetch
-//   starting the next command after it (the last: to the end), as frames[].cycles of the
-//   full run.
+//   starting the next frame's first command (the last: to the end), as frames[].cycles of
+//   the full run.
 // - Estimator: y of the certain frames + per stratum the ratio estimator X_h (sum y /
 //   sum x) over its representatives; variance M_h^2 (1 - n_h/M_h) s_e^2 / n_h from the
 //   ratio residuals e = y - R_h x (a simple random sample's formula); Student t with
@@ -47,7 +51,7 @@
 namespace rastsim::fidelity {
 
 struct FramePlan {
-  std::vector<double> x;        // each frame's analytic bottleneck busy cycles
+  std::vector<double> x;        // each frame's FrameWork::size(), cycles
   std::vector<bool> chosen;     // simulated in detail
   std::vector<bool> certain;    // the first and the last frame
   std::vector<int> stratum;     // bottleneck stage << 24 | mask of stages with work; -1: certain
@@ -64,8 +68,10 @@ struct FrameSampledResult {
   std::vector<size_t> simulated;  // the frames simulated in detail
   std::vector<double> y;          // their measured cycles, in the same order
   uint64_t cycles_simulated = 0;  // the sub-run's own cycles
-  size_t warm_frames = 0;         // simulated unmeasured: the frames just before chosen ones
-  size_t warm_triangles = 0;      // the triangles those warm-up frames draw
+  size_t warm_frames = 0;         // frames whose tail warms a chosen frame (its predecessor, not chosen)
+  size_t warm_triangles = 0;      // the triangles those tails draw, simulated unmeasured
+  double warm_frame_share = 0;    // the tails' share of their frames' triangles, summed (frames' worth)
+  double warm_functional_seconds = 0;  // wall time of the reference run the warm-ups start from
   double wall_seconds = 0;
   // cycles, cycles_ci_low/high, cycles_error_bound (the interval's farther end from
   // cycles, relative), confidence, frames_total, frames_simulated, frame_sample,

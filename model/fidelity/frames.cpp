@@ -163,6 +163,19 @@ Framebuffer FrameRenderer::finish() {
 
 uint64_t FrameWork::bottleneck() const { return *std::max_element(busy.begin(), busy.end()); }
 
+void add_frame_dram_reads(const Scene& scene, const ArchParams& arch, double peak, std::vector<FrameWork>& work) {
+  if (!arch.memory.enabled || !(peak > 0)) return;
+  RenderStats stats;
+  size_t k = 0;
+  FrameRenderer r(arch, stats, [&](const FrameCounts& c, const Framebuffer&) {
+    if (k >= work.size()) throw std::logic_error("add_frame_dram_reads: more frames than the scene's spans");
+    work[k].dram_bytes_read = c.dram_bytes_read;
+    work[k++].dram_read_cycles = double(c.dram_bytes_read) / peak;
+  });
+  r.feed(scene.commands);
+  r.finish();
+}
+
 std::vector<FrameWork> frame_work(const Scene& scene, const ArchParams& arch, EstimateResult* whole) {
   const std::vector<FrameSpan> spans = frame_spans(scene.commands);
   std::vector<FrameWork> at(spans.size() + 1);  // running totals at each frame's start, then the end
@@ -188,20 +201,26 @@ std::vector<FrameWork> frame_work(const Scene& scene, const ArchParams& arch, Es
   return out;
 }
 
-FrameSlice slice_frames(const Scene& scene, const std::vector<FrameSpan>& spans, FrameRange r) {
-  FrameSlice out;
-  out.scene.source = scene.source;
+std::vector<Command> carried_state(const Scene& scene, size_t upto) {
   const Command *viewport = nullptr, *scissor = nullptr;
-  for (size_t i = 0; i < spans[r.first].begin; ++i) {
+  for (size_t i = 0; i < upto; ++i) {
     const CommandBody& b = scene.commands[i].body;
     if (std::holds_alternative<CmdViewport>(b)) viewport = &scene.commands[i];
     if (std::holds_alternative<CmdScissor>(b)) scissor = &scene.commands[i];
   }
+  std::vector<Command> out;
   for (const Command* c : {viewport, scissor})
     if (c) {
-      out.scene.commands.push_back(*c);
-      out.scene.commands.back().frame_line = 0;
+      out.push_back(*c);
+      out.back().frame_line = 0;
     }
+  return out;
+}
+
+FrameSlice slice_frames(const Scene& scene, const std::vector<FrameSpan>& spans, FrameRange r) {
+  FrameSlice out;
+  out.scene.source = scene.source;
+  out.scene.commands = carried_state(scene, spans[r.first].begin);
   out.prefix = out.scene.commands.size();
   out.scene.commands.insert(out.scene.commands.end(), scene.commands.begin() + std::ptrdiff_t(spans[r.first].begin),
                             scene.commands.begin() + std::ptrdiff_t(spans[r.last - 1].end));

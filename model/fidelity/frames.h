@@ -99,13 +99,29 @@ class FrameRenderer {
 struct FrameWork {
   std::array<uint64_t, kStageCount> busy{};
   uint64_t framebuffer_bytes = 0, triangles = 0, fragments = 0;
+  // memory.model = "dram", after add_frame_dram_reads: the reference's DRAM bytes read in
+  // the frame (frames[].dram_bytes_read) and those bytes over the DRAM's peak bytes a
+  // core cycle (EstimateResult::dram_peak_bytes_per_cycle), cycles; 0 otherwise.
+  uint64_t dram_bytes_read = 0;
+  double dram_read_cycles = 0;
   uint64_t bottleneck() const;  // the busiest stage's busy cycles
+  // Frame sampling's x, cycles: bottleneck() + dram_read_cycles. A line fill stalls the
+  // ROP's transaction until its data arrives (timing/memory_timing.h) while writes are
+  // posted, so reads add to the bottleneck's time rather than overlap it (docs/fidelity.md).
+  double size() const { return double(bottleneck()) + dram_read_cycles; }
 };
 std::vector<FrameWork> frame_work(const Scene& scene, const ArchParams& arch, EstimateResult* whole = nullptr);
+// memory.model = "dram": each frame's dram_bytes_read and dram_read_cycles from one
+// reference run of the scene frame by frame (FrameRenderer; functional, untimed), `peak`
+// bytes a core cycle. Does nothing with memory.model = "fixed".
+void add_frame_dram_reads(const Scene& scene, const ArchParams& arch, double peak, std::vector<FrameWork>& work);
 
 // The commands of frames [r.first, r.last), preceded by the raster state the frames
 // before them left (their last viewport and scissor, if any): `prefix` says how many
 // leading commands are that carried state (timed, not measured).
+// The raster state the commands before `upto` leave: their last viewport and scissor
+// commands, if any, as commands of no frame (frame_line 0).
+std::vector<Command> carried_state(const Scene& scene, size_t upto);
 struct FrameSlice {
   Scene scene;
   size_t prefix = 0;

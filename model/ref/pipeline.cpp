@@ -533,6 +533,8 @@ void SceneRenderer::Impl::draw_chunk() {
   for (const RenderStats& s : part) add_draw_stats(stats, s);
 }
 
+const RopMemory* SceneRenderer::memory() const { return impl_->mem ? &*impl_->mem : nullptr; }
+
 const Framebuffer& SceneRenderer::frame_so_far() {
   Impl& m = *impl_;
   if (m.mem) m.stats.memory = m.mem->stats();

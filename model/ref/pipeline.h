@@ -195,6 +195,9 @@ class SceneRenderer {
   // framebuffer as drawn so far (unresolved), and the memory system's and texture unit's
   // counts up to here in the stats (the caches are not flushed: finish() writes them back).
   const Framebuffer& frame_so_far();
+  // The functional memory system as it stands (memory.model = "fixed": null): its caches'
+  // and fast-clear flags' state, which frame sampling's warm-up starts a timed run from.
+  const RopMemory* memory() const;
   Framebuffer finish();
   int threads() const;  // the threads the pipeline runs on (1 with a fragment sink or scanline)
   // Sees every Hi-Z cull and accept (depth.hiz), before the tile is drawn.

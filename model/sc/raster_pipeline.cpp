@@ -291,7 +291,7 @@ SimResult simulate_commands(CommandSource source, const ArchParams& params, cons
     memory = new MemorySystem(params.dram);
     if (!opts.mem_trace_path.empty()) memory->record_trace(&mem_trace.emplace(opts.mem_trace_path).stream());
     scanout = attach_scanout_fetch(*memory, params).release();  // first: its requests at cycle 0 go first
-    top->rop.attach_memory(*memory, params.memory);  // its first request: the frame's depth clear
+    top->rop.attach_memory(*memory, params.memory, opts.warm_memory);  // first request: the depth clear (cold)
     top->engine2d.attach_memory(top->rop.memory_port());  // draws through the ROP's colour client
     top->texture.attach_memory(*memory);                   // its cache's line fills
     top->coarse_raster.attach_memory(*memory);             // the spilled Hi-Z table's entries

@@ -22,6 +22,7 @@
 #include <nlohmann/json.hpp>
 
 #include "config/arch_params.h"
+#include "ref/memory/rop_memory.h"
 #include "ref/pipeline.h"
 #include "sc/command_fetch.h"
 #include "timing/memory_system.h"
@@ -59,6 +60,11 @@ struct SimOptions {
   // the initial one). `--frames A:B` replays frames 0..A-1 in the reference model and
   // times frames A.. from their framebuffer (model/fidelity/frames.h).
   const Framebuffer* initial_fb = nullptr;
+  // memory.model = "dram": the ROP's memory clients' state to start from (their caches'
+  // lines and dirty bits, fast-clear flags: a functional run's, SceneRenderer::memory())
+  // instead of empty caches after a depth clear. Frame sampling's warm-up
+  // (model/fidelity/frame_sampled.h); the DRAM itself starts idle, rows closed.
+  const RopMemory* warm_memory = nullptr;
 };
 
 struct StageReport {

@@ -97,9 +97,10 @@ Rop::Rop(SimContext& ctx, const RasterState& arch, const TimingParams& p,
   fb_.clear_depth(static_cast<uint32_t>((uint64_t{1} << st_.depth_bits) - 1));
 }
 
-void Rop::attach_memory(MemorySystem& mem, const MemoryParams& p) {
+void Rop::attach_memory(MemorySystem& mem, const MemoryParams& p, const RopMemory* warm) {
   mem_ = std::make_unique<RopMemoryPort>(mem, p, fb_, st_.depth_bits);
   mem_->begin(0);
+  if (warm) return mem_->functional().take_state(*warm);
   mem_->functional().clear_depth();
   mem_->cleared(MemClient::RopDepth);
 }

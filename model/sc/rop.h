@@ -56,8 +56,9 @@ class Rop : public Stage {
     sc_core::sc_module_name name = stage_name(kId).data());
   Framebuffer& framebuffer() { return fb_; }
   // Before the run: the ROP's accesses go through `mem` (the frame starts with the depth
-  // clear the memory system sees, as render_scene's).
-  void attach_memory(MemorySystem& mem, const MemoryParams& p);
+  // clear the memory system sees, as render_scene's; with `warm`, from that functional
+  // state instead, no clear: SimOptions::warm_memory).
+  void attach_memory(MemorySystem& mem, const MemoryParams& p, const RopMemory* warm = nullptr);
   // After the run (cycle `end`): the frame end's accesses if the resolve did not make
   // them, every request drained; the functional counts (disabled without a memory).
   MemoryStats finish_memory(uint64_t end);

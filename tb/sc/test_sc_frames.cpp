@@ -191,11 +191,13 @@ TEST(ScFrames, FrameSampledIntervalCoversTheFullRun) {
 }
 
 // With the DRAM model a frame's cycles depend on the memory state it starts from. The
-// warm-up before a sampled frame (its predecessor, whole) gives it the full run's backlog
-// and memory state but for what the frames before the predecessor left (DRAM queues and
-// open rows): within 1 % here (measured +0.00 % and +0.16 % on the two warmed frames; the
-// earlier warm-up, the predecessor's last W triangles, gave +1.36 % and +3.81 % and fails;
-// on the 100-frame sequences -4.3..+3.3 % a frame, docs/fidelity.md).
+// warm-up before a sampled frame (the reference's framebuffer and ROP caches at the
+// start of its predecessor's tail, then the tail in timing) gives it the full run's
+// backlog and cache state but for the DRAM's (a segment's DRAM starts idle): within 1 %
+// here (measured -0.23 % and +0.02 % on the two warmed frames; the whole predecessor
+// simulated gave +0.00 % and +0.16 %, its last W triangles alone in one run +1.36 % and
+// +3.81 %, which fails; on the 100-frame sequences -5.48..+2.86 % a frame,
+// docs/results.md).
 TEST(ScFrames, FrameSampledFramesMatchTheFullRunUnderDram) {
   const Config cfg = make_config({"raster.depth_func=less", "memory.model=dram", "rop.fast_clear=true",
                                   "memory.fb_layout=tiled"});

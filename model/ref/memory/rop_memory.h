@@ -47,6 +47,11 @@ class RopMemory {
   void finish();
 
   MemoryStats stats() const { return {true, color.stats(), depth.stats()}; }
+  // Both surfaces' state from `from` (SurfaceClient::take_state; the same config's).
+  void take_state(const RopMemory& from) {
+    color.take_state(from.color);
+    depth.take_state(from.depth);
+  }
 
   SurfaceClient color, depth;
 

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <stdexcept>
 #include <utility>
 
 #include "ref/framebuffer.h"
@@ -132,6 +133,17 @@ void SurfaceClient::write_back_block(uint64_t block) {
   transfer(offset, plane, true);
   stats_.compressed_bytes += plane;
   ++stats_.compressed_blocks;
+}
+
+void SurfaceClient::take_state(const SurfaceClient& from) {
+  if (from.flagged_.size() != flagged_.size() || from.cache_.has_value() != cache_.has_value() ||
+      from.layout_.base() != layout_.base() || from.plane_stored_.size() != plane_stored_.size())
+    throw std::logic_error("SurfaceClient::take_state: the state of another surface");
+  cache_ = from.cache_;
+  flagged_ = from.flagged_;
+  n_flagged_ = from.n_flagged_;
+  plane_stored_ = from.plane_stored_;
+  last_x_ = last_y_ = last_s_ = -1;  // the offset cache: recomputed at the next access
 }
 
 void SurfaceClient::clear() {

@@ -81,6 +81,11 @@ class SurfaceClient {
   void clear();
   // The frame end: every dirty line written back.
   void write_back_all();
+  // The state `from` (a client of the same surface) has reached: its cache's lines, LRU
+  // order and dirty bits, its fast-clear flags and plane-encoded blocks; not its counts or
+  // callbacks. Frame sampling starts a timed run from a functional run's state with it
+  // (model/fidelity/frame_sampled.h). Throws std::logic_error for another surface's.
+  void take_state(const SurfaceClient& from);
   // Bytes written from `address` by a stream that bypasses the cache (the resolved image).
   void count_streamed_write(uint64_t address, uint64_t bytes) {
     stats_.bytes_written += bytes;
