@@ -112,7 +112,9 @@ void BinnerStage::body() {
     commands_.pop_front();
     const uint64_t candidates = uint64_t(binner_->bin_range(in.work->bbox).area());
     binner_call([&] { binner_->add_triangle(*in.work, cmd->loc); });
-    if (binner_->held().size() > held_.size()) held_.push_back(in.work);  // recorded (listed in a bin)
+    // Recorded (listed in a bin): a copy of its own, held for the pass, so setup's pool
+    // (sc/recycler.h, which expects few triangles in flight) gets its triangle back.
+    if (binner_->held().size() > held_.size()) held_.push_back(make_local<SetupTriangle>(*in.work));
     attribute_to_no_tile();
     busy(binning_triangle_cycles(candidates));
   }
