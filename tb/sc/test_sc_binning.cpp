@@ -122,6 +122,27 @@ TEST(ScBinning, OverflowCostsCycles) {
   }
 }
 
+// A colour clear on a 64 x 64 screen, 32 x 32 bins (4), memory.model = fixed, worked by
+// hand from docs/binning.md's table (R = 64 bytes, 64 clear pixels a cycle): each bin a
+// begin marker (no load: 1), its clear (1024 / 64 = 16) and its store (4096 / 64 = 64):
+// the ROP 4 x 81 + 1 (end of frame) = 325 busy cycles; the binner 1 (viewport) + 1
+// (clear) + 1 (end of frame) + 4 x 3 (markers) + 1 (its pass on) = 16.
+TEST(ScBinning, HandWorkedCycles) {
+  Scene scene;
+  scene.commands.push_back({CmdViewport{64, 64}, {"hand", 1}});
+  scene.commands.push_back({CmdClear{10, 20, 30}, {"hand", 2}});
+  const nlohmann::json r = run_isolated([&, cfg = make_config({"pipeline.mode=binned", "display.width=64",
+                                                               "display.height=64", "rop.clear_pixels_per_cycle=64",
+                                                               "rop.resolve_bytes_per_cycle=64"})] {
+    return simulate_stats(scene, cfg);
+  });
+  ASSERT_FALSE(r.contains("error")) << r["error"];
+  EXPECT_EQ(r["stages"]["rop"]["busy"], 325);
+  EXPECT_EQ(r["stages"]["rop"]["transactions_in"], 13);
+  EXPECT_EQ(r["stages"]["binner"]["busy"], 16);
+  EXPECT_EQ(r["dram_bytes_framebuffer"], 64 * 64 * 4);
+}
+
 TEST(ScBinning, EarlyAndHierarchicalZRefused) {
   const Scene scene = random_scene(32, 64, 64, 10);
   for (const char* key : {"depth.early=true", "depth.hiz=minmax"}) {
