@@ -25,13 +25,17 @@ PixelRect Binner::bin_rect(int b) const {
   return PixelRect{x, y, x + st_.bin.width, y + st_.bin.height}.intersect({0, 0, st_.fb_width, st_.fb_height});
 }
 
+PixelRect Binner::bin_range(const PixelRect& box) const {
+  if (box.empty()) return {};
+  return {box.x0 / st_.bin.width, box.y0 / st_.bin.height, (box.x1 - 1) / st_.bin.width + 1,
+          (box.y1 - 1) / st_.bin.height + 1};
+}
+
 std::vector<int> Binner::bins_of(const SetupTriangle& tri) const {
   std::vector<int> out;
-  if (tri.bbox.empty()) return out;
-  const int bx0 = tri.bbox.x0 / st_.bin.width, bx1 = (tri.bbox.x1 - 1) / st_.bin.width;
-  const int by0 = tri.bbox.y0 / st_.bin.height, by1 = (tri.bbox.y1 - 1) / st_.bin.height;
-  for (int by = by0; by <= by1; ++by)
-    for (int bx = bx0; bx <= bx1; ++bx) {
+  const PixelRect range = bin_range(tri.bbox);
+  for (int by = range.y0; by < range.y1; ++by)
+    for (int bx = range.x0; bx < range.x1; ++bx) {
       const int b = by * nx_ + bx;
       if (st_.bin.rule == BinningRule::Exact) {
         // The raster's own traversal over the box clipped to the bin: listed when it
@@ -90,10 +94,10 @@ void Binner::add_clear(ClearRecord c, const SourceLoc& loc) {
 }
 
 void Binner::add_clear_color(uint8_t r, uint8_t g, uint8_t b, const SourceLoc& loc) {
-  add_clear({0, false, r, g, b, 0}, loc);
+  add_clear({0, BinClear{false, r, g, b, 0}, 0}, loc);
 }
 
-void Binner::add_clear_depth(uint32_t z, const SourceLoc& loc) { add_clear({0, true, 0, 0, 0, z}, loc); }
+void Binner::add_clear_depth(uint32_t z, const SourceLoc& loc) { add_clear({0, BinClear{true, 0, 0, 0, z}, 0}, loc); }
 
 void Binner::finish() { render_pass(true); }
 
@@ -120,14 +124,18 @@ void Binner::render_bin(int b, bool final_pass) {
   const auto& list = lists_[size_t(b)];
   if (list.empty() && clears_.empty() && !(final_pass && !color_stored_[size_t(b)])) return;
   const PixelRect r = bin_rect(b);
-  load_bin(r, color_stored_[size_t(b)] || st_.bin.load_color, depth_stored_[size_t(b)] || st_.bin.load_depth);
+  const BinBytes loads = load_bytes(r, color_stored_[size_t(b)] || st_.bin.load_color,
+                                    depth_stored_[size_t(b)] || st_.bin.load_depth);
+  if (hooks_.begin_bin) hooks_.begin_bin(b, r, loads);
+  load_bin(r, loads);
   ++stats_.bins_rendered;
   size_t c = 0;
   const auto clears_before = [&](uint32_t seq) {
     for (; c < clears_.size() && clears_[c].seq < seq; ++c) {
       stats_.geometry_bytes_read += kBinClearRecordBytes;
       if (mem_) mem_->record(clears_[c].offset, kBinClearRecordBytes, false);
-      apply_clear(clears_[c], r);
+      if (hooks_.clear) hooks_.clear(clears_[c].clear, r);
+      else clear_bin_rect(fb_, r, clears_[c].clear);
     }
   };
   for (const Entry& e : list) {
@@ -144,42 +152,51 @@ void Binner::render_bin(int b, bool final_pass) {
   }
   clears_before(seq_);
   const bool depth = !final_pass || st_.bin.store_depth;
-  store_bin(r, final_pass, depth);
+  const BinBytes stores = store_bytes(r, final_pass, depth);
+  store_bin(r, final_pass, stores);
+  if (hooks_.end_bin) hooks_.end_bin(b, r, final_pass, stores);
   color_stored_[size_t(b)] = 1;
   if (depth) depth_stored_[size_t(b)] = 1;
 }
 
 // A bin's loads before its pass: colour and depth, every sample (4 and 2-or-4 bytes).
-void Binner::load_bin(const PixelRect& r, bool color, bool depth) {
+BinBytes Binner::load_bytes(const PixelRect& r, bool color, bool depth) const {
   const uint64_t samples = uint64_t(r.area()) * uint64_t(st_.samples);
-  if (color) stats_.framebuffer_bytes_read += samples * 4;
-  if (depth) stats_.framebuffer_bytes_read += samples * bin_depth_sample_bytes(st_.depth_bits);
-  if (!mem_) return;
-  if (color) mem_->color(r, false);
-  if (depth) mem_->depth(r, false);
+  return {color ? samples * 4 : 0, depth ? samples * bin_depth_sample_bytes(st_.depth_bits) : 0};
 }
 
 // A bin's stores after its pass: colour always, resolved (4 bytes a pixel) on the last
 // pass, every sample on an overflow pass; depth when `depth`.
-void Binner::store_bin(const PixelRect& r, bool final_pass, bool depth) {
+BinBytes Binner::store_bytes(const PixelRect& r, bool final_pass, bool depth) const {
   const uint64_t samples = uint64_t(r.area()) * uint64_t(st_.samples);
-  stats_.framebuffer_bytes_written += final_pass ? uint64_t(r.area()) * 4 : samples * 4;
-  if (depth) stats_.framebuffer_bytes_written += samples * bin_depth_sample_bytes(st_.depth_bits);
+  return {final_pass ? uint64_t(r.area()) * 4 : samples * 4,
+          depth ? samples * bin_depth_sample_bytes(st_.depth_bits) : 0};
+}
+
+void Binner::load_bin(const PixelRect& r, BinBytes bytes) {
+  stats_.framebuffer_bytes_read += bytes.total();
+  if (!mem_) return;
+  if (bytes.color) mem_->color(r, false);
+  if (bytes.depth) mem_->depth(r, false);
+}
+
+void Binner::store_bin(const PixelRect& r, bool final_pass, BinBytes bytes) {
+  stats_.framebuffer_bytes_written += bytes.total();
   if (!mem_) return;
   if (final_pass && st_.samples > 1) mem_->resolved_color(r);
   else mem_->color(r, true);
-  if (depth) mem_->depth(r, true);
+  if (bytes.depth) mem_->depth(r, true);
 }
 
-void Binner::apply_clear(const ClearRecord& c, const PixelRect& r) {
+void clear_bin_rect(Framebuffer& fb, const PixelRect& r, const BinClear& c) {
   for (int y = r.y0; y < r.y1; ++y)
     for (int x = r.x0; x < r.x1; ++x)
-      for (int s = 0; s < st_.samples; ++s) {
+      for (int s = 0; s < fb.samples; ++s) {
         if (c.depth) {
-          fb_.set_depth(x, y, s, c.z);
+          fb.set_depth(x, y, s, c.z);
           continue;
         }
-        uint8_t* p = fb_.sample(x, y, s);
+        uint8_t* p = fb.sample(x, y, s);
         p[0] = c.r;
         p[1] = c.g;
         p[2] = c.b;

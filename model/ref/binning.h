@@ -54,6 +54,22 @@ struct BinStats {
 // depth_bits <= 16) or 4 a sample, as the memory system's surfaces (docs/memory.md).
 inline uint64_t bin_depth_sample_bytes(int depth_bits) { return uint64_t(depth_bytes_per_sample(depth_bits)); }
 
+// A clear record's content: the colour to (r, g, b, 255), or the depth to z.
+struct BinClear {
+  bool depth = false;
+  uint8_t r = 0, g = 0, b = 0;
+  uint32_t z = 0;
+};
+// Applies clear `c` to every sample of pixels `r` of `fb` (a bin's rectangle: the tile
+// buffer's samples), as a bin's render pass does.
+void clear_bin_rect(Framebuffer& fb, const PixelRect& r, const BinClear& c);
+
+// Bytes a bin moves, colour and depth (a load before its pass or a store after it).
+struct BinBytes {
+  uint64_t color = 0, depth = 0;
+  uint64_t total() const { return color + depth; }
+};
+
 class Binner {
  public:
   // draw(tri, walk): the renderer draws tri with walk's box (tri's, clipped to a bin).
@@ -72,6 +88,22 @@ class Binner {
   // and stored (colour resolved when raster.samples > 1).
   void finish();
 
+  // What a timed model sees of the render pass (sc/binning.h); unset members: nothing.
+  // begin_bin before a bin's loads (the bytes it loads), clear instead of writing the
+  // framebuffer (the timed ROP applies it in its place in the stream), end_bin after the
+  // bin's stores (the bytes it stores; colour resolved on the last pass when
+  // raster.samples > 1). The render pass calls them in order, bin by bin.
+  struct Hooks {
+    std::function<void(int bin, const PixelRect& r, BinBytes load)> begin_bin;
+    std::function<void(const BinClear& c, const PixelRect& r)> clear;
+    std::function<void(int bin, const PixelRect& r, bool final_pass, BinBytes store)> end_bin;
+  };
+  void set_hooks(Hooks h) { hooks_ = std::move(h); }
+  // The triangles the parameter buffer holds, in record order (draw()'s `tri` is one).
+  const std::vector<SetupTriangle>& held() const { return tris_; }
+  // The bins a box overlaps (bbox's list; exact's candidates): bins_x0 .. x1 - 1 by y0 .. y1 - 1.
+  PixelRect bin_range(const PixelRect& box) const;
+
   int bins_x() const { return nx_; }
   int bins_y() const { return ny_; }
   PixelRect bin_rect(int b) const;  // clipped to the screen
@@ -81,9 +113,7 @@ class Binner {
  private:
   struct ClearRecord {
     uint32_t seq = 0;  // records before it in the buffer: it applies after those triangles
-    bool depth = false;
-    uint8_t r = 0, g = 0, b = 0;
-    uint32_t z = 0;
+    BinClear clear;
     uint64_t offset = 0;  // its byte offset in the parameter buffer
   };
 
@@ -91,14 +121,16 @@ class Binner {
   void add_clear(ClearRecord c, const SourceLoc& loc);
   void render_pass(bool final_pass);
   void render_bin(int b, bool final_pass);
-  void apply_clear(const ClearRecord& c, const PixelRect& r);
-  void load_bin(const PixelRect& r, bool color, bool depth);
-  void store_bin(const PixelRect& r, bool final_pass, bool depth);
+  BinBytes load_bytes(const PixelRect& r, bool color, bool depth) const;
+  BinBytes store_bytes(const PixelRect& r, bool final_pass, bool depth) const;
+  void load_bin(const PixelRect& r, BinBytes bytes);  // counted, and its transfers
+  void store_bin(const PixelRect& r, bool final_pass, BinBytes bytes);
 
   RasterState st_;
   TraversalParams tp_;
   Framebuffer& fb_;
   DrawFn draw_;
+  Hooks hooks_;
   BinStats& stats_;
   int nx_ = 1, ny_ = 1;
   uint64_t used_ = 0;  // parameter buffer bytes holding records and entries

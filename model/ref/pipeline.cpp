@@ -62,14 +62,13 @@ void apply_viewport(const CmdViewport& c, const SourceLoc& loc, RasterState& st)
   st.viewport_height = c.height;
 }
 
-// A depth clear's value in the depth buffer's raster.depth_bits unsigned normalised code
-// (the immediate ROP's and the binned pipeline's).
+}  // namespace
+
 uint32_t clear_depth_value(const CmdClearDepth& c, const SourceLoc& loc, const RasterState& st) {
   const auto z = quantize_unorm(c.z, st.depth_bits);
   if (!z) throw SceneError(loc.str() + ": clear depth must be in [0, 1]");
   return *z;
 }
-}  // namespace
 
 bool apply_state_command(const Command& cmd, RasterState& st, Framebuffer& fb, RopMemory* mem) {
   return visit_command(cmd, Overloaded{

@@ -94,6 +94,9 @@ double hiz_culled_fraction(const RenderStats& s);
 // naming the command's file:line for a viewport that does not fit. `mem`, if given,
 // sees the clears (RopMemory::clear_color, clear_depth).
 bool apply_state_command(const Command& cmd, RasterState& st, Framebuffer& fb, RopMemory* mem = nullptr);
+// A depth clear's value in raster.depth_bits' unsigned normalised code (the immediate
+// ROP's, the binned pipeline's and the timed binner's); SceneError at `loc` outside [0, 1].
+uint32_t clear_depth_value(const CmdClearDepth& c, const SourceLoc& loc, const RasterState& st);
 
 // The state commands' handlers of a walk that treats them alike (visit_command,
 // ref/scene.h): each of viewport, clear, clear depth and scissor returns state(). Named

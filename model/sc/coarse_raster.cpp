@@ -12,6 +12,7 @@ void CoarseRaster::body() {
   for (;;) {
     const SetupItem in = read(in_);
     if (in.state && hiz_) hiz_->state(*in.state);
+    if (in.state && binned_) bin_clip_ = bin_walk_clip(*in.state, bin_clip_);
     if (pass_state(in, out_)) continue;
     switch (tp_.method) {
       case Traversal::Tiled: walk_tiled(in); break;
@@ -19,9 +20,10 @@ void CoarseRaster::body() {
         TraversalCounters& c = ctx_.render.traversal;
         ++c.tiles_visited;
         ++c.tiles_partial;
-        attribute_to(in.work->bbox.x0, in.work->bbox.y0);
+        const PixelRect box = walk_box(*in.work);
+        attribute_to(box.x0, box.y0);
         busy(p_.coarse_walk_cycles(1));
-        write(out_, TileItem{nullptr, TileWork{in.work, in.work->bbox, TileClass::Partial}});
+        write(out_, TileItem{nullptr, TileWork{in.work, box, TileClass::Partial}});
         break;
       }
       case Traversal::Hierarchical: walk_hierarchical(in); break;
@@ -35,8 +37,9 @@ void CoarseRaster::walk_hierarchical(const SetupItem& in) {
   const SetupTriangle& t = *in.work;
   const uint64_t visited0 = c.tiles_visited;
   uint64_t cycles_done = 0;
-  attribute_to(t.bbox.x0, t.bbox.y0);  // no leaf: the walk's cycles go to its first tile
-  rastsim::walk_hierarchical(t, t.bbox, tp_.hier_levels, 0, frac_bits_, c, [&](const PixelRect& fp, TileClass cls) {
+  const PixelRect box = walk_box(t);
+  attribute_to(box.x0, box.y0);  // no leaf: the walk's cycles go to its first tile
+  rastsim::walk_hierarchical(t, box, tp_.hier_levels, 0, frac_bits_, c, [&](const PixelRect& fp, TileClass cls) {
     // This leaf was the (tiles_visited - visited0)-th tile classified, counted from 1.
     const uint64_t leave_at = (c.tiles_visited - visited0 - 1) / p_.coarse_tiles_per_cycle + 1;
     attribute_to(fp.x0, fp.y0);  // the walk up to this leaf, and the rest after the last
@@ -67,14 +70,15 @@ void CoarseRaster::walk_tiled(const SetupItem& in) {
   TraversalCounters& c = ctx_.render.traversal;
   {
     const SetupTriangle& t = *in.work;
-    const PixelRect tiles = tile_range(t.bbox, tile_size_);
+    const PixelRect box = walk_box(t);
+    const PixelRect tiles = tile_range(box, tile_size_);
     uint64_t cycles_done = 0;  // cycles of this walk spent
     // One tile a cycle at most, from windows of coarse.tiles_per_cycle (as the RTL).
     TiledWalk walk = p_.tiled_walk();
-    attribute_to(t.bbox.x0, t.bbox.y0);
+    attribute_to(box.x0, box.y0);
     for (int ty = tiles.y0; ty < tiles.y1; ++ty) {
       for (int tx = tiles.x0; tx < tiles.x1; ++tx) {
-        const PixelRect fp = tile_footprint(t.bbox, tile_size_, tx, ty);
+        const PixelRect fp = tile_footprint(box, tile_size_, tx, ty);
         ++c.tiles_visited;
         const TileClass cls = classify_tile(t, fp, frac_bits_);
         if (mem_) mem_->begin(now());  // the tile's entry reads from now (timing/hiz_memory_port.h)
@@ -100,7 +104,7 @@ void CoarseRaster::walk_tiled(const SetupItem& in) {
     }
     // The rest of the walk (rejected tiles after the last written one): the last tile's.
     if (!tiles.empty()) {
-      const PixelRect last = tile_footprint(t.bbox, tile_size_, tiles.x1 - 1, tiles.y1 - 1);
+      const PixelRect last = tile_footprint(box, tile_size_, tiles.x1 - 1, tiles.y1 - 1);
       attribute_to(last.x0, last.y0);
     }
     busy(walk.cycles() - cycles_done);

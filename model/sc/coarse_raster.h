@@ -38,6 +38,7 @@
 #include "ref/hiz.h"
 #include "ref/study/coverage_check.h"
 #include "ref/traverse.h"
+#include "sc/binning.h"
 #include "sc/tri_setup.h"
 #include "timing/hiz_memory_port.h"
 
@@ -59,7 +60,8 @@ class CoarseRaster : public Stage {
                Link<SetupItem>& in, Link<TileItem>& out,
              sc_core::sc_module_name name = stage_name(kId).data())
       : Stage(name, ctx, kId), tile_size_(arch.tile_size), frac_bits_(arch.coord_format.frac_bits),
-        tp_(traversal_params(arch)), p_(p), in_(in), out_(out), arch_(arch) {
+        tp_(traversal_params(arch)), p_(p), in_(in), out_(out), arch_(arch),
+        binned_(arch.bin.mode == PipelineMode::Binned) {
     if (!traversal_is_exact(tp_.method)) check_.emplace(arch.fb_width, arch.fb_height);
     ctx_.render.hiz_mode = arch.hiz_mode;
     if (hiz_applies(arch)) hiz_.emplace(arch);
@@ -98,6 +100,12 @@ class CoarseRaster : public Stage {
   RasterState arch_;  // the depth state and the table's parameters
   std::optional<HizTracker> hiz_;  // functional-first Hi-Z (ref/hiz.h)
   std::unique_ptr<HizMemoryPort> mem_;  // memory.model = "dram" with a table, else null
+  // pipeline.mode = binned (sc/binning.h): each triangle's box clipped to the bin of the
+  // last begin marker (the reference's draw(tri, walk)); the triangle itself, its full
+  // box, goes on to fine raster and interpolation.
+  bool binned_;
+  PixelRect bin_clip_;
+  PixelRect walk_box(const SetupTriangle& t) const { return binned_ ? t.bbox.intersect(bin_clip_) : t.bbox; }
 };
 
 }  // namespace rastsim::sc

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "sc/command_fetch.h"
 
+#include "ref/binning.h"
 #include "ref/pipeline.h"
 #include "ref/prim_assembly.h"
 
@@ -14,6 +15,7 @@ CommandSource scene_source(const Scene& scene) {
 
 void CommandFetch::fetch(const CommandPtr& p) {
   const Command& cmd = *p;
+  if (st_.bin.mode == PipelineMode::Binned) check_binned_command(cmd, st_);  // not yet binned: refused
   const auto mark = [&](size_t k) {
     if (ctx_.on_fetch) ctx_.on_fetch(cmd, k, now());
   };
@@ -64,7 +66,8 @@ void CommandFetch::body() {
   source_([&](CommandPtr cmd) { fetch(cmd); });
   // Multisampling: the frame ends with the resolve pass, ordered after every fragment by
   // a marker fetched like a command header (sc/rop.h).
-  if (st_.samples > 1) {
+  // Binned mode: the marker also ends the binning pass (sc/binning.h).
+  if (st_.samples > 1 || st_.bin.mode == PipelineMode::Binned) {
     busy(p_.fetch_header_cycles());
     write(out_, CommandItem{borrow_command(ctx_.end_of_frame), {}});
   }

@@ -8,6 +8,8 @@
 
 #include <systemc>
 
+#include "ref/hiz.h"
+#include "sc/binning.h"
 #include "sc/model_error.h"
 #include "sc/rop.h"
 #include "sc/texture.h"
@@ -32,6 +34,7 @@ struct RasterPipeline : sc_core::sc_module {
         screen_fifo(fifo_name(FifoId::Screen).data(), p.fifo_entries(FifoId::Screen), ctx.tracing, ctx.lockstep),
         triangle_fifo(fifo_name(FifoId::Triangle).data(), p.fifo_entries(FifoId::Triangle), ctx.tracing, ctx.lockstep),
         setup_fifo(fifo_name(FifoId::Setup).data(), p.fifo_entries(FifoId::Setup), ctx.tracing, ctx.lockstep),
+        bin_fifo("bin_fifo", p.fifo_entries(FifoId::Setup), ctx.tracing, ctx.lockstep),
         tile_fifo(fifo_name(FifoId::Tile).data(), p.fifo_entries(FifoId::Tile), ctx.tracing, ctx.lockstep),
         pixel_fifo(fifo_name(FifoId::Pixel).data(), p.fifo_entries(FifoId::Pixel), ctx.tracing, ctx.lockstep),
         fragment_fifo(fifo_name(FifoId::Fragment).data(), p.fifo_entries(FifoId::Fragment), ctx.tracing, ctx.lockstep),
@@ -46,7 +49,7 @@ struct RasterPipeline : sc_core::sc_module {
         front_end(ctx, p, clip_command_fifo, screen_fifo),
         prim_assembly(ctx, p, command_fifo, screen_fifo, triangle_fifo),
         tri_setup(ctx, arch, p, triangle_fifo, setup_fifo),
-        coarse_raster(ctx, arch, p, setup_fifo, tile_fifo),
+        coarse_raster(ctx, arch, p, arch.bin.mode == PipelineMode::Binned ? bin_fifo : setup_fifo, tile_fifo),
         fine_raster(ctx, arch, p, tile_fifo, pixel_fifo),
         interpolate(ctx, arch, p, pixel_fifo, fragment_fifo, texture_fifo, texture_done),
         texture(ctx, arch, p, texture_fifo, fragment_fifo, texture_done),
@@ -59,6 +62,9 @@ struct RasterPipeline : sc_core::sc_module {
   Link<ScreenItem> screen_fifo;
   Link<TriangleItem> triangle_fifo;
   Link<SetupItem> setup_fifo;
+  // pipeline.mode = binned: binner -> coarse raster (setup_fifo then feeds the binner;
+  // sc/binning.h). Outside the table: unused, and unreported, in immediate mode.
+  Link<SetupItem> bin_fifo;
   Link<TileItem> tile_fifo;
   Link<PixelItem> pixel_fifo;
   Link<FragmentItem> fragment_fifo;
@@ -261,6 +267,19 @@ void collect_stages(RasterPipeline& top, const TimingParams& p, Recorders& rec, 
   });
 }
 
+// The binner's figures (outside the stage table: stages.binner, fifos.bin_fifo).
+void collect_binner(BinnerStage& b, Link<SetupItem>& fifo, SimResult& r) {
+  b.finish(r.cycles);
+  const StageStats& st = b.stats();
+  r.binner = StageReport{b.basename(), st.busy, st.stalled, st.starved, st.transactions_in, st.transactions_out,
+                         {}, st.transactions()};
+  r.bin_fifo = FifoReport{fifo.basename(), fifo.depth(), fifo.writes(), fifo.reads()};
+  r.cycles_lower_bound = std::max(r.cycles_lower_bound, st.busy);
+  if (fifo.writes() != fifo.reads())
+    throw ModelError(std::string(fifo.name()) + ": " + std::to_string(fifo.writes() - fifo.reads()) +
+                     " transactions left behind (pipeline deadlock)");
+}
+
 }  // namespace
 
 SimResult simulate_commands(CommandSource source, const ArchParams& params, const SimOptions& opts) {
@@ -271,9 +290,11 @@ SimResult simulate_commands(CommandSource source, const ArchParams& params, cons
   setenv("SC_COPYRIGHT_MESSAGE", "DISABLE", 1);  // before the simulation context exists
   sc_core::sc_report_handler::set_actions(sc_core::SC_INFO, sc_core::SC_DO_NOTHING);
 
-  if (arch.bin.mode == PipelineMode::Binned)
-    throw std::invalid_argument("pipeline.mode = binned: the SystemC level has no binned pipeline yet; `rastsim "
-                                "render` draws it (docs/binning.md, \"Not yet\")");
+  const bool binned = arch.bin.mode == PipelineMode::Binned;
+  if (binned && (arch.depth_early || hiz_applies(arch)))
+    throw std::invalid_argument("pipeline.mode = binned with depth.early or depth.hiz: the SystemC level does not "
+                                "model early or hierarchical Z in the tile buffer yet; `rastsim render` draws it "
+                                "(docs/binning.md, \"Not yet\")");
   SimContext ctx;
   configure(ctx, opts, arch);
   // Built once and kept: SystemC does not support tearing a design down.
@@ -282,6 +303,13 @@ SimResult simulate_commands(CommandSource source, const ArchParams& params, cons
   top = new RasterPipeline("pipeline", ctx, std::move(source), arch, p);
   if (opts.initial_fb) top->rop.framebuffer() = *opts.initial_fb;  // engine2d holds the same object
   top->interpolate.start_early_depth(top->rop.framebuffer());         // depth.early: the same start
+  static BinnerStage* binner = nullptr;  // pipeline.mode = binned (sc/binning.h), kept as the top
+  if (binned) {
+    binner = new BinnerStage(ctx, arch, p, params.memory.enabled ? &params.memory : nullptr, top->setup_fifo,
+                             top->bin_fifo);
+    top->tri_setup.log_commands(&binner->commands());
+    top->rop.attach_bins(binner->rop_port());
+  }
   Recorders rec;
   rec.attach(*top, opts, arch, ctx.tracing);
   static MemorySystem* memory = nullptr;  // kept, as the top: elaborated once
@@ -291,10 +319,14 @@ SimResult simulate_commands(CommandSource source, const ArchParams& params, cons
     memory = new MemorySystem(params.dram);
     if (!opts.mem_trace_path.empty()) memory->record_trace(&mem_trace.emplace(opts.mem_trace_path).stream());
     scanout = attach_scanout_fetch(*memory, params).release();  // first: its requests at cycle 0 go first
-    top->rop.attach_memory(*memory, params.memory, opts.warm_memory);  // first request: the depth clear (cold)
-    top->engine2d.attach_memory(top->rop.memory_port());  // draws through the ROP's colour client
-    top->texture.attach_memory(*memory);                   // its cache's line fills
-    top->coarse_raster.attach_memory(*memory);             // the spilled Hi-Z table's entries
+    if (binned) {
+      binner->attach_memory(*memory);  // the binning and tile_store clients (no ROP, 2D, texture or Hi-Z client)
+    } else {
+      top->rop.attach_memory(*memory, params.memory, opts.warm_memory);  // its first request: the frame's depth clear (cold)
+      top->engine2d.attach_memory(top->rop.memory_port());  // draws through the ROP's colour client
+      top->texture.attach_memory(*memory);                   // its cache's line fills
+      top->coarse_raster.attach_memory(*memory);             // the spilled Hi-Z table's entries
+    }
   } else if (!opts.mem_trace_path.empty()) {
     throw std::invalid_argument("--mem-trace needs memory.model = \"dram\" (the DRAM requests it lists)");
   }
@@ -306,7 +338,9 @@ SimResult simulate_commands(CommandSource source, const ArchParams& params, cons
   SimResult r;
   r.core_mhz = p.core_mhz;
   r.cycles = end_cycle(*top, ctx);
+  if (binner) r.cycles = std::max(r.cycles, binner->now());
   collect_stages(*top, p, rec, r);
+  if (binner) collect_binner(*binner, top->bin_fifo, r);
   if (!opts.timeline_path.empty())
     r.timeline = rec.timeline.write_trace_json(opts.timeline_path, r.cycles, opts.timeline_max_events);
   r.heat = std::move(rec.heat);
@@ -321,7 +355,7 @@ SimResult simulate_commands(CommandSource source, const ArchParams& params, cons
   r.recip_busy_cycles = ctx.recip_busy_cycles;
   if (memory) {  // the frame end's accesses, then every request completed
     if (scanout) scanout->raster_done(r.cycles);
-    r.render.memory = top->rop.finish_memory(r.cycles);
+    r.render.memory = binner ? binner->memory_stats() : top->rop.finish_memory(r.cycles);
     memory->drain();
     r.memory = memory->report(r.cycles);
     if (scanout) r.scanout = scanout->report();
@@ -359,6 +393,13 @@ nlohmann::json SimResult::to_json() const {
                            {"transactions_in", s.transactions_in},
                            {"transactions_out", s.transactions_out}};
   for (const FifoReport& f : fifos) j["fifos"][f.name] = {{"depth", f.depth}, {"transactions", f.writes}};
+  if (binner)
+    j["stages"][binner->name] = {{"busy", binner->busy},
+                                 {"stalled", binner->stalled},
+                                 {"starved", binner->starved},
+                                 {"transactions_in", binner->transactions_in},
+                                 {"transactions_out", binner->transactions_out}};
+  if (bin_fifo) j["fifos"][bin_fifo->name] = {{"depth", bin_fifo->depth}, {"transactions", bin_fifo->writes}};
   if (memory) add_memory_system_json(j, *memory);
   if (scanout) add_scanout_fetch_json(j, *scanout);
   if (texture_memory) add_texture_memory_json(j, *texture_memory);

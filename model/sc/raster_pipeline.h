@@ -113,6 +113,10 @@ struct SimResult {
   // The spilled Hi-Z table as a memory client (timing/hiz_memory_port.h), when it made a
   // request (memory.model = "dram").
   std::optional<HizMemoryReport> hiz_memory;
+  // pipeline.mode = binned: the binner stage and its output FIFO (sc/binning.h; outside
+  // the stage table: stages.binner, fifos.bin_fifo).
+  std::optional<StageReport> binner;
+  std::optional<FifoReport> bin_fifo;
 
   // RenderStats::to_json plus cycles, cycles_lower_bound, simulated_seconds,
   // sim_wall_seconds, simulated_cycles_per_second, rop_accesses, framebuffer_bytes,

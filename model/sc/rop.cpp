@@ -118,6 +118,11 @@ MemoryStats Rop::finish_memory(uint64_t end) {
 // A command down the triangle path: a 2D command's marker, the end-of-frame marker or a
 // state command (sc/rop.h for the cycles and bytes of each).
 void Rop::command(const CommandPtr& cmd) {
+  if (bins_) {  // binned: a bin marker or the end of frame (sc/binning.h)
+    attribute_to_no_tile();
+    busy(bins_->command(*cmd, fb_, now()));
+    return;
+  }
   const uint64_t fb_pixels = uint64_t(fb_.width) * uint64_t(fb_.height);
   if (mem_) mem_->begin(now());
   if (ctx_.is_end_of_frame(cmd)) {  // the multisample resolve pass

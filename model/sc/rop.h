@@ -42,6 +42,7 @@
 #include <vector>
 
 #include "ref/framebuffer.h"
+#include "sc/binning.h"
 #include "sc/engine2d.h"
 #include "sc/interpolate.h"
 #include "timing/rop_memory_port.h"
@@ -65,6 +66,10 @@ class Rop : public Stage {
   // The memory port the 2D engine draws through while it holds the ROP's port (null:
   // memory.model = "fixed").
   RopMemoryPort* memory_port() { return mem_.get(); }
+  // pipeline.mode = binned (before the run): the framebuffer is the tile buffer's samples
+  // and every state command reaching the ROP (bin markers, the end of frame) is `bins`'
+  // (sc/binning.h); no memory port: fragments stay on chip.
+  void attach_bins(BinRop& bins) { bins_ = &bins; }
 
  private:
   void body() override;
@@ -82,6 +87,7 @@ class Rop : public Stage {
   Link<PortGrant>& done_2d_;
   std::unique_ptr<RopMemoryPort> mem_;  // null: memory.model = "fixed"
   bool frame_finished_ = false;         // the resolve made the frame end's accesses
+  BinRop* bins_ = nullptr;              // pipeline.mode = binned, else null
 };
 
 }  // namespace rastsim::sc

@@ -66,9 +66,10 @@ class Stage : public sc_core::sc_module {
  public:
   SC_HAS_PROCESS(Stage);
   // `id` is the stage's row of timing/stage_table.h; its stall stream offsets the stall seed.
-  Stage(sc_core::sc_module_name name, SimContext& ctx, StageId id)
-      : sc_module(name), ctx_(ctx),
-        rng_(ctx.stall_seed * 0x9e3779b97f4a7c15ull + uint64_t(stage_info(id).stall_stream)),
+  Stage(sc_core::sc_module_name name, SimContext& ctx, StageId id) : Stage(name, ctx, stage_info(id).stall_stream) {}
+  // A stage outside the table (the binner, sc/binning.h) with a stall stream of its own.
+  Stage(sc_core::sc_module_name name, SimContext& ctx, int stall_stream)
+      : sc_module(name), ctx_(ctx), rng_(ctx.stall_seed * 0x9e3779b97f4a7c15ull + uint64_t(stall_stream)),
         state_("state", int(StageState::Starved)) {
     SC_THREAD(thread);
   }

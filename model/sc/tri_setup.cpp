@@ -16,8 +16,9 @@ void TriSetup::body() {
     const SetupOutcome outcome = setup_triangle(in.work.v, st_, in.work.cmd->loc, *tri);
     if (const auto* prims = std::get_if<CmdPrimitives>(&in.work.cmd->body)) tri->texture = prims->texture;
     busy(p_.setup_triangle_cycles());
-    if (count_setup_outcome(outcome, ctx_.render))
-      write(out_, SetupItem{nullptr, std::move(tri)}, p_.setup_pipeline_latency());
+    if (!count_setup_outcome(outcome, ctx_.render)) continue;
+    if (log_) log_->push_back(in.work.cmd);
+    write(out_, SetupItem{nullptr, std::move(tri)}, p_.setup_pipeline_latency());
   }
 }
 

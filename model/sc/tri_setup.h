@@ -10,6 +10,7 @@
 // - Counts the triangle stats of the reference model (triangles_in, culled, ...).
 #pragma once
 
+#include <deque>
 #include <memory>
 
 #include "ref/framebuffer.h"
@@ -29,6 +30,9 @@ class TriSetup : public Stage {
            Link<TriangleItem>& in, Link<SetupItem>& out,
          sc_core::sc_module_name name = stage_name(kId).data())
       : Stage(name, ctx, kId), st_(arch), p_(p), in_(in), out_(out) {}
+  // pipeline.mode = binned: each written triangle's command appended to `log` (the
+  // binner's, sc/binning.h: its errors name the command).
+  void log_commands(std::deque<CommandPtr>* log) { log_ = log; }
 
  private:
   void body() override;
@@ -37,7 +41,8 @@ class TriSetup : public Stage {
   const TimingParams& p_;
   Link<TriangleItem>& in_;
   Link<SetupItem>& out_;
-  Recycler<SetupTriangle> triangles_;  // no allocation a triangle (sc/recycler.h)
+  Recycler<SetupTriangle> triangles_;
+  std::deque<CommandPtr>* log_ = nullptr;  // no allocation a triangle (sc/recycler.h)
 };
 
 }  // namespace rastsim::sc

@@ -33,6 +33,7 @@
 
 #include <nlohmann/json.hpp>
 #include "ref/hiz.h"
+#include "ref/memory/bin_memory.h"
 #include "ref/memory/rop_memory.h"
 #include "timing/dram.h"
 
@@ -41,12 +42,14 @@ namespace rastsim {
 // The clients: the index of each one's DRAM stats and its stats name
 // (memory.clients.<name>).
 // texture: the texture cache's line fills (timing/texture_memory_port.h); hiz: the spilled
-// Hi-Z table's entries (timing/hiz_memory_port.h, at depth.hiz_base).
-enum class MemClient { RopColor = 0, RopDepth = 1, Scanout = 2, Texture = 3, Hiz = 4 };
+// Hi-Z table's entries (timing/hiz_memory_port.h, at depth.hiz_base); binning and
+// tile_store: pipeline.mode = binned's parameter buffer and bin loads/stores (sc/binning.h,
+// ref/memory/bin_memory.h).
+enum class MemClient { RopColor = 0, RopDepth = 1, Scanout = 2, Texture = 3, Hiz = 4, Binning = 5, TileStore = 6 };
 inline constexpr const char* kScanoutClient = "scanout";
 inline constexpr const char* kTextureClient = "texture";
-inline constexpr std::array<const char*, 5> kMemClientNames = {kRopColorClient, kRopDepthClient, kScanoutClient,
-                                                               kTextureClient, kHizClient};
+inline constexpr std::array<const char*, 7> kMemClientNames = {
+    kRopColorClient, kRopDepthClient, kScanoutClient, kTextureClient, kHizClient, kBinningClient, kTileStoreClient};
 
 // A client that makes its requests of its own accord as time passes (the scan-out's line
 // fetch): the memory system asks it for the cycle of its next request, lets it make them

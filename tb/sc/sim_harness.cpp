@@ -82,6 +82,17 @@ void expect_matches_reference(const nlohmann::json& r) {
   }
 }
 
+nlohmann::json render_and_simulate(const Scene& scene, const Config& cfg) {
+  const ArchParams a = ArchParams::resolve(cfg);
+  RenderStats ref;
+  render_scene(scene, a.raster, ref, {}, Framebuffer::kDefaultTileLog2, 1, a.memory);
+  const sc::SimResult r = sc::simulate_scene(scene, a);
+  nlohmann::json rj = rastsim::to_json(ref), sj = rastsim::to_json(r.render);
+  rj.erase("wall_seconds");
+  sj.erase("wall_seconds");
+  return {{"ref", rj}, {"sim", sj}, {"stats", r.to_json()}};
+}
+
 nlohmann::json simulate_stats(const Scene& scene, const Config& cfg, const sc::SimOptions& opts) {
   return sc::simulate_scene(scene, ArchParams::resolve(cfg), opts).to_json();
 }

@@ -42,6 +42,10 @@ void expect_matches_reference(const nlohmann::json& r);
 // differ (wall time aside), "ref": the reference's stats}.
 nlohmann::json diff_render_stats_with_memory(const Scene& scene, const Config& cfg);
 
+// In a child: render's stats with the config's memory settings ("ref"), simulate's
+// render counters ("sim"; both without wall_seconds) and its whole stats ("stats").
+nlohmann::json render_and_simulate(const Scene& scene, const Config& cfg);
+
 // In a child: the stats of one simulation (SimResult::to_json).
 nlohmann::json simulate_stats(const Scene& scene, const Config& cfg, const sc::SimOptions& opts = {});
 

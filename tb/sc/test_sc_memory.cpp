@@ -31,18 +31,6 @@
 namespace rastsim::sctest {
 namespace {
 
-// render's stats with the config's memory settings, and simulate's render counters.
-nlohmann::json render_and_simulate(const Scene& scene, const Config& cfg) {
-  const ArchParams a = ArchParams::resolve(cfg);
-  RenderStats ref;
-  render_scene(scene, a.raster, ref, {}, Framebuffer::kDefaultTileLog2, 1, a.memory);
-  const sc::SimResult r = sc::simulate_scene(scene, a);
-  nlohmann::json rj = rastsim::to_json(ref), sj = rastsim::to_json(r.render);
-  rj.erase("wall_seconds");
-  sj.erase("wall_seconds");
-  return {{"ref", rj}, {"sim", sj}, {"stats", r.to_json()}};
-}
-
 TEST(ScMemory, CountsEqualRenderOnTraces) {
   const std::vector<std::vector<std::string>> settings = {
       {},
