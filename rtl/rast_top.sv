@@ -3,7 +3,8 @@
 //
 //   triangle FIFO -> rast_tri_setup -> setup FIFO (latency) -> rast_coarse_raster
 //     -> tile FIFO -> rast_fine_raster -> pixel FIFO -> rast_interpolate
-//     -> rast_texture_stage (textured tiles: texel fetch port) -> fragment FIFO
+//     -> rast_texture_stage (textured tiles) -> fragment FIFO
+//        | texel fetch port -> rast_texture_cache -> line fill port (tex_mem_*)
 //     -> rast_rop -> memory request/response port
 //
 //   Each FIFO is followed by a rast_hold: a stage pops its transaction in the first
@@ -94,15 +95,16 @@ module rast_top #(
   input  wire logic                                  depth_write_i,   // raster.depth_write (static)
   input  wire logic [1:0]                            tex_format_i,    // texture.format: 0 rgba8888, 1 rgb565, 2 l8 (static)
   input  wire logic [1:0]                            tex_layout_i,    // texture.layout: 0 linear, 1 tiled, 2 morton (static)
-  // The texel fetch port (rast_texture_stage; docs/texture.md "RTL"), responses in order.
-  output      logic                                  tex_req_valid_o,
-  input  wire logic                                  tex_req_ready_i,
-  output      logic [4*TexAddrW-1:0]                 tex_req_addr_o,   // texel k's byte address at [k*TexAddrW +: TexAddrW]
-  output      logic [2:0]                            tex_req_count_o,  // 1 nearest, 4 bilinear
-  output      logic [1:0]                            tex_req_format_o, // texture.format
-  input  wire logic                                  tex_rsp_valid_i,
-  output      logic                                  tex_rsp_ready_o,
-  input  wire logic [127:0]                          tex_rsp_texels_i, // texel k as RGBA8 at [32k +: 32], R at [7:0]
+  // The texture cache's memory port (rast_texture_cache's mem_*; docs/texture.md "RTL"):
+  // one line fill at a time, the line's TexLineBytes / TexBeatBytes beats in order.
+  output      logic                                  tex_mem_req_valid_o,
+  input  wire logic                                  tex_mem_req_ready_i,
+  output      logic [TexAddrW-1:0]                   tex_mem_req_addr_o,  // the line's byte address (TexLineBytes bytes)
+  input  wire logic                                  tex_mem_rsp_valid_i, // a beat of the line
+  output      logic                                  tex_mem_rsp_ready_o,
+  input  wire logic [127:0]                          tex_mem_rsp_data_i,  // the beat's byte i at [8i +: 8], i < TexBeatBytes
+  output      logic [2:0]                            tex_hits_o,          // texture cache hits this cycle
+  output      logic                                  tex_miss_o,          // a texture cache miss this cycle
   output      logic [$clog2(InterpFragmentsPerCycle+1)-1:0] tex_helpers_o,  // helper pixels dropped this cycle
   output      logic                                  dbg_tex_busy_o,    // the texture stage holds textured work
   output      logic                                  dbg_tex_blocked_o, // its output is refused (the fragment FIFO)
@@ -497,6 +499,11 @@ module rast_top #(
 
   // ---- Texture stage (textured tiles; the rest passes through) ----
   logic x_busy;
+  logic                 tex_req_valid, tex_req_ready, tex_rsp_valid, tex_rsp_ready;
+  logic [4*TexAddrW-1:0] tex_req_addr;
+  logic [2:0]           tex_req_count;
+  logic [1:0]           tex_req_format;
+  logic [127:0]         tex_rsp_texels;
   rast_texture_stage #(
     .Lanes(Lanes), .PixelW(PixelW), .DepthW(DepthW), .MaxSamples(MaxSamples), .TexW(TexW), .TexFrac(TexFrac),
     .WeightBits(TexWeightBits), .SizeW(TexSizeW), .AddrW(TexAddrW)
@@ -510,8 +517,40 @@ module rast_top #(
     .out_valid_o(frag_valid_o), .out_ready_i(frag_ready_o), .out_marker_o(frag_marker_o),
     .out_last_o(frag_last_o), .out_lanes_o(frag_lanes_o), .out_x_o(frag_x_o), .out_y_o(frag_y_o),
     .out_z_o(frag_z_o), .out_rgb_o(frag_rgb_o), .out_s_o(frag_s_o), .out_t_o(frag_t_o), .out_smask_o(frag_mask_o),
-    .tex_req_valid_o, .tex_req_ready_i, .tex_req_addr_o, .tex_req_count_o, .tex_req_format_o,
-    .tex_rsp_valid_i, .tex_rsp_ready_o, .tex_rsp_texels_i, .helpers_o(tex_helpers_o), .busy_o(x_busy));
+    .tex_req_valid_o(tex_req_valid), .tex_req_ready_i(tex_req_ready), .tex_req_addr_o(tex_req_addr),
+    .tex_req_count_o(tex_req_count), .tex_req_format_o(tex_req_format), .tex_rsp_valid_i(tex_rsp_valid),
+    .tex_rsp_ready_o(tex_rsp_ready), .tex_rsp_texels_i(tex_rsp_texels), .helpers_o(tex_helpers_o), .busy_o(x_busy));
+
+  // ---- Texture cache (texture.cache_bytes, ways, line_bytes; TexPorts lookups a cycle)
+  // on the stage's texel fetch port: hits answered from its lines, misses filled through
+  // tex_mem_*. texture.cache_bytes = 0 (every fetch a miss of its own texel) has no RTL
+  // cache: the port is tied off and co-simulation refuses textured scenes. ----
+  if (TexCacheBytes > 0) begin : g_tex_cache
+    rast_texture_cache #(
+      .AddrW(TexAddrW), .CacheBytes(TexCacheBytes), .Ways(TexWays), .LineBytes(TexLineBytes), .Ports(TexPorts),
+      .BeatBytes(TexBeatBytes)
+    ) u_texture_cache (
+      .clk_i, .rst_ni, .req_valid_i(tex_req_valid), .req_ready_o(tex_req_ready), .req_addr_i(tex_req_addr),
+      .req_count_i(tex_req_count), .req_format_i(tex_req_format), .rsp_valid_o(tex_rsp_valid),
+      .rsp_ready_i(tex_rsp_ready), .rsp_texels_o(tex_rsp_texels), .mem_req_valid_o(tex_mem_req_valid_o),
+      .mem_req_ready_i(tex_mem_req_ready_i), .mem_req_addr_o(tex_mem_req_addr_o),
+      .mem_rsp_valid_i(tex_mem_rsp_valid_i), .mem_rsp_ready_o(tex_mem_rsp_ready_o),
+      .mem_rsp_data_i(tex_mem_rsp_data_i[8*TexBeatBytes-1:0]), .evt_hits_o(tex_hits_o), .evt_miss_o(tex_miss_o));
+    if (TexBeatBytes < 16) begin : g_unused_beat
+      wire unused_beat_bytes = ^tex_mem_rsp_data_i[127:8*TexBeatBytes];
+    end
+  end else begin : g_no_tex_cache
+    assign tex_req_ready = 1'b0;
+    assign tex_rsp_valid = 1'b0;
+    assign tex_rsp_texels = '0;
+    assign tex_mem_req_valid_o = 1'b0;
+    assign tex_mem_req_addr_o = '0;
+    assign tex_mem_rsp_ready_o = 1'b0;
+    assign tex_hits_o = '0;
+    assign tex_miss_o = 1'b0;
+    wire unused_tex_port = ^{tex_req_valid, tex_req_addr, tex_req_count, tex_req_format, tex_rsp_ready,
+                             tex_mem_req_ready_i, tex_mem_rsp_valid_i, tex_mem_rsp_data_i};
+  end
   assign ts_pop = i_valid && i_ready && !i_marker && i_last;
   assign dbg_tex_busy_o = x_busy;
   assign dbg_tex_blocked_o = x_busy && frag_valid_o && !frag_ready_o;

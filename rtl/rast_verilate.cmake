@@ -9,10 +9,11 @@
 
 # rast_rtl_files(DIR <top> <engine> <waivers>): the sources under DIR (rtl/ or the cache
 # project's copy): rast_top with its stages, the texture unit's units included (the 2D
-# units and the ROP's cache, not in rast_top, stand alone), the 2D engine with its units, and the lint waivers (lint/rast_*.vlt).
+# units and the ROP's cache, not in rast_top, stand alone; the texture cache uses its data
+# array, rast_rop_cache_data), the 2D engine with its units, and the lint waivers (lint/rast_*.vlt).
 function(rast_rtl_files dir top_var engine_var waiver_var)
   file(GLOB top CONFIGURE_DEPENDS ${dir}/rast_*.sv)
-  list(FILTER top EXCLUDE REGEX "/(rast_line|rast_rop3|rast_pattern|rast_engine2d|rast_rop_cache|rast_rop_cache_data)\\.sv$")
+  list(FILTER top EXCLUDE REGEX "/(rast_line|rast_rop3|rast_pattern|rast_engine2d|rast_rop_cache)\\.sv$")
   file(GLOB waivers CONFIGURE_DEPENDS ${dir}/lint/rast_*.vlt)
   set(${top_var} ${top} PARENT_SCOPE)
   set(${engine_var} ${dir}/rast_engine2d.sv ${dir}/rast_line.sv ${dir}/rast_pattern.sv ${dir}/rast_rop3.sv

@@ -161,23 +161,30 @@ struct TimingParams {
   // stage"): its four units run in a pipeline, so the slowest sets the batch's cycles,
   // and each texture-cache line miss stalls the whole pipeline texture.miss_cycles:
   //   max(ceil(Q / quads_per_cycle), ceil(B / bilinear_per_cycle),
-  //       ceil(T / texels_per_cycle), ceil(N / combine_per_cycle), B) + M miss_cycles
+  //       ceil(T / texels_per_cycle), ceil(N / combine_per_cycle), B) + S + M miss_cycles
   // Q the batch's 2x2 quads (helper pixels ride in their quad's lanes), B its bilinear
   // sample slots (a nearest or bilinear sample 1, a trilinear sample 2: half rate), T its
   // texel fetches, N its fragments, M its line misses. At least 1 cycle a batch. The
   // term B alone: the texel fetch port takes one level sample (1 or 4 texels) a cycle
   // (rast_top's one tex_req port, the texture cache's interface), whatever the lanes
-  // behind it.
+  // behind it. S, the lookup groups a miss splits (rtl/rast_texture_cache.sv looks a
+  // missing texel up as the first of a cycle: one more cycle where hits of its request
+  // share its group; texture_cache_ports), adds S cycles with either memory.
   struct TextureWork {
-    uint64_t quads = 0, bilinear_slots = 0, texel_fetches = 0, fragments = 0, misses = 0;
+    uint64_t quads = 0, bilinear_slots = 0, texel_fetches = 0, fragments = 0, misses = 0, miss_splits = 0;
   };
+  // Texels the texture cache looks up a cycle (rast_texture_cache's Ports): the stage's
+  // texel port shared by its bilinear_per_cycle lanes, at most a request's 4 texels.
+  uint64_t texture_cache_ports() const {
+    return std::clamp<uint64_t>(ceil_div(texture_texels_per_cycle, texture_bilinear_per_cycle), 1, 4);
+  }
   uint64_t texture_batch_cycles(const TextureWork& w) const {
     const uint64_t rate = std::max({ceil_div(w.quads, texture_quads_per_cycle),
                                     ceil_div(w.bilinear_slots, texture_bilinear_per_cycle),
                                     ceil_div(w.texel_fetches, texture_texels_per_cycle),
                                     ceil_div(w.fragments, texture_combine_per_cycle), w.bilinear_slots,
                                     uint64_t{1}});
-    return rate + w.misses * texture_miss_cycles;
+    return rate + w.miss_splits + w.misses * texture_miss_cycles;
   }
   // Bilinear sample slots of one sample by its filter: trilinear blends two levels' bilinear
   // samples at half rate (also where its level weight is 0 and one level is read).

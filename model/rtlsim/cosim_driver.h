@@ -66,8 +66,8 @@ class VerilatedRast final : public RastPorts {
     top_->depth_write_i = s.arch.depth_write;
     top_->tex_format_i = static_cast<uint8_t>(s.texture.format);
     top_->tex_layout_i = static_cast<uint8_t>(s.texture.layout);
-    top_->tex_req_ready_i = 0;
-    top_->tex_rsp_valid_i = 0;
+    top_->tex_mem_req_ready_i = 0;
+    top_->tex_mem_rsp_valid_i = 0;
     top_->tri_valid_i = 0;
     top_->cmd_valid_i = 0;
     top_->rd_ready_i = 0;
@@ -167,18 +167,20 @@ class VerilatedRast final : public RastPorts {
     return f;
   }
   bool idle() const override { return top_->idle_o; }
-  TexRequest texture_request() const override {
-    TexRequest r{bool(top_->tex_req_valid_o), int(top_->tex_req_count_o), int(top_->tex_req_format_o), {}};
-    const int aw = params_.tex_addr_w;
-    for (int k = 0; k < 4; ++k) r.addr[size_t(k)] = port_bits(top_->tex_req_addr_o, k * aw, aw);
-    return r;
+  std::optional<uint64_t> texture_fill_request() const override {
+    if (!top_->tex_mem_req_valid_o) return std::nullopt;
+    return port_bits(top_->tex_mem_req_addr_o, 0, params_.tex_addr_w);
   }
-  void drive_texture_ready(bool ready) override { top_->tex_req_ready_i = ready; }
-  void drive_texture_response(bool valid, const std::array<uint32_t, 4>& texels) override {
-    top_->tex_rsp_valid_i = valid;
-    for (size_t k = 0; k < 4; ++k) set_port_word(top_->tex_rsp_texels_i, k, texels[k]);
+  void drive_texture_fill_ready(bool ready) override { top_->tex_mem_req_ready_i = ready; }
+  void drive_texture_beat(bool valid, const std::array<uint8_t, 16>& bytes) override {
+    top_->tex_mem_rsp_valid_i = valid;
+    for (size_t k = 0; k < 4; ++k)
+      set_port_word(top_->tex_mem_rsp_data_i, k,
+                    uint32_t(bytes[4 * k]) | uint32_t(bytes[4 * k + 1]) << 8 | uint32_t(bytes[4 * k + 2]) << 16 |
+                        uint32_t(bytes[4 * k + 3]) << 24);
   }
-  bool texture_response_taken() const override { return top_->tex_rsp_ready_o; }
+  bool texture_beat_taken() const override { return top_->tex_mem_rsp_ready_o; }
+  TexCacheEvents texture_cache_events() const override { return {int(top_->tex_hits_o), bool(top_->tex_miss_o)}; }
   int helper_pixels() const override { return top_->tex_helpers_o; }
   RtlStageBits stage_bits() const override {
     return {top_->dbg_has_o, top_->dbg_done_o, top_->dbg_blocked_o, bool(top_->dbg_rop_start_o),

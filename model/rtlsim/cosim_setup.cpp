@@ -83,14 +83,22 @@ class StreamBuilder {
 };
 
 // A textured triangle's state on rast_top's tri_tex_* ports, its texture placed as the
-// reference places it and its texels put in the testbench's texel memory at first use.
+// reference places it and its texels stored in the testbench's texture memory at first use
+// (the reference's cache fills, in fetch order, recorded for the RTL's to be checked against).
 void StreamBuilder::texture_state(const Command& cmd, const TextureState& ts, TbItem& it) {
   if (ts.mipmap || ts.filter == TexFilter::Trilinear)
     throw SceneError(cmd.loc.str() + ": texture '" + ts.image->name + "' drawn with " +
                      (ts.mipmap ? "mipmap on" : "texfilter trilinear") + ": the RTL texture stage samples level 0 "
                      "(nearest, bilinear) only so far; co-simulate with mipmap off and texfilter nearest or "
                      "bilinear (docs/texture.md \"RTL\")");
-  if (!tex_) tex_.emplace(state_.texture);
+  if (state_.texture.cache.bytes == 0)
+    throw SceneError(cmd.loc.str() + ": texture '" + ts.image->name + "' with texture.cache_bytes = 0: rast_top's "
+                     "texture cache (rtl/rast_texture_cache.sv) has no form without a cache; co-simulate with "
+                     "texture.cache_bytes > 0 (docs/texture.md \"RTL\")");
+  if (!tex_) {
+    tex_.emplace(state_.texture);
+    tex_->on_fill = [this](uint64_t address, uint64_t) { setup_.texture_fills.push_back(address); };
+  }
   const TextureUnit::Resident& r = tex_->resident(ts);
   it.tex_on = true;
   it.tex_bilinear = ts.filter == TexFilter::Bilinear;
@@ -107,9 +115,9 @@ void StreamBuilder::texture_state(const Command& cmd, const TextureState& ts, Tb
     const MipLevel& l = r.levels[k];
     for (int j = 0; j < l.height; ++j)
       for (int i = 0; i < l.width; ++i) {
-        const Rgba8 c = l.texel(i, j);
-        setup_.texels[r.level_base[k] + texel_offset(p.layout, l.width, l.height, bytes, i, j)] =
-            uint32_t(c[0]) | uint32_t(c[1]) << 8 | uint32_t(c[2]) << 16 | uint32_t(c[3]) << 24;
+        const uint32_t stored = encode_texel(l.texel(i, j), p.format);
+        const uint64_t a = r.level_base[k] + texel_offset(p.layout, l.width, l.height, bytes, i, j);
+        for (int b = 0; b < bytes; ++b) setup_.texture_memory.set(a + uint64_t(b), uint8_t(stored >> (8 * b)));
       }
   }
 }

@@ -70,6 +70,11 @@ constexpr ParamField<RtlParams> kFields[] = {
     {"TexWeightBits", &RtlParams::tex_weight_bits, "texture.weight_bits"},
     {"TexSizeW", &RtlParams::tex_size_w, "bits of a texture side (up to the largest texture)"},
     {"TexAddrW", &RtlParams::tex_addr_w, "bits of a texel's byte address"},
+    {"TexCacheBytes", &RtlParams::tex_cache_bytes, "texture.cache_bytes (0: no texture cache)"},
+    {"TexWays", &RtlParams::tex_ways, "texture.ways"},
+    {"TexLineBytes", &RtlParams::tex_line_bytes, "texture.line_bytes"},
+    {"TexPorts", &RtlParams::tex_ports, "texel lookups a cycle: texels_per_cycle / bilinear_per_cycle, 1..4"},
+    {"TexBeatBytes", &RtlParams::tex_beat_bytes, "bytes of a texture line fill beat"},
     {"TriangleFifoDepth", &RtlParams::fifo_triangle, "fifo.triangle_depth"},
     {"SetupFifoEntries", &RtlParams::setup_fifo_entries, "fifo.setup_depth + setup latency slots"},
     {"TileFifoDepth", &RtlParams::fifo_tile, "fifo.tile_depth"},
@@ -213,9 +218,7 @@ TextureRtlParams texture_rtl_params(const ArchParams& arch) {
     p.cache_bytes = int(c.bytes);
     p.ways = c.ways;
     p.line_bytes = c.line_bytes;
-    const int64_t texels = arch.config.get_int("texture.texels_per_cycle");
-    const int64_t lanes = arch.config.get_int("texture.bilinear_per_cycle");
-    p.ports = int(std::clamp<int64_t>((texels + lanes - 1) / lanes, 1, 4));
+    p.ports = int(arch.timing.texture_cache_ports());
     p.beat_bytes = std::min(c.line_bytes, kTextureFillBeatBytes);
   }
   return p;
@@ -327,6 +330,11 @@ RtlParams rtl_params(const ArchParams& arch) {
   p.tex_weight_bits = tex.weight_bits;
   p.tex_size_w = tex.size_w;
   p.tex_addr_w = tex.addr_w;
+  p.tex_cache_bytes = tex.cache_bytes;
+  p.tex_ways = tex.ways;
+  p.tex_line_bytes = tex.line_bytes;
+  p.tex_ports = tex.ports;
+  p.tex_beat_bytes = tex.beat_bytes;
   p.fifo_triangle = t.fifo_triangle;
   p.setup_fifo_entries = t.setup_fifo_entries();
   p.fifo_tile = t.fifo_tile;

@@ -62,6 +62,9 @@ struct RtlParams {
   int tex_weight_bits = 0;  // texture.weight_bits
   int tex_size_w = 0;       // bits of a texture side (up to kMaxTextureExtent)
   int tex_addr_w = 0;       // bits of a texel's byte address
+  // Its texture cache (rtl/rast_texture_cache.sv in rast_top): texture_rtl_params' cache
+  // fields, all 0 with texture.cache_bytes = 0 (no RTL cache: the port tied off).
+  int tex_cache_bytes = 0, tex_ways = 0, tex_line_bytes = 0, tex_ports = 0, tex_beat_bytes = 0;
   int fifo_triangle = 0, fifo_tile = 0, fifo_pixel = 0;
   int setup_fifo_entries = 0;  // fifo.setup_depth + setup's latency slots (TimingParams)
   int fragment_fifo_entries = 0;  // fifo.fragment_depth + the interpolator's latency slots (TimingParams), tiles

@@ -6,64 +6,49 @@
 namespace rastsim::rtlsim {
 
 TbTexture::TbTexture(const TbSetup& s) : s_(s) {
-  if (s.texture.cache.bytes > 0) cache_.emplace(s.texture.cache);
-}
-
-void TbTexture::issue(uint64_t t) {
-  for (Pending& p : queue_) {
-    if (p.issued) continue;
-    const uint64_t start = std::max(p.taken + 1, last_due_ + 1);
-    if (start > t) return;
-    uint64_t stall = uint64_t(p.misses) * s_.timing.texture_miss_cycles;
-    if (mem_) {
-      mem_->begin(start);
-      const uint64_t bytes = cache_ ? uint64_t(cache_->line_bytes()) : uint64_t(texel_bytes(s_.texture.format));
-      for (int k = 0; k < p.misses; ++k) mem_->fill(p.fills[size_t(k)], bytes);
-      stall = mem_->stall_cycles();
-    }
-    p.due = start + stall;
-    p.issued = true;
-    last_due_ = p.due;
-  }
+  if (s.params.tex_beat_bytes > 0) beats_ = s.params.tex_line_bytes / s.params.tex_beat_bytes;
 }
 
 void TbTexture::drive(uint64_t t, RastPorts& ports) {
-  issue(t);
-  offered_ = !queue_.empty() && queue_.front().issued && queue_.front().due <= t;
-  ports.drive_texture_response(offered_, offered_ ? queue_.front().texels : std::array<uint32_t, 4>{});
-  ports.drive_texture_ready(true);
+  ready_ = !fill_;
+  ports.drive_texture_fill_ready(ready_);
+  offered_ = fill_ && t >= fill_->first + uint64_t(fill_->sent);
+  std::array<uint8_t, 16> beat{};
+  if (offered_) {
+    const int n = s_.params.tex_beat_bytes;
+    const uint64_t at = fill_->address + uint64_t(fill_->sent) * uint64_t(n);
+    for (int i = 0; i < n; ++i) beat[size_t(i)] = s_.texture_memory.byte(at + uint64_t(i));
+  }
+  ports.drive_texture_beat(offered_, beat);
 }
 
 void TbTexture::serve(uint64_t t, RastPorts& ports, std::string& error) {
-  if (offered_ && ports.texture_response_taken()) queue_.pop_front();
-  const TexRequest q = ports.texture_request();
-  if (!q.valid) return;
-  const auto at = [&] { return "cycle " + std::to_string(t) + ": texel request"; };
-  if (q.count != 1 && q.count != 4) error = at() + " of " + std::to_string(q.count) + " texels (1 or 4)";
-  if (q.format != int(s_.texture.format)) error = at() + " in format " + std::to_string(q.format);
-  Pending p;
-  p.taken = t;
-  for (int k = 0; k < std::min(q.count, 4); ++k) {
-    const uint64_t a = q.addr[size_t(k)];
-    const auto it = s_.texels.find(a);
-    if (it == s_.texels.end()) error = at() + ": byte " + std::to_string(a) + " is no texel's address";
-    else p.texels[size_t(k)] = it->second;
-    ++fetches_;
-    SetAssocCache::Victim victim;
-    if (cache_ && cache_->access(a / uint64_t(cache_->line_bytes()), false, victim)) {
-      ++hits_;
-      continue;
-    }
-    ++misses_;
-    p.fills[size_t(p.misses++)] = cache_ ? a / uint64_t(cache_->line_bytes()) * uint64_t(cache_->line_bytes()) : a;
-  }
-  queue_.push_back(p);
+  const TexCacheEvents e = ports.texture_cache_events();
+  hits_ += uint64_t(e.hits);
+  misses_ += e.miss ? 1 : 0;
+  if (offered_ && ports.texture_beat_taken() && ++fill_->sent == beats_) fill_.reset();
+  const std::optional<uint64_t> a = ports.texture_fill_request();
+  if (!ready_ || !a) return;
+  if (fills_ >= s_.texture_fills.size() || s_.texture_fills[fills_] != *a)
+    error = "cycle " + std::to_string(t) + ": texture line fill " + std::to_string(fills_) + " at byte " +
+            std::to_string(*a) + ", the reference's " +
+            (fills_ < s_.texture_fills.size() ? "at byte " + std::to_string(s_.texture_fills[fills_])
+                                              : std::string("fills end before it"));
+  ++fills_;
+  const uint64_t beats = uint64_t(beats_);
+  uint64_t first = t + 1 + uint64_t(std::max<int64_t>(0, int64_t(s_.timing.texture_miss_cycles) - 2 - int64_t(beats)));
+  if (mem_)  // the line's last beat when it has arrived (not before the beats' own cycles)
+    first = t + std::max(beats, mem_->fill_at(*a, uint64_t(s_.params.tex_line_bytes), t)) - (beats - 1);
+  fill_ = Fill{*a, first, 0};
 }
 
-void TbTexture::finish(CosimResult& r) const {
-  r.texel_fetches = fetches_;
+void TbTexture::finish(CosimResult& r, std::string& error) const {
+  r.texel_fetches = hits_ + misses_;
   r.texture_cache_hits = hits_;
   r.texture_cache_misses = misses_;
+  if (misses_ != s_.texture_fills.size())
+    error = "texture cache: the RTL missed " + std::to_string(misses_) + " times, the reference " +
+            std::to_string(s_.texture_fills.size());
   if (mem_ && mem_->report().reads > 0) add_texture_memory_json(r.dram, mem_->report());
 }
 

@@ -1,31 +1,33 @@
 // SPDX-License-Identifier: Apache-2.0
-// The texel memory behind rast_top's texel fetch port in co-simulation (docs/texture.md
-// "RTL"): each request's texels read from the placed textures (TbSetup::texels, the
-// reference TextureUnit's placement), decoded to RGBA8, and its fetches made, in order,
-// through the reference's texture cache model (ref/memory's SetAssocCache with
-// texture.cache_bytes, ways, line_bytes: render's hits and misses where the RTL fetches
-// in the reference's order).
+// The memory behind rast_top's texture cache in co-simulation (docs/texture.md "RTL"):
+// rast_texture_cache (inside rast_top) looks the texels up and asks this testbench only
+// for line fills on tex_mem_*; each fill's bytes come from the placed textures
+// (TbSetup::texture_memory: the reference TextureUnit's placement, each texel stored by
+// encode_texel; bytes no texel holds are 0), in TexLineBytes / TexBeatBytes beats.
 //
-// Timing: the port answers in request order, a response a cycle at most; a request taken
-// at cycle t with m line misses (no cache: every texel a miss) is answered from cycle
-//     due = s + stall,   s = max(t + 1, due_prev + 1)
-// the blocking cache of the timed stage (docs/texture.md "Timed texture stage"): with
-// memory.model = "fixed" stall = m texture.miss_cycles (TimingParams::texture_batch_cycles);
-// with "dram" the misses are the fills of the memory system's client `texture`, one in
-// flight, issued from s (timing/texture_memory_port.h: TextureMemoryPort, the SystemC
-// stage's own rule), stall = the last fill's arrival - s. A request's fills are issued in
-// cycle s itself (not when the request is taken), so the memory system sees the texture's
-// and the ROP's requests in time order.
+// Checks: the RTL's fills, in order, are the reference's (TbSetup::texture_fills, its
+// texture cache's misses in fetch order: a wrong line address or an extra fill is a
+// mismatch); its hits and misses (tex_hits_o, tex_miss_o) are counted and, at the end,
+// its misses must equal the reference's.
+//
+// Timing: the fill port is ready while no fill is in flight (the cache keeps one); a fill
+// taken at cycle t has its beats from cycle `first` on, one a cycle as the cache takes them:
+// - memory.model = "fixed": first = t + 1 + max(0, texture.miss_cycles - 2 - Beats), so a
+//   miss costs the cache 2 + Beats + that wait = texture.miss_cycles (at least 2 + Beats),
+//   the SystemC stage's fixed rule;
+// - "dram": the fill is a read of the memory system's client `texture` (the ROP's memory
+//   system) made at t through the SystemC stage's own TextureMemoryPort, arriving at core
+//   cycle c; the last beat comes in cycle max(t + Beats, c), the first Beats - 1 before it.
+// A fill is issued in the cycle the cache's request is taken, before the ROP's requests of
+// that cycle: the memory system sees the texture's and the ROP's requests in time order.
 #pragma once
 
 #include <array>
 #include <cstdint>
-#include <deque>
 #include <memory>
 #include <optional>
 #include <string>
 
-#include "ref/memory/cache.h"
 #include "timing/texture_memory_port.h"
 #include "rtlsim/testbench.h"
 
@@ -36,33 +38,27 @@ class TbTexture {
   explicit TbTexture(const TbSetup& s);
   // memory.model = "dram": the fills through `mem` (the ROP's memory system).
   void attach(MemorySystem& mem) { mem_ = std::make_unique<TextureMemoryPort>(mem); }
-  // Before the clock falls: the head response once due, the request port ready.
+  // Before the clock falls: the fill port's ready, the next beat once due.
   void drive(uint64_t t, RastPorts& ports);
-  // After the clock falls: the response taken, a request taken (its texels read, its
-  // fetches made). A wrong request (count, format, an address not a texel's) sets
-  // `error`.
+  // After the clock falls: the cache's hits and miss, a beat taken, a fill request taken
+  // (checked against the reference's next fill: a wrong one sets `error`).
   void serve(uint64_t t, RastPorts& ports, std::string& error);
-  bool idle() const { return queue_.empty(); }
-  void finish(CosimResult& r) const;
+  bool idle() const { return !fill_; }
+  // The counts into `r`; a miss count unlike the reference's sets `error`.
+  void finish(CosimResult& r, std::string& error) const;
 
  private:
-  struct Pending {
-    uint64_t taken = 0;              // the cycle the request was taken
-    bool issued = false;             // its fills made, `due` known
-    uint64_t due = 0;
-    std::array<uint32_t, 4> texels{};
-    std::array<uint64_t, 4> fills{}; // the misses' DRAM reads: line (or texel) addresses
-    int misses = 0;
+  struct Fill {
+    uint64_t address = 0;  // the line's byte address
+    uint64_t first = 0;    // the cycle its first beat is due
+    int sent = 0;          // beats taken so far
   };
-  // The requests whose s has come, in order: their fills made, their due set.
-  void issue(uint64_t t);
   const TbSetup& s_;
-  std::optional<SetAssocCache> cache_;
   std::unique_ptr<TextureMemoryPort> mem_;  // memory.model = "dram" (null: fixed)
-  std::deque<Pending> queue_;
-  uint64_t last_due_ = 0;
-  bool offered_ = false;  // the head response offered this cycle
-  uint64_t fetches_ = 0, hits_ = 0, misses_ = 0;
+  std::optional<Fill> fill_;
+  bool ready_ = false, offered_ = false;  // this cycle: fill port ready, a beat offered
+  int beats_ = 1;                         // beats a line: TexLineBytes / TexBeatBytes
+  uint64_t fills_ = 0, hits_ = 0, misses_ = 0;
 };
 
 }  // namespace rastsim::rtlsim

@@ -300,7 +300,11 @@ void Testbench::run() {
   }
   close_stage_counts(counted);
   if (dram_) dram_->finish(result_.cycles_rtl, result_);
-  texture_.finish(result_);
+  {
+    std::string error;
+    texture_.finish(result_, error);
+    if (!error.empty()) mismatch(error);
+  }
   if (result_.helper_pixels != setup_.helper_pixels)
     mismatch("helper pixels: the RTL dropped " + std::to_string(result_.helper_pixels) + ", the reference counts " +
              std::to_string(setup_.helper_pixels));

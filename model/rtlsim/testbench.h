@@ -72,6 +72,18 @@ struct TbWork2d {
   std::string name;            // "file:line"
 };
 
+// The textures in memory as the reference places them (TextureUnit::resident), each texel
+// stored by encode_texel: 4 KiB pages, a byte no texel holds reads 0.
+struct TextureMemory {
+  static constexpr int kPageBits = 12;
+  std::unordered_map<uint64_t, std::array<uint8_t, size_t{1} << kPageBits>> pages;
+  uint8_t byte(uint64_t a) const {
+    const auto it = pages.find(a >> kPageBits);
+    return it == pages.end() ? 0 : it->second[size_t(a & ((uint64_t{1} << kPageBits) - 1))];
+  }
+  void set(uint64_t a, uint8_t v) { pages[a >> kPageBits][size_t(a & ((uint64_t{1} << kPageBits) - 1))] = v; }
+};
+
 struct Expected {
   Fragment f;
   int tri = 0;
@@ -105,11 +117,12 @@ struct TbSetup {
   // (scanout_params_if_display; none when it does not resolve).
   std::optional<ScanoutParams> scanout;
   CosimOptions opts;
-  // Textured scenes: the texture unit's parameters (format, layout, cache), the texel
-  // memory (every placed texel's byte address -> its RGBA8, R in bits 7:0) and the
-  // reference's helper pixels.
+  // Textured scenes: the texture unit's parameters (format, layout, cache), the placed
+  // textures' bytes (the texture cache's line fills read them), the reference's texture
+  // cache fills (line byte addresses, in fetch order) and its helper pixels.
   TextureParams texture;
-  std::unordered_map<uint64_t, uint32_t> texels;
+  TextureMemory texture_memory;
+  std::vector<uint64_t> texture_fills;
   uint64_t helper_pixels = 0;
 };
 
@@ -121,12 +134,10 @@ struct FragmentBeat {
   bool marker = false;  // frag_marker_o: the beat is a marker
   bool last = false;    // frag_last_o: a tile's last beat
 };
-// rast_top's texel fetch port this cycle (tex_req_*).
-struct TexRequest {
-  bool valid = false;
-  int count = 0;                      // 1 nearest, 4 bilinear
-  int format = 0;                     // texture.format
-  std::array<uint64_t, 4> addr{};     // texel k's byte address
+// rast_top's texture cache this cycle (tex_hits_o, tex_miss_o).
+struct TexCacheEvents {
+  int hits = 0;       // texels that hit
+  bool miss = false;  // a miss (a line fill follows)
 };
 // rast_top's stage observation ports (bit s: 0 setup, 1 coarse raster, 2 fine raster,
 // 3 interpolation, 4 ROP).
@@ -189,12 +200,15 @@ class RastPorts {
   // Lane `lane` of the fragment port (x, y, z, colour, sample mask; samples left 1).
   virtual Fragment fragment_lane(int lane) const = 0;
   virtual bool idle() const = 0;  // idle_o
-  // The texel fetch port: the request offered, tex_req_ready_i, the response offered
-  // (tex_rsp_valid_i, texel k's RGBA8), tex_rsp_ready_o, and tex_helpers_o.
-  virtual TexRequest texture_request() const = 0;
-  virtual void drive_texture_ready(bool ready) = 0;
-  virtual void drive_texture_response(bool valid, const std::array<uint32_t, 4>& texels) = 0;
-  virtual bool texture_response_taken() const = 0;
+  // The texture cache's line fill port: the fill offered (tex_mem_req_valid_o: its line's
+  // byte address, else nullopt), tex_mem_req_ready_i, a beat offered (tex_mem_rsp_valid_i,
+  // its TexBeatBytes bytes), tex_mem_rsp_ready_o; the cache's hits and miss this cycle;
+  // tex_helpers_o.
+  virtual std::optional<uint64_t> texture_fill_request() const = 0;
+  virtual void drive_texture_fill_ready(bool ready) = 0;
+  virtual void drive_texture_beat(bool valid, const std::array<uint8_t, 16>& bytes) = 0;
+  virtual bool texture_beat_taken() const = 0;
+  virtual TexCacheEvents texture_cache_events() const = 0;
   virtual int helper_pixels() const = 0;
   virtual RtlStageBits stage_bits() const = 0;
 

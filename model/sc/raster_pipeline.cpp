@@ -327,11 +327,17 @@ SimResult simulate_commands(CommandSource source, const ArchParams& params, cons
       top->texture.attach_memory(*memory);                   // its cache's line fills
       top->coarse_raster.attach_memory(*memory);             // the spilled Hi-Z table's entries
     }
+    memory->set_arrival_wait([&ctx](uint64_t cycle) {      // textured runs: requests in time order
+      if (!ctx.memory_time_order) return;
+      const uint64_t now = ctx.to_cycles(sc_core::sc_time_stamp());
+      if (cycle > now) sc_core::wait(double(cycle - now) * ctx.cycle);
+    });
   } else if (!opts.mem_trace_path.empty()) {
     throw std::invalid_argument("--mem-trace needs memory.model = \"dram\" (the DRAM requests it lists)");
   }
 
   sc_core::sc_start();
+  if (memory) memory->set_arrival_wait({});  // the frame end's requests come after every stage's
   if (rec.vcd) sc_core::sc_close_vcd_trace_file(rec.vcd);
   ctx.rethrow_failure();  // SceneError for bad input, ModelError for a fault of the model
 

@@ -36,6 +36,13 @@ struct SimContext {
   // order, and for tests that check a decoupled run against a lock-step one. The cycles
   // and stats are the same either way.
   bool lockstep = false;
+  // memory.model = "dram" with a texture bound: the memory clients of different processes
+  // (the ROP, the texture stage, the 2D engine, the Hi-Z table) make each DRAM request
+  // only once SystemC time has reached its cycle (MemorySystem::set_arrival_wait), so
+  // their requests enter the DRAM in time order, as a memory controller sees them
+  // (docs/memory.md, "Arbitration"). Set by command fetch at the first textured draw:
+  // an untextured run has one such client at a time and runs ahead as before.
+  bool memory_time_order = false;
 
   // Random stall injection (tests): before each FIFO write, with this probability, the
   // writer waits 1..stall_max_cycles extra cycles. Seeded; never changes the image.

@@ -30,7 +30,7 @@ void Texture::body() {
 LocalPtr<const FragmentBatch> Texture::shade(const FragmentBatch& batch, TimingParams::TextureWork& work) {
   if (!unit_) {
     unit_.emplace(arch_.texture);
-    if (mem_) mem_->attach(*unit_);
+    unit_->on_fill = [this](uint64_t address, uint64_t bytes) { fill(address, bytes); };
   }
   if (quads_tri_ != batch.pixels->tri) next_triangle(batch.pixels->tri);
   const SetupTriangle& tri = *batch.pixels->tri;
@@ -40,12 +40,24 @@ LocalPtr<const FragmentBatch> Texture::shade(const FragmentBatch& batch, TimingP
   out->pixels = batch.pixels;
   Fragment* o = out->reset(batch.count);
   const int coord_frac = arch_.coord_format.frac_bits, tex_frac = arch_.texcoord_format.frac_bits;
+  // The fills' places in the batch (fill()): a sample's texel requests, 1 (nearest) or 4.
+  fetch_.slot = 0;
+  fetch_.splits = 0;
+  fetch_.per_request = tri.texture.filter == TexFilter::Nearest ? 1 : 4;
+  const uint64_t slots = TimingParams::texture_sample_slots(tri.texture.filter == TexFilter::Trilinear);
   // Every covered pixel's quad derivatives (the reference takes them before its early
   // test); a fragment early Z culled is not sampled and goes on as it came (its flag kept).
   for (size_t k = 0; k < batch.count; ++k) {
     const Fragment& f = batch.storage[k];
     const QuadDerivatives& d = quads_.derivatives(tri, f.x, f.y, coord_frac);
-    *o++ = batch.is_culled(k) ? f : unit_->shade(f, d, tri.texture, tex_frac);
+    if (batch.is_culled(k)) {
+      *o++ = f;
+      continue;
+    }
+    fetch_.base = unit_->stats().texel_fetches;
+    fetch_.request = ~uint64_t{0};
+    *o++ = unit_->shade(f, d, tri.texture, tex_frac);
+    fetch_.slot += slots;
   }
   out->count = batch.count;
   if (batch.culled_count != 0) {
@@ -62,7 +74,26 @@ LocalPtr<const FragmentBatch> Texture::shade(const FragmentBatch& batch, TimingP
   work.texel_fetches = s.texel_fetches - before.texel_fetches;
   work.fragments = batch.kept();
   work.misses = s.cache_misses - before.cache_misses;
+  work.miss_splits = fetch_.splits;
   return out;
+}
+
+// A line fill of the texture unit's cache, made in its fetch: where it falls in the batch
+// as rast_texture_cache looks texels up (a request a sample slot, TimingParams::
+// texture_cache_ports texels a cycle, a missing texel first in its cycle), and with
+// memory.model = "dram" the fill through the memory system (timing/texture_memory_port.h).
+void Texture::fill(uint64_t address, uint64_t bytes) {
+  const uint64_t f = unit_->stats().texel_fetches - 1 - fetch_.base;  // the fetch in its fragment
+  const uint64_t request = f / fetch_.per_request, pos = f % fetch_.per_request;
+  if (request != fetch_.request) {  // a new request: its first lookup group starts at texel 0
+    fetch_.request = request;
+    fetch_.group = 0;
+  }
+  const uint64_t ports = p_.texture_cache_ports();
+  const bool split = pos != fetch_.group + (pos - fetch_.group) / ports * ports;
+  fetch_.group = pos;  // the missing texel's second lookup starts the next group
+  fetch_.splits += split ? 1 : 0;
+  if (mem_) mem_->fill(address, bytes, fetch_.slot + request, split);
 }
 
 // Early Z: the quads of the batch that hold a kept fragment and no earlier batch of the

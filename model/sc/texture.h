@@ -13,7 +13,8 @@
 //   texel fetches, fragments and texture-cache line misses: with memory.model = "fixed"
 //   texture.miss_cycles a miss; with memory.model = "dram" (attach_memory) each miss is a
 //   blocking line fill through the memory system (timing/texture_memory_port.h: the batch
-//   is busy the miss-free cycles plus the stall until each fill has arrived).
+//   is busy the miss-free cycles plus the stall until each fill has arrived), made at its
+//   sample's slot in the batch as the RTL's texture cache makes it (fill()).
 // - A fence (a transaction without a batch) from interpolation: every batch before it is
 //   in the fragment FIFO, so one token goes back on texture_done, at 0 cycles; interpolation
 //   writes its next untextured transaction behind it (the ROP takes them in order).
@@ -51,6 +52,7 @@ class Texture : public Stage {
   LocalPtr<const FragmentBatch> shade(const FragmentBatch& batch, TimingParams::TextureWork& work);
   void next_triangle(const LocalPtr<const SetupTriangle>& tri);
   uint64_t kept_quads(const FragmentBatch& batch);
+  void fill(uint64_t address, uint64_t bytes);  // TextureUnit::on_fill
 
   const RasterState& arch_;
   const TimingParams& p_;
@@ -63,6 +65,12 @@ class Texture : public Stage {
   TriangleQuads quads_;                   // the current triangle's quads
   std::unordered_set<uint64_t> kept_quads_;  // early Z: its quads with a kept fragment (y/2 << 32 | x/2)
   LocalPtr<const SetupTriangle> quads_tri_;  // held: its address identifies the triangle
+  // Where the unit's fetches are in the batch being shaded (fill()): the fragment's first
+  // fetch and sample slot, texels a request, the request and lookup group of the last
+  // miss, the batch's split lookup groups.
+  struct FetchPlace {
+    uint64_t base = 0, slot = 0, per_request = 1, request = 0, group = 0, splits = 0;
+  } fetch_;
 };
 
 }  // namespace rastsim::sc
