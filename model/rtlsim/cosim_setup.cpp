@@ -65,7 +65,7 @@ class StreamBuilder {
   void primitives(const Command& cmd, const CmdPrimitives& prims);
   void clip_space(const Command& cmd, const CmdPrimitives& prims);
   void triangle(const Command& cmd, const CmdPrimitives& prims, size_t k, const ScreenTriangle& verts);
-  void texture_state(const Command& cmd, const TextureState& ts, TbItem& it);
+  void texture_state(const TextureState& ts, TbItem& it);
 
   TbSetup& setup_;
   const TimingParams& timing_;
@@ -84,16 +84,14 @@ class StreamBuilder {
 
 // A textured triangle's state on rast_top's tri_tex_* ports, its texture placed as the
 // reference places it and its texels put in the testbench's texel memory at first use.
-void StreamBuilder::texture_state(const Command& cmd, const TextureState& ts, TbItem& it) {
-  if (ts.mipmap || ts.filter == TexFilter::Trilinear)
-    throw SceneError(cmd.loc.str() + ": texture '" + ts.image->name + "' drawn with " +
-                     (ts.mipmap ? "mipmap on" : "texfilter trilinear") + ": the RTL texture stage samples level 0 "
-                     "(nearest, bilinear) only so far; co-simulate with mipmap off and texfilter nearest or "
-                     "bilinear (docs/texture.md \"RTL\")");
+void StreamBuilder::texture_state(const TextureState& ts, TbItem& it) {
   if (!tex_) tex_.emplace(state_.texture);
   const TextureUnit::Resident& r = tex_->resident(ts);
   it.tex_on = true;
   it.tex_bilinear = ts.filter == TexFilter::Bilinear;
+  it.tex_trilinear = ts.filter == TexFilter::Trilinear;
+  it.tex_levels = ts.mipmap ? int(r.levels.size()) : 1;
+  it.tex_bias = ts.lod_bias;
   it.tex_wrap_s = int(ts.wrap_s);
   it.tex_wrap_t = int(ts.wrap_t);
   it.tex_env = int(ts.env);
@@ -208,7 +206,7 @@ void StreamBuilder::triangle(const Command& cmd, const CmdPrimitives& prims, siz
       it.q[v] = t.persp_q[size_t(v)];
     }
     it.affine = t.affine;
-    if (prims.texture.enabled()) texture_state(cmd, prims.texture, it);
+    if (prims.texture.enabled()) texture_state(prims.texture, it);
     // The RTL builds the newton reciprocal (rtl/rast_recip.sv): a triangle that needs a
     // reciprocal under interp.recip = exact would be compared against another divider.
     if (!t.affine && t.recip != RecipMethod::Newton)

@@ -70,6 +70,8 @@ constexpr ParamField<RtlParams> kFields[] = {
     {"TexWeightBits", &RtlParams::tex_weight_bits, "texture.weight_bits"},
     {"TexSizeW", &RtlParams::tex_size_w, "bits of a texture side (up to the largest texture)"},
     {"TexAddrW", &RtlParams::tex_addr_w, "bits of a texel's byte address"},
+    {"TexLevelW", &RtlParams::tex_level_w, "bits of a mip level index"},
+    {"TexBiasW", &RtlParams::tex_bias_w, "texlod_bias in s.8, signed"},
     {"TriangleFifoDepth", &RtlParams::fifo_triangle, "fifo.triangle_depth"},
     {"SetupFifoEntries", &RtlParams::setup_fifo_entries, "fifo.setup_depth + setup latency slots"},
     {"TileFifoDepth", &RtlParams::fifo_tile, "fifo.tile_depth"},
@@ -327,6 +329,8 @@ RtlParams rtl_params(const ArchParams& arch) {
   p.tex_weight_bits = tex.weight_bits;
   p.tex_size_w = tex.size_w;
   p.tex_addr_w = tex.addr_w;
+  p.tex_level_w = tex.level_w;
+  p.tex_bias_w = tex.bias_w;
   p.fifo_triangle = t.fifo_triangle;
   p.setup_fifo_entries = t.setup_fifo_entries();
   p.fifo_tile = t.fifo_tile;

@@ -62,6 +62,8 @@ struct RtlParams {
   int tex_weight_bits = 0;  // texture.weight_bits
   int tex_size_w = 0;       // bits of a texture side (up to kMaxTextureExtent)
   int tex_addr_w = 0;       // bits of a texel's byte address
+  int tex_level_w = 0;      // bits of a mip level index (rast_texture_lod's LevelW)
+  int tex_bias_w = 0;       // texlod_bias in s.8, signed (rast_texture_lod's BiasW)
   int fifo_triangle = 0, fifo_tile = 0, fifo_pixel = 0;
   int setup_fifo_entries = 0;  // fifo.setup_depth + setup's latency slots (TimingParams)
   int fragment_fifo_entries = 0;  // fifo.fragment_depth + the interpolator's latency slots (TimingParams), tiles
