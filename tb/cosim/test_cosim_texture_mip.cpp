@@ -72,6 +72,7 @@ struct BoxCase {
   TexFilter filter;
   int32_t bias;
 };
+void PrintTo(const BoxCase& c, std::ostream* os) { *os << c.name; }  // the ctest name's parameter
 class Box : public ::testing::TestWithParam<BoxCase> {};
 
 TEST_P(Box, MipmappedMatchesTheReferenceAndSystemC) {
