@@ -75,6 +75,7 @@ module rast_interpolate #(
   input  wire logic [MaskW-1:0]          in_mask_i,     // covered pixels of the tile
   input  wire logic [SMaskW-1:0]         in_smask_i,    // pixel p's samples at [p*MaxSamples +: MaxSamples]
   input  wire logic [2*PixelW-1:0]       in_tile_i,     // tile corner pixel {y, x}
+  input  wire logic                      in_rowpair_i,  // textured: a beat holds one row pair's pixels
   input  wire logic [3*CoefW-1:0]        in_a_i,        // edge a
   input  wire logic [3*CoefW-1:0]        in_b_i,        // edge b
   input  wire logic [3*EdgeW-1:0]        in_c_i,        // edge c
@@ -151,6 +152,7 @@ module rast_interpolate #(
   logic [IdxW-1:0]  idx [Lanes];
   logic [Lanes-1:0] pick;
   logic             last_beat;
+  logic [IdxW-1:0]  next_pos;  // the bit after the beat's last pick
 
   // ---- The next Lanes set bits of the mask at or after pos_q, lowest first ----
   // A row (RowW bits) at a time: a row without a set bit left costs one test, and the
@@ -159,27 +161,45 @@ module rast_interpolate #(
   // in Verilator the per-cycle work follows the rows holding the beat's pixels, not the
   // mask width. (Was: rem = in_mask_i & ~consumed_q over all MaskW bits, a MaskW-bit
   // register of picked pixels, and a MaskW-iteration loop every cycle.)
+  // A textured tile (in_rowpair_i) stops a beat at the end of a row pair (pixel rows 2m,
+  // 2m + 1: ly >> 1 of the bit, whatever the tile size): the texture stage's quad table
+  // then sees one row pair a beat (rast_texture_stage.sv).
   always_comb begin
     int k;
+    logic stop;
     logic [RowW-1:0] row;
+    logic [IdxW-1:0] p, rp, rp0;
     k = 0;
+    stop = 1'b0;
+    p = '0;
+    rp = '0;
+    rp0 = '0;
     pick = '0;
+    next_pos = '0;
     for (int j = 0; j < Lanes; j++) idx[j] = '0;
     last_beat = 1'b1;
     for (int r = 0; r < Rows; r++) begin
       row = in_mask_i[r*RowW +: RowW];
       if (r < pos_row) row = '0;
       else if (r == pos_row) row = row & ({RowW{1'b1}} << pos_bit);
-      if (k <= beat_lanes && row != '0) begin
+      if (k <= beat_lanes && !stop && row != '0) begin
         for (int b = 0; b < RowW; b++) begin
-          if (row[b]) begin
-            if (k < beat_lanes) begin
-              idx[k]  = IdxW'(r * RowW + b);
+          if (row[b] && !stop) begin
+            p = IdxW'(r * RowW + b);
+            rp = p >> (32'(tile_log2_i) + 1);
+            if (in_rowpair_i && k > 0 && rp != rp0) begin
+              stop = 1'b1;  // the next row pair: the next beat
+              last_beat = 1'b0;
+            end else if (k < beat_lanes) begin
+              idx[k]  = p;
               pick[k] = 1'b1;
+              next_pos = p + 1'b1;
+              if (k == 0) rp0 = rp;
+              k = k + 1;
             end else begin
               last_beat = 1'b0;
+              k = k + 1;
             end
-            k = k + 1;
           end
         end
       end
@@ -192,7 +212,7 @@ module rast_interpolate #(
   // Not the last beat: all beat_lanes lanes picked, and the next beat starts after the last.
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) pos_q <= '0;
-    else if (en && in_valid_i && !in_marker_i) pos_q <= last_beat ? '0 : (persp ? idx[PerspLanes-1] : idx[Lanes-1]) + 1'b1;
+    else if (en && in_valid_i && !in_marker_i) pos_q <= last_beat ? '0 : next_pos;
   end
 
   // s and t flat (equal at the three vertices): the vertex value at every point.

@@ -9,7 +9,10 @@
 //   trilinear (with blend_i) the level blend (c0 (256 - f) + c f + 128) >> 8,
 //             c0 = prev_i the first level's colour, c
 //             this level's, f = frac_i: the second level's sample carries the first's
-//             result, so one unit does both levels, a sample a level.
+//             result, so one unit does both levels, a sample a level. With chain_i the
+//             first level's colour is instead this unit's previous output (color_o, the
+//             sample just before: rast_texture_stage sends the two levels back to back
+//             and drops the first's output), so the second level need not wait for it.
 // No intermediate rounding: one rounding of the weighted sum, one of the blend.
 //
 // Pipeline: 3 register stages (1: the weight products; 2: the weighted sums, rounded;
@@ -28,6 +31,7 @@ module rast_texture_filter (
   input  wire logic         bilinear_i,  // else nearest: texel 0
   input  wire logic         blend_i,     // blend with prev_i (trilinear's second level)
   input  wire logic [31:0]  prev_i,      // the first level's colour
+  input  wire logic         chain_i,     // blend with the previous output (color_o), not prev_i
   input  wire logic [7:0]   frac_i,      // the second level's weight, /256
   output      logic         out_valid_o,
   input  wire logic         out_ready_i,
@@ -51,7 +55,7 @@ module rast_texture_filter (
   assign nb = 9'd256 - b;
   logic [16:0] w0_q, w1_q, w2_q, w3_q;
   logic [127:0] tex1_q;
-  logic bil1_q, blend1_q, blend2_q;
+  logic bil1_q, blend1_q, blend2_q, chain1_q, chain2_q;
   logic [31:0] prev1_q, prev2_q;
   logic [7:0] frac1_q, frac2_q;
   always_ff @(posedge clk_i) begin
@@ -62,9 +66,9 @@ module rast_texture_filter (
       w3_q <= 17'(a) * 17'(b);
       tex1_q <= texels_i;
       bil1_q <= bilinear_i;
-      {blend1_q, prev1_q, frac1_q} <= {blend_i, prev_i, frac_i};
+      {blend1_q, chain1_q, prev1_q, frac1_q} <= {blend_i, chain_i, prev_i, frac_i};
     end
-    if (en && v1_q) {blend2_q, prev2_q, frac2_q} <= {blend1_q, prev1_q, frac1_q};
+    if (en && v1_q) {blend2_q, chain2_q, prev2_q, frac2_q} <= {blend1_q, chain1_q, prev1_q, frac1_q};
   end
 
   // ---- Stage 2: the weighted sums, rounded half up (24 bits: the weights sum to 2^16) ----
@@ -87,10 +91,12 @@ module rast_texture_filter (
   logic [63:0] mix;  // channel c's c0 (256 - f) + c f + 128 (<= 255 x 256 + 128) at [16c +: 16]: >> 8
   /* verilator lint_on UNUSEDSIGNAL */
   logic [8:0] nf;    // 256 - f
+  logic [31:0] c0;   // the first level's colour
   assign nf = 9'd256 - {1'b0, frac2_q};
+  assign c0 = chain2_q ? color_o : prev2_q;
   always_comb begin
     for (int c = 0; c < 4; c++)
-      mix[c*16 +: 16] = 16'(prev2_q[c*8 +: 8]) * 16'(nf) + 16'(c2_q[c*8 +: 8]) * 16'(frac2_q) + 16'd128;
+      mix[c*16 +: 16] = 16'(c0[c*8 +: 8]) * 16'(nf) + 16'(c2_q[c*8 +: 8]) * 16'(frac2_q) + 16'd128;
   end
   always_ff @(posedge clk_i) begin
     if (en && v2_q)

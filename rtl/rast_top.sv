@@ -74,13 +74,16 @@ module rast_top #(
   input  wire logic                                  tri_affine_i,    // interpolation needs no reciprocal (ref tri_setup's affine)
   // The triangle's texture state (docs/texture.md "RTL"; rast_texture_stage's in_*).
   input  wire logic                                  tri_tex_on_i,       // a texture bound: quads, the texture stage
-  input  wire logic                                  tri_tex_bilinear_i, // texfilter bilinear (else nearest)
+  input  wire logic                                  tri_tex_bilinear_i, // texfilter bilinear (else nearest, or trilinear)
+  input  wire logic                                  tri_tex_trilinear_i,// texfilter trilinear (bilinear on each level)
   input  wire logic [1:0]                            tri_tex_wrap_s_i,   // texwrap s: 0 repeat, 1 clamp, 2 mirror
   input  wire logic [1:0]                            tri_tex_wrap_t_i,   // texwrap t
   input  wire logic [1:0]                            tri_tex_env_i,      // texenv: 0 replace, 1 modulate, 2 decal
   input  wire logic [TexSizeW-1:0]                   tri_tex_width_i,    // level 0 width, texels
   input  wire logic [TexSizeW-1:0]                   tri_tex_height_i,   // level 0 height, texels
   input  wire logic [TexAddrW-1:0]                   tri_tex_base_i,     // level 0 byte address
+  input  wire logic [TexLevelW-1:0]                  tri_tex_levels_i,   // levels sampled: the chain's (mipmap on), else 1
+  input  wire logic [TexBiasW-1:0]                   tri_tex_bias_i,     // texlod_bias in s.8, signed
   input  wire logic [PixelW-1:0]                     tri_clip_x0_i,   // clip rect, half-open px
   input  wire logic [PixelW-1:0]                     tri_clip_y0_i,   //
   input  wire logic [PixelW-1:0]                     tri_clip_x1_i,   //
@@ -171,12 +174,15 @@ module rast_top #(
   typedef struct packed {
     logic                on;
     logic                bilinear;
+    logic                trilinear;
     logic [1:0]          wrap_s;
     logic [1:0]          wrap_t;
     logic [1:0]          env;
     logic [TexSizeW-1:0] width;
     logic [TexSizeW-1:0] height;
     logic [TexAddrW-1:0] base;
+    logic [TexLevelW-1:0] levels;
+    logic [TexBiasW-1:0] bias;
   } tex_t;
   typedef struct packed {
     logic [3*DepthW-1:0] z;       // depth, unorm
@@ -329,8 +335,9 @@ module rast_top #(
   assign t_push.attr.t = tri_t_i;
   assign t_push.attr.q = tri_q_i;
   assign t_push.attr.affine = tri_affine_i;
-  assign t_push.attr.tex = {tri_tex_on_i, tri_tex_bilinear_i, tri_tex_wrap_s_i, tri_tex_wrap_t_i, tri_tex_env_i,
-                            tri_tex_width_i, tri_tex_height_i, tri_tex_base_i};
+  assign t_push.attr.tex = {tri_tex_on_i, tri_tex_bilinear_i, tri_tex_trilinear_i, tri_tex_wrap_s_i, tri_tex_wrap_t_i,
+                            tri_tex_env_i, tri_tex_width_i, tri_tex_height_i, tri_tex_base_i, tri_tex_levels_i,
+                            tri_tex_bias_i};
   rast_fifo #(.Width(TriW), .Depth(TriangleFifoDepth)) u_triangle_fifo (
     .clk_i, .rst_ni, .in_valid_i(tri_valid_i), .in_ready_o(tri_ready_o), .in_data_i(t_push),
     .out_valid_o(t_valid), .out_ready_i(t_ready), .out_data_o(t_in), .empty_o(t_empty));
@@ -489,7 +496,8 @@ module rast_top #(
     .RecipSeedBits(RecipSeedBits), .RecipIterations(RecipIterations), .RecipLatency(InterpRecipLatency)
   ) u_interpolate (
     .clk_i, .rst_ni, .tile_log2_i(tile_log2_q), .in_valid_i(p_valid), .in_ready_o(p_ready), .in_marker_i(p_in.marker),
-    .in_mask_i(p_in.mask), .in_smask_i(p_in.smask), .in_tile_i(p_in.tile), .in_a_i(p_in.a), .in_b_i(p_in.b),
+    .in_mask_i(p_in.mask), .in_smask_i(p_in.smask), .in_tile_i(p_in.tile), .in_rowpair_i(p_in.attr.tex.on),
+    .in_a_i(p_in.a), .in_b_i(p_in.b),
     .in_c_i(p_in.c), .in_origin_i(p_in.origin), .in_area2_i(p_in.area2), .in_z_i(p_in.attr.z),
     .in_rgb_i(p_in.attr.rgb), .in_s_i(p_in.attr.s), .in_t_i(p_in.attr.t), .in_q_i(p_in.attr.q),
     .in_affine_i(p_in.attr.affine),
@@ -506,14 +514,16 @@ module rast_top #(
   logic [127:0]         tex_rsp_texels;
   rast_texture_stage #(
     .Lanes(Lanes), .PixelW(PixelW), .DepthW(DepthW), .MaxSamples(MaxSamples), .TexW(TexW), .TexFrac(TexFrac),
-    .WeightBits(TexWeightBits), .SizeW(TexSizeW), .AddrW(TexAddrW)
+    .WeightBits(TexWeightBits), .SizeW(TexSizeW), .AddrW(TexAddrW), .TileLog2Max(TileLog2Max),
+    .LevelW(TexLevelW), .BiasW(TexBiasW)
   ) u_texture (
     .clk_i, .rst_ni, .format_i(tex_format_q), .layout_i(tex_layout_q),
     .in_valid_i(i_valid), .in_ready_o(i_ready), .in_marker_i(i_marker), .in_last_i(i_last), .in_lanes_i(i_lanes),
     .in_x_i(i_x), .in_y_i(i_y), .in_z_i(i_z), .in_rgb_i(i_rgb), .in_s_i(i_s), .in_t_i(i_t), .in_smask_i(i_smask),
-    .in_tex_on_i(ts_head.on), .in_bilinear_i(ts_head.bilinear), .in_wrap_s_i(ts_head.wrap_s),
+    .in_tex_on_i(ts_head.on), .in_bilinear_i(ts_head.bilinear), .in_trilinear_i(ts_head.trilinear),
+    .in_wrap_s_i(ts_head.wrap_s),
     .in_wrap_t_i(ts_head.wrap_t), .in_env_i(ts_head.env), .in_width_i(ts_head.width), .in_height_i(ts_head.height),
-    .in_base_i(ts_head.base),
+    .in_base_i(ts_head.base), .in_levels_i(ts_head.levels), .in_bias_i(ts_head.bias),
     .out_valid_o(frag_valid_o), .out_ready_i(frag_ready_o), .out_marker_o(frag_marker_o),
     .out_last_o(frag_last_o), .out_lanes_o(frag_lanes_o), .out_x_o(frag_x_o), .out_y_o(frag_y_o),
     .out_z_o(frag_z_o), .out_rgb_o(frag_rgb_o), .out_s_o(frag_s_o), .out_t_o(frag_t_o), .out_smask_o(frag_mask_o),

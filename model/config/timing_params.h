@@ -162,8 +162,9 @@ struct TimingParams {
   // and each texture-cache line miss stalls the whole pipeline texture.miss_cycles:
   //   max(ceil(Q / quads_per_cycle), ceil(B / bilinear_per_cycle),
   //       ceil(T / texels_per_cycle), ceil(N / combine_per_cycle), B) + S + M miss_cycles
-  // Q the batch's 2x2 quads (helper pixels ride in their quad's lanes), B its bilinear
-  // sample slots (a nearest or bilinear sample 1, a trilinear sample 2: half rate), T its
+  // Q the batch's 2x2 quads (helper pixels ride in their quad's lanes), B its level
+  // samples (TextureStats::level_samples: a nearest or bilinear sample 1, a trilinear
+  // sample 2 where it blends two levels, half rate, and 1 where its weight is 0), T its
   // texel fetches, N its fragments, M its line misses. At least 1 cycle a batch. The
   // term B alone: the texel fetch port takes one level sample (1 or 4 texels) a cycle
   // (rast_top's one tex_req port, the texture cache's interface), whatever the lanes
@@ -186,9 +187,6 @@ struct TimingParams {
                                     uint64_t{1}});
     return rate + w.miss_splits + w.misses * texture_miss_cycles;
   }
-  // Bilinear sample slots of one sample by its filter: trilinear blends two levels' bilinear
-  // samples at half rate (also where its level weight is 0 and one level is read).
-  static constexpr uint64_t texture_sample_slots(bool trilinear) { return trilinear ? 2 : 1; }
 
   // Traversal (docs/traversal.md). Coarse raster classifies coarse_tiles_per_cycle tiles a
   // cycle at every level: tile i of a walk (counted from 0 over all levels, in walk order)

@@ -285,14 +285,14 @@ class Walker {
  private:
 
   // A textured batch of `fragments` through the texture stage (sc/texture): the terms of
-  // TimingParams::texture_batch_cycles the counts give, its sample slots, its fewest texel
+  // TimingParams::texture_batch_cycles the counts give, its fewest sample slots, texel
   // fetches (1 a nearest sample, 4 a bilinear or trilinear one: one level read at least)
   // and its fragments; its quads and cache misses need the texture unit itself and count
   // 0 here, so this stays at most the simulated busy (a lower bound; no upper bound).
   void texture_batch(TexFilter filter, uint64_t fragments) {
     textured_ = true;
     TimingParams::TextureWork w;
-    w.bilinear_slots = fragments * TimingParams::texture_sample_slots(filter == TexFilter::Trilinear);
+    w.bilinear_slots = fragments;  // one level sample a fragment at least (trilinear: 2 where it blends two)
     w.texel_fetches = fragments * (filter == TexFilter::Nearest ? 1 : 4);
     w.fragments = fragments;
     work(StageId::Texture, p_.texture_batch_cycles(w));

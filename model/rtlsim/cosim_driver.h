@@ -143,6 +143,9 @@ class VerilatedRast final : public RastPorts {
     top_->tri_tex_width_i = static_cast<uint16_t>(it->tex_width);
     top_->tri_tex_height_i = static_cast<uint16_t>(it->tex_height);
     top_->tri_tex_base_i = it->tex_base;
+    top_->tri_tex_trilinear_i = it->tex_trilinear;
+    top_->tri_tex_levels_i = static_cast<uint8_t>(it->tex_levels);
+    top_->tri_tex_bias_i = static_cast<uint16_t>(uint32_t(it->tex_bias) & ((uint32_t{1} << params_.tex_bias_w) - 1));
   }
   bool triangle_ready() const override { return top_->tri_ready_o; }
   bool fragment_taken() const override { return top_->frag_ready_o; }

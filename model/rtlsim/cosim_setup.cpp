@@ -86,11 +86,6 @@ class StreamBuilder {
 // reference places it and its texels stored in the testbench's texture memory at first use
 // (the reference's cache fills, in fetch order, recorded for the RTL's to be checked against).
 void StreamBuilder::texture_state(const Command& cmd, const TextureState& ts, TbItem& it) {
-  if (ts.mipmap || ts.filter == TexFilter::Trilinear)
-    throw SceneError(cmd.loc.str() + ": texture '" + ts.image->name + "' drawn with " +
-                     (ts.mipmap ? "mipmap on" : "texfilter trilinear") + ": the RTL texture stage samples level 0 "
-                     "(nearest, bilinear) only so far; co-simulate with mipmap off and texfilter nearest or "
-                     "bilinear (docs/texture.md \"RTL\")");
   if (state_.texture.cache.bytes == 0)
     throw SceneError(cmd.loc.str() + ": texture '" + ts.image->name + "' with texture.cache_bytes = 0: rast_top's "
                      "texture cache (rtl/rast_texture_cache.sv) has no form without a cache; co-simulate with "
@@ -102,6 +97,9 @@ void StreamBuilder::texture_state(const Command& cmd, const TextureState& ts, Tb
   const TextureUnit::Resident& r = tex_->resident(ts);
   it.tex_on = true;
   it.tex_bilinear = ts.filter == TexFilter::Bilinear;
+  it.tex_trilinear = ts.filter == TexFilter::Trilinear;
+  it.tex_levels = ts.mipmap ? int(r.levels.size()) : 1;
+  it.tex_bias = ts.lod_bias;
   it.tex_wrap_s = int(ts.wrap_s);
   it.tex_wrap_t = int(ts.wrap_t);
   it.tex_env = int(ts.env);

@@ -75,6 +75,8 @@ constexpr ParamField<RtlParams> kFields[] = {
     {"TexLineBytes", &RtlParams::tex_line_bytes, "texture.line_bytes"},
     {"TexPorts", &RtlParams::tex_ports, "texel lookups a cycle: texels_per_cycle / bilinear_per_cycle, 1..4"},
     {"TexBeatBytes", &RtlParams::tex_beat_bytes, "bytes of a texture line fill beat"},
+    {"TexLevelW", &RtlParams::tex_level_w, "bits of a mip level index"},
+    {"TexBiasW", &RtlParams::tex_bias_w, "texlod_bias in s.8, signed"},
     {"TriangleFifoDepth", &RtlParams::fifo_triangle, "fifo.triangle_depth"},
     {"SetupFifoEntries", &RtlParams::setup_fifo_entries, "fifo.setup_depth + setup latency slots"},
     {"TileFifoDepth", &RtlParams::fifo_tile, "fifo.tile_depth"},
@@ -335,6 +337,8 @@ RtlParams rtl_params(const ArchParams& arch) {
   p.tex_line_bytes = tex.line_bytes;
   p.tex_ports = tex.ports;
   p.tex_beat_bytes = tex.beat_bytes;
+  p.tex_level_w = tex.level_w;
+  p.tex_bias_w = tex.bias_w;
   p.fifo_triangle = t.fifo_triangle;
   p.setup_fifo_entries = t.setup_fifo_entries();
   p.fifo_tile = t.fifo_tile;

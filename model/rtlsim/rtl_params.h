@@ -65,6 +65,8 @@ struct RtlParams {
   // Its texture cache (rtl/rast_texture_cache.sv in rast_top): texture_rtl_params' cache
   // fields, all 0 with texture.cache_bytes = 0 (no RTL cache: the port tied off).
   int tex_cache_bytes = 0, tex_ways = 0, tex_line_bytes = 0, tex_ports = 0, tex_beat_bytes = 0;
+  int tex_level_w = 0;      // bits of a mip level index (rast_texture_lod's LevelW)
+  int tex_bias_w = 0;       // texlod_bias in s.8, signed (rast_texture_lod's BiasW)
   int fifo_triangle = 0, fifo_tile = 0, fifo_pixel = 0;
   int setup_fifo_entries = 0;  // fifo.setup_depth + setup's latency slots (TimingParams)
   int fragment_fifo_entries = 0;  // fifo.fragment_depth + the interpolator's latency slots (TimingParams), tiles

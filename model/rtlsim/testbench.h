@@ -45,10 +45,12 @@ struct TbItem {
   uint32_t q[3] = {1, 1, 1};   // perspective weights Q_k (24 bits)
   bool affine = true;          // interpolation needs no reciprocal (ref tri_setup)
   // The texture state (rast_top's tri_tex_*; ref/texture/texture.h's enum values).
-  bool tex_on = false, tex_bilinear = false;
+  bool tex_on = false, tex_bilinear = false, tex_trilinear = false;  // bilinear: on each level read
   int tex_wrap_s = 0, tex_wrap_t = 0, tex_env = 0;
   int tex_width = 0, tex_height = 0;  // level 0, texels
   uint64_t tex_base = 0;              // level 0's byte address (TextureUnit's placement)
+  int tex_levels = 1;                 // levels sampled: the chain's with mipmap on, else 1
+  int32_t tex_bias = 0;               // texlod_bias, s.8
   int clip[4] = {};            // x0, y0, x1, y1
   int origin[2] = {};          // x, y
   int tri = -1;                // triangle index (names in TbSetup::tri_names)

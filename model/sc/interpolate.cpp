@@ -13,11 +13,15 @@ namespace {
 uint64_t quad_key(int x, int y) { return uint64_t(uint32_t(y >> 1)) << 32 | uint32_t(x >> 1); }
 }  // namespace
 
-// A textured batch's 2x2 quads (pixels 2x..2x+1, 2y..2y+1) whole, helper pixels included
-// (the RTL's fine raster closes the tile's mask over quads: rtl/rast_fine_raster.sv;
-// docs/texture.md "RTL"); where early Z culled some fragments (depth.early), the quads
-// of the kept ones: a quad none of whose fragments is kept is not shaded.
-uint64_t Interpolate::textured_quad_pixels(const FragmentBatch& frags) {
+// A textured batch's cycles: its 2x2 quads (pixels 2x..2x+1, 2y..2y+1) whole, helper
+// pixels included (the RTL's fine raster closes the tile's mask over quads:
+// rtl/rast_fine_raster.sv; docs/texture.md "RTL"), a row pair (pixel rows 2m, 2m + 1) at
+// a time: the RTL interpolator never puts two row pairs in one beat (the texture stage's
+// quad table), so each row pair of q quads costs interp_batch_cycles(4 q) (the same as
+// ceil(4 Q / lanes) over the tile at 1, 2 or 4 lanes). Where early Z culled some fragments
+// (depth.early), the quads of the kept ones: a quad none of whose fragments is kept is
+// not shaded.
+uint64_t Interpolate::textured_batch_cycles(const FragmentBatch& frags, bool affine) {
   quad_keys_.clear();
   if (frags.culled_count == 0) {
     for (const PixelRun& r : frags.pixels->runs)
@@ -27,7 +31,15 @@ uint64_t Interpolate::textured_quad_pixels(const FragmentBatch& frags) {
       if (!frags.is_culled(k)) quad_keys_.push_back(quad_key(frags.storage[k].x, frags.storage[k].y));
   }
   std::sort(quad_keys_.begin(), quad_keys_.end());
-  return 4 * uint64_t(std::unique(quad_keys_.begin(), quad_keys_.end()) - quad_keys_.begin());
+  const auto end = std::unique(quad_keys_.begin(), quad_keys_.end());
+  uint64_t cycles = 0;
+  for (auto i = quad_keys_.begin(); i != end;) {  // keys sorted by row pair (the high word)
+    auto j = i;
+    while (j != end && (*j >> 32) == (*i >> 32)) ++j;
+    cycles += p_.interp_batch_cycles(4 * uint64_t(j - i), affine);
+    i = j;
+  }
+  return cycles;
 }
 
 void Interpolate::body() {
@@ -51,8 +63,8 @@ void Interpolate::body() {
     if (frags->count != 0) attribute_to(first->x, first->y);  // the batch's tile
     // Early Z: the attribute lanes shade the kept fragments only (docs/depth-culling.md); a
     // textured batch its quads whole.
-    const uint64_t shaded = tri.texture.enabled() ? textured_quad_pixels(*frags) : frags->kept();
-    const uint64_t cycles = p_.interp_batch_cycles(shaded, tri.affine);
+    const uint64_t cycles = tri.texture.enabled() ? textured_batch_cycles(*frags, tri.affine)
+                                                  : p_.interp_batch_cycles(frags->kept(), tri.affine);
     if (!tri.affine) {  // a reciprocal a fragment (docs/clip-space.md, "Timing")
       ctx_.recip_reciprocals += frags->kept();
       ctx_.recip_busy_cycles += cycles;

@@ -105,9 +105,9 @@ class Interpolate : public Stage {
   // The fence, when textured batches are ahead; then the extra latency that makes a
   // transaction whose pipeline ends at cycle `ready` ready then (0 when already past).
   uint64_t behind_texture(uint64_t ready);
-  // The pixels a textured batch puts through the lanes: its 2x2 quads whole, helper
-  // pixels included; under early Z the quads of the kept fragments only.
-  uint64_t textured_quad_pixels(const FragmentBatch& frags);
+  // A textured batch's cycles in the lanes: its 2x2 quads whole, helper pixels included,
+  // a row pair at a time; under early Z the quads of the kept fragments only.
+  uint64_t textured_batch_cycles(const FragmentBatch& frags, bool affine);
   int frac_bits_;
   const TimingParams& p_;
   Link<PixelItem>& in_;
@@ -116,7 +116,7 @@ class Interpolate : public Stage {
   Link<TextureFence>& texture_done_;   // a fence's token back
   bool textured_ahead_ = false;        // a textured batch was sent since the last fence
   Recycler<FragmentBatch> fragments_;  // no allocation a batch (sc/recycler.h)
-  std::vector<uint64_t> quad_keys_;    // textured_quad_pixels' scratch: y/2 << 32 | x/2
+  std::vector<uint64_t> quad_keys_;    // textured_batch_cycles' scratch: y/2 << 32 | x/2
   // The shader of the last batch's triangle, kept for its next tiles (the reference
   // builds one a triangle too: PlaneStepper's setup divides). Holding the triangle keeps
   // its pooled object from being reused, so the address identifies it.

@@ -66,11 +66,8 @@ LocalPtr<const FragmentBatch> Texture::shade(const FragmentBatch& batch, TimingP
   }
   quads_.add_covered(batch.pixels->pixels);
   const TextureStats& s = unit_->stats();
-  const auto samples = [&](TexFilter f) { return s.samples[size_t(f)] - before.samples[size_t(f)]; };
   work.quads = arch_.depth_early ? kept_quads(batch) : quads_.quads() - quads_before;
-  work.bilinear_slots = (samples(TexFilter::Nearest) + samples(TexFilter::Bilinear)) *
-                            TimingParams::texture_sample_slots(false) +
-                        samples(TexFilter::Trilinear) * TimingParams::texture_sample_slots(true);
+  work.bilinear_slots = s.level_samples - before.level_samples;
   work.texel_fetches = s.texel_fetches - before.texel_fetches;
   work.fragments = batch.kept();
   work.misses = s.cache_misses - before.cache_misses;

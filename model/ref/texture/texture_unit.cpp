@@ -115,7 +115,11 @@ Fragment TextureUnit::shade(const Fragment& f, const QuadDerivatives& d, const T
   const int32_t lambda = levels > 1 ? texture_lod(d, base.width, base.height, frac_bits) : 0;
   const LevelChoice c = choose_levels(lambda, ts.lod_bias, levels, ts.filter);
   Rgba8 tex = sample_level(r, c.level0, f, ts, frac_bits);
-  if (c.level1 != c.level0) tex = blend_levels(tex, sample_level(r, c.level1, f, ts, frac_bits), c.frac);
+  ++stats_.level_samples;
+  if (c.level1 != c.level0) {
+    tex = blend_levels(tex, sample_level(r, c.level1, f, ts, frac_bits), c.frac);
+    ++stats_.level_samples;
+  }
   const auto rgb = texenv_combine(ts.env, tex, {f.r, f.g, f.b});
   Fragment out = f;
   out.r = rgb[0];

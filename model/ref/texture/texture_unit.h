@@ -36,6 +36,10 @@ struct TextureStats {
   uint64_t cache_hits = 0, cache_misses = 0;  // texel_fetches = hits + misses
   uint64_t dram_bytes = 0;                    // line fills (no cache: texel bytes)
   uint64_t helper_pixels = 0;                 // quad pixels shaded for derivatives only, never written
+  // Level samples (one level's 1 or 4 texels filtered): 1 a nearest or bilinear sample, 2
+  // a trilinear one that blends two levels, 1 one whose second weight is 0 (one level
+  // read). The texel fetch port's requests (the timed stage's rate term B; not a stats key).
+  uint64_t level_samples = 0;
   uint64_t samples[kTexFilters] = {};         // textured fragments, by TexFilter
   uint64_t total_samples() const { return samples[0] + samples[1] + samples[2]; }
 };
