@@ -31,7 +31,11 @@ DepthRange tile_depth_range(const SetupTriangle& t, const PixelRect& fp, int fra
   const i128 lo = div_round_in<i128>(num_min, t.area2, Rounding::Floor);                 // floor
   const i128 hi = -div_round_in<i128>(-num_max, t.area2, Rounding::Floor);               // ceil
   const uint32_t zmin = std::min({t.z[0], t.z[1], t.z[2]}), zmax = std::max({t.z[0], t.z[1], t.z[2]});
-  return {static_cast<uint32_t>(std::max<i128>(zmin, lo)), static_cast<uint32_t>(std::min<i128>(zmax, hi))};
+  // Clamped to [-1, 2^D] (DepthRange): lo >= 0 and hi <= 2^D - 1 already (the vertex
+  // clamp); a corner plane beyond the depth range keeps its side of every stored bound.
+  const i128 top = i128(1) << t.depth_bits;
+  return {static_cast<int64_t>(std::min<i128>(std::max<i128>(zmin, lo), top)),
+          static_cast<int64_t>(std::max<i128>(std::min<i128>(zmax, hi), -1))};
 }
 
 HizStats& HizStats::operator+=(const HizStats& o) {
@@ -72,12 +76,12 @@ void HizTable::clear(uint32_t z) {
 }
 
 DepthRange HizTable::bounds(const PixelRect& fp) const {
-  DepthRange r{~0u, 0};
+  DepthRange r{int64_t{~0u}, 0};
   for (int by = fp.y0 >> log2B_; by <= (fp.y1 - 1) >> log2B_; ++by)
     for (int bx = fp.x0 >> log2B_; bx <= (fp.x1 - 1) >> log2B_; ++bx) {
       const Block& b = blocks_[size_t(index(bx, by))];
-      r.lo = std::min(r.lo, b.zmin);
-      r.hi = std::max(r.hi, b.zmax);
+      r.lo = std::min<int64_t>(r.lo, b.zmin);
+      r.hi = std::max<int64_t>(r.hi, b.zmax);
     }
   return r;
 }
