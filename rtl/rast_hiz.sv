@@ -45,7 +45,7 @@ module rast_hiz #(
   input  wire logic [Lanes*PixelW-1:0]  wr_x_i,       // lane j pixel x
   input  wire logic [Lanes*PixelW-1:0]  wr_y_i,       // lane j pixel y
   input  wire logic [Lanes*DepthW-1:0]  wr_z_i,       // lane j depth
-  output      logic [$clog2(Lanes+1)-1:0] completions_o  // layers completed this cycle
+  output      logic [$clog2(Lanes+1)-1:0] completions_o  // layers completed this cycle (CompW bits)
 );
   localparam int B       = 1 << BlockLog2;                       // derived: block edge, px
   localparam int MaskW   = B * B;                                // derived: layer mask bits
@@ -53,13 +53,18 @@ module rast_hiz #(
   localparam int IdxW    = Blocks > 1 ? $clog2(Blocks) : 1;      // derived: entry index
   localparam int MaxSpan = TileLog2Max > BlockLog2 ? 1 << (TileLog2Max - BlockLog2) : 1;  // derived
   localparam int BlkW    = PixelW - BlockLog2 + 1;               // derived: block coordinate
+  localparam int CompW   = $clog2(Lanes + 1);                    // derived: completions_o bits
 
-  typedef struct packed {
-    logic [DepthW-1:0] zmin, zmax, lmin, lmax;
-    logic [MaskW-1:0]  mask;
-    logic [CntW-1:0]   count;
-  } entry_t;
-  entry_t table_q [Blocks];
+  // An entry, {zmin, zmax, lmin, lmax, mask, count} from the top bit down (flat vectors
+  // and slices: Yosys 0.23 does not take members of a local struct variable).
+  localparam int OCnt  = 0;                  // derived: field offsets
+  localparam int OMask = OCnt + CntW;
+  localparam int OLmax = OMask + MaskW;
+  localparam int OLmin = OLmax + DepthW;
+  localparam int OZmax = OLmin + DepthW;
+  localparam int OZmin = OZmax + DepthW;
+  localparam int EntryW = OZmin + DepthW;    // derived: entry bits
+  logic [EntryW-1:0] table_q [Blocks];
 
   // Blocks a row and in all; one block's on-screen pixels.
   logic [BlkW-1:0]       nx, ny;
@@ -84,7 +89,7 @@ module rast_hiz #(
   assign qby1 = BlkW'((q_fp_i[3*PixelW +: PixelW] - 1'b1) >> BlockLog2);
   always_comb begin
     /* verilator lint_off UNUSEDSIGNAL */  // the layer fields: the update's
-    entry_t e;
+    logic [EntryW-1:0] e;
     /* verilator lint_on UNUSEDSIGNAL */
     q_min_o = '1;
     q_max_o = '0;
@@ -92,8 +97,8 @@ module rast_hiz #(
       for (int i = 0; i < MaxSpan; i++) begin
         e = table_q[index_of(qbx0 + BlkW'(i), qby0 + BlkW'(j), nx)];
         if (qbx0 + BlkW'(i) <= qbx1 && qby0 + BlkW'(j) <= qby1) begin
-          if (e.zmin < q_min_o) q_min_o = e.zmin;
-          if (e.zmax > q_max_o) q_max_o = e.zmax;
+          if (e[OZmin +: DepthW] < q_min_o) q_min_o = e[OZmin +: DepthW];
+          if (e[OZmax +: DepthW] > q_max_o) q_max_o = e[OZmax +: DepthW];
         end
       end
     if (MinMax == 0) q_min_o = '0;
@@ -119,46 +124,48 @@ module rast_hiz #(
     assign w_full[j] = CntW'(wx * wy);
     assign w_bit[j] = {y[BlockLog2-1:0], x[BlockLog2-1:0]};
   end
-  // Lane j's entry after lanes 0 .. j-1, in lane order (done[k] is read only for k < j,
-  // already written: Verilator's order check sees the array whole).
+  // Lane j's entry after lanes 0 .. j-1, in lane order (lane k's slice of w_new is read
+  // only for k < j, already written: Verilator's order check sees the vector whole).
   /* verilator lint_off ALWCOMBORDER */
-  entry_t           w_new [Lanes];
+  logic [Lanes*EntryW-1:0] w_new;  // lane j's entry at [j*EntryW +: EntryW]
   logic [Lanes-1:0] w_done;  // lane j completed its block's layer
   always_comb begin
-    entry_t e;
-    entry_t done [Lanes];  // the lanes' results so far (w_new once all are in)
-    logic [DepthW-1:0] z;
+    logic [EntryW-1:0] e;
+    logic [DepthW-1:0] z, zmin, zmax, lmin, lmax;
+    logic [MaskW-1:0]  mask;
+    logic [CntW-1:0]   count;
+    w_new = '0;
     for (int j = 0; j < Lanes; j++) begin
       z = wr_z_i[j*DepthW +: DepthW];
       e = table_q[w_idx[j]];
       for (int k = 0; k < j; k++)
-        if (wr_valid_i[k] && w_idx[k] == w_idx[j]) e = done[k];
-      if (z > e.zmax) e.zmax = z;
-      if (z < e.zmin) e.zmin = z;
-      if (z > e.lmax) e.lmax = z;
-      if (z < e.lmin) e.lmin = z;
+        if (wr_valid_i[k] && w_idx[k] == w_idx[j]) e = w_new[k*EntryW +: EntryW];
+      {zmin, zmax, lmin, lmax, mask, count} = e;
+      if (z > zmax) zmax = z;
+      if (z < zmin) zmin = z;
+      if (z > lmax) lmax = z;
+      if (z < lmin) lmin = z;
       w_done[j] = 1'b0;
-      if (!e.mask[w_bit[j]]) begin
-        e.mask[w_bit[j]] = 1'b1;
-        e.count = e.count + 1'b1;
-        if (e.count == w_full[j]) begin  // every pixel written during the layer
-          if (e.lmax < e.zmax) e.zmax = e.lmax;
-          if (e.lmin > e.zmin) e.zmin = e.lmin;
-          e.mask = '0;
-          e.count = '0;
-          e.lmin = '1;
-          e.lmax = '0;
+      if (!mask[w_bit[j]]) begin
+        mask[w_bit[j]] = 1'b1;
+        count = count + 1'b1;
+        if (count == w_full[j]) begin  // every pixel written during the layer
+          if (lmax < zmax) zmax = lmax;
+          if (lmin > zmin) zmin = lmin;
+          mask = '0;
+          count = '0;
+          lmin = '1;
+          lmax = '0;
           w_done[j] = wr_valid_i[j];
         end
       end
-      done[j] = e;
+      w_new[j*EntryW +: EntryW] = {zmin, zmax, lmin, lmax, mask, count};
     end
-    w_new = done;
   end
   /* verilator lint_on ALWCOMBORDER */
   always_comb begin
     completions_o = '0;
-    for (int j = 0; j < Lanes; j++) completions_o = completions_o + $clog2(Lanes+1)'(w_done[j]);
+    for (int j = 0; j < Lanes; j++) completions_o = completions_o + CompW'(w_done[j]);
   end
 
   // ---- The entries: a register each, written by a clear or by the last lane writing it
@@ -166,12 +173,12 @@ module rast_hiz #(
   for (genvar i = 0; i < Blocks; i++) begin : g_entry
     always_ff @(posedge clk_i or negedge rst_ni) begin
       if (!rst_ni) begin
-        table_q[i] <= '{zmin: '1, zmax: '1, lmin: '1, lmax: '0, mask: '0, count: '0};
+        table_q[i] <= {{DepthW{1'b1}}, {DepthW{1'b1}}, {DepthW{1'b1}}, {DepthW{1'b0}}, {MaskW{1'b0}}, {CntW{1'b0}}};
       end else if (clear_i) begin
-        table_q[i] <= '{zmin: clear_z_i, zmax: clear_z_i, lmin: '1, lmax: '0, mask: '0, count: '0};
+        table_q[i] <= {clear_z_i, clear_z_i, {DepthW{1'b1}}, {DepthW{1'b0}}, {MaskW{1'b0}}, {CntW{1'b0}}};  // {zmin, zmax, lmin, lmax, mask, count}
       end else begin
         for (int j = 0; j < Lanes; j++)
-          if (wr_valid_i[j] && w_idx[j] == IdxW'(i)) table_q[i] <= w_new[j];
+          if (wr_valid_i[j] && w_idx[j] == IdxW'(i)) table_q[i] <= w_new[j*EntryW +: EntryW];
       end
     end
   end

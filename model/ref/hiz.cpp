@@ -7,6 +7,7 @@
 
 #include "ref/fine_raster.h"
 #include "ref/fixed_point.h"
+#include "ref/hiz_entry.h"
 #include "ref/interpolate.h"
 #include "ref/rop.h"
 
@@ -46,21 +47,11 @@ HizStats& HizStats::operator+=(const HizStats& o) {
   return *this;
 }
 
-namespace {
-// The entry's bits (ref/hiz.h): bounds and layer bounds, D bits each, and the B^2 mask,
-// padded to a power of two of bytes.
-int entry_bytes_of(HizMode mode, int block, int depth_bits) {
-  const int bounds = mode == HizMode::MinMax ? 4 : 2;
-  const int bits = bounds * depth_bits + block * block;
-  return int(std::bit_ceil(unsigned((bits + 7) / 8)));
-}
-}  // namespace
-
 HizTable::HizTable(HizMode mode, int block, int64_t onchip_bytes, int width, int height, int depth_bits)
     : mode_(mode), B_(block), log2B_(std::countr_zero(unsigned(block))), nx_((width + block - 1) / block),
       ny_((height + block - 1) / block), width_(width), height_(height), depth_bits_(depth_bits),
-      entry_bytes_(entry_bytes_of(mode, block, depth_bits)),
-      onchip_(std::min<int64_t>(onchip_bytes / entry_bytes_of(mode, block, depth_bits), int64_t(nx_) * ny_)),
+      entry_bytes_(hiz_entry_bytes(mode, block, depth_bits)),
+      onchip_(hiz_onchip_blocks(mode, block, onchip_bytes, width, height, depth_bits)),
       blocks_(size_t(nx_) * size_t(ny_)) {
   stats.enabled = true;
   clear(static_cast<uint32_t>((uint64_t{1} << depth_bits) - 1));
