@@ -46,13 +46,17 @@ TEST(DepthHiz, CornerBoundHandWorked) {
   ASSERT_EQ(setup_triangle(v, st, {"hand", 1}, t), SetupOutcome::Accepted);
   const int F = st.coord_format.frac_bits;
   const DepthRange r = tile_depth_range(t, {0, 0, 8, 8}, F);
-  EXPECT_EQ(r.lo, 1048575u);
-  EXPECT_EQ(r.hi, 15728640u);
+  EXPECT_EQ(r.lo, 1048575);
+  EXPECT_EQ(r.hi, 15728640);
   EXPECT_EQ(interpolate_plane(t, 7, 7, F).z, 1048576u);
   EXPECT_EQ(interpolate_plane(t, 0, 0, F).z, 15728639u);
   // A tile whose corners lie outside the triangle: the bound is clamped to the vertices'.
   const DepthRange far = tile_depth_range(t, {8, 8, 16, 16}, F);
-  EXPECT_EQ(far.lo, 0u);  // the plane goes negative at (15.5, 15.5): clamped to min z_k = 0
+  EXPECT_EQ(far.lo, 0);  // the plane goes negative at (15.5, 15.5): clamped to min z_k = 0
+  // Its nearest corner (8.5, 8.5) is past the far edge too: 16777215 (1 - 17/16) =
+  // -1048575.9375, ceil -1048575, clamped to -1 (was cast to uint32: 4293918721, a bound
+  // above every stored depth); below every stored bound either way an exact test says.
+  EXPECT_EQ(far.hi, -1);
 }
 
 // The spilled table's bytes by hand: a 16 x 16 screen, 8 px blocks (4 blocks, row-major

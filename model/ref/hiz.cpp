@@ -7,6 +7,7 @@
 
 #include "ref/fine_raster.h"
 #include "ref/fixed_point.h"
+#include "ref/hiz_entry.h"
 #include "ref/interpolate.h"
 #include "ref/rop.h"
 
@@ -31,7 +32,11 @@ DepthRange tile_depth_range(const SetupTriangle& t, const PixelRect& fp, int fra
   const i128 lo = div_round_in<i128>(num_min, t.area2, Rounding::Floor);                 // floor
   const i128 hi = -div_round_in<i128>(-num_max, t.area2, Rounding::Floor);               // ceil
   const uint32_t zmin = std::min({t.z[0], t.z[1], t.z[2]}), zmax = std::max({t.z[0], t.z[1], t.z[2]});
-  return {static_cast<uint32_t>(std::max<i128>(zmin, lo)), static_cast<uint32_t>(std::min<i128>(zmax, hi))};
+  // Clamped to [-1, 2^D] (DepthRange): lo >= 0 and hi <= 2^D - 1 already (the vertex
+  // clamp); a corner plane beyond the depth range keeps its side of every stored bound.
+  const i128 top = i128(1) << t.depth_bits;
+  return {static_cast<int64_t>(std::min<i128>(std::max<i128>(zmin, lo), top)),
+          static_cast<int64_t>(std::max<i128>(std::min<i128>(zmax, hi), -1))};
 }
 
 HizStats& HizStats::operator+=(const HizStats& o) {
@@ -42,21 +47,11 @@ HizStats& HizStats::operator+=(const HizStats& o) {
   return *this;
 }
 
-namespace {
-// The entry's bits (ref/hiz.h): bounds and layer bounds, D bits each, and the B^2 mask,
-// padded to a power of two of bytes.
-int entry_bytes_of(HizMode mode, int block, int depth_bits) {
-  const int bounds = mode == HizMode::MinMax ? 4 : 2;
-  const int bits = bounds * depth_bits + block * block;
-  return int(std::bit_ceil(unsigned((bits + 7) / 8)));
-}
-}  // namespace
-
 HizTable::HizTable(HizMode mode, int block, int64_t onchip_bytes, int width, int height, int depth_bits)
     : mode_(mode), B_(block), log2B_(std::countr_zero(unsigned(block))), nx_((width + block - 1) / block),
       ny_((height + block - 1) / block), width_(width), height_(height), depth_bits_(depth_bits),
-      entry_bytes_(entry_bytes_of(mode, block, depth_bits)),
-      onchip_(std::min<int64_t>(onchip_bytes / entry_bytes_of(mode, block, depth_bits), int64_t(nx_) * ny_)),
+      entry_bytes_(hiz_entry_bytes(mode, block, depth_bits)),
+      onchip_(hiz_onchip_blocks(mode, block, onchip_bytes, width, height, depth_bits)),
       blocks_(size_t(nx_) * size_t(ny_)) {
   stats.enabled = true;
   clear(static_cast<uint32_t>((uint64_t{1} << depth_bits) - 1));
@@ -72,12 +67,12 @@ void HizTable::clear(uint32_t z) {
 }
 
 DepthRange HizTable::bounds(const PixelRect& fp) const {
-  DepthRange r{~0u, 0};
+  DepthRange r{int64_t{~0u}, 0};
   for (int by = fp.y0 >> log2B_; by <= (fp.y1 - 1) >> log2B_; ++by)
     for (int bx = fp.x0 >> log2B_; bx <= (fp.x1 - 1) >> log2B_; ++bx) {
       const Block& b = blocks_[size_t(index(bx, by))];
-      r.lo = std::min(r.lo, b.zmin);
-      r.hi = std::max(r.hi, b.zmax);
+      r.lo = std::min<int64_t>(r.lo, b.zmin);
+      r.hi = std::max<int64_t>(r.hi, b.zmax);
     }
   return r;
 }

@@ -47,8 +47,12 @@ namespace rastsim {
 // The spilled table's memory client (memory.clients.hiz).
 inline constexpr const char* kHizClient = "hiz";
 
+// lo and hi are the exact bounds clamped to [-1, 2^D] (signed: at a corner outside the
+// triangle the plane can leave the depth range; clamped there, every comparison with a
+// stored bound in [0, 2^D - 1] is the exact one, which the RTL's multiply-compare test,
+// rtl/rast_hiz_test.sv, makes without dividing).
 struct DepthRange {
-  uint32_t lo = 0, hi = 0;
+  int64_t lo = 0, hi = 0;
 };
 DepthRange tile_depth_range(const SetupTriangle& t, const PixelRect& fp, int frac_bits);
 

@@ -672,12 +672,14 @@ std::vector<std::pair<std::string, std::string>> instance_sites(const std::strin
 // parameters, its data array a blackbox (rtl/rast_rop_cache_data.sv); the texture unit's
 // units (docs/texture.md, "RTL"), the LOD and address units with the config's
 // TextureRtlParams, the filter and the combine with none; the texture cache
-// (rtl/rast_texture_cache.sv) with the config's, its data copies blackboxes.
+// (rtl/rast_texture_cache.sv) with the config's, its data copies blackboxes; hierarchical
+// Z's table and tile test (docs/rtl.md "Hi-Z"), with HizRtlParams.
 const std::vector<std::string>& standalone_roots() {
   static const std::vector<std::string> roots{"rast_engine2d",        "rast_fp32_mul",        "rast_fp32_add",
                                               "rast_fp32_recip",      "rast_front_end_xform", "rast_recip",
                                               "rast_rop_cache",       "rast_texture_lod",     "rast_texture_address",
-                                              "rast_texture_filter",  "rast_texture_combine", "rast_texture_cache"};
+                                              "rast_texture_filter",  "rast_texture_combine", "rast_texture_cache",
+                                              "rast_hiz",             "rast_hiz_test"};
   return roots;
 }
 
@@ -831,7 +833,8 @@ AreaReport synthesize_area(const RtlParams& p, const AreaOptions& o) {
                                "rast_recip's SEED_BITS and ITERATIONS, rast_rop_cache's AddrW, CacheBytes, Ways, "
                                "LineBytes and WordBytes, rast_texture_lod's and rast_texture_address's "
                                "TexW, TexFrac, SizeW and LevelW, BiasW or WeightBits, AddrW; rast_texture_cache's "
-                               "AddrW, CacheBytes, Ways, LineBytes, Ports and BeatBytes)");
+                               "AddrW, CacheBytes, Ways, LineBytes, Ports and BeatBytes; rast_hiz's and "
+                               "rast_hiz_test's HizRtlParams fields)");
   if (o.jobs < 1) throw std::runtime_error("area: jobs must be at least 1, not " + std::to_string(o.jobs));
   const std::string yosys = find_yosys();
   AreaReport r;

@@ -18,6 +18,7 @@
 #include "ref/raster_state.h"
 #include "ref/tri_setup.h"
 #include "ref/coarse_raster.h"
+#include "ref/hiz.h"
 #include "ref/interpolate.h"
 #include "ref/sample_pattern.h"
 #include "ref/texture/texture_unit.h"
@@ -304,6 +305,19 @@ RtlParams cosim_wanted_params(const ArchParams& arch, const CosimOptions& opts) 
     throw ConfigError(cfg.origin("raster.aa_mode") + ": raster.aa_mode = " + cfg.get_string("raster.aa_mode") +
                       " has no RTL (the RTL shades once a pixel, at its centre: msaa); co-simulate with "
                       "raster.aa_mode = msaa (render and simulate run ssaa)");
+  // Depth culling: the RTL has neither Hi-Z nor early Z yet (docs/depth-culling.md "RTL"),
+  // while the SystemC model it is timed against would cull: the cycles would compare two
+  // machines. Hi-Z that does not apply to this state (hiz_applies: e.g. multisampling)
+  // leaves the run exactly the Hi-Z-off one, so only an applied table is refused.
+  if (hiz_applies(st))
+    throw ConfigError(cfg.origin("depth.hiz") + ": depth.hiz = " + cfg.get_string("depth.hiz") +
+                      " has no RTL yet (the RTL draws every tile; the SystemC model would cull some, so the "
+                      "cycles would compare two machines): co-simulate with depth.hiz = off (render and simulate "
+                      "run Hi-Z; docs/depth-culling.md)");
+  if (st.depth_early)
+    throw ConfigError(cfg.origin("depth.early") + ": depth.early = true has no RTL yet (the RTL shades every "
+                      "fragment; the SystemC model would skip the hidden ones): co-simulate with depth.early = "
+                      "false (render and simulate run early Z; docs/depth-culling.md)");
   RtlParams wanted = rtl_params(arch);
   wanted.tile_log2_max = std::countr_zero(static_cast<unsigned>(tile));
   wanted.max_samples = st.samples;  // a run-time input up to the built maximum

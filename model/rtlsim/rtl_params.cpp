@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "ref/fixed_point.h"
+#include "ref/hiz_entry.h"
 #include "ref/raster_state.h"
 #include "config/raster_state_config.h"
 #include "config/video_timing.h"
@@ -149,6 +150,27 @@ constexpr ParamField<TextureRtlParams> kTextureCacheFields[] = {
     {"BeatBytes", &TextureRtlParams::beat_bytes, "bytes of a fill beat"},
 };
 
+// Hierarchical Z's units synthesised as roots of their own (`rastsim area --top rast_hiz`,
+// `--top rast_hiz_test`).
+constexpr ParamField<HizRtlParams> kHizFields[] = {
+    {"DepthW", &HizRtlParams::depth_w, "raster.depth_bits"},
+    {"PixelW", &HizRtlParams::pixel_w, "pixel index bits"},
+    {"BlockLog2", &HizRtlParams::block_log2, "log2 depth.hiz_block"},
+    {"MinMax", &HizRtlParams::min_max, "depth.hiz = minmax"},
+    {"Blocks", &HizRtlParams::blocks, "entries on chip: depth.hiz_bytes / entry bytes, at most the display's"},
+    {"TileLog2Max", &HizRtlParams::tile_log2_max, "log2 raster.tile_size"},
+    {"Lanes", &HizRtlParams::lanes, "depth writes a cycle: rop.pixels_per_cycle"},
+};
+constexpr ParamField<HizRtlParams> kHizTestFields[] = {
+    {"CoordW", &HizRtlParams::coord_w, "N + 1"},
+    {"CoordFrac", &HizRtlParams::coord_frac, "F of raster.coord_format"},
+    {"CoefW", &HizRtlParams::coef_w, "N + 2"},
+    {"EdgeW", &HizRtlParams::edge_w, "2N + 3"},
+    {"AreaW", &HizRtlParams::area_w, "2N + 2"},
+    {"DepthW", &HizRtlParams::depth_w, "raster.depth_bits"},
+    {"PixelW", &HizRtlParams::pixel_w, "pixel index bits"},
+};
+
 // (name, value) of each field of `p`, in the table's order.
 template <class P, size_t N>
 std::vector<std::pair<std::string, int>> named_fields(const P& p, const ParamField<P> (&fields)[N]) {
@@ -200,6 +222,33 @@ RopCacheRtlParams rop_cache_rtl_params(const ArchParams& arch) {
   return rop_cache_rtl_params(arch.memory.color_cache, color.footprint_bytes(), kColorBytesPerSample);
 }
 
+HizRtlParams hiz_rtl_params(const ArchParams& arch) {
+  const RasterState& r = arch.raster;
+  if (r.hiz_mode == HizMode::Off)
+    throw std::runtime_error("rast_hiz and rast_hiz_test are built with depth.hiz's parameters, and depth.hiz is "
+                             "off: set it (e.g. --set depth.hiz=max)");
+  const RtlParams w = rtl_params(arch);
+  HizRtlParams p;
+  p.depth_w = w.depth_w;
+  p.pixel_w = w.pixel_w;
+  p.block_log2 = std::countr_zero(unsigned(r.hiz_block));
+  p.min_max = r.hiz_mode == HizMode::MinMax ? 1 : 0;
+  p.blocks = int(hiz_onchip_blocks(r.hiz_mode, r.hiz_block, r.hiz_bytes, r.fb_width, r.fb_height, r.depth_bits));
+  if (p.blocks == 0)
+    throw std::runtime_error("rast_hiz holds the on-chip part of the table, and depth.hiz_bytes = " +
+                             std::to_string(r.hiz_bytes) + " holds no " +
+                             std::to_string(hiz_entry_bytes(r.hiz_mode, r.hiz_block, r.depth_bits)) +
+                             "-byte entry: set it larger");
+  p.tile_log2_max = w.tile_log2_max;
+  p.lanes = w.rop_pixels_per_cycle;
+  p.coord_w = w.coord_w;
+  p.coord_frac = w.coord_frac;
+  p.coef_w = w.coef_w;
+  p.edge_w = w.edge_w;
+  p.area_w = w.area_w;
+  return p;
+}
+
 TextureRtlParams texture_rtl_params(const ArchParams& arch) {
   TextureRtlParams p;
   const auto& tc = arch.raster.texcoord_format;
@@ -238,6 +287,10 @@ std::vector<std::string> root_rtl_param_names(const std::string& root) {
     for (const auto& f : kTextureAddressFields) out.emplace_back(f.name);
   if (root == "rast_texture_cache")
     for (const auto& f : kTextureCacheFields) out.emplace_back(f.name);
+  if (root == "rast_hiz")
+    for (const auto& f : kHizFields) out.emplace_back(f.name);
+  if (root == "rast_hiz_test")
+    for (const auto& f : kHizTestFields) out.emplace_back(f.name);
   return out;
 }
 
@@ -253,6 +306,8 @@ std::vector<std::pair<std::string, int>> root_rtl_params(const std::string& root
                                "texture.cache_bytes is 0 (no cache): set it (e.g. --set texture.cache_bytes=16384)");
     return named_fields(texture_rtl_params(arch), kTextureCacheFields);
   }
+  if (root == "rast_hiz") return named_fields(hiz_rtl_params(arch), kHizFields);
+  if (root == "rast_hiz_test") return named_fields(hiz_rtl_params(arch), kHizTestFields);
   return {};
 }
 

@@ -173,6 +173,24 @@ struct TextureRtlParams {
 inline constexpr int kTextureFillBeatBytes = 16;
 TextureRtlParams texture_rtl_params(const ArchParams& arch);
 
+// Hierarchical Z's units (docs/rtl.md "Hi-Z"), standalone, not yet in rast_top: the bound
+// table rtl/rast_hiz.sv and the tile test rtl/rast_hiz_test.sv, which `rastsim area --top`
+// synthesises with these (hiz_rtl_params(arch): throws naming depth.hiz when it is off
+// and depth.hiz_bytes when no block is on chip).
+struct HizRtlParams {
+  // rast_hiz
+  int depth_w = 0;        // DepthW: raster.depth_bits
+  int pixel_w = 0;        // PixelW: rast_top's pixel index bits
+  int block_log2 = 0;     // BlockLog2: log2 depth.hiz_block
+  int min_max = 0;        // MinMax: depth.hiz = minmax
+  int blocks = 0;         // Blocks: entries on chip, min(the display's blocks, depth.hiz_bytes / entry bytes)
+  int tile_log2_max = 0;  // TileLog2Max: log2 raster.tile_size
+  int lanes = 0;          // Lanes: depth writes a cycle, rop.pixels_per_cycle
+  // rast_hiz_test (and DepthW, PixelW): rast_top's widths (RtlParams)
+  int coord_w = 0, coord_frac = 0, coef_w = 0, edge_w = 0, area_w = 0;
+};
+HizRtlParams hiz_rtl_params(const ArchParams& arch);
+
 // The parameters a standalone area root (area.h) takes from the config, as (its Verilog
 // name, value) in its table's order: rast_recip's SEED_BITS and ITERATIONS, rast_rop_cache's
 // AddrW, CacheBytes, Ways, LineBytes and WordBytes, rast_texture_lod's,

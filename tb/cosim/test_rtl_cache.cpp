@@ -8,6 +8,7 @@
 // counts.
 #include <gtest/gtest.h>
 
+#include <initializer_list>
 #include <stdexcept>
 #include <string>
 
@@ -87,10 +88,10 @@ TEST(RtlRunnerResult, EveryFieldSurvivesJson) {
   EXPECT_EQ(nlohmann::json::object().get<CosimResult>().samples, 1);
 }
 
-// run_cosim's error on an in-memory scene with the embedded config and one --set.
-std::string cosim_error(const std::string& set) {
+// run_cosim's error on an in-memory scene with the embedded config and these --sets.
+std::string cosim_error(std::initializer_list<std::string> sets) {
   Config cfg = load_shipped_config("embedded");
-  cfg.apply_override(set);
+  for (const std::string& set : sets) cfg.apply_override(set);
   cfg.validate();
   try {
     run_cosim(parse_trace("viewport 64 64\ntri 0 0 8 0 0 8\n", "mem.trace"), ArchParams::resolve(cfg));
@@ -99,10 +100,25 @@ std::string cosim_error(const std::string& set) {
   }
   return "(no error)";
 }
+std::string cosim_error(const std::string& set) { return cosim_error({set}); }
 
 TEST(RtlOnDemand, ConfigTheRtlCannotRunNamesTheKey) {
   const std::string m = cosim_error("raster.traversal=bbox");
   EXPECT_NE(m.find("--set raster.traversal=bbox: raster.traversal = bbox has no RTL"), std::string::npos) << m;
+}
+
+// Depth culling has no RTL yet: an applied Hi-Z table or early Z is refused by its key
+// (the SystemC model would cull what the RTL draws, so the cycles would compare two
+// machines); Hi-Z that does not apply (depth.func always) is the Hi-Z-off run and runs.
+TEST(RtlOnDemand, DepthCullingTheRtlLacksNamesTheKey) {
+  for (const char* mode : {"max", "minmax"}) {
+    const std::string m = cosim_error(std::string("depth.hiz=") + mode);
+    EXPECT_NE(m.find(std::string("--set depth.hiz=") + mode + ": depth.hiz = " + mode + " has no RTL yet"),
+              std::string::npos) << m;
+  }
+  const std::string e = cosim_error("depth.early=true");
+  EXPECT_NE(e.find("--set depth.early=true: depth.early = true has no RTL yet"), std::string::npos) << e;
+  EXPECT_EQ(cosim_error({"depth.hiz=max", "raster.depth_func=always"}), "(no error)");
 }
 
 // memory.model = "dram" on a shipped model (memory needs no RTL parameter): the RTL ROP's
