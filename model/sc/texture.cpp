@@ -44,7 +44,6 @@ LocalPtr<const FragmentBatch> Texture::shade(const FragmentBatch& batch, TimingP
   fetch_.slot = 0;
   fetch_.splits = 0;
   fetch_.per_request = tri.texture.filter == TexFilter::Nearest ? 1 : 4;
-  const uint64_t slots = TimingParams::texture_sample_slots(tri.texture.filter == TexFilter::Trilinear);
   // Every covered pixel's quad derivatives (the reference takes them before its early
   // test); a fragment early Z culled is not sampled and goes on as it came (its flag kept).
   for (size_t k = 0; k < batch.count; ++k) {
@@ -56,8 +55,9 @@ LocalPtr<const FragmentBatch> Texture::shade(const FragmentBatch& batch, TimingP
     }
     fetch_.base = unit_->stats().texel_fetches;
     fetch_.request = ~uint64_t{0};
+    const uint64_t samples_before = unit_->stats().level_samples;
     *o++ = unit_->shade(f, d, tri.texture, tex_frac);
-    fetch_.slot += slots;
+    fetch_.slot += unit_->stats().level_samples - samples_before;  // 1, or 2 where trilinear blends two levels
   }
   out->count = batch.count;
   if (batch.culled_count != 0) {
