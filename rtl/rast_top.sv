@@ -35,9 +35,10 @@
 //   SystemC model's fragment FIFO of batches, TimingParams::fragment_fifo_entries): the
 //   ROP starts a tile once its last beat is in (the model's ROP reads whole batches). An
 //   untextured tile or a marker enters the interpolator only while at most
-//   FragmentFifoEntries tiles are between its input and the ROP (credits, the pipeline's
-//   beats included: the model's interpolator blocked in its write), and a textured
-//   tile's beat waits while FragmentFifoEntries + 1 complete tiles wait for the ROP.
+//   FragmentFifoEntries tiles are between its input and the ROP's start of them (credits,
+//   the pipeline's beats and the ROP's access buffer included: the model's interpolator
+//   blocked in its write), and a textured tile's beat waits while FragmentFifoEntries + 1
+//   complete tiles wait for the ROP.
 `default_nettype none
 
 module rast_top #(
