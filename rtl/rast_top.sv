@@ -36,9 +36,10 @@
 //   SystemC model's fragment FIFO of batches, TimingParams::fragment_fifo_entries): the
 //   ROP starts a tile once its last beat is in (the model's ROP reads whole batches). An
 //   untextured tile or a marker enters the interpolator only while at most
-//   FragmentFifoEntries tiles are between its input and the ROP (credits, the pipeline's
-//   beats included: the model's interpolator blocked in its write), and a textured
-//   tile's beat waits while FragmentFifoEntries + 1 complete tiles wait for the ROP.
+//   FragmentFifoEntries tiles are between its input and the ROP's start of them (credits,
+//   the pipeline's beats and the ROP's access buffer included: the model's interpolator
+//   blocked in its write), and a textured tile's beat waits while FragmentFifoEntries + 1
+//   complete tiles wait for the ROP.
 `default_nettype none
 
 module rast_top #(
@@ -694,21 +695,28 @@ module rast_top #(
   // frozen pipeline held Latency + RecipLatency beats, i.e. up to 12 one-beat tiles,
   // beyond the FIFO's tiles), a textured tile from the cycle its last fragment enters
   // the FIFO (before, it is the texture FIFO's: rast_texture_stage, x_busy while any is
-  // in it), each until the ROP takes its first beat. An untextured tile or a marker at
-  // the pixel FIFO's head enters only while at most FragmentFifoEntries are counted
-  // (after this cycle's take); a textured one is not held here, so the texture stage,
-  // whose pushes wait on batches_q alone, never waits on a credit (no deadlock). ----
-  localparam int CrW = $clog2(2 * FragmentFifoEntries + 3);  // derived: 0 .. 2 (Entries + 1)
+  // in it), each until the ROP starts it (dbg_rop_start_o: a tile's first group's read
+  // taken, a marker's take), not until it takes the tile's first beat: rast_rop's access
+  // buffer takes beats of later tiles while a group waits for memory (up to Cap
+  // accesses: dozens of one-fragment tiles), and the model's ROP reads a batch only when
+  // it starts on it. An untextured tile or a marker at the pixel FIFO's head enters only
+  // while at most FragmentFifoEntries are counted (after this cycle's start); a textured
+  // one is not held here, so the texture stage, whose pushes wait on batches_q alone,
+  // never waits on a credit (no deadlock). ----
+  // Derived: up to 2 (Entries + 1) tiles before the ROP, plus one a fragment in its
+  // access buffer (textured tiles, counted without a bound, may fill it).
+  localparam int CrW = $clog2(2 * FragmentFifoEntries + 3 + 2 * (RopPixelsPerCycle + Lanes * MaxSamples));
   logic [CrW-1:0] cr_q;
-  logic           cr_counted, cr_take, cr_tex_end, cr_wait;
+  logic           cr_counted, cr_take, cr_tex_end, cr_wait, cr_start;
   assign cr_counted = p_fifo_data.marker || !p_fifo_data.attr.tex.on;
-  assign cr_admit = !cr_counted || (cr_q - CrW'(r_first)) <= CrW'(FragmentFifoEntries);
+  assign cr_start = dbg_rop_start_o;  // the ROP starts a tile or a marker
+  assign cr_admit = !cr_counted || (cr_q - CrW'(cr_start)) <= CrW'(FragmentFifoEntries);
   assign cr_wait = p_fifo_valid && ts_room && !cr_admit && !p_valid;  // a tile waits for a credit
   assign cr_take = p_fifo_valid && p_fifo_ready && cr_counted;
   assign cr_tex_end = w_end && x_busy;  // a textured tile's last fragment pushed
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) cr_q <= '0;
-    else cr_q <= cr_q + CrW'(cr_take) + CrW'(cr_tex_end) - CrW'(r_first);
+    else cr_q <= cr_q + CrW'(cr_take) + CrW'(cr_tex_end) - CrW'(cr_start);
   end
 
   // ---- ROP ----
