@@ -280,6 +280,44 @@ void collect_binner(BinnerStage& b, Link<SetupItem>& fifo, SimResult& r) {
                      " transactions left behind (pipeline deadlock)");
 }
 
+// The clients of the shared memory system (memory.model = "dram"), after the scan-out's
+// fetch (its requests at cycle 0 go first): in binned mode the binner's binning and
+// tile_store clients (no ROP, 2D, texture or Hi-Z client), else the ROP (its first request
+// the frame's depth clear, cold unless warmed), the 2D engine through the ROP's colour
+// client, the texture cache's line fills and the spilled Hi-Z table's entries. Textured
+// runs put every request in at its own cycle (time order).
+void attach_memory_clients(MemorySystem& memory, RasterPipeline& top, BinnerStage* binner, const ArchParams& params,
+                           const SimOptions& opts, SimContext& ctx) {
+  if (binner) {
+    binner->attach_memory(memory);
+  } else {
+    top.rop.attach_memory(memory, params.memory, opts.warm_memory);
+    top.engine2d.attach_memory(top.rop.memory_port());
+    top.texture.attach_memory(memory);
+    top.coarse_raster.attach_memory(memory);
+  }
+  memory.set_arrival_wait([&ctx](uint64_t cycle) {
+    if (!ctx.memory_time_order) return;
+    const uint64_t now = ctx.to_cycles(sc_core::sc_time_stamp());
+    if (cycle > now) sc_core::wait(double(cycle - now) * ctx.cycle);
+  });
+}
+
+// The memory figures at the frame's end: the scan-out told the raster is done, the
+// clients' last accesses made, every request completed, then each report.
+void collect_memory(MemorySystem& memory, ScanoutFetch* scanout, RasterPipeline& top, BinnerStage* binner,
+                    SimResult& r) {
+  if (scanout) scanout->raster_done(r.cycles);
+  r.render.memory = binner ? binner->memory_stats() : top.rop.finish_memory(r.cycles);
+  memory.drain();
+  r.memory = memory.report(r.cycles);
+  if (scanout) r.scanout = scanout->report();
+  if (const TextureMemoryPort* t = top.texture.memory_port(); t && t->report().reads > 0)
+    r.texture_memory = t->report();
+  if (const HizMemoryPort* h = top.coarse_raster.memory_port(); h && h->report().reads + h->report().writes > 0)
+    r.hiz_memory = h->report();
+}
+
 }  // namespace
 
 SimResult simulate_commands(CommandSource source, const ArchParams& params, const SimOptions& opts) {
@@ -319,19 +357,7 @@ SimResult simulate_commands(CommandSource source, const ArchParams& params, cons
     memory = new MemorySystem(params.dram);
     if (!opts.mem_trace_path.empty()) memory->record_trace(&mem_trace.emplace(opts.mem_trace_path).stream());
     scanout = attach_scanout_fetch(*memory, params).release();  // first: its requests at cycle 0 go first
-    if (binned) {
-      binner->attach_memory(*memory);  // the binning and tile_store clients (no ROP, 2D, texture or Hi-Z client)
-    } else {
-      top->rop.attach_memory(*memory, params.memory, opts.warm_memory);  // its first request: the frame's depth clear (cold)
-      top->engine2d.attach_memory(top->rop.memory_port());  // draws through the ROP's colour client
-      top->texture.attach_memory(*memory);                   // its cache's line fills
-      top->coarse_raster.attach_memory(*memory);             // the spilled Hi-Z table's entries
-    }
-    memory->set_arrival_wait([&ctx](uint64_t cycle) {      // textured runs: requests in time order
-      if (!ctx.memory_time_order) return;
-      const uint64_t now = ctx.to_cycles(sc_core::sc_time_stamp());
-      if (cycle > now) sc_core::wait(double(cycle - now) * ctx.cycle);
-    });
+    attach_memory_clients(*memory, *top, binned ? binner : nullptr, params, opts, ctx);
   } else if (!opts.mem_trace_path.empty()) {
     throw std::invalid_argument("--mem-trace needs memory.model = \"dram\" (the DRAM requests it lists)");
   }
@@ -360,15 +386,7 @@ SimResult simulate_commands(CommandSource source, const ArchParams& params, cons
   r.recip_reciprocals = ctx.recip_reciprocals;
   r.recip_busy_cycles = ctx.recip_busy_cycles;
   if (memory) {  // the frame end's accesses, then every request completed
-    if (scanout) scanout->raster_done(r.cycles);
-    r.render.memory = binner ? binner->memory_stats() : top->rop.finish_memory(r.cycles);
-    memory->drain();
-    r.memory = memory->report(r.cycles);
-    if (scanout) r.scanout = scanout->report();
-    if (const TextureMemoryPort* t = top->texture.memory_port(); t && t->report().reads > 0)
-      r.texture_memory = t->report();
-    if (const HizMemoryPort* h = top->coarse_raster.memory_port(); h && h->report().reads + h->report().writes > 0)
-      r.hiz_memory = h->report();
+    collect_memory(*memory, scanout, *top, binner, r);
     if (mem_trace) mem_trace->commit();
   }
   r.fb = std::move(top->rop.framebuffer());  // moved, not copied: one framebuffer
