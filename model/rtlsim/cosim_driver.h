@@ -7,13 +7,11 @@
 // decides is in testbench.cpp. Callers use cosim.h.
 #pragma once
 
-#include <algorithm>
 #include <bit>
 #include <cstdint>
 #include <memory>
 #include <stdexcept>
 #include <string>
-#include <type_traits>
 
 #include <verilated.h>
 #include <verilated_fst_c.h>
@@ -177,10 +175,7 @@ class VerilatedRast final : public RastPorts {
   void drive_texture_fill_ready(bool ready) override { top_->tex_mem_req_ready_i = ready; }
   void drive_texture_beat(bool valid, const std::array<uint8_t, 16>& bytes) override {
     top_->tex_mem_rsp_valid_i = valid;
-    for (size_t k = 0; k < 4; ++k)
-      set_port_word(top_->tex_mem_rsp_data_i, k,
-                    uint32_t(bytes[4 * k]) | uint32_t(bytes[4 * k + 1]) << 8 | uint32_t(bytes[4 * k + 2]) << 16 |
-                        uint32_t(bytes[4 * k + 3]) << 24);
+    set_port_bytes(top_->tex_mem_rsp_data_i, bytes);
   }
   bool texture_beat_taken() const override { return top_->tex_mem_rsp_ready_o; }
   TexCacheEvents texture_cache_events() const override { return {int(top_->tex_hits_o), bool(top_->tex_miss_o)}; }

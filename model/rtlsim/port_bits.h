@@ -5,6 +5,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <type_traits>
@@ -51,6 +52,13 @@ template <class T>
 void set_port_word(T& port, size_t i, uint32_t v) {
   if constexpr (std::is_integral_v<T>) set_port_bits(port, int(i) * 32, 32, v);
   else port[i] = v;
+}
+
+// Sets a port's low 8 N bits to bytes, byte i in bits [8 i + 7 : 8 i] (a little-endian
+// memory beat, e.g. the texture cache's 128-bit line-fill beat).
+template <class T, size_t N>
+void set_port_bytes(T& port, const std::array<uint8_t, N>& bytes) {
+  for (size_t i = 0; i < N; ++i) set_port_bits(port, int(8 * i), 8, bytes[i]);
 }
 
 }  // namespace rastsim::rtlsim
