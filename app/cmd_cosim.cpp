@@ -99,6 +99,7 @@ void print_rtl_run(const rtlsim::CosimResult& r, const rtlsim::CosimOptions& co,
             << " cycles (" << r.wall_seconds << " s wall), " << r.fragments_compared << " fragments compared, "
             << r.mismatches << " mismatches";
   if (r.commands_2d) out << ", " << r.commands_2d << " 2D commands (" << r.pixels_2d << " pixels)";
+  if (r.hiz) out << ", Hi-Z: " << r.tiles_culled_hiz << " tiles culled, " << r.tiles_accepted_hiz << " accepted";
   out << ", crc32 " << crc32_hex(r.crc_rtl)
             << (r.crc_rtl == r.crc_ref ? " (= reference)" : " (reference " + crc32_hex(r.crc_ref) + ")");
   if (co.backpressure > 0 || co.valid_gaps > 0) {

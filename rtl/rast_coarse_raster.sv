@@ -18,6 +18,14 @@
 //   a cycle: the walk resumes after it the next cycle (docs/rtl.md). A triangle costs
 //   max(1, cycles of its walk); a marker one cycle. The input is popped in the walk's
 //   last cycle, so the head entry is the triangle being walked (no copy).
+// - Hi-Z (rast_top, depth.hiz; docs/depth-culling.md "RTL"): every lane's footprint leaves
+//   on lane_fp_o; rast_top answers, for each lane, lane_wait_i (a tile in flight to the
+//   ROP touches its blocks: the table is not yet the one HizTracker tests against),
+//   lane_cull_i and lane_accept_i (rast_hiz_test against the table). A culled lane that
+//   need not wait is consumed like a rejected one (its slot taken, nothing sent); the first
+//   lane neither rejected nor so culled stops the window: sent (with out_hiz_accept_o) when
+//   it need not wait, else the walk moves to it without sending and tries it again next
+//   cycle (its window starts there). Tied low, the walk is the one above.
 `default_nettype none
 
 module rast_coarse_raster #(
@@ -48,7 +56,14 @@ module rast_coarse_raster #(
   output      logic                 out_marker_o,  // a marker
   output      logic                 out_accepted_o,  // 1 accepted (early-in), 0 partial
   output      logic [4*PixelW-1:0]  out_fp_o,      // footprint {y1, x1, y0, x0}
-  output      logic                 busy_o         // a walk is in progress
+  output      logic                 busy_o,        // a walk is in progress
+  // Hi-Z hooks (rast_top; tied low without a table).
+  output      logic [TilesPerCycle*4*PixelW-1:0] lane_fp_o,  // lane j's footprint at [j*4*PixelW +: 4*PixelW]
+  input  wire logic [TilesPerCycle-1:0] lane_wait_i,   // lane j's blocks have a tile in flight
+  input  wire logic [TilesPerCycle-1:0] lane_cull_i,   // lane j culled (valid when not waiting)
+  input  wire logic [TilesPerCycle-1:0] lane_accept_i, // lane j accepted (minmax)
+  output      logic                 out_hiz_accept_o,  // the tile sent was accepted: the ROP tests it with always
+  output      logic [$clog2(TilesPerCycle+1)-1:0] hiz_culled_o  // culled tiles consumed this cycle
 );
   localparam int Lanes = TilesPerCycle;  // derived: tiles looked at per cycle
 
@@ -139,33 +154,50 @@ module rast_coarse_raster #(
     assign lane_fp[j][1] = y0;
     assign lane_fp[j][2] = x1;
     assign lane_fp[j][3] = y1;
+    assign lane_fp_o[j*4*PixelW +: 4*PixelW] = {y1, x1, y0, x0};
   end
 
   // ---- The first surviving lane this cycle, and where the walk goes next ----
-  logic             found, walk_done, advance;
+  // A lane stops the window when it is kept and not culled with a fresh table (a lane
+  // that must wait stops it whatever its test says). hold: the stopping lane waits.
+  logic             found, hold, walk_done, advance;
   logic [PixelW-1:0] next_tx, next_ty;
+  logic [Lanes-1:0] lane_stop, lane_culled;
+  localparam int CullW = $clog2(Lanes + 1);  // derived: hiz_culled_o bits
+  logic [CullW-1:0] culled_n;
+  assign lane_stop = lane_keep & ~(lane_cull_i & ~lane_wait_i);
+  assign lane_culled = lane_keep & lane_cull_i & ~lane_wait_i;
   always_comb begin
     found = 1'b0;
+    hold = 1'b0;
     out_accepted_o = 1'b0;
+    out_hiz_accept_o = 1'b0;
     out_fp_o = '0;
     next_tx = lane_tx[Lanes];
     next_ty = lane_ty[Lanes];
+    culled_n = '0;
     for (int j = Lanes - 1; j >= 0; j--) begin
-      if (lane_keep[j]) begin
+      if (lane_stop[j]) begin
         found = 1'b1;
+        hold = lane_wait_i[j];
         out_accepted_o = lane_acc[j];
+        out_hiz_accept_o = lane_accept_i[j];
         out_fp_o = {lane_fp[j][3], lane_fp[j][2], lane_fp[j][1], lane_fp[j][0]};
-        next_tx = lane_tx[j+1];
-        next_ty = lane_ty[j+1];
+        next_tx = lane_wait_i[j] ? lane_tx[j] : lane_tx[j+1];
+        next_ty = lane_wait_i[j] ? lane_ty[j] : lane_ty[j+1];
+        culled_n = '0;
+      end else if (lane_culled[j]) begin
+        culled_n = culled_n + 1'b1;  // lanes before the stopping one (all when none stops)
       end
     end
   end
   assign walk_done    = (next_ty > ty_last);
   assign out_marker_o = in_marker_i;
-  assign out_valid_o  = in_valid_i && (in_marker_i || found);
+  assign out_valid_o  = in_valid_i && (in_marker_i || (found && !hold));
   assign advance      = in_valid_i && (!out_valid_o || out_ready_i);
   assign in_ready_o   = advance && (in_marker_i || walk_done);
   assign busy_o       = walking_q;
+  assign hiz_culled_o = advance && !in_marker_i ? culled_n : '0;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin

@@ -10,7 +10,7 @@
 // - An entry: zmax (>= every stored depth), zmin (<= every stored depth; MinMax only),
 //   the layer's lmax and lmin (D bits each) and its B^2-bit mask of pixels written since
 //   the layer started, with their count.
-// - Query (combinational): the bounds of the blocks a footprint overlaps, the nearest
+// - Query (combinational, Queries ports): the bounds of the blocks a footprint overlaps, the nearest
 //   zmin and the farthest zmax (at most MaxSpan^2 blocks: a tile of 2^TileLog2Max px is
 //   aligned to the block grid, so it covers max(1, 2^TileLog2Max / B) blocks a side).
 // - Update, per depth write of z at (x, y), lane order within a cycle (lane j sees lanes
@@ -29,7 +29,8 @@ module rast_hiz #(
   parameter int MinMax      = 0,    // depth.hiz = minmax (1) or max (0)
   parameter int Blocks      = 512,  // entries on chip
   parameter int TileLog2Max = 4,    // largest tile, log2 px
-  parameter int Lanes       = 1     // depth writes a cycle (rop.pixels_per_cycle)
+  parameter int Lanes       = 1,    // depth writes a cycle (rop.pixels_per_cycle)
+  parameter int Queries     = 1     // query ports (rast_top: coarse.tiles_per_cycle, a walk lane each)
 ) (
   input  wire logic                     clk_i,        // core clock
   input  wire logic                     rst_ni,       // asynchronous reset, active low
@@ -38,9 +39,9 @@ module rast_hiz #(
   output      logic                     overflow_o,   // the framebuffer has more blocks than Blocks
   input  wire logic                     clear_i,      // depth clear this cycle
   input  wire logic [DepthW-1:0]        clear_z_i,    // its value
-  input  wire logic [4*PixelW-1:0]      q_fp_i,       // query footprint {y1, x1, y0, x0}, not empty
-  output      logic [DepthW-1:0]        q_min_o,      // nearest zmin of its blocks (MinMax; else 0)
-  output      logic [DepthW-1:0]        q_max_o,      // farthest zmax
+  input  wire logic [Queries*4*PixelW-1:0] q_fp_i,    // query n's footprint {y1, x1, y0, x0} at [n*4*PixelW +: 4*PixelW], not empty
+  output      logic [Queries*DepthW-1:0]  q_min_o,    // query n's nearest zmin of its blocks (MinMax; else 0)
+  output      logic [Queries*DepthW-1:0]  q_max_o,    // query n's farthest zmax
   input  wire logic [Lanes-1:0]         wr_valid_i,   // lane j writes depth this cycle
   input  wire logic [Lanes*PixelW-1:0]  wr_x_i,       // lane j pixel x
   input  wire logic [Lanes*PixelW-1:0]  wr_y_i,       // lane j pixel y
@@ -81,27 +82,34 @@ module rast_hiz #(
   endfunction
   /* verilator lint_on UNUSEDSIGNAL */
 
-  // ---- Query: the footprint's blocks ----
-  logic [BlkW-1:0] qbx0, qby0, qbx1, qby1;
-  assign qbx0 = BlkW'(q_fp_i[0 +: PixelW] >> BlockLog2);
-  assign qby0 = BlkW'(q_fp_i[PixelW +: PixelW] >> BlockLog2);
-  assign qbx1 = BlkW'((q_fp_i[2*PixelW +: PixelW] - 1'b1) >> BlockLog2);
-  assign qby1 = BlkW'((q_fp_i[3*PixelW +: PixelW] - 1'b1) >> BlockLog2);
-  always_comb begin
-    /* verilator lint_off UNUSEDSIGNAL */  // the layer fields: the update's
-    logic [EntryW-1:0] e;
-    /* verilator lint_on UNUSEDSIGNAL */
-    q_min_o = '1;
-    q_max_o = '0;
-    for (int j = 0; j < MaxSpan; j++)
-      for (int i = 0; i < MaxSpan; i++) begin
-        e = table_q[index_of(qbx0 + BlkW'(i), qby0 + BlkW'(j), nx)];
-        if (qbx0 + BlkW'(i) <= qbx1 && qby0 + BlkW'(j) <= qby1) begin
-          if (e[OZmin +: DepthW] < q_min_o) q_min_o = e[OZmin +: DepthW];
-          if (e[OZmax +: DepthW] > q_max_o) q_max_o = e[OZmax +: DepthW];
+  // ---- Query: the footprint's blocks (one port a walk lane) ----
+  for (genvar n = 0; n < Queries; n++) begin : g_query
+    logic [4*PixelW-1:0] fp;
+    logic [BlkW-1:0] qbx0, qby0, qbx1, qby1;
+    logic [DepthW-1:0] qmin, qmax;
+    assign fp = q_fp_i[n*4*PixelW +: 4*PixelW];
+    assign qbx0 = BlkW'(fp[0 +: PixelW] >> BlockLog2);
+    assign qby0 = BlkW'(fp[PixelW +: PixelW] >> BlockLog2);
+    assign qbx1 = BlkW'((fp[2*PixelW +: PixelW] - 1'b1) >> BlockLog2);
+    assign qby1 = BlkW'((fp[3*PixelW +: PixelW] - 1'b1) >> BlockLog2);
+    always_comb begin
+      /* verilator lint_off UNUSEDSIGNAL */  // the layer fields: the update's
+      logic [EntryW-1:0] e;
+      /* verilator lint_on UNUSEDSIGNAL */
+      qmin = '1;
+      qmax = '0;
+      for (int j = 0; j < MaxSpan; j++)
+        for (int i = 0; i < MaxSpan; i++) begin
+          e = table_q[index_of(qbx0 + BlkW'(i), qby0 + BlkW'(j), nx)];
+          if (qbx0 + BlkW'(i) <= qbx1 && qby0 + BlkW'(j) <= qby1) begin
+            if (e[OZmin +: DepthW] < qmin) qmin = e[OZmin +: DepthW];
+            if (e[OZmax +: DepthW] > qmax) qmax = e[OZmax +: DepthW];
+          end
         end
-      end
-    if (MinMax == 0) q_min_o = '0;
+      if (MinMax == 0) qmin = '0;
+    end
+    assign q_min_o[n*DepthW +: DepthW] = qmin;
+    assign q_max_o[n*DepthW +: DepthW] = qmax;
   end
 
   // ---- Update: each lane's block, pixel bit and the block's on-screen pixels ----

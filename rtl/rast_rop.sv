@@ -109,7 +109,19 @@ module rast_rop #(
   output      logic                                   dbg_has_o,
   output      logic                                   dbg_start_o,
   output      logic                                   dbg_done_o,
-  output      logic                                   dbg_blocked_o
+  output      logic                                   dbg_blocked_o,
+  // Hi-Z hooks (rast_top with a table; docs/depth-culling.md "RTL"): the group at the
+  // response is tested with `always` (its tile was Hi-Z accepted); the depth writes it
+  // decides this cycle (one sample: lane k's pixel and depth); a batch's end (its last
+  // group decided) or a marker taken; a depth clear's marker taken (value cmd_value_i).
+  input  wire logic                                   hiz_always_i,
+  output      logic [PixelsPerCycle-1:0]              hiz_wr_lanes_o,
+  output      logic [PixelsPerCycle*PixelW-1:0]       hiz_wr_x_o,
+  output      logic [PixelsPerCycle*PixelW-1:0]       hiz_wr_y_o,
+  output      logic [PixelsPerCycle*DepthW-1:0]       hiz_wr_z_o,
+  output      logic                                   hiz_end_o,
+  output      logic                                   hiz_marker_o,
+  output      logic                                   hiz_clear_o
 );
   localparam int P = PixelsPerCycle;
   localparam int SBits = MaxSamples > 1 ? $clog2(MaxSamples) : 1;  // a sample index
@@ -300,7 +312,7 @@ module rast_rop #(
       // (Verilator stores into a wide vector a field at a time).
       for (int i = 0; i < MaxSamples; i++) begin
         pass[i] = q_lanes_q[k] && LenW'(i) < len &&
-                  depth_pass(depth_func_q, a[AccZ +: DepthW], rd_rdata_i[(k*MaxSamples + i)*32 +: DepthW]);
+                  depth_pass(hiz_always_i ? 3'd7 : depth_func_q, a[AccZ +: DepthW], rd_rdata_i[(k*MaxSamples + i)*32 +: DepthW]);
         cbe[i*4 +: 4] = pass[i] ? 4'hf : 4'h0;
         zbe[i*4 +: 4] = pass[i] && depth_write_q ? DepthBe : 4'h0;
       end
@@ -481,6 +493,17 @@ module rast_rop #(
       if (beat_take && (FCapW + 1)'(i) < (FCapW + 1)'(new_frn)) frag_q[e] <= new_fr[LaneW'(i)];
     end
   end
+
+  // ---- Hi-Z hooks ----
+  for (genvar k = 0; k < P; k++) begin : g_hiz
+    assign hiz_wr_lanes_o[k] = resp_now && resp_w.lanes[P + k];
+    assign hiz_wr_x_o[k*PixelW +: PixelW] = q_acc_q[k*AccW + AccX +: PixelW];
+    assign hiz_wr_y_o[k*PixelW +: PixelW] = q_acc_q[k*AccW + AccY +: PixelW];
+    assign hiz_wr_z_o[k*DepthW +: DepthW] = q_acc_q[k*AccW + AccZ +: DepthW];
+  end
+  assign hiz_end_o = resp_now && q_last_q;
+  assign hiz_marker_o = marker_take;
+  assign hiz_clear_o = marker_take && cmd_op_i == 2'd2;
 
   // ---- Observation ----
   assign idle_o = count_q == '0 && !q_valid_q && !w_valid_q && !clr_active_q;

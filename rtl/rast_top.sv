@@ -153,7 +153,11 @@ module rast_top #(
   output      logic [4:0]                            dbg_has_o,       // stage s holds a transaction (the ROP: works this cycle)
   output      logic [4:0]                            dbg_done_o,      // stage s finishes its transaction this cycle
   output      logic [4:0]                            dbg_blocked_o,   // stage s offers an output that is not taken
-  output      logic                                  dbg_rop_start_o  // the ROP starts a batch or command (rast_rop's dbg_start_o)
+  output      logic                                  dbg_rop_start_o, // the ROP starts a batch or command (rast_rop's dbg_start_o)
+  // Hi-Z (HizMode != 0; docs/depth-culling.md "RTL"): tiles coarse raster culled this
+  // cycle, and a tile it sent accepted (tiles_culled_hiz, tiles_accepted_hiz). 0 without.
+  output      logic [$clog2(CoarseTilesPerCycle+1)-1:0] dbg_hiz_culled_o,
+  output      logic                                  dbg_hiz_accepted_o
 );
   localparam int MaskW = 1 << (2 * TileLog2Max);      // derived: coverage mask bits
   localparam int SMaskW = MaskW * MaxSamples;         // derived: sample mask bits of a tile
@@ -393,6 +397,16 @@ module rast_top #(
   logic [4*PixelW-1:0] k_fp;
   tile_t               k_push;
   localparam int TileW = $bits(k_push);  // derived
+  // Hi-Z hooks (rast_top_hiz below): coarse raster's lanes and their answers.
+  localparam int KLanes = CoarseTilesPerCycle;  // derived
+  logic [KLanes*4*PixelW-1:0] k_lane_fp;
+  logic [KLanes-1:0]   k_lane_wait, k_lane_cull, k_lane_accept;
+  logic                k_hiz_accept, k_room;
+  logic [$clog2(KLanes+1)-1:0] k_hiz_culled;
+  logic                rop_hiz_always, rop_hiz_end, rop_hiz_marker, rop_hiz_clear;
+  logic [RopPixelsPerCycle-1:0]        rop_hiz_wr_lanes;
+  logic [RopPixelsPerCycle*PixelW-1:0] rop_hiz_wr_x, rop_hiz_wr_y;
+  logic [RopPixelsPerCycle*DepthW-1:0] rop_hiz_wr_z;
   rast_coarse_raster #(
     .CoordW(CoordW), .CoordFrac(CoordFrac), .CoefW(CoefW), .EdgeW(EdgeW), .PixelW(PixelW),
     .TileLog2W(TileLog2W), .SampleOffW(SampleOffW), .TilesPerCycle(CoarseTilesPerCycle)
@@ -401,7 +415,8 @@ module rast_top #(
     .in_marker_i(c_in.marker), .in_a_i(c_in.edges.a), .in_b_i(c_in.edges.b), .in_c_i(c_in.edges.c),
     .in_bias_i(c_in.edges.bias), .in_bbox_i(c_in.bbox), .in_origin_i(c_in.origin),
     .out_valid_o(k_valid), .out_ready_i(k_ready), .out_marker_o(k_marker), .out_accepted_o(k_accepted),
-    .out_fp_o(k_fp), .busy_o(c_busy));
+    .out_fp_o(k_fp), .busy_o(c_busy), .lane_fp_o(k_lane_fp), .lane_wait_i(k_lane_wait), .lane_cull_i(k_lane_cull),
+    .lane_accept_i(k_lane_accept), .out_hiz_accept_o(k_hiz_accept), .hiz_culled_o(k_hiz_culled));
   assign k_push.marker = k_marker;
   assign k_push.accepted = k_accepted;
   assign k_push.fp = k_fp;
@@ -414,8 +429,10 @@ module rast_top #(
   logic  f_valid, f_ready, f_empty, f_busy;
   logic  f_fifo_valid, f_fifo_ready;
   tile_t f_fifo_data, f_in;
+  logic k_fifo_ready;
+  assign k_ready = k_fifo_ready && k_room;  // the interlock's entry fits (always, by its size)
   rast_fifo #(.Width(TileW), .Depth(TileFifoDepth)) u_tile_fifo (
-    .clk_i, .rst_ni, .in_valid_i(k_valid), .in_ready_o(k_ready), .in_data_i(k_push),
+    .clk_i, .rst_ni, .in_valid_i(k_valid && k_room), .in_ready_o(k_fifo_ready), .in_data_i(k_push),
     .out_valid_o(f_fifo_valid), .out_ready_i(f_fifo_ready), .out_data_o(f_fifo_data), .empty_o(f_empty));
   rast_hold #(.Width(TileW)) u_fine_hold (
     .clk_i, .rst_ni, .in_valid_i(f_fifo_valid), .in_ready_o(f_fifo_ready), .in_data_i(f_fifo_data),
@@ -733,7 +750,46 @@ module rast_top #(
     .rd_valid_o, .rd_ready_i, .rd_lanes_o, .rd_addr_o, .rd_len_o, .rd_rvalid_i, .rd_rdata_i,
     .wr_valid_o, .wr_ready_i, .wr_lanes_o, .wr_addr_o, .wr_len_o, .wr_fill_o, .wr_be_o, .wr_data_o,
     .idle_o(rop_idle), .dbg_has_o(rop_has), .dbg_start_o(dbg_rop_start_o), .dbg_done_o(rop_done),
-    .dbg_blocked_o(rop_blocked));
+    .dbg_blocked_o(rop_blocked), .hiz_always_i(rop_hiz_always), .hiz_wr_lanes_o(rop_hiz_wr_lanes),
+    .hiz_wr_x_o(rop_hiz_wr_x), .hiz_wr_y_o(rop_hiz_wr_y), .hiz_wr_z_o(rop_hiz_wr_z), .hiz_end_o(rop_hiz_end), .hiz_marker_o(rop_hiz_marker),
+    .hiz_clear_o(rop_hiz_clear));
+
+  // ---- Hi-Z: the bound table, the tile test of every walk lane and the interlock
+  // (rast_top_hiz); without a table (HizMode 0) nothing is tested and nothing waits. ----
+  if (HizMode != 0) begin : g_hiz
+    // Tiles between coarse raster and the ROP's end at most (derived: the tile and pixel
+    // FIFOs, the holds and stages, the texture-state FIFO, the fragment FIFO's tiles and
+    // the ROP's access buffer, a fragment a tile), to a power of two: never full.
+    localparam int InflightDepth = 1 << $clog2(TileFifoDepth + PixelFifoDepth + TileStateDepth + FragmentFifoEntries +
+                                               2 * (RopPixelsPerCycle + Lanes * MaxSamples) + 16);
+    rast_top_hiz #(
+      .CoordW(CoordW), .CoordFrac(CoordFrac), .CoefW(CoefW), .EdgeW(EdgeW), .AreaW(AreaW), .DepthW(DepthW),
+      .PixelW(PixelW), .BlockLog2(HizBlockLog2), .MinMax(HizMode == 2 ? 1 : 0), .Blocks(HizBlocks),
+      .TileLog2Max(TileLog2Max), .WriteLanes(RopPixelsPerCycle), .Lanes(KLanes), .SampleLog2W(SampleLog2W),
+      .InflightDepth(InflightDepth)
+    ) u_hiz (
+      .clk_i, .rst_ni, .fb_width_i, .fb_height_i, .depth_func_i, .samples_log2_i(samples_log2_q),
+      .tri_a_i(c_in.edges.a), .tri_b_i(c_in.edges.b), .tri_c_i(c_in.edges.c), .tri_area2_i(c_in.area2),
+      .tri_z_i(c_in.attr.z), .tri_origin_i(c_in.origin), .lane_fp_i(k_lane_fp), .lane_wait_o(k_lane_wait),
+      .lane_cull_o(k_lane_cull), .lane_accept_o(k_lane_accept),
+      .push_i(k_valid && k_ready), .push_marker_i(k_marker), .push_fp_i(k_fp), .push_accept_i(k_hiz_accept),
+      .room_o(k_room), .fine_valid_i(f_valid && f_ready), .fine_drop_i(!f_in.marker && !m_valid),
+      .rop_end_i(rop_hiz_end), .rop_marker_i(rop_hiz_marker), .rop_always_o(rop_hiz_always), .rop_clear_i(rop_hiz_clear),
+      .rop_clear_z_i(cmd_value_i[DepthW-1:0]), .wr_lanes_i(rop_hiz_wr_lanes), .wr_x_i(rop_hiz_wr_x),
+      .wr_y_i(rop_hiz_wr_y), .wr_z_i(rop_hiz_wr_z));
+    assign dbg_hiz_culled_o = k_hiz_culled;
+    assign dbg_hiz_accepted_o = k_valid && k_ready && !k_marker && k_hiz_accept;
+  end else begin : g_no_hiz
+    assign k_lane_wait = '0;
+    assign k_lane_cull = '0;
+    assign k_lane_accept = '0;
+    assign k_room = 1'b1;
+    assign rop_hiz_always = 1'b0;
+    assign dbg_hiz_culled_o = '0;
+    assign dbg_hiz_accepted_o = 1'b0;
+    wire unused_hiz = ^{k_lane_fp, k_hiz_accept, k_hiz_culled, rop_hiz_end, rop_hiz_marker, rop_hiz_clear, rop_hiz_wr_lanes,
+                        rop_hiz_wr_x, rop_hiz_wr_y, rop_hiz_wr_z};
+  end
 
   // ---- Stage observation (debug ports): setup holds a triangle from the FIFO head or
   // its hold registers; the others hold their rast_hold's transaction. The

@@ -114,6 +114,10 @@ nlohmann::json CosimResult::to_json(const CosimOptions& opts) const {
     j["texture_cache_hits"] = texture_cache_hits;
     j["texture_cache_misses"] = texture_cache_misses;
   }
+  if (hiz) {  // render --stats' Hi-Z keys the RTL counts
+    j["tiles_culled_hiz"] = tiles_culled_hiz;
+    j["tiles_accepted_hiz"] = tiles_accepted_hiz;
+  }
   if (memory.enabled) {  // render's memory keys, then the DRAM's (simulate --stats' names)
     add_memory(j, memory);
     j.merge_patch(dram);

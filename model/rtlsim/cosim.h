@@ -118,6 +118,10 @@ struct CosimResult {
   // helper_pixels) and the texel fetch port's fetches through the reference's texture
   // cache model (testbench: tb_texture.h).
   uint64_t helper_pixels = 0, texel_fetches = 0, texture_cache_hits = 0, texture_cache_misses = 0;
+  // Hi-Z in rast_top (hiz_applies): tiles coarse raster culled and accepted (render's
+  // tiles_culled_hiz, tiles_accepted_hiz; a difference from the reference's is a mismatch).
+  bool hiz = false;
+  uint64_t tiles_culled_hiz = 0, tiles_accepted_hiz = 0;
   // memory.model = "dram": the ROP's functional memory counts (render --stats' keys) and
   // the DRAM's figures (add_memory_system_json's keys: dram_row_hit_rate, memory.dram.*,
   // memory.clients.<client>.bursts_read, ...); memory.enabled false and {} with fixed.
@@ -144,7 +148,8 @@ NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(CosimResult, rtl_config, rtl_mod
                                                 rtl_build_seconds, cycles_rtl, fragments_expected, fragments_compared,
                                                 mismatches, first_mismatch, triangles, markers, commands_2d, pixels_2d,
                                                 crc_rtl, crc_ref, samples, rop_accesses, resolve_cycles, helper_pixels,
-                                                texel_fetches, texture_cache_hits, texture_cache_misses, memory, dram,
+                                                texel_fetches, texture_cache_hits, texture_cache_misses, hiz,
+                                                tiles_culled_hiz, tiles_accepted_hiz, memory, dram,
                                                 wall_seconds, stages, command_starts, command_mismatches)
 
 // The verilated configs linked into this binary, and the parameters each was built with

@@ -182,7 +182,7 @@ class VerilatedRast final : public RastPorts {
   int helper_pixels() const override { return top_->tex_helpers_o; }
   RtlStageBits stage_bits() const override {
     return {top_->dbg_has_o, top_->dbg_done_o, top_->dbg_blocked_o, bool(top_->dbg_rop_start_o),
-            bool(top_->dbg_tex_busy_o), bool(top_->dbg_tex_blocked_o)};
+            bool(top_->dbg_tex_busy_o), bool(top_->dbg_tex_blocked_o), int(top_->dbg_hiz_culled_o), bool(top_->dbg_hiz_accepted_o)};
   }
 
   // ---- The ROP's command and memory ports (32-bit addresses and data words) ----

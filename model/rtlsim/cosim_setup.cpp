@@ -19,6 +19,7 @@
 #include "ref/tri_setup.h"
 #include "ref/coarse_raster.h"
 #include "ref/hiz.h"
+#include "ref/hiz_entry.h"
 #include "ref/interpolate.h"
 #include "ref/sample_pattern.h"
 #include "ref/texture/texture_unit.h"
@@ -46,6 +47,7 @@ class StreamBuilder {
   StreamBuilder(const ArchParams& arch, int tile_size, TbSetup& s, const Command* command0)
       : setup_(s), timing_(s.timing), state_(arch.raster), tile_size_(tile_size), command0_(command0) {
     state_.tile_size = tile_size;
+    if (hiz_applies(state_)) hiz_.emplace(state_);
   }
 
   void add(const Command& cmd) {
@@ -59,6 +61,13 @@ class StreamBuilder {
                        });
   }
   void end_of_frame();
+  // The reference's Hi-Z counts (HizTracker's) into the setup.
+  void finish_hiz() {
+    setup_.hiz = hiz_.has_value();
+    if (!hiz_) return;
+    setup_.tiles_culled_hiz = hiz_->table.stats.tiles_culled;
+    setup_.tiles_accepted_hiz = hiz_->table.stats.tiles_accepted;
+  }
 
  private:
   void state_marker(const Command& cmd, bool clear);
@@ -81,6 +90,22 @@ class StreamBuilder {
   std::optional<TextureUnit> tex_;
   TriangleQuads quads_;
   std::set<const TextureImage*> placed_;
+  // Hi-Z (hiz_applies): the zero-lag table rast_top's interlock makes its decisions equal
+  // to (ref/hiz.h); a culled tile's fragments are not expected.
+  std::optional<HizTracker> hiz_;
+  // traverse_triangle's tile filter: the tracker's test, then the drawn tile's writes.
+  struct HizWalk {
+    HizTracker* h;
+    const SetupTriangle& t;
+    bool operator()(const PixelRect& fp, TileClass cls) {
+      if (!h) return true;
+      if (h->test(t, fp, cls) == HizDecision::Culled) return false;
+      h->apply(t, fp, cls);
+      return true;
+    }
+    void done() {}
+  };
+  HizWalk hiz_walk(const SetupTriangle& t) { return HizWalk{hiz_ ? &*hiz_ : nullptr, t}; }
 };
 
 // A textured triangle's state on rast_top's tri_tex_* ports, its texture placed as the
@@ -125,6 +150,7 @@ void StreamBuilder::texture_state(const Command& cmd, const TextureState& ts, Tb
 // fast clear of the framebuffer).
 void StreamBuilder::state_marker(const Command& cmd, bool clear) {
   apply_state_command(cmd, state_, fb_);
+  if (hiz_) hiz_->state(cmd);
   TbItem m;
   m.kind = TbItem::Marker;
   m.cmd = &cmd;
@@ -170,6 +196,12 @@ void StreamBuilder::primitives(const Command& cmd, const CmdPrimitives& prims) {
 // triangle out charged what the front end did since the previous one, and a last step
 // for the primitives after the last triangle, ending the command.
 void StreamBuilder::clip_space(const Command& cmd, const CmdPrimitives& prims) {
+  // The reference rasterizes clip.method = homogeneous without a tile walk (never Hi-Z
+  // tested); the testbench clips instead, so rast_top would test those tiles.
+  if (hiz_ && state_.clip_method == ClipMethod::Homogeneous)
+    throw SceneError(cmd.loc.str() + ": a clip-space command with clip.method = homogeneous and depth.hiz: the "
+                     "reference draws it without a tile walk (no Hi-Z test) and rast_top would test its tiles; "
+                     "co-simulate with clip.method = clip or depth.hiz = off");
   const size_t job = setup_.items.size();
   TbItem c;
   c.kind = TbItem::ClipCommand;
@@ -238,7 +270,7 @@ void StreamBuilder::triangle(const Command& cmd, const CmdPrimitives& prims, siz
   if (!prims.texture.enabled()) {
     traverse_triangle(t, tile_size_, F, counters_, [&](int px, int py, uint32_t m) {
       shade_pixel(t, px, py, m, F, [&](const Fragment& f) { setup_.expected.push_back(Expected{f, it.tri}); });
-    });
+    }, hiz_walk(t));
     return;
   }
   // Textured (ref/pipeline.cpp draw_textured): each fragment through the texture unit with
@@ -251,7 +283,7 @@ void StreamBuilder::triangle(const Command& cmd, const CmdPrimitives& prims, siz
     shade_pixel(t, px, py, m, F, [&](const Fragment& f) {
       setup_.expected.push_back(Expected{tex_->shade(f, d, prims.texture, tex_frac), it.tri});
     });
-  });
+  }, hiz_walk(t));
   setup_.helper_pixels += quads_.helper_pixels();
 }
 
@@ -277,6 +309,7 @@ void build(const Scene& scene, const ArchParams& arch, int tile_size, TbSetup& s
   }
   s.commands = scene.commands.size();
   b.end_of_frame();
+  b.finish_hiz();
 }
 
 }  // namespace
@@ -305,20 +338,31 @@ RtlParams cosim_wanted_params(const ArchParams& arch, const CosimOptions& opts) 
     throw ConfigError(cfg.origin("raster.aa_mode") + ": raster.aa_mode = " + cfg.get_string("raster.aa_mode") +
                       " has no RTL (the RTL shades once a pixel, at its centre: msaa); co-simulate with "
                       "raster.aa_mode = msaa (render and simulate run ssaa)");
-  // Depth culling: the RTL has neither Hi-Z nor early Z yet (docs/depth-culling.md "RTL"),
-  // while the SystemC model it is timed against would cull: the cycles would compare two
-  // machines. Hi-Z that does not apply to this state (hiz_applies: e.g. multisampling)
-  // leaves the run exactly the Hi-Z-off one, so only an applied table is refused.
-  if (hiz_applies(st))
-    throw ConfigError(cfg.origin("depth.hiz") + ": depth.hiz = " + cfg.get_string("depth.hiz") +
-                      " has no RTL yet (the RTL draws every tile; the SystemC model would cull some, so the "
-                      "cycles would compare two machines): co-simulate with depth.hiz = off (render and simulate "
-                      "run Hi-Z; docs/depth-culling.md)");
+  // Depth culling (docs/depth-culling.md "RTL"): rast_top holds Hi-Z's table on chip
+  // (rtl/rast_top_hiz.sv); the spilled entries have no memory port yet, and early Z no
+  // RTL, while the SystemC model it is timed against would use them: refused by name.
+  // Hi-Z that does not apply to this state (hiz_applies: e.g. multisampling) leaves the run
+  // exactly the Hi-Z-off one (the shipped models, no table built).
+  const bool hiz = hiz_applies(st);
+  if (hiz) {
+    const int64_t blocks = int64_t((st.fb_width + st.hiz_block - 1) / st.hiz_block) *
+                           ((st.fb_height + st.hiz_block - 1) / st.hiz_block);
+    const int64_t onchip =
+        hiz_onchip_blocks(st.hiz_mode, st.hiz_block, st.hiz_bytes, st.fb_width, st.fb_height, st.depth_bits);
+    if (onchip < blocks)
+      throw ConfigError(cfg.origin("depth.hiz_bytes") + ": depth.hiz_bytes = " + std::to_string(st.hiz_bytes) +
+                        " holds " + std::to_string(onchip) + " of the display's " + std::to_string(blocks) +
+                        " Hi-Z blocks, and the RTL has no port for the spilled entries yet: co-simulate with "
+                        "depth.hiz_bytes >= " + std::to_string(blocks * hiz_entry_bytes(st.hiz_mode, st.hiz_block,
+                                                                                         st.depth_bits)) +
+                        " (render and simulate spill; docs/depth-culling.md)");
+  }
   if (st.depth_early)
     throw ConfigError(cfg.origin("depth.early") + ": depth.early = true has no RTL yet (the RTL shades every "
                       "fragment; the SystemC model would skip the hidden ones): co-simulate with depth.early = "
                       "false (render and simulate run early Z; docs/depth-culling.md)");
   RtlParams wanted = rtl_params(arch);
+  if (!hiz) rtl_params_without_hiz(wanted);  // no table used: the model without one (the shipped models') runs it
   wanted.tile_log2_max = std::countr_zero(static_cast<unsigned>(tile));
   wanted.max_samples = st.samples;  // a run-time input up to the built maximum
   return wanted;

@@ -86,6 +86,9 @@ constexpr ParamField<RtlParams> kFields[] = {
     {"RopPixelsPerCycle", &RtlParams::rop_pixels_per_cycle, "rop.pixels_per_cycle: ROP accesses a cycle"},
     {"RopClearPixelsPerCycle", &RtlParams::rop_clear_pixels_per_cycle, "rop.clear_pixels_per_cycle"},
     {"RopLenW", &RtlParams::rop_len_w, "ROP burst length bits: clog2(RopClearPixelsPerCycle MaxSamples + 1)"},
+    {"HizMode", &RtlParams::hiz_mode, "depth.hiz: 0 off (no table built), 1 max, 2 minmax"},
+    {"HizBlockLog2", &RtlParams::hiz_block_log2, "log2 depth.hiz_block"},
+    {"HizBlocks", &RtlParams::hiz_blocks, "Hi-Z entries on chip: depth.hiz_bytes / entry bytes, at most the display's"},
 };
 
 constexpr ParamField<ScanoutRtlParams> kScanoutFields[] = {
@@ -402,7 +405,26 @@ RtlParams rtl_params(const ArchParams& arch) {
   p.rop_pixels_per_cycle = static_cast<int>(t.rop_pixels_per_cycle);
   p.rop_clear_pixels_per_cycle = static_cast<int>(t.rop_clear_pixels_per_cycle);
   p.rop_len_w = std::bit_width(static_cast<unsigned>(p.rop_clear_pixels_per_cycle * p.max_samples));  // clog2(n + 1)
+  // Hi-Z: built when depth.hiz is on (the state decides at run time whether it applies:
+  // rast_top_hiz's `on`), with at least one entry on chip.
+  const int64_t hiz_blocks =
+      st.hiz_mode == HizMode::Off
+          ? 0
+          : hiz_onchip_blocks(st.hiz_mode, st.hiz_block, st.hiz_bytes, st.fb_width, st.fb_height, st.depth_bits);
+  if (hiz_blocks == 0) {
+    rtl_params_without_hiz(p);
+  } else {
+    p.hiz_mode = st.hiz_mode == HizMode::MinMax ? 2 : 1;
+    p.hiz_block_log2 = std::countr_zero(unsigned(st.hiz_block));
+    p.hiz_blocks = int(hiz_blocks);
+  }
   return p;
+}
+
+void rtl_params_without_hiz(RtlParams& p) {
+  p.hiz_mode = 0;
+  p.hiz_block_log2 = 3;  // any: nothing is built
+  p.hiz_blocks = 1;
 }
 
 std::string rtl_params_verilog(const RtlParams& p, const std::string& source) {

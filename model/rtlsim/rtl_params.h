@@ -72,11 +72,16 @@ struct RtlParams {
   int fragment_fifo_entries = 0;  // fifo.fragment_depth + the interpolator's latency slots (TimingParams), tiles
   int rop_pixels_per_cycle = 0, rop_clear_pixels_per_cycle = 0;  // rop.pixels_per_cycle, rop.clear_pixels_per_cycle
   int rop_len_w = 0;  // a ROP burst length in words, up to a clear's: clog2(clear pixels x max_samples + 1) bits
+  // Hi-Z in rast_top (rtl/rast_top_hiz.sv): depth.hiz 0 off, 1 max, 2 minmax; its block
+  // and on-chip entries (hiz_onchip_blocks; 3 and 1 when off, nothing built).
+  int hiz_mode = 0, hiz_block_log2 = 0, hiz_blocks = 0;
 
   bool operator==(const RtlParams&) const = default;
 };
 
 RtlParams rtl_params(const ArchParams& arch);
+// The Hi-Z parameters of a rast_top without a table (HizMode 0).
+void rtl_params_without_hiz(RtlParams& p);
 
 // The Verilog header: "parameter Name = value, // comment" lines (the last without a
 // comma), to be `include`d in rast_top's parameter port list. `source` names the

@@ -308,6 +308,11 @@ void Testbench::run() {
   if (result_.helper_pixels != setup_.helper_pixels)
     mismatch("helper pixels: the RTL dropped " + std::to_string(result_.helper_pixels) + ", the reference counts " +
              std::to_string(setup_.helper_pixels));
+  if (result_.tiles_culled_hiz != setup_.tiles_culled_hiz || result_.tiles_accepted_hiz != setup_.tiles_accepted_hiz)
+    mismatch("Hi-Z: the RTL culled " + std::to_string(result_.tiles_culled_hiz) + " tiles and accepted " +
+             std::to_string(result_.tiles_accepted_hiz) + ", the reference " + std::to_string(setup_.tiles_culled_hiz) +
+             " and " + std::to_string(setup_.tiles_accepted_hiz));
+  result_.hiz = setup_.hiz;
   end_of_run_check();
   ports_.finish();
   result_.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -869,6 +874,8 @@ void Testbench::tx_end(StageId k, uint64_t t) {
 // a clear's write, a marker), stalled while the memory refuses its request.
 void Testbench::observe_rtl_stages(uint64_t t) {
   const RtlStageBits bits = ports_.stage_bits();
+  result_.tiles_culled_hiz += uint64_t(bits.hiz_culled);
+  result_.tiles_accepted_hiz += bits.hiz_accepted ? 1 : 0;
   for (size_t s = 0; s < kObservedStages.size(); ++s) {
     const StageId k = kObservedStages[s];
     if (k == StageId::Rop) {

@@ -126,6 +126,10 @@ struct TbSetup {
   TextureMemory texture_memory;
   std::vector<uint64_t> texture_fills;
   uint64_t helper_pixels = 0;
+  // Hi-Z (hiz_applies): the reference's tiles culled and accepted (HizTracker's, the
+  // expected fragments leave the culled tiles out).
+  bool hiz = false;
+  uint64_t tiles_culled_hiz = 0, tiles_accepted_hiz = 0;
 };
 
 // ---- The RTL's ports (rtl/rast_top.sv, rtl/rast_engine2d.sv) as plain values ----
@@ -150,6 +154,8 @@ struct RtlStageBits {
   bool rop_start = false;  // dbg_rop_start_o: the ROP starts a batch or command
   bool tex_busy = false;     // dbg_tex_busy_o: the texture stage holds textured work
   bool tex_blocked = false;  // dbg_tex_blocked_o: its output refused
+  int hiz_culled = 0;         // dbg_hiz_culled_o: tiles coarse raster culled (Hi-Z)
+  bool hiz_accepted = false;  // dbg_hiz_accepted_o: the tile it sent was accepted
 };
 // One lane of a ROP memory request (rast_top's rd_* / wr_*): a byte address and a burst
 // length in 32-bit words.

@@ -13,6 +13,7 @@ void CoarseRaster::body() {
     const SetupItem in = read(in_);
     if (in.state && hiz_) hiz_->state(*in.state);
     if (in.state && binned_) bin_clip_ = bin_walk_clip(*in.state, bin_clip_);
+    if (in.state && interlock_) interlock_->sent_state();
     if (pass_state(in, out_)) continue;
     switch (tp_.method) {
       case Traversal::Tiled: walk_tiled(in); break;
@@ -81,6 +82,7 @@ void CoarseRaster::walk_tiled(const SetupItem& in) {
         const PixelRect fp = tile_footprint(box, tile_size_, tx, ty);
         ++c.tiles_visited;
         const TileClass cls = classify_tile(t, fp, frac_bits_);
+        if (cls != TileClass::Rejected && interlock_) hiz_interlock_wait(walk, fp, cycles_done);
         if (mem_) mem_->begin(now());  // the tile's entry reads from now (timing/hiz_memory_port.h)
         const HizDecision hiz = cls != TileClass::Rejected && hiz_ ? hiz_->test(t, fp, cls) : HizDecision::Draw;
         const bool culled = hiz == HizDecision::Culled;
@@ -99,6 +101,7 @@ void CoarseRaster::walk_tiled(const SetupItem& in) {
         attribute_to(fp.x0, fp.y0);  // the walk up to this tile, rejected tiles included
         busy(leave_at - cycles_done);
         cycles_done = leave_at;
+        if (interlock_) interlock_->sent(fp);
         write(out_, TileItem{nullptr, TileWork{in.work, fp, cls, false, hiz == HizDecision::Accepted}});
       }
     }
@@ -109,6 +112,16 @@ void CoarseRaster::walk_tiled(const SetupItem& in) {
     }
     busy(walk.cycles() - cycles_done);
   }
+}
+
+// Hi-Z's interlock: the tile's test in walk cycle w is at cycle now() + w - 1 - done (the
+// walk's cycles since its last sent tile not yet charged); when a tile sent earlier on its
+// blocks ends later (cycle e), the walk holds the tile and its window starts at it in
+// cycle e: walk cycle e - now() + 1 + done (docs/depth-culling.md "The interlock").
+void CoarseRaster::hiz_interlock_wait(TiledWalk& walk, const PixelRect& fp, uint64_t done) {
+  const uint64_t test_at = now() + walk.next_window() - 1 - done;
+  const uint64_t free = interlock_->free_at(fp, now());
+  if (free > test_at) walk.restart(free - now() + 1 + done);
 }
 
 // The walk waits for the step's spilled entries: busy the stall; the next step starts

@@ -19,6 +19,9 @@
 //   reference's and its cycles are those of an ideally synchronised table. With
 //   memory.model = "dram" the spilled entries' reads stall the walk until they arrive and
 //   the write-backs are posted (timing/hiz_memory_port.h): busy the stall too.
+//   The interlock (sc/hiz_interlock.h, as rast_top's): a tile is tested only once every
+//   earlier tile on its blocks has left the ROP; until then the walk holds it, and its
+//   window restarts at it in the cycle the last of them ends (TiledWalk::restart).
 // The other raster.traversal methods (docs/traversal.md), same functions as the
 // reference (ref/traverse.h):
 // - bbox: one partial "tile", the whole clipped bbox, in 1 cycle.
@@ -39,6 +42,7 @@
 #include "ref/study/coverage_check.h"
 #include "ref/traverse.h"
 #include "sc/binning.h"
+#include "sc/hiz_interlock.h"
 #include "sc/tri_setup.h"
 #include "timing/hiz_memory_port.h"
 
@@ -65,6 +69,13 @@ class CoarseRaster : public Stage {
     if (!traversal_is_exact(tp_.method)) check_.emplace(arch.fb_width, arch.fb_height);
     ctx_.render.hiz_mode = arch.hiz_mode;
     if (hiz_applies(arch)) hiz_.emplace(arch);
+    // The interlock (sc/hiz_interlock.h) times the tests as rast_top's; fine raster and the
+    // ROP record their ends through ctx. Not in the binned pipeline (its bins reorder the
+    // ROP's work).
+    if (hiz_ && !binned_) {
+      interlock_ = std::make_unique<HizInterlock>(arch.hiz_block);
+      ctx_.hiz_interlock = interlock_.get();
+    }
   }
   // memory.model = "dram" (before the run): the spilled Hi-Z table's entries become
   // requests through `mem` (the hiz client, timing/hiz_memory_port.h), which must outlive
@@ -89,6 +100,7 @@ class CoarseRaster : public Stage {
   void body() override;
   void walk_tiled(const SetupItem& in);
   void hiz_stall();
+  void hiz_interlock_wait(TiledWalk& walk, const PixelRect& fp, uint64_t done);
   void walk_hierarchical(const SetupItem& in);
   void walk_scanline(const SetupItem& in);
   int tile_size_, frac_bits_;
@@ -100,6 +112,7 @@ class CoarseRaster : public Stage {
   RasterState arch_;  // the depth state and the table's parameters
   std::optional<HizTracker> hiz_;  // functional-first Hi-Z (ref/hiz.h)
   std::unique_ptr<HizMemoryPort> mem_;  // memory.model = "dram" with a table, else null
+  std::unique_ptr<HizInterlock> interlock_;  // with a table (immediate mode), else null
   // pipeline.mode = binned (sc/binning.h): each triangle's box clipped to the bin of the
   // last begin marker (the reference's draw(tri, walk)); the triangle itself, its full
   // box, goes on to fine raster and interpolation.

@@ -1,13 +1,18 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "sc/fine_raster.h"
 
+#include "sc/hiz_interlock.h"
+
 namespace rastsim::sc {
 
 void FineRaster::body() {
   TraversalCounters& c = ctx_.render.traversal;
   for (;;) {
     const TileItem in = read(in_);
-    if (pass_state(in, out_)) continue;
+    if (pass_state(in, out_)) {
+      if (ctx_.hiz_interlock) ctx_.hiz_interlock->fine(false, now());
+      continue;
+    }
     const TileWork& tile = in.work;
     LocalPtr<PixelBatch> batch = batches_.take();
     batch->tri = tile.tri;
@@ -32,6 +37,8 @@ void FineRaster::body() {
     }
     attribute_to(tile.footprint.x0, tile.footprint.y0);
     busy(cost);
+    // Hi-Z's interlock: a tile with no covered pixel ends here (sc/hiz_interlock.h).
+    if (ctx_.hiz_interlock) ctx_.hiz_interlock->fine(batch->pixels == 0, now());
     if (batch->pixels != 0) write(out_, PixelItem{nullptr, std::move(batch)});
   }
 }

@@ -7,6 +7,7 @@
 
 #include "ref/pipeline.h"
 #include "ref/rop.h"
+#include "sc/hiz_interlock.h"
 #include "sc/model_error.h"
 #include "timing/memory_timing.h"
 
@@ -170,6 +171,7 @@ void Rop::body() {
     const FragmentItem in = read(in_);
     if (in.state) {
       command(in.state);
+      if (ctx_.hiz_interlock) ctx_.hiz_interlock->rop_end(now());  // a depth clear reaches the table here
       continue;
     }
     const FragmentBatch& batch = *in.work;
@@ -217,6 +219,7 @@ void Rop::body() {
     ctx_.framebuffer_bytes += accesses * (4 + depth_bytes_);
     if (!frags.empty()) attribute_to(frags.front().x, frags.front().y);  // the batch's tile
     busy(cycles);
+    if (ctx_.hiz_interlock) ctx_.hiz_interlock->rop_end(now());  // its depth writes in the table (sc/hiz_interlock.h)
   }
 }
 

@@ -25,6 +25,8 @@ namespace rastsim::sc {
 using CommandPtr = LocalPtr<const Command>;
 inline CommandPtr borrow_command(const Command& c) { return CommandPtr(nullptr, &c); }
 
+class HizInterlock;  // sc/hiz_interlock.h
+
 struct SimContext {
   // One core clock cycle is one simulated nanosecond; clock.core_mhz only converts cycle
   // counts to seconds in the stats, so cycle counts are exact integers at any clock.
@@ -64,6 +66,9 @@ struct SimContext {
   bool is_end_of_frame(const Command* c) const { return c == &end_of_frame; }
   bool is_end_of_frame(const CommandPtr& c) const { return c.get() == &end_of_frame; }
   FragmentSink on_fragment;  // sees each fragment leaving interpolation, in order
+  // Hi-Z's interlock (coarse raster's, with a table): fine raster and the ROP record the
+  // ends of the tiles and state items it sent. Null without.
+  HizInterlock* hiz_interlock = nullptr;
   // Sees command fetch start each transaction (a command, or triangle k of a primitive
   // command) at `cycle`, in program order (the sampled level's unit boundaries).
   std::function<void(const Command& cmd, size_t triangle, uint64_t cycle)> on_fetch;

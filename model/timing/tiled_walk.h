@@ -28,6 +28,18 @@ struct TiledWalk {
     window_start = visited;  // the next window starts after this tile, next cycle
     return window++;
   }
+  // The walk cycle whose window holds the next tile visit() will see.
+  uint64_t next_window() const {
+    uint64_t w = window, start = window_start;
+    for (; visited >= start + tiles_per_cycle; start += tiles_per_cycle) ++w;
+    return w;
+  }
+  // The next tile starts a window in walk cycle `cycle` (> next_window()): the walker held
+  // it there (Hi-Z's interlock, docs/depth-culling.md), the cycles between spent waiting.
+  void restart(uint64_t cycle) {
+    window = cycle;
+    window_start = visited;
+  }
   // The walk's cycles: the window holding its last tile, or the cycle its last tile
   // was sent in when that was the last one; at least one.
   uint64_t cycles() const { return std::max<uint64_t>(1, window_start < visited ? window : last_sent); }

@@ -1,0 +1,90 @@
+// SPDX-License-Identifier: Apache-2.0
+// Hi-Z's interlock in the timed model (docs/depth-culling.md "The interlock"), the same
+// rule as rast_top's (rtl/rast_hiz_inflight.sv): coarse raster tests a tile only once no
+// tile (or state item) it sent earlier that touches the tile's blocks is still in flight
+// to the ROP, so a hardware table updated by the ROP's depth writes would hold exactly
+// what the functional-first HizTracker tests against. The decisions stay HizTracker's;
+// the interlock only times them.
+//
+// - Coarse raster records every tile it sends (its footprint's blocks) and every state
+//   item (every block: a depth clear reaches the table at the ROP), in send order.
+// - An entry ends at the cycle fine raster drops its tile (no covered pixel; fine raster
+//   takes entries in send order) or the cycle the ROP finishes it (the end of its busy
+//   cycles: the ROP takes the oldest entry not yet ended, in order).
+// - free_at(fp): the first cycle at which every earlier entry touching fp's blocks has
+//   ended. The stages run decoupled (sc/stage.h), so an end may not be known yet when
+//   coarse raster asks: it then waits (SystemC) for the ROP or fine raster to record it;
+//   the tile in question is already downstream, so the wait always ends.
+#pragma once
+
+#include <algorithm>
+#include <bit>
+#include <cstdint>
+#include <deque>
+#include <limits>
+
+#include <systemc>
+
+#include "ref/coarse_raster.h"
+
+namespace rastsim::sc {
+
+class HizInterlock {
+ public:
+  explicit HizInterlock(int block) : log2b_(std::countr_zero(unsigned(block))) {}
+
+  // Coarse raster sends a tile of footprint fp / a state item (every block).
+  void sent(const PixelRect& fp) {
+    q_.push_back({{fp.x0 >> log2b_, fp.y0 >> log2b_, (fp.x1 - 1) >> log2b_, (fp.y1 - 1) >> log2b_}, false, kOpen});
+  }
+  void sent_state() { q_.push_back({{}, true, kOpen}); }
+  // Fine raster finished its next entry at cycle t: dropped (ends it) or passed on.
+  void fine(bool dropped, uint64_t t) {
+    if (dropped) end(at(fine_), t);
+    ++fine_;
+  }
+  // The ROP finished its oldest entry not yet ended, at cycle t (its busy's end).
+  void rop_end(uint64_t t) {
+    for (uint64_t i = base_; i < base_ + q_.size(); ++i)
+      if (at(i).end == kOpen) return end(at(i), t);
+  }
+  // The first cycle from which fp's blocks have nothing in flight; entries that ended by
+  // `now` (coarse raster's time, which only grows) are forgotten.
+  uint64_t free_at(const PixelRect& fp, uint64_t now) {
+    while (!q_.empty() && q_.front().end <= now && base_ < fine_) {
+      q_.pop_front();
+      ++base_;
+    }
+    const Blocks b{fp.x0 >> log2b_, fp.y0 >> log2b_, (fp.x1 - 1) >> log2b_, (fp.y1 - 1) >> log2b_};
+    uint64_t t = 0;
+    for (size_t i = 0; i < q_.size(); ++i) {
+      const Entry& e = q_[i];
+      if (!e.all && (e.b.x1 < b.x0 || e.b.x0 > b.x1 || e.b.y1 < b.y0 || e.b.y0 > b.y1)) continue;
+      while (q_[i].end == kOpen) sc_core::wait(ended_);  // decoupled: not recorded yet
+      t = std::max(t, q_[i].end);
+    }
+    return t;
+  }
+
+ private:
+  static constexpr uint64_t kOpen = std::numeric_limits<uint64_t>::max();
+  struct Blocks {
+    int x0 = 0, y0 = 0, x1 = 0, y1 = 0;  // inclusive block range
+  };
+  struct Entry {
+    Blocks b;
+    bool all = false;  // a state item: every block
+    uint64_t end = kOpen;
+  };
+  Entry& at(uint64_t i) { return q_[size_t(i - base_)]; }
+  void end(Entry& e, uint64_t t) {
+    e.end = t;
+    ended_.notify(sc_core::SC_ZERO_TIME);
+  }
+  int log2b_;
+  std::deque<Entry> q_;  // entries base_ .. base_ + size - 1, in send order
+  uint64_t base_ = 0, fine_ = 0;  // the first entry held; fine raster's next
+  sc_core::sc_event ended_;
+};
+
+}  // namespace rastsim::sc
