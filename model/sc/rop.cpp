@@ -170,8 +170,11 @@ void Rop::body() {
   for (;;) {
     const FragmentItem in = read(in_);
     if (in.state) {
+      // Hi-Z's interlock (sc/hiz_interlock.h): a state item ends as the ROP takes it, in its
+      // first cycle (a depth clear sets the table then; its writes follow, in order).
+      const uint64_t taken = now() + 1;
       command(in.state);
-      if (ctx_.hiz_interlock) ctx_.hiz_interlock->rop_end(now());  // a depth clear reaches the table here
+      if (ctx_.hiz_interlock) ctx_.hiz_interlock->rop_end(taken);
       continue;
     }
     const FragmentBatch& batch = *in.work;
@@ -219,7 +222,10 @@ void Rop::body() {
     ctx_.framebuffer_bytes += accesses * (4 + depth_bytes_);
     if (!frags.empty()) attribute_to(frags.front().x, frags.front().y);  // the batch's tile
     busy(cycles);
-    if (ctx_.hiz_interlock) ctx_.hiz_interlock->rop_end(now());  // its depth writes in the table (sc/hiz_interlock.h)
+    // Hi-Z's interlock: the batch ends when its last group's depth writes are decided, on
+    // that group's read data, in the cycle after its busy (the busy runs up to the
+    // response's cycle, which rast_rop does not count when the write is taken in it).
+    if (ctx_.hiz_interlock) ctx_.hiz_interlock->rop_end(now() + 1);
   }
 }
 
