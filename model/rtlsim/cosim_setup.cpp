@@ -393,6 +393,12 @@ void cosim_setup(const Scene& scene, const ArchParams& arch, const CosimOptions&
   s.arch.tile_size = tile;
   if (opts.initial_fb && !opts.reference_fb)
     throw std::logic_error("cosim_setup: a run from an initial framebuffer needs its reference image");
+  // Hi-Z's expected decisions (HizTracker) start from a cleared depth buffer and table, as
+  // rast_top's table does; from the frames before a range they would not be the reference's.
+  if (opts.initial_fb && hiz_applies(st))
+    throw ConfigError(arch.config.origin("depth.hiz") + ": depth.hiz = " + arch.config.get_string("depth.hiz") +
+                      " co-simulates whole scenes only (--frames from the first frame): the table would start "
+                      "empty after frames that wrote depth");
   RenderStats ref_stats;
   s.reference = opts.reference_fb ? *opts.reference_fb : render_scene(scene, s.arch, ref_stats);
   build(scene, arch, tile, s);
