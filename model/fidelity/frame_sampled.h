@@ -45,6 +45,7 @@
 
 #include "config/arch_params.h"
 #include "fidelity/frames.h"
+#include "fidelity/functional_pass.h"
 #include "fidelity/sampled.h"
 #include "ref/scene.h"
 
@@ -71,7 +72,10 @@ struct FrameSampledResult {
   size_t warm_frames = 0;         // frames whose tail warms a chosen frame (its predecessor, not chosen)
   size_t warm_triangles = 0;      // the triangles those tails draw, simulated unmeasured
   double warm_frame_share = 0;    // the tails' share of their frames' triangles, summed (frames' worth)
-  double warm_functional_seconds = 0;  // wall time of the reference run the warm-ups start from
+  double warm_functional_seconds = 0;  // wall time of the one functional pass (functional_pass.h), any fallback's too
+  // Each segment's scan-out phase (SimOptions::scanout_phase): its estimated start in the
+  // full run, core cycles (0 for a cold start).
+  std::vector<uint64_t> scanout_phase;
   double wall_seconds = 0;
   // cycles, cycles_ci_low/high, cycles_error_bound (the interval's farther end from
   // cycles, relative), confidence, frames_total, frames_simulated, frame_sample,
@@ -87,8 +91,11 @@ FrameSampledResult extrapolate_frames(const FramePlan& plan, const std::vector<d
 // once per process), extrapolation. A scene of fewer than kFrameSampledMinFrames frames
 // is simulated whole.
 inline constexpr size_t kFrameSampledMinFrames = 4;
+// `snapshot_budget`: bytes of warm-up snapshots the one functional pass may keep
+// (functional_pass.h); past it a second pass warms the rest, with the same result.
 FrameSampledResult simulate_frame_sampled(const Scene& scene, const ArchParams& arch, double fraction,
-                                          double confidence = kDefaultConfidence);
+                                          double confidence = kDefaultConfidence,
+                                          size_t snapshot_budget = kWarmSnapshotBudget);
 
 // A frame's cycles (frames[].cycles) run from command fetch starting its first command
 // to its starting the next frame's (the last frame: to the end of the run), so they sum
