@@ -54,10 +54,11 @@ int frame_stratum(const FrameWork& w) {
 }
 
 // Representatives a stratum of 4 frames or more (the smaller ones are simulated whole):
-// T = max(n, 2 B) over its B such strata, in proportion to their x totals (equal shares
-// when none has any), each the floor of its share but at least 2, then one more to each
-// by largest remainder (ties: the lower key) until T are given. Before, each stratum took
-// max(2, ceil(n x share)) on its own, which gave 8 to the torus's 3 strata at n = 5.
+// T = max(n, 2 B) over its B such strata, 2 each (a variance), then the R = T - 2 B left
+// in proportion to their x totals (equal shares when none has any), the floor of each
+// share and one more by largest remainder (ties: the lower key) until T are given.
+// Before, each stratum took max(2, ceil(n x share)) on its own, which rounds up in every
+// stratum: 8 for the torus's 3 strata at n = 5 on default, 6 now (docs/fidelity.md).
 std::map<int, size_t> allocate(const std::map<int, std::vector<size_t>>& strata, const std::vector<double>& x,
                                size_t n) {
   std::map<int, double> share;
@@ -69,13 +70,13 @@ std::map<int, size_t> allocate(const std::map<int, std::vector<size_t>>& strata,
     share[h] = Xh;
     X += Xh;
   }
-  const size_t T = std::max(n, 2 * share.size());
+  const size_t T = std::max(n, 2 * share.size()), R = T - 2 * share.size();
   std::map<int, size_t> out;
   std::vector<std::pair<double, int>> rem;  // (-remainder, key): largest first, then the lower key
   size_t given = 0;
   for (auto& [h, Xh] : share) {
-    const double q = double(T) * (X > 0 ? Xh / X : 1.0 / double(share.size()));
-    out[h] = std::max<size_t>(2, size_t(std::floor(q)));
+    const double q = double(R) * (X > 0 ? Xh / X : 1.0 / double(share.size()));
+    out[h] = 2 + size_t(std::floor(q));
     given += out[h];
     rem.emplace_back(-(q - std::floor(q)), h);
   }

@@ -14,9 +14,9 @@
 // - Strata: the other M frames by their analytic bottleneck stage and the set of stages
 //   with any work (a frame whose 2D fill or clear dominates, or that has one at all, is
 //   not timed like one whose fragments do). A stratum of fewer than 4 frames is
-//   certain; the B others share T = max(ceil(F M), 2 B) representatives, each the floor
-//   of its x total's share (at least 2), then one more by largest remainder until T are
-//   given; a stratum given all its frames is certain.
+//   certain; the B others share T = max(ceil(F M), 2 B) representatives, 2 each, the
+//   rest in proportion to their x totals (floors, then largest remainders); a stratum
+//   given all its frames is certain.
 // - Clusters (deterministic, no seed): a stratum's frames sorted by x (ties by frame
 //   number) and cut into n_h runs of consecutive frames of equal size (sizes differing
 //   by at most one): one-dimensional clustering by equal counts. Each cluster's

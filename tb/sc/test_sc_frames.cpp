@@ -174,6 +174,26 @@ TEST(ScFrames, PlanAndEstimatorWorkedByHand) {
   EXPECT_EQ(std::count(all.chosen.begin(), all.chosen.end(), true), 8);
 }
 
+TEST(ScFrames, RepresentativesAllocatedByHand) {
+  // Frames 1..20 busy 10 in stage 3 (stratum A, X = 200), 21..26 busy 100 in stage 5 (B,
+  // X = 600); frames 0 and 27 certain. F = 0.25 of M = 26: n = ceil(6.5) = 7; T =
+  // max(7, 2 x 2) = 7: 2 each, R = 3 by x: A 0.75, B 2.25 -> A 2, B 4 (6 given), the
+  // 7th to the larger remainder, A (0.75): A 3, B 4. (The old rule, max(2, ceil(n x
+  // share)) each: A 2, B ceil(5.25) = 6 = all of B.)
+  std::vector<fidelity::FrameWork> work(28);
+  for (size_t k = 0; k < 28; ++k) {
+    if (k >= 1 && k <= 20) work[k].busy[3] = 10;
+    if (k >= 21 && k <= 26) work[k].busy[5] = 100;
+  }
+  work[0].busy[3] = work[27].busy[3] = 10;
+  const fidelity::FramePlan p = fidelity::plan_frames(work, 0.25);
+  EXPECT_EQ(p.clusters, 7u);
+  size_t a = 0, b = 0;
+  for (size_t k = 1; k <= 26; ++k) (k <= 20 ? a : b) += p.chosen[k];
+  EXPECT_EQ(a, 3u);
+  EXPECT_EQ(b, 4u);
+}
+
 TEST(ScFrames, FrameSampledIntervalCoversTheFullRun) {
   const Config cfg = make_config({"raster.depth_func=less"});
   const ArchParams arch = arch_of(cfg);
