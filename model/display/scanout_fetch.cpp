@@ -87,23 +87,39 @@ ScanoutFetch::ScanoutFetch(MemorySystem& mem, const ScanoutParams& p, const Surf
   report_.shown_base = shown.base();
 }
 
-uint64_t ScanoutFetch::due_cycle(int y) const {
-  return static_cast<uint64_t>(std::floor(scanout_line_due_seconds(p_.timing, y) * p_.core_hz));
+// D_y on the whole timeline (no phase), core cycles.
+static uint64_t timeline_due(const ScanoutParams& p, int y) {
+  return static_cast<uint64_t>(std::floor(scanout_line_due_seconds(p.timing, y) * p.core_hz));
+}
+
+uint64_t ScanoutFetch::due_cycle(int y) const { return timeline_due(p_, y) - phase_; }
+
+void ScanoutFetch::set_phase(uint64_t phase) {
+  phase_ = phase;
+  const int lines = p_.timing.v_active, slots = p_.line_buffer_lines;
+  line_ = 0;
+  while (line_ < lines && timeline_due(p_, line_) <= phase) ++line_;  // shown before this run
+  // Fetched by then on the full timeline: the first `slots` lines from cycle 0, line y
+  // once line y - slots has come due and freed its slot.
+  while (line_ < lines && (line_ < slots || timeline_due(p_, line_ - slots) <= phase)) buffered_.push_back(due_cycle(line_++));
 }
 
 std::unique_ptr<ScanoutFetch> attach_scanout_fetch(MemorySystem& mem, const ScanoutParams& p, const MemoryParams& m,
-                                                   const RasterState& r) {
+                                                   const RasterState& r, uint64_t phase) {
   auto f = std::make_unique<ScanoutFetch>(
       mem, p, scanout_surface(m, r.fb_width, r.fb_height, r.samples, r.depth_bits, p.single_buffered));
   mem.attach(*f);
-  if (!p.single_buffered) f->start(0);
+  if (!p.single_buffered) {
+    if (phase > 0) f->set_phase(phase);
+    f->start(0);
+  }
   return f;
 }
 
-std::unique_ptr<ScanoutFetch> attach_scanout_fetch(MemorySystem& mem, const ArchParams& a) {
+std::unique_ptr<ScanoutFetch> attach_scanout_fetch(MemorySystem& mem, const ArchParams& a, uint64_t phase) {
   const std::optional<ScanoutParams> p = scanout_params_if_display(a);
   if (!p) return nullptr;
-  return attach_scanout_fetch(mem, *p, a.memory, a.raster);
+  return attach_scanout_fetch(mem, *p, a.memory, a.raster, phase);
 }
 
 void ScanoutFetch::count_underrun() {

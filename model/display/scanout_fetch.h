@@ -100,6 +100,14 @@ class ScanoutFetch : public SelfTimedClient {
   ScanoutFetch(MemorySystem& mem, const ScanoutParams& p, const SurfaceLayout& shown);
   // The shown buffer is complete (double buffering: 0; single: T_r): fetching may start.
   void start(uint64_t cycle);
+  // Before start(), double buffering: this run's cycle 0 is cycle `phase` of the timeline
+  // above (frame sampling: a segment's estimated start in the full run, whose fetch starts
+  // at its cycle 0; docs/fidelity.md, "Frame sampling"). The lines due by then are past
+  // (neither fetched nor counted), the line buffer holds the lines whose fetch the full
+  // timeline has started by then (line y < line_buffer_lines from cycle 0, line y at
+  // D_{y - line_buffer_lines}), and the rest are fetched as usual, due at D_y - phase.
+  // A phase past the last line's due leaves nothing to fetch, as the full run then has.
+  void set_phase(uint64_t phase);
   // The raster pipeline's frame ended at `cycle` (T_r): starts a single-buffered fetch.
   void raster_done(uint64_t cycle) {
     if (p_.single_buffered) start(cycle);
@@ -109,7 +117,7 @@ class ScanoutFetch : public SelfTimedClient {
   void completed(uint64_t cycle) override;
   bool reads_in_flight() const override { return reads_in_flight_ > 0; }
   const ScanoutFetchReport& report() const { return report_; }
-  // D_y: the core cycle active line y is due at.
+  // D_y: the core cycle active line y is due at (this run's: minus the phase).
   uint64_t due_cycle(int y) const;
 
  private:
@@ -122,6 +130,7 @@ class ScanoutFetch : public SelfTimedClient {
   int line_ = 0;                     // the line being (or next to be) fetched
   uint64_t next_request_ = kNoRequest;
   uint64_t line_start_ = 0, last_fill_ = 0;
+  uint64_t phase_ = 0;               // set_phase's: the timeline's cycle at this run's 0
   uint64_t reads_in_flight_ = 0;
   std::deque<uint64_t> buffered_;    // due cycles of fetched lines not yet due, ascending
   ScanoutFetchReport report_;
@@ -131,10 +140,11 @@ class ScanoutFetch : public SelfTimedClient {
 // attached to it and, with double buffering, started at cycle 0. Attach it before any
 // other client's first request: its requests of a cycle go first. It must outlive its use
 // by `mem`.
+// `phase`: ScanoutFetch::set_phase's (double buffering only; 0: the timeline's start).
 std::unique_ptr<ScanoutFetch> attach_scanout_fetch(MemorySystem& mem, const ScanoutParams& p, const MemoryParams& m,
-                                                   const RasterState& raster);
+                                                   const RasterState& raster, uint64_t phase = 0);
 // As above from the run's config; null (no client) when the display does not resolve
 // (scanout_params_if_display).
-std::unique_ptr<ScanoutFetch> attach_scanout_fetch(MemorySystem& mem, const ArchParams& arch);
+std::unique_ptr<ScanoutFetch> attach_scanout_fetch(MemorySystem& mem, const ArchParams& arch, uint64_t phase = 0);
 
 }  // namespace rastsim

@@ -334,7 +334,8 @@ void bandwidth_bounds(const RenderStats& rs, const ArchParams& a, EstimateResult
 
 }  // namespace
 
-EstimateResult estimate_scene(const Scene& scene, const ArchParams& params, const EstimateProgress& progress) {
+EstimateResult estimate_scene(const Scene& scene, const ArchParams& params, const EstimateProgress& progress,
+                              const RenderStats* reference) {
   const auto t0 = std::chrono::steady_clock::now();
   const RasterState& arch = params.raster;
   const TimingParams& p = params.timing;
@@ -344,9 +345,10 @@ EstimateResult estimate_scene(const Scene& scene, const ArchParams& params, cons
   for (size_t i = 0; i < scene.commands.size(); ++i) walker.command(i, scene.commands[i], progress);
   walker.end_of_frame();
   // The reference's counts, where a bound needs them: the DRAM bytes, early Z's kept fragments.
-  RenderStats ref;
-  if (params.memory.enabled || arch.depth_early)
-    render_scene(scene, arch, ref, {}, Framebuffer::kDefaultTileLog2, 1, params.memory);
+  RenderStats own;
+  if (!reference && (params.memory.enabled || arch.depth_early))
+    render_scene(scene, arch, own, {}, Framebuffer::kDefaultTileLog2, 1, params.memory);
+  const RenderStats& ref = reference ? *reference : own;
   walker.early_bounds(ref);
 
   // Lower bound: a stage with work cannot start before its fill and is busy for all its

@@ -86,7 +86,11 @@ struct EstimateResult {
 using EstimateProgress = std::function<void(size_t command, size_t triangle, const EstimateResult& so_far)>;
 
 // The analytic estimate of `scene` on `arch`. Throws SceneError on bad input (the
-// reference model's message).
-EstimateResult estimate_scene(const Scene& scene, const ArchParams& arch, const EstimateProgress& progress = {});
+// reference model's message). `reference`: the reference model's counts of the whole
+// scene (render_scene's, finish() included) when the caller has them (frame sampling's
+// one functional pass): the bounds that need them (the DRAM bytes, early Z's kept
+// fragments) take them instead of a reference run of their own. Null: run it here.
+EstimateResult estimate_scene(const Scene& scene, const ArchParams& arch, const EstimateProgress& progress = {},
+                              const RenderStats* reference = nullptr);
 
 }  // namespace rastsim

@@ -9,6 +9,7 @@
 #include <span>
 #include <stdexcept>
 
+#include "fidelity/functional_pass.h"
 #include "fidelity/run_child.h"
 #include "fidelity/student_t.h"
 #include "ref/pipeline.h"
@@ -52,6 +53,38 @@ int frame_stratum(const FrameWork& w) {
   return busiest << 24 | mask;
 }
 
+// Representatives a stratum of 4 frames or more (the smaller ones are simulated whole):
+// T = max(n, 2 B) over its B such strata, 2 each (a variance), then the R = T - 2 B left
+// in proportion to their x totals (equal shares when none has any), the floor of each
+// share and one more by largest remainder (ties: the lower key) until T are given.
+// Before, each stratum took max(2, ceil(n x share)) on its own, which rounds up in every
+// stratum: 8 for the torus's 3 strata at n = 5 on default, 6 now (docs/fidelity.md).
+std::map<int, size_t> allocate(const std::map<int, std::vector<size_t>>& strata, const std::vector<double>& x,
+                               size_t n) {
+  std::map<int, double> share;
+  double X = 0;
+  for (const auto& [h, rest] : strata) {
+    if (rest.size() < 4) continue;
+    double Xh = 0;
+    for (size_t k : rest) Xh += x[k];
+    share[h] = Xh;
+    X += Xh;
+  }
+  const size_t T = std::max(n, 2 * share.size()), R = T - 2 * share.size();
+  std::map<int, size_t> out;
+  std::vector<std::pair<double, int>> rem;  // (-remainder, key): largest first, then the lower key
+  size_t given = 0;
+  for (auto& [h, Xh] : share) {
+    const double q = double(R) * (X > 0 ? Xh / X : 1.0 / double(share.size()));
+    out[h] = 2 + size_t(std::floor(q));
+    given += out[h];
+    rem.emplace_back(-(q - std::floor(q)), h);
+  }
+  std::sort(rem.begin(), rem.end());
+  for (size_t i = 0; given < T && !rem.empty(); ++i, ++given) ++out[rem[i % rem.size()].second];
+  return out;
+}
+
 }  // namespace
 
 FramePlan plan_frames(const std::vector<FrameWork>& work, double fraction) {
@@ -64,7 +97,6 @@ FramePlan plan_frames(const std::vector<FrameWork>& work, double fraction) {
   p.certain.assign(N, false);
   p.cluster.assign(N, -1);
   std::map<int, std::vector<size_t>> strata;  // the uncertain frames by bottleneck stage
-  double X = 0;
   size_t M = 0;
   for (size_t k = 0; k < N; ++k) {
     p.x[k] = work[k].size();
@@ -72,22 +104,19 @@ FramePlan plan_frames(const std::vector<FrameWork>& work, double fraction) {
     if (p.certain[k]) continue;
     p.stratum[k] = frame_stratum(work[k]);
     strata[p.stratum[k]].push_back(k);
-    X += p.x[k];
     ++M;
   }
   const size_t n = size_t(std::ceil(fraction * double(M) - 1e-9));
+  const std::map<int, size_t> nh = allocate(strata, p.x, n);
   for (auto& [h, rest] : strata) {
-    double Xh = 0;
-    for (size_t k : rest) Xh += p.x[k];
-    // In proportion to the stratum's work, at least 2 (a variance); a stratum of fewer
-    // than 4 frames is simulated whole (certain).
-    size_t nh = std::max<size_t>(2, size_t(std::ceil(double(n) * (X > 0 ? Xh / X : 1.0 / double(strata.size())))));
-    if (rest.size() < 4 || nh >= rest.size()) {
+    // A stratum of fewer than 4 frames, or given all its frames, is simulated whole (certain).
+    const auto it = nh.find(h);
+    if (fraction >= 1 || it == nh.end() || it->second >= rest.size()) {
       for (size_t k : rest) p.certain[k] = true;
       continue;
     }
     std::stable_sort(rest.begin(), rest.end(), [&](size_t a, size_t b) { return p.x[a] < p.x[b]; });
-    choose_clusters(p, rest, nh);
+    choose_clusters(p, rest, it->second);
   }
   for (size_t k = 0; k < N; ++k)
     if (p.certain[k]) p.chosen[k] = true;
@@ -236,13 +265,14 @@ Scene segment_scene(const Scene& scene, const std::vector<FrameSpan>& spans, con
 // One segment in a child process (SystemC elaborates once a process) from the reference's
 // framebuffer and memory state at its start (null: the scene's start): the frames' y.
 nlohmann::json run_segment(const Scene& sub, const std::vector<size_t>& frame_at, size_t frames,
-                           const ArchParams& arch, const Framebuffer* fb, const RopMemory* mem) {
+                           const ArchParams& arch, const WarmState* warm, uint64_t scanout_phase) {
   return run_in_child([&] {
     std::vector<uint64_t> starts;
     sc::SimOptions o;
     o.on_fetch = record_command_starts(sub, starts);
-    o.initial_fb = fb;
-    o.warm_memory = mem;
+    o.initial_fb = warm ? &warm->fb : nullptr;
+    o.warm_memory = warm ? warm->mem.get() : nullptr;
+    o.scanout_phase = scanout_phase;
     const sc::SimResult r = sc::simulate_scene(sub, arch, o);
     std::vector<uint64_t> y;
     for (size_t i = 0; i < frames; ++i) {
@@ -258,42 +288,87 @@ struct SegmentRuns {
   std::vector<double> y;  // by frame; 0 where not chosen
   uint64_t cycles = 0;    // the runs' own cycles, summed
   size_t warm_frames = 0, warm_triangles = 0;
-  double warm_share = 0, functional_seconds = 0;
+  double warm_share = 0;
+  std::vector<uint64_t> scanout_phase;  // each segment's (SimOptions::scanout_phase)
 };
 
+// Where a segment starts in the full run, estimated for its scan-out's phase
+// (SimOptions::scanout_phase): the frames before it at their measured y where simulated,
+// else x times the y/x ratio measured so far on frames of their kind (frame_stratum; no
+// such frame yet: on every frame measured so far; none: frame 0's; frame 0, a cold start
+// whose y/x is atypical, counts only there), and the tail's predecessor
+// up to the warm-up's start by its share of that frame's triangles. Segments run in
+// frame order, so the first is frame 0's, from cycle 0.
+class StartEstimate {
+ public:
+  StartEstimate(const FramePlan& plan, const std::vector<FrameWork>& work) : x_(plan.x) {
+    for (const FrameWork& w : work) kind_.push_back(frame_stratum(w));
+  }
+  void measured(size_t k, double y) {
+    Ratio& r = k == 0 ? first_ : ratio_[kind_[k]];  // frame 0 (a cold start, the pipeline's fill): its own
+    r.y += y, r.x += x_[k];
+    if (k > 0) all_.y += y, all_.x += x_[k];
+  }
+  // The full run's cycle at the start of frame `first`, then minus `tail_share` of frame
+  // first - 1 (the warm-up's triangles over the frame's).
+  uint64_t cycle(size_t first, double tail_share, const std::vector<double>& y) const {
+    double t = 0;
+    for (size_t j = 0; j < first; ++j) t += y[j] > 0 ? y[j] : guess(j);
+    if (first > 0) t -= tail_share * (y[first - 1] > 0 ? y[first - 1] : guess(first - 1));
+    return t > 0 ? uint64_t(std::llround(t)) : 0;
+  }
+
+ private:
+  struct Ratio {
+    double y = 0, x = 0;
+  };
+  double guess(size_t j) const {
+    const auto it = ratio_.find(kind_[j]);
+    const Ratio& r = it != ratio_.end() && it->second.x > 0 ? it->second : all_.x > 0 ? all_ : first_;
+    return x_[j] * (r.x > 0 ? r.y / r.x : 1.0);
+  }
+  const std::vector<double>& x_;
+  std::vector<int> kind_;
+  std::map<int, Ratio> ratio_;
+  Ratio all_, first_;  // every frame measured but frame 0; frame 0
+};
+
+// The warm-up tail's triangles and its frame's (frame s.first - 1).
+std::pair<size_t, size_t> tail_triangles(const Scene& scene, const std::vector<FrameSpan>& spans, const Segment& s) {
+  size_t tri = 0, all = 0;
+  for (size_t i = spans[s.first - 1].begin; i < spans[s.first - 1].end; ++i) {
+    const size_t t = command_triangles(scene.commands[i]);
+    all += t;
+    if (i >= s.from) tri += t;
+  }
+  return {tri, all};
+}
+
 SegmentRuns run_segments(const Scene& scene, const std::vector<FrameSpan>& spans, const ArchParams& arch,
-                         const std::vector<Segment>& segs) {
-  // The functional warm-up: the reference model through every command before each
-  // segment's start (framebuffer, ROP caches, fast-clear flags), one pass in all.
-  RenderStats ref_stats;
-  SceneRenderer ref(arch.raster, ref_stats, {}, Framebuffer::kDefaultTileLog2, 1, arch.memory);
+                         const std::vector<Segment>& segs, const WarmStates& warm, StartEstimate& at) {
   SegmentRuns out;
   out.y.assign(spans.size(), 0.0);
-  size_t done = 0;
   std::vector<size_t> frame_at;
   for (const Segment& s : segs) {
-    const auto f0 = std::chrono::steady_clock::now();
-    ref.run(std::span<const Command>(scene.commands).subspan(done, s.from - done));
-    done = s.from;
-    const bool cold = s.from == 0;
-    const Framebuffer& fb = ref.frame_so_far();
-    out.functional_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - f0).count();
+    // The reference's state at the segment's start (functional_pass's snapshot); none at
+    // the scene's start (cold).
+    const WarmState* w = s.from == 0 ? nullptr : warm.at(s.from).get();
+    const auto [tri, all] = s.first > 0 ? tail_triangles(scene, spans, s) : std::pair<size_t, size_t>{0, 0};
+    const double share = all ? double(tri) / double(all) : 1.0;
+    const uint64_t phase = s.from == 0 ? 0 : at.cycle(s.first, share, out.y);
     const Scene sub = segment_scene(scene, spans, s, frame_at);
-    const nlohmann::json j = run_segment(sub, frame_at, s.last - s.first, arch, cold ? nullptr : &fb,
-                                         cold ? nullptr : ref.memory());
+    const nlohmann::json j = run_segment(sub, frame_at, s.last - s.first, arch, w, phase);
     const auto ys = j.at("y").get<std::vector<uint64_t>>();
-    for (size_t k = s.first; k < s.last; ++k) out.y[k] = double(ys.at(k - s.first));
-    out.cycles += j.at("cycles").get<uint64_t>();
-    if (s.first == 0) continue;
-    size_t tri = 0, all = 0;
-    for (size_t i = spans[s.first - 1].begin; i < spans[s.first - 1].end; ++i) {
-      const size_t t = command_triangles(scene.commands[i]);
-      all += t;
-      if (i >= s.from) tri += t;
+    for (size_t k = s.first; k < s.last; ++k) {
+      out.y[k] = double(ys.at(k - s.first));
+      at.measured(k, out.y[k]);
     }
+    out.cycles += j.at("cycles").get<uint64_t>();
+    out.scanout_phase.push_back(phase);
+    if (s.first == 0) continue;
     ++out.warm_frames;
     out.warm_triangles += tri;
-    out.warm_share += all ? double(tri) / double(all) : 1.0;
+    out.warm_share += share;
   }
   return out;
 }
@@ -301,22 +376,33 @@ SegmentRuns run_segments(const Scene& scene, const std::vector<FrameSpan>& spans
 }  // namespace
 
 FrameSampledResult simulate_frame_sampled(const Scene& scene, const ArchParams& arch, double fraction,
-                                          double confidence) {
+                                          double confidence, size_t snapshot_budget) {
   const auto t0 = std::chrono::steady_clock::now();
   const std::vector<FrameSpan> spans = frame_spans(scene.commands);
+  const size_t W = triangle_path_entries(arch.timing);
+  // One functional pass: the whole scene's counts, each frame's DRAM bytes read, and the
+  // state at every frame's possible warm-up start (the plan needs the bytes first).
+  std::vector<size_t> starts;
+  for (size_t k = 1; k < spans.size(); ++k) starts.push_back(warm_start(scene, spans[k - 1], W));
+  FunctionalPass pass = functional_pass(scene, spans, arch, starts, snapshot_budget);
   EstimateResult whole;
-  std::vector<FrameWork> work = frame_work(scene, arch, &whole);
-  add_frame_dram_reads(scene, arch, whole.dram_peak_bytes_per_cycle, work);
+  std::vector<FrameWork> work = frame_work(scene, arch, &whole, &pass.stats);
+  add_frame_dram_reads(arch, pass.dram_bytes_read, whole.dram_peak_bytes_per_cycle, work);
   const FramePlan plan = plan_frames(work, spans.size() < kFrameSampledMinFrames ? 1.0 : fraction);
-  const SegmentRuns runs =
-      run_segments(scene, spans, arch, segments_of(scene, spans, plan.chosen, triangle_path_entries(arch.timing)));
+  const std::vector<Segment> segs = segments_of(scene, spans, plan.chosen, W);
+  std::vector<size_t> froms;
+  for (const Segment& s : segs) froms.push_back(s.from);
+  const double fallback = warm_states_for(scene, arch, froms, pass.warm);  // snapshots over the budget
+  StartEstimate at(plan, work);
+  const SegmentRuns runs = run_segments(scene, spans, arch, segs, pass.warm, at);
   FrameSampledResult r = extrapolate_frames(plan, runs.y, confidence);
   r.fraction = fraction;
   r.cycles_simulated = runs.cycles;
   r.warm_frames = runs.warm_frames;
   r.warm_triangles = runs.warm_triangles;
   r.warm_frame_share = runs.warm_share;
-  r.warm_functional_seconds = runs.functional_seconds;
+  r.warm_functional_seconds = pass.seconds + fallback;
+  r.scanout_phase = runs.scanout_phase;
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;
 }
@@ -341,6 +427,7 @@ nlohmann::json FrameSampledResult::to_json() const {
           {"warm_frame_share", warm_frame_share},
           {"frames_detailed", double(frames_simulated) + warm_frame_share},
           {"warm_functional_seconds", warm_functional_seconds},
+          {"segment_scanout_phase", scanout_phase},
           {"wall_seconds", wall_seconds}};
 }
 

@@ -6,14 +6,17 @@
 // - Features (functional, model/fidelity/frames.h frame_work): each frame's per-stage
 //   busy cycles from the analytic walk; x = the busiest stage's (the frame's analytic
 //   bottleneck work) plus, with memory.model = "dram", the frame's DRAM bytes read over
-//   the DRAM's peak (add_frame_dram_reads: one reference run frame by frame).
+//   the DRAM's peak (add_frame_dram_reads). The reference model runs once for the whole
+//   level (functional_pass.h: the estimate's whole counts, the per-frame bytes and the
+//   warm-up snapshots).
 // - Certain frames, always simulated: the first (the pipeline fills, the state is set)
 //   and the last (the drain and the frame-end resolve and flush are in its cycles).
 // - Strata: the other M frames by their analytic bottleneck stage and the set of stages
 //   with any work (a frame whose 2D fill or clear dominates, or that has one at all, is
-//   not timed like one whose fragments do). n = ceil(F M)
-//   frames are allocated to strata in proportion to their x total, at least 2 a
-//   stratum; a stratum of fewer than 4 frames, or one given all its frames, is certain.
+//   not timed like one whose fragments do). A stratum of fewer than 4 frames is
+//   certain; the B others share T = max(ceil(F M), 2 B) representatives, 2 each, the
+//   rest in proportion to their x totals (floors, then largest remainders); a stratum
+//   given all its frames is certain.
 // - Clusters (deterministic, no seed): a stratum's frames sorted by x (ties by frame
 //   number) and cut into n_h runs of consecutive frames of equal size (sizes differing
 //   by at most one): one-dimensional clustering by equal counts. Each cluster's
@@ -22,8 +25,9 @@
 // - Each run of consecutive chosen frames is one SystemC run (in a child process: one
 //   elaboration a process) that starts from the reference model's state at its warm-up's
 //   start (framebuffer, the ROP caches' lines and dirty bits, fast-clear flags:
-//   SimOptions::initial_fb, warm_memory; a functional warm-up, one reference pass over the
-//   scene in all) and simulates, unmeasured, the tail of the frame before it (its last
+//   SimOptions::initial_fb, warm_memory; functional_pass's snapshot) with its scan-out
+//   at the phase the run's start has in the full run, estimated (SimOptions::
+//   scanout_phase), and simulates, unmeasured, the tail of the frame before it (its last
 //   commands holding a quarter of its triangles, at least the FIFOs' entries: the
 //   backlog and DRAM state the chosen frame meets), then the frames, then the next
 //   frame's first command. The DRAM starts idle (docs/fidelity.md says what that leaves).
@@ -45,6 +49,7 @@
 
 #include "config/arch_params.h"
 #include "fidelity/frames.h"
+#include "fidelity/functional_pass.h"
 #include "fidelity/sampled.h"
 #include "ref/scene.h"
 
@@ -71,7 +76,10 @@ struct FrameSampledResult {
   size_t warm_frames = 0;         // frames whose tail warms a chosen frame (its predecessor, not chosen)
   size_t warm_triangles = 0;      // the triangles those tails draw, simulated unmeasured
   double warm_frame_share = 0;    // the tails' share of their frames' triangles, summed (frames' worth)
-  double warm_functional_seconds = 0;  // wall time of the reference run the warm-ups start from
+  double warm_functional_seconds = 0;  // wall time of the one functional pass (functional_pass.h), any fallback's too
+  // Each segment's scan-out phase (SimOptions::scanout_phase): its estimated start in the
+  // full run, core cycles (0 for a cold start).
+  std::vector<uint64_t> scanout_phase;
   double wall_seconds = 0;
   // cycles, cycles_ci_low/high, cycles_error_bound (the interval's farther end from
   // cycles, relative), confidence, frames_total, frames_simulated, frame_sample,
@@ -87,8 +95,11 @@ FrameSampledResult extrapolate_frames(const FramePlan& plan, const std::vector<d
 // once per process), extrapolation. A scene of fewer than kFrameSampledMinFrames frames
 // is simulated whole.
 inline constexpr size_t kFrameSampledMinFrames = 4;
+// `snapshot_budget`: bytes of warm-up snapshots the one functional pass may keep
+// (functional_pass.h); past it a second pass warms the rest, with the same result.
 FrameSampledResult simulate_frame_sampled(const Scene& scene, const ArchParams& arch, double fraction,
-                                          double confidence = kDefaultConfidence);
+                                          double confidence = kDefaultConfidence,
+                                          size_t snapshot_budget = kWarmSnapshotBudget);
 
 // A frame's cycles (frames[].cycles) run from command fetch starting its first command
 // to its starting the next frame's (the last frame: to the end of the run), so they sum

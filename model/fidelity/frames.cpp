@@ -163,20 +163,18 @@ Framebuffer FrameRenderer::finish() {
 
 uint64_t FrameWork::bottleneck() const { return *std::max_element(busy.begin(), busy.end()); }
 
-void add_frame_dram_reads(const Scene& scene, const ArchParams& arch, double peak, std::vector<FrameWork>& work) {
+void add_frame_dram_reads(const ArchParams& arch, const std::vector<uint64_t>& bytes, double peak,
+                          std::vector<FrameWork>& work) {
   if (!arch.memory.enabled || !(peak > 0)) return;
-  RenderStats stats;
-  size_t k = 0;
-  FrameRenderer r(arch, stats, [&](const FrameCounts& c, const Framebuffer&) {
-    if (k >= work.size()) throw std::logic_error("add_frame_dram_reads: more frames than the scene's spans");
-    work[k].dram_bytes_read = c.dram_bytes_read;
-    work[k++].dram_read_cycles = double(c.dram_bytes_read) / peak;
-  });
-  r.feed(scene.commands);
-  r.finish();
+  if (bytes.size() != work.size()) throw std::logic_error("add_frame_dram_reads: not one byte count a frame");
+  for (size_t k = 0; k < work.size(); ++k) {
+    work[k].dram_bytes_read = bytes[k];
+    work[k].dram_read_cycles = double(bytes[k]) / peak;
+  }
 }
 
-std::vector<FrameWork> frame_work(const Scene& scene, const ArchParams& arch, EstimateResult* whole) {
+std::vector<FrameWork> frame_work(const Scene& scene, const ArchParams& arch, EstimateResult* whole,
+                                  const RenderStats* reference) {
   const std::vector<FrameSpan> spans = frame_spans(scene.commands);
   std::vector<FrameWork> at(spans.size() + 1);  // running totals at each frame's start, then the end
   const auto take = [](FrameWork& w, const EstimateResult& e) {
@@ -188,7 +186,7 @@ std::vector<FrameWork> frame_work(const Scene& scene, const ArchParams& arch, Es
   size_t next = 0;
   const EstimateResult e = estimate_scene(scene, arch, [&](size_t cmd, size_t tri, const EstimateResult& so_far) {
     if (tri == 0 && next < spans.size() && cmd == spans[next].begin) take(at[next++], so_far);
-  });
+  }, reference);
   take(at[spans.size()], e);
   if (whole) *whole = e;
   std::vector<FrameWork> out(spans.size());

@@ -110,11 +110,16 @@ struct FrameWork {
   // posted, so reads add to the bottleneck's time rather than overlap it (docs/fidelity.md).
   double size() const { return double(bottleneck()) + dram_read_cycles; }
 };
-std::vector<FrameWork> frame_work(const Scene& scene, const ArchParams& arch, EstimateResult* whole = nullptr);
-// memory.model = "dram": each frame's dram_bytes_read and dram_read_cycles from one
-// reference run of the scene frame by frame (FrameRenderer; functional, untimed), `peak`
-// bytes a core cycle. Does nothing with memory.model = "fixed".
-void add_frame_dram_reads(const Scene& scene, const ArchParams& arch, double peak, std::vector<FrameWork>& work);
+// `reference`: the reference's counts of the whole scene, if the caller has them
+// (estimate_scene's; frame sampling's functional pass).
+std::vector<FrameWork> frame_work(const Scene& scene, const ArchParams& arch, EstimateResult* whole = nullptr,
+                                  const RenderStats* reference = nullptr);
+// memory.model = "dram": each frame's dram_bytes_read and dram_read_cycles from the
+// reference's bytes read frame by frame (`bytes`, one a frame: FrameRenderer's
+// FrameCounts::dram_bytes_read, or frame sampling's functional pass), `peak` bytes a core
+// cycle. Does nothing with memory.model = "fixed".
+void add_frame_dram_reads(const ArchParams& arch, const std::vector<uint64_t>& bytes, double peak,
+                          std::vector<FrameWork>& work);
 
 // The commands of frames [r.first, r.last), preceded by the raster state the frames
 // before them left (their last viewport and scissor, if any): `prefix` says how many

@@ -65,6 +65,10 @@ struct SimOptions {
   // instead of empty caches after a depth clear. Frame sampling's warm-up
   // (model/fidelity/frame_sampled.h); the DRAM itself starts idle, rows closed.
   const RopMemory* warm_memory = nullptr;
+  // memory.model = "dram" with a double-buffered display: the scan-out timeline's cycle at
+  // this run's cycle 0 (ScanoutFetch::set_phase; 0: the display frame starts with the run).
+  // Frame sampling's segments: their estimated start in the full run.
+  uint64_t scanout_phase = 0;
 };
 
 struct StageReport {

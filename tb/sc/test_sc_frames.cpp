@@ -10,14 +10,20 @@
 // - the frame plan worked by hand, the estimator's interval worked by hand, and the
 //   frame-sampled interval covering the full run on a small varied sequence;
 // - with memory.model = dram, each sampled frame's cycles against the same frame's in the
-//   full run (the warm-up, the predecessor frame whole, replays the memory state).
+//   full run (the warm-up, the predecessor frame whole, replays the memory state);
+// - the one functional pass (functional_pass.h) against the separate runs it replaces:
+//   per-frame bytes as FrameRenderer's, the whole counts as render_scene's, each snapshot
+//   as a reference run stopped there, and the level's stats the same with no snapshot
+//   budget (every warm-up from the second pass) as with snapshots.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <span>
 
 #include "estimate/estimate.h"
 #include "fidelity/frame_sampled.h"
 #include "fidelity/frames.h"
+#include "fidelity/functional_pass.h"
 #include "report/stats_json.h"
 #include "sim_harness.h"
 
@@ -168,6 +174,26 @@ TEST(ScFrames, PlanAndEstimatorWorkedByHand) {
   EXPECT_EQ(std::count(all.chosen.begin(), all.chosen.end(), true), 8);
 }
 
+TEST(ScFrames, RepresentativesAllocatedByHand) {
+  // Frames 1..20 busy 10 in stage 3 (stratum A, X = 200), 21..26 busy 100 in stage 5 (B,
+  // X = 600); frames 0 and 27 certain. F = 0.25 of M = 26: n = ceil(6.5) = 7; T =
+  // max(7, 2 x 2) = 7: 2 each, R = 3 by x: A 0.75, B 2.25 -> A 2, B 4 (6 given), the
+  // 7th to the larger remainder, A (0.75): A 3, B 4. (The old rule, max(2, ceil(n x
+  // share)) each: A 2, B ceil(5.25) = 6 = all of B.)
+  std::vector<fidelity::FrameWork> work(28);
+  for (size_t k = 0; k < 28; ++k) {
+    if (k >= 1 && k <= 20) work[k].busy[3] = 10;
+    if (k >= 21 && k <= 26) work[k].busy[5] = 100;
+  }
+  work[0].busy[3] = work[27].busy[3] = 10;
+  const fidelity::FramePlan p = fidelity::plan_frames(work, 0.25);
+  EXPECT_EQ(p.clusters, 7u);
+  size_t a = 0, b = 0;
+  for (size_t k = 1; k <= 26; ++k) (k <= 20 ? a : b) += p.chosen[k];
+  EXPECT_EQ(a, 3u);
+  EXPECT_EQ(b, 4u);
+}
+
 TEST(ScFrames, FrameSampledIntervalCoversTheFullRun) {
   const Config cfg = make_config({"raster.depth_func=less"});
   const ArchParams arch = arch_of(cfg);
@@ -229,6 +255,52 @@ TEST(ScFrames, FrameSampledFramesMatchTheFullRunUnderDram) {
     EXPECT_LE(std::abs(err), 0.01) << "frame " << k;
   }
   EXPECT_GT(warmed, 0u);
+}
+
+TEST(ScFrames, OneFunctionalPassEqualsTheRunsItReplaces) {
+  const Config cfg = make_config({"raster.depth_func=less", "memory.model=dram", "rop.fast_clear=true",
+                                  "memory.fb_layout=tiled"});
+  const ArchParams arch = arch_of(cfg);
+  const Scene scene = frames_scene(12, 33);  // every third frame draws over its predecessor
+  const std::vector<fidelity::FrameSpan> spans = fidelity::frame_spans(scene.commands);
+  std::vector<size_t> starts;  // mid-frame and at frame starts
+  for (size_t k = 1; k < spans.size(); k += 2) starts.push_back((spans[k].begin + spans[k].end) / 2);
+  starts.push_back(spans[4].begin);
+  const fidelity::FunctionalPass pass = fidelity::functional_pass(scene, spans, arch, starts);
+  // Per-frame bytes: FrameRenderer's counts (the pass add_frame_dram_reads had).
+  RenderStats fr_stats;
+  std::vector<uint64_t> bytes;
+  fidelity::FrameRenderer fr(arch, fr_stats, [&](const fidelity::FrameCounts& c, const Framebuffer&) {
+    bytes.push_back(c.dram_bytes_read);
+  });
+  fr.feed(scene.commands);
+  fr.finish();
+  EXPECT_EQ(pass.dram_bytes_read, bytes);
+  // The whole scene's counts: render_scene's (the estimate's own pass).
+  RenderStats whole;
+  render_scene(scene, arch.raster, whole, {}, Framebuffer::kDefaultTileLog2, 1, arch.memory);
+  EXPECT_EQ(to_json(pass.stats)["memory"], to_json(whole)["memory"]);
+  EXPECT_EQ(pass.stats.framebuffer_crc32, whole.framebuffer_crc32);
+  // Each snapshot: the framebuffer of a reference run stopped at its command.
+  ASSERT_EQ(pass.warm.size(), starts.size());
+  for (size_t at : starts) {
+    RenderStats st;
+    SceneRenderer ref(arch.raster, st, {}, Framebuffer::kDefaultTileLog2, 1, arch.memory);
+    ref.run(std::span<const Command>(scene.commands).first(at));
+    const fidelity::WarmState& w = *pass.warm.at(at);
+    EXPECT_TRUE(w.fb.same_color(ref.frame_so_far()) && w.fb.same_depth(ref.frame_so_far())) << "command " << at;
+    ASSERT_TRUE(w.mem);
+  }
+  // No budget: every segment warmed by the second pass; the same stats but the times.
+  const auto level = [&](size_t budget) {
+    nlohmann::json j = run_isolated([&] { return fidelity::simulate_frame_sampled(scene, arch, 0.2, 0.95, budget).to_json(); });
+    for (const char* k : {"wall_seconds", "warm_functional_seconds"}) j.erase(k);
+    return j;
+  };
+  const nlohmann::json with = level(fidelity::kWarmSnapshotBudget), without = level(0);
+  ASSERT_FALSE(with.contains("error")) << with;
+  EXPECT_GT(with["warm_frames"].get<int>(), 0);
+  EXPECT_EQ(with, without);
 }
 
 }  // namespace

@@ -10,12 +10,18 @@
 // - with memory.model = "fixed" there is no memory client at all;
 // - a DRAM slowed to 10 MHz (160 MB/s peak) still feeds the display alone, but under a
 //   burst of full-screen clears (posted writes, queued ahead of the display's reads) the
-//   display underruns; at the preset's 1200 MHz the same scene underruns no line.
+//   display underruns; at the preset's 1200 MHz the same scene underruns no line;
+// - a run started at a phase of the display's timeline (SimOptions::scanout_phase, frame
+//   sampling's segments) fetches only the lines the whole timeline has not shown or
+//   begun fetching by then.
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 #include <string>
 #include <vector>
 
+#include "display/scanout_fetch.h"
 #include "ref/scene.h"
 #include "scene/scene_io.h"
 #include "sim_harness.h"
@@ -118,6 +124,35 @@ TEST(ScScanoutMemory, RopClearsStarveASlowDram) {
   const nlohmann::json fast = run(clears_scene(), {});
   EXPECT_EQ(fast["scanout_underrun_lines"].get<uint64_t>(), 0u);
   EXPECT_EQ(fast["memory"]["clients"]["scanout"]["bytes_read"].get<uint64_t>(), kPanelBytes);
+}
+
+// Phase P = D_64, line 64's due cycle on the whole timeline (the panel: 2 line slots).
+// By then lines 0..64 are due (shown: 65 lines), and the timeline has begun fetching
+// line 65 (at D_63) and line 66 (at D_64, when line 64 freed its slot) but not line 67
+// (at D_65 > P). So the run fetches lines 67..127: 61 lines of 512 bytes, no underrun
+// (the DRAM is idle but for them). A phase past line 127's due leaves nothing to fetch.
+TEST(ScScanoutMemory, PhaseFetchesOnlyTheLinesNotYetStarted) {
+  const ArchParams arch = ArchParams::resolve(make_config({"memory.model=dram"}));
+  const std::optional<ScanoutParams> p = scanout_params_if_display(arch);
+  ASSERT_TRUE(p && !p->single_buffered && p->line_buffer_lines == 2 && p->timing.v_active == 128);
+  const auto due = [&](int y) { return uint64_t(std::floor(scanout_line_due_seconds(p->timing, y) * p->core_hz)); };
+  const auto fetch = [&](uint64_t phase) {
+    return run_isolated([&] {
+      sc::SimOptions o;
+      o.scanout_phase = phase;
+      const sc::SimResult r = sc::simulate_scene(one_triangle(), arch, o);
+      return r.scanout ? r.scanout->to_json() : nlohmann::json{{"error", "no scan-out client"}};
+    });
+  };
+  const nlohmann::json mid = fetch(due(64));
+  ASSERT_FALSE(mid.contains("error")) << mid;
+  EXPECT_EQ(mid["lines_fetched"].get<uint64_t>(), 61u);
+  EXPECT_EQ(mid["bytes_read"].get<uint64_t>(), 61u * 512u);
+  EXPECT_EQ(mid["underrun_lines"].get<uint64_t>(), 0u);
+  const nlohmann::json past = fetch(due(127) + 1);
+  EXPECT_EQ(past["bytes_read"].get<uint64_t>(), 0u);
+  EXPECT_EQ(past["underrun_lines"].get<uint64_t>(), 0u);
+  EXPECT_EQ(fetch(0)["lines_fetched"].get<uint64_t>(), 128u);  // phase 0: the whole frame, as before
 }
 
 }  // namespace
