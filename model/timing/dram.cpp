@@ -320,7 +320,10 @@ void DramModel::cap_starvation(const Channel& ch, Choice& best) const {
   else
     offer.cmd = Cmd::Pre, offer.ready = bank.pre_ok;
   offer.ready = std::max(offer.ready, b.eligible);
-  best = {std::max(earliest(ch, offer), starving), oldest, 0, offer.cmd};
+  const int64_t at = std::max(earliest(ch, offer), starving);
+  // Another bank's command may still go first, if it issues strictly before the starving one could.
+  if (best.bank != oldest && best.at < at) return;
+  best = {at, oldest, 0, offer.cmd};
 }
 
 // A bank's candidates: its oldest burst's ACT or PRE when no burst wants its open row (or
