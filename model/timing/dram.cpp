@@ -297,8 +297,9 @@ DramModel::Choice DramModel::choose(const Channel& ch) const {
 // eligible clock + the cap. FR-FCFS's choice stands if it issues before D; otherwise the
 // oldest burst's own next command issues instead, at D at the earliest: its column
 // command if its row is open, its ACT if its bank is closed, else the PRE of the open row
-// (even one that queued row hits still want). So no command issues from D on until the
-// starving burst's has.
+// (even one that queued row hits still want). From D on, its own bank issues nothing
+// else first, and another bank's command goes first only if it issues strictly before the
+// starving one could (so the other banks keep working while it waits for its bank).
 void DramModel::cap_starvation(const Channel& ch, Choice& best) const {
   int oldest = -1;
   for (size_t word = 0; word < ch.busy_banks.size(); ++word)

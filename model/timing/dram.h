@@ -44,7 +44,8 @@ struct DramParams {
   int queue_depth = 0;            // bursts a channel's scheduler sees at once
   // Starvation cap (docs/memory.md, "Scheduling"), core cycles; 0: off. A burst that has
   // waited this long in the scheduler's queue (from its eligible clock) is served next:
-  // its command is the only one its channel issues until it has issued.
+  // its bank issues nothing else first, and another bank's command only one that can
+  // issue strictly before it.
   uint64_t starvation_cycles = 0;
   // MSB first, e.g. {Row, Bank, Column, BankGroup, Channel}; each field once. The low
   // log2(burst_bytes()) address bits are the offset within a burst and are dropped.
