@@ -126,7 +126,8 @@ void add_dram_params(std::vector<ParamDef>& s) {
        "open: a row stays open until a conflict or refresh; closed: every access auto-precharges"});
   add({kStarvationKey, T::Int, int64_t{0}, "cycles", 0, 1e7, {},
        "Starvation cap of the FR-FCFS scheduler: a burst waiting this many core cycles in its channel's queue is "
-       "served next, before any row hit (0: off; not a preset value)"});
+       "served next (its bank serves no younger row hit first; other banks only commands that issue before it) "
+       "(0: off; not a preset value)"});
   add({"dram.address_map", T::String, std::string(""), "", 1, 0, {},
        "Byte address fields above the burst offset, MSB first: ro (row), ch (channel), ba (bank), bg (bank "
        "group), co (column in bursts), e.g. \"ro:ba:co:bg:ch\" (\"\": the preset's)",
