@@ -5,6 +5,8 @@
 // cache (model/rtlsim/rtl_cache.h; --rtl-build-only builds it and stops).
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <iostream>
 
 #include "common.h"
@@ -17,6 +19,7 @@
 #include "rtlsim/stage_compare.h"
 #include "sc/raster_pipeline.h"
 #include "scene/scene_io.h"
+#include "timing/dram_trace.h"
 
 namespace rastsim::app {
 
@@ -72,6 +75,37 @@ void report_stages(const std::vector<rtlsim::StageAgreement>& a, const std::stri
             << "\n";
 }
 
+// --trace-diff with memory.model = "dram": DIR/model_mem.trace and DIR/rtl_mem.trace (every
+// DRAM burst in the order it entered, DRAMsim3's format: address, READ/WRITE, DRAM clock)
+// and the first burst that differs in address, direction or arrival clock.
+void report_mem_traces(const std::string& dir, nlohmann::json& j, std::ostream& out) {
+  const auto read = [](const std::string& path) {
+    std::ifstream in(path);
+    return read_dram_trace(in, path);
+  };
+  const std::vector<DramTraceLine> m = read(dir + "/model_mem.trace"), r = read(dir + "/rtl_mem.trace");
+  const auto line = [](const std::vector<DramTraceLine>& v, size_t k) {
+    if (k >= v.size()) return std::string("none");
+    char s[80];
+    std::snprintf(s, sizeof s, "0x%llx %s at DRAM clock %llu", (unsigned long long)v[k].address,
+                  v[k].write ? "WRITE" : "READ", (unsigned long long)v[k].clock);
+    return std::string(s);
+  };
+  size_t k = 0;
+  while (k < m.size() && k < r.size() && m[k].address == r[k].address && m[k].write == r[k].write &&
+         m[k].clock == r[k].clock)
+    ++k;
+  const bool same = k == m.size() && k == r.size();
+  j["trace_diff"]["mem_bursts_model"] = m.size();
+  j["trace_diff"]["mem_bursts_rtl"] = r.size();
+  if (!same) j["trace_diff"]["mem_first"] = {{"burst", k}, {"model", line(m, k)}, {"rtl", line(r, k)}};
+  out << "cosim: trace-diff " << dir << "/model_mem.trace (" << m.size() << " bursts), " << dir << "/rtl_mem.trace ("
+      << r.size() << " bursts): "
+      << (same ? std::string("identical")
+               : "first difference: burst " + std::to_string(k) + ": model " + line(m, k) + ", RTL " + line(r, k))
+      << "\n";
+}
+
 // The options of one `rastsim cosim` (register_cosim).
 struct CosimCommand {
   ConfigOptions config;
@@ -120,6 +154,7 @@ void compare_with_model(const Scene& scene, const ArchParams& arch, const CosimC
                         std::ostream& out) {
   sc::SimOptions so;
   so.spans = !c.trace_diff_dir.empty();
+  if (!c.run.mem_trace_path.empty()) so.mem_trace_path = c.trace_diff_dir + "/model_mem.trace";
   std::vector<uint64_t> starts;
   if (frames) {
     so.initial_fb = &frames->before;
@@ -142,6 +177,7 @@ void compare_with_model(const Scene& scene, const ArchParams& arch, const CosimC
   out << "cosim: cycles_rtl " << r.cycles_rtl << ", cycles_model " << m.cycles << ", error "
             << std::round(err * 10000) / 100 << " %\n";
   report_stages(rtlsim::compare_stages(rtlsim::stage_records(m.stages), r.stages), c.trace_diff_dir, j, out);
+  if (!c.run.mem_trace_path.empty()) report_mem_traces(c.trace_diff_dir, j, out);
 }
 
 // frames[] of a multi-frame run: each frame's RTL and SystemC cycles and its fragment
@@ -187,6 +223,10 @@ void run_cosim_command(CosimCommand& c) {
   if (!c.trace_diff_dir.empty() && c.no_model)
     throw std::runtime_error("--trace-diff needs the SystemC model (drop --no-model)");
   c.run.record_transactions = !c.trace_diff_dir.empty();
+  if (!c.trace_diff_dir.empty() && arch.memory.enabled) {
+    std::filesystem::create_directories(c.trace_diff_dir);
+    c.run.mem_trace_path = c.trace_diff_dir + "/rtl_mem.trace";
+  }
   // A multi-frame scene or --frames: the range's commands, from the framebuffer the
   // frames before it leave (replayed by the reference model), per-frame figures.
   std::unique_ptr<CosimFrames> frames;
@@ -266,7 +306,9 @@ void register_cosim(CLI::App& app) {
   add_quiet_flag(cmd, c.quiet, "the RTL run's summary, the cycle comparison or the stage table");
   cmd->add_option("--trace-diff", c.trace_diff_dir,
                   "Write DIR/model.csv and DIR/rtl.csv: every stage's transactions (stage,transaction,start_cycle,"
-                  "end_cycle) on both sides in the same row order, and print the first whose timing differs");
+                  "end_cycle) on both sides in the same row order, and print the first whose timing differs; with "
+                  "memory.model = \"dram\" also DIR/model_mem.trace and DIR/rtl_mem.trace, every DRAM burst as it "
+                  "entered (DRAMsim3's format: address, READ/WRITE, DRAM clock), and the first burst that differs");
   cmd->callback([] { run_cosim_command(c); });
   register_rtl_cache(app);  // its cache's listing, next to it in --help
 }

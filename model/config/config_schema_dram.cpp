@@ -78,7 +78,11 @@ const ParamValue& pick(const Config& cfg, const Config& preset, const std::strin
   return unset ? preset.get(key) : v;
 }
 
-// The preset file, read with the schema; it must set every dram.* key and no other.
+// dram.* keys of the controller that no preset sets: the config's value is used as it is.
+constexpr const char* kStarvationKey = "dram.starvation_cycles";
+
+// The preset file, read with the schema; it must set every dram.* key (but the
+// controller's own above) and no other.
 Config load_preset(const std::string& name) {
   const auto& files = dram_preset_files();
   auto it = std::find_if(files.begin(), files.end(), [&](const EmbeddedText& f) { return f.name == name + ".toml"; });
@@ -87,10 +91,11 @@ Config load_preset(const std::string& name) {
   Config preset;
   preset.load_toml(it->text, source);
   for (const auto& [key, value] : preset.values()) {
-    const bool dram = key.rfind("dram.", 0) == 0, set = preset.origin(key) != "default";
+    const bool dram = key.rfind("dram.", 0) == 0 && key != kStarvationKey, set = preset.origin(key) != "default";
     if (dram && (!set || value == find_param(key)->default_value))
       throw ConfigError(source + ": sets no value for " + key + " (a preset sets every dram.* key)");
-    if (!dram && set) throw ConfigError(source + ": sets " + key + " (a preset sets only dram.* keys)");
+    if (!dram && set)
+      throw ConfigError(source + ": sets " + key + " (a preset sets only dram.* keys, not " + kStarvationKey + ")");
   }
   return preset;
 }
@@ -119,6 +124,10 @@ void add_dram_params(std::vector<ParamDef>& s) {
          std::string(k.description) + " (0: the preset's)"});
   add({"dram.page_policy", T::Enum, std::string("preset"), "", 1, 0, {"preset", "open", "closed"},
        "open: a row stays open until a conflict or refresh; closed: every access auto-precharges"});
+  add({kStarvationKey, T::Int, int64_t{0}, "cycles", 0, 1e7, {},
+       "Starvation cap of the FR-FCFS scheduler: a burst waiting this many core cycles in its channel's queue is "
+       "served next (its bank serves no younger row hit first; other banks only commands that issue before it) "
+       "(0: off; not a preset value)"});
   add({"dram.address_map", T::String, std::string(""), "", 1, 0, {},
        "Byte address fields above the burst offset, MSB first: ro (row), ch (channel), ba (bank), bg (bank "
        "group), co (column in bursts), e.g. \"ro:ba:co:bg:ch\" (\"\": the preset's)",
@@ -139,6 +148,7 @@ DramParams dram_params_from_config(const Config& cfg) {
   p.dram_khz = khz(std::get<double>(pick(cfg, preset, "dram.clock_mhz")));
   p.page_policy = std::get<std::string>(pick(cfg, preset, "dram.page_policy")) == "closed" ? PagePolicy::Closed
                                                                                            : PagePolicy::Open;
+  p.starvation_cycles = uint64_t(cfg.get_int(kStarvationKey));
   p.address_map = parse_address_map(std::get<std::string>(pick(cfg, preset, "dram.address_map")));
   if (const std::string why = p.check(); !why.empty())
     throw ConfigError("memory.preset = \"" + p.preset + "\" with the config's dram.* keys: " + why);

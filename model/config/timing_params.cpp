@@ -56,6 +56,7 @@ TimingParams TimingParams::from_config(const Config& cfg) {
   p.texture_texels_per_cycle = u("texture.texels_per_cycle");
   p.texture_combine_per_cycle = u("texture.combine_per_cycle");
   p.texture_miss_cycles = u("texture.miss_cycles");
+  p.texture_latency = u("texture.latency_cycles");
   if (p.setup_latency < p.setup_interval)
     throw ConfigError(cfg.origin("setup.latency_cycles") + ": setup.latency_cycles = " +
                       std::to_string(p.setup_latency) + " is less than setup.interval_cycles = " +

@@ -47,6 +47,7 @@ struct TimingParams {
   // fragments combined a cycle, and the cycles a texture-cache line miss stalls it.
   uint64_t texture_quads_per_cycle = 0, texture_bilinear_per_cycle = 0, texture_texels_per_cycle = 0;
   uint64_t texture_combine_per_cycle = 0, texture_miss_cycles = 0;
+  uint64_t texture_latency = 0;  // texture.latency_cycles: a shaded batch reaches the ROP this much after its end
   int fifo_texture = 0;
 
   // Entries of the FIFO after a stage with a pipeline latency: the configured depth plus

@@ -62,6 +62,10 @@ struct CosimOptions {
   // stderr (one updating line on a terminal). Not sent to the runner.
   std::function<void(const std::string&)> progress;
   bool record_transactions = false;  // fill StageRecord::spans (--trace-diff)
+  // memory.model = "dram": write every DRAM request of the run here in DRAMsim3's format
+  // (timing/dram_trace.h: address, READ/WRITE, the DRAM clock it enters at; --trace-diff's
+  // rtl_mem.trace); "" = none.
+  std::string mem_trace_path;
   // Test-only perturbation: the memory returns the first read of the ROP's transaction
   // number `perturb_rop_transaction` this many cycles late (0 = off), so a test can check that
   // --trace-diff names it as the first difference.
@@ -80,7 +84,7 @@ struct CosimOptions {
 };
 // The options as the on-demand runner gets them (progress stays behind).
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(CosimOptions, tile_size, stress_seed, backpressure, valid_gaps, fst_path,
-                                                max_cycles, record_transactions, perturb_rop_cycles,
+                                                max_cycles, record_transactions, mem_trace_path, perturb_rop_cycles,
                                                 perturb_rop_transaction)
 
 // One stage's cycles on one side of the comparison (docs/microarchitecture.md "Stage

@@ -14,6 +14,7 @@ namespace rastsim::rtlsim {
 TbRopMemory::TbRopMemory(const TbSetup& s)
     : system_(s.dram), shadow_(s.arch.fb_width, s.arch.fb_height, s.samples), state_(s.arch),
       port_(system_, s.memory, shadow_, s.arch.depth_bits) {
+  if (!s.opts.mem_trace_path.empty()) system_.record_trace(&trace_.emplace(s.opts.mem_trace_path).stream());
   // As simulate: the scan-out first (its requests of a cycle go first), then the ROP's
   // port (Rop::attach_memory), whose frame starts with the depth clear.
   if (s.scanout) scanout_ = attach_scanout_fetch(system_, *s.scanout, s.memory, s.arch);
@@ -69,6 +70,7 @@ void TbRopMemory::finish(uint64_t cycles, CosimResult& r) {
     port_.end();
   }
   system_.drain();
+  if (trace_) trace_->commit();
   r.memory = port_.stats();
   r.dram = nlohmann::json::object();
   add_memory_system_json(r.dram, system_.report(cycles));

@@ -21,6 +21,7 @@
 #include <cstdint>
 #include <deque>
 #include <memory>
+#include <optional>
 
 #include "display/scanout_fetch.h"
 #include "ref/2d/draw2d.h"
@@ -31,6 +32,7 @@
 #include "rtlsim/cosim.h"
 #include "timing/memory_system.h"
 #include "timing/rop_memory_port.h"
+#include "util/atomic_file.h"
 
 namespace rastsim::rtlsim {
 
@@ -66,6 +68,7 @@ class TbRopMemory {
 
  private:
   MemorySystem system_;
+  std::optional<AtomicFile> trace_;  // CosimOptions::mem_trace_path: committed by finish()
   std::unique_ptr<ScanoutFetch> scanout_;  // the display's line fetch (null: no display)
   Framebuffer shadow_;   // the reference ROP's framebuffer, replayed in stream order
   RasterState state_;

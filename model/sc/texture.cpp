@@ -21,7 +21,9 @@ void Texture::body() {
     } else {
       busy(p_.texture_batch_cycles(work));
     }
-    write(out_, FragmentItem{nullptr, std::move(out)});
+    // The RTL's datapath after the batch's last sample, net of its earlier start
+    // (texture.latency_cycles): the ROP may start on the batch that much later.
+    write(out_, FragmentItem{nullptr, std::move(out)}, p_.texture_latency);
   }
 }
 

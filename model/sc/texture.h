@@ -15,6 +15,8 @@
 //   blocking line fill through the memory system (timing/texture_memory_port.h: the batch
 //   is busy the miss-free cycles plus the stall until each fill has arrived), made at its
 //   sample's slot in the batch as the RTL's texture cache makes it (fill()).
+// - Latency: the shaded batch is ready for the ROP texture.latency_cycles after the
+//   batch's cycles (Stage::write's extra latency; the stage is not busy meanwhile).
 // - A fence (a transaction without a batch) from interpolation: every batch before it is
 //   in the fragment FIFO, so one token goes back on texture_done, at 0 cycles; interpolation
 //   writes its next untextured transaction behind it (the ROP takes them in order).

@@ -144,6 +144,7 @@ DramModel::DramModel(DramParams params) : p_(std::move(params)), decode_(p_) {
   core_ratio_ = p_.core_khz / common;
   to_dram_limit_ = (UINT64_MAX - (core_ratio_ - 1)) / dram_ratio_;
   to_core_limit_ = (UINT64_MAX - (dram_ratio_ - 1)) / core_ratio_;
+  starvation_clocks_ = int64_t(to_dram(p_.starvation_cycles));
   channels_.resize(size_t(p_.channels));
   for (Channel& ch : channels_) {
     ch.banks.resize(size_t(p_.banks()));
@@ -285,9 +286,45 @@ DramModel::Choice DramModel::choose(const Channel& ch) const {
       consider(ch, k, best, best_tie);
     }
   if (best.at == INT64_MAX) best.at = -1;
+  if (starvation_clocks_ > 0 && best.at >= 0) cap_starvation(ch, best);
   ch.choice = best;
   ch.choice_valid = true;
   return best;
+}
+
+// The starvation cap (dram.starvation_cycles): the channel's oldest queued burst (the one
+// with the earliest eligible clock, the first to starve) starves from clock D = its
+// eligible clock + the cap. FR-FCFS's choice stands if it issues before D; otherwise the
+// oldest burst's own next command issues instead, at D at the earliest: its column
+// command if its row is open, its ACT if its bank is closed, else the PRE of the open row
+// (even one that queued row hits still want). From D on, its own bank issues nothing
+// else first, and another bank's command goes first only if it issues strictly before the
+// starving one could (so the other banks keep working while it waits for its bank).
+void DramModel::cap_starvation(const Channel& ch, Choice& best) const {
+  int oldest = -1;
+  for (size_t word = 0; word < ch.busy_banks.size(); ++word)
+    for (uint64_t bits = ch.busy_banks[word]; bits != 0; bits &= bits - 1) {
+      const int k = int(word * 64) + std::countr_zero(bits);
+      if (oldest < 0 || ch.banks[size_t(k)].queue.front().seq < ch.banks[size_t(oldest)].queue.front().seq)
+        oldest = k;
+    }
+  const Bank& bank = ch.banks[size_t(oldest)];
+  const Burst& b = bank.queue.front();
+  const int64_t starving = b.eligible + starvation_clocks_;
+  if (best.at < starving) return;
+  Bank::Offer offer;
+  offer.group = b.at.bank_group;
+  if (bank.open_row == b.at.row)
+    offer.cmd = b.write ? Cmd::Write : Cmd::Read, offer.ready = b.write ? bank.write_ok : bank.read_ok;
+  else if (bank.open_row < 0)
+    offer.cmd = Cmd::Act, offer.ready = bank.act_ok;
+  else
+    offer.cmd = Cmd::Pre, offer.ready = bank.pre_ok;
+  offer.ready = std::max(offer.ready, b.eligible);
+  const int64_t at = std::max(earliest(ch, offer), starving);
+  // Another bank's command may still go first, if it issues strictly before the starving one could.
+  if (best.bank != oldest && best.at < at) return;
+  best = {at, oldest, 0, offer.cmd};
 }
 
 // A bank's candidates: its oldest burst's ACT or PRE when no burst wants its open row (or

@@ -42,6 +42,11 @@ struct DramParams {
   int transfers_per_clock = 0;    // data transfers a CK a pin (2: DDR; 8: GDDR6 QDR on WCK = 2 CK)
   PagePolicy page_policy = PagePolicy::Open;
   int queue_depth = 0;            // bursts a channel's scheduler sees at once
+  // Starvation cap (docs/memory.md, "Scheduling"), core cycles; 0: off. A burst that has
+  // waited this long in the scheduler's queue (from its eligible clock) is served next:
+  // its bank issues nothing else first, and another bank's command only one that can
+  // issue strictly before it.
+  uint64_t starvation_cycles = 0;
   // MSB first, e.g. {Row, Bank, Column, BankGroup, Channel}; each field once. The low
   // log2(burst_bytes()) address bits are the offset within a burst and are dropped.
   std::vector<DramField> address_map;
@@ -247,6 +252,7 @@ class DramModel {
   };
 
   Choice choose(const Channel& ch) const;
+  void cap_starvation(const Channel& ch, Choice& best) const;
   void consider(const Channel& ch, int k, Choice& best, uint64_t& best_tie) const;
   void make_offers(const Bank& bank) const;
   static void touch(Channel& ch, Bank& bank) { bank.offers_fresh = false, ch.choice_valid = false; }
@@ -268,6 +274,7 @@ class DramModel {
   // f_dram / f_core reduced: to_dram and to_core multiply and divide by these, in 64 bits
   // below the limits (the products fit), else in 128.
   uint64_t dram_ratio_ = 1, core_ratio_ = 1, to_dram_limit_ = 0, to_core_limit_ = 0;
+  int64_t starvation_clocks_ = 0;  // starvation_cycles in DRAM clocks, rounded up (0: off)
   std::vector<Channel> channels_;
   // Requests by number from first_pending_ on (completed ones at the front are dropped;
   // completed ones behind an outstanding one stay, with bursts_left 0).

@@ -147,6 +147,58 @@ TEST(Dram, RowHitOvertakesOlderConflict) {
   EXPECT_EQ(done[1].tag, 1u);
 }
 
+// The starvation cap (dram.starvation_cycles): row 5 open in bank 0 (a read at 0: ACT 0,
+// RD 13); at 1000 a conflict C (row 6) and then eight younger hits H1..H8 (row 5), all one
+// bank group, so column commands are tCCD_L = 6 apart.
+// Off: the hits read at 1000, 1006, ..., 1042; C's PRE at 1042 + tRTP = 1049, ACT 1066,
+// RD 1079, done 1079 + CL + burst = 1094, last.
+// Cap 20: C starves from 1020. H1..H4 read at 1000..1018 (done 1015..1033); H5 could
+// read at 1024 >= 1020, so C's PRE goes first, at 1018 + tRTP = 1025; ACT 1042, RD 1055,
+// done 1070. H5..H8 (now starving too, row 6 open) then PRE at ACT + tRAS = 1072, ACT
+// 1089 (= 1042 + tRC), RD 1102, 1108, 1114, 1120: done 1117 .. 1135.
+// Row 5 opened at 0; at core cycle 1000 the conflict C (tag 100, row 6) and then `hits`
+// younger hits (tags 1..hits, row 5) in bank 0: every completion.
+std::vector<DramCompletion> conflict_behind_hits(const DramParams& p, int hits) {
+  DramModel m(p);
+  read_latency(m, address(5, 0, 0, 0), 0);
+  m.enqueue({address(6, 0, 0, 0), false, 64, 0, 100}, 1000);
+  for (int k = 1; k <= hits; ++k) m.enqueue({address(5, 0, 0, k), false, 64, 0, uint64_t(k)}, 1000);
+  return drain(m);
+}
+
+TEST(Dram, StarvationCapServesTheOldestBurst) {
+  for (const uint64_t cap : {uint64_t{0}, uint64_t{20}}) {
+    SCOPED_TRACE(cap);
+    DramParams p = test_params();
+    p.starvation_cycles = cap;
+    const auto done = conflict_behind_hits(p, 8);
+    ASSERT_EQ(done.size(), 9u);
+    std::vector<uint64_t> tags, cycles;
+    for (const DramCompletion& c : done) tags.push_back(c.tag), cycles.push_back(c.cycle);
+    if (cap == 0) {
+      EXPECT_EQ(tags, (std::vector<uint64_t>{1, 2, 3, 4, 5, 6, 7, 8, 100}));
+      EXPECT_EQ(cycles, (std::vector<uint64_t>{1015, 1021, 1027, 1033, 1039, 1045, 1051, 1057, 1094}));
+    } else {
+      EXPECT_EQ(tags, (std::vector<uint64_t>{1, 2, 3, 4, 100, 5, 6, 7, 8}));
+      EXPECT_EQ(cycles, (std::vector<uint64_t>{1015, 1021, 1027, 1033, 1070, 1117, 1123, 1129, 1135}));
+    }
+  }
+}
+
+// The cap counts core cycles: at a 500 MHz core and a 1200 MHz DRAM clock, 20 cycles are
+// 48 DRAM clocks, so C (arriving at core cycle 1000, DRAM clock 2400) starves from DRAM
+// clock 2448, and the hits that read before it (from 2400, 6 apart) are 2400 .. 2442: 8.
+TEST(Dram, StarvationCapCountsCoreCycles) {
+  DramParams p = test_params();
+  p.core_khz = 500'000, p.dram_khz = 1'200'000;
+  p.starvation_cycles = 20;
+  const auto done = conflict_behind_hits(p, 12);
+  ASSERT_EQ(done.size(), 13u);
+  size_t before = 0;
+  while (before < done.size() && done[before].tag != 100) ++before;
+  EXPECT_EQ(before, 8u);
+}
+
 TEST(Dram, ClosedPageMakesEveryAccessAMiss) {
   DramParams p = test_params();
   p.page_policy = PagePolicy::Closed;

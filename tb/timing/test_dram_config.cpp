@@ -46,6 +46,14 @@ TEST(DramConfig, KeyOverridesOneValue) {
   EXPECT_EQ(p.dram_khz, 1'200'000u);
 }
 
+// dram.starvation_cycles is the controller's, no preset's: 0 (off) unless the config sets it.
+TEST(DramConfig, StarvationCapIsTheConfigsOwn) {
+  for (const char* preset : {"memory.preset=ddr4_2400", "memory.preset=lpddr4_3200", "memory.preset=gddr6"}) {
+    EXPECT_EQ(resolve({preset}).starvation_cycles, 0u) << preset;
+    EXPECT_EQ(resolve({preset, "dram.starvation_cycles=40"}).starvation_cycles, 40u) << preset;
+  }
+}
+
 TEST(DramConfig, BadValuesNameTheKey) {
   Config cfg;
   try {
