@@ -13,6 +13,7 @@
 #include "config/raster_state_config.h"
 #include "config/video_timing.h"
 #include "ref/memory/rop_memory.h"
+#include "ref/memory/surface_layout.h"
 #include "config/texture_config.h"
 #include "scene/texture_file.h"
 
@@ -86,6 +87,10 @@ constexpr ParamField<RtlParams> kFields[] = {
     {"RopPixelsPerCycle", &RtlParams::rop_pixels_per_cycle, "rop.pixels_per_cycle: ROP accesses a cycle"},
     {"RopClearPixelsPerCycle", &RtlParams::rop_clear_pixels_per_cycle, "rop.clear_pixels_per_cycle"},
     {"RopLenW", &RtlParams::rop_len_w, "ROP burst length bits: clog2(RopClearPixelsPerCycle MaxSamples + 1)"},
+    {"TileBufferSamples", &RtlParams::tile_buffer_samples,
+     "pipeline.mode = binned: bin.tile_buffer_bytes / (4 + depth bytes) samples; 0: immediate (no tile buffer)"},
+    {"TilePortBytes", &RtlParams::tile_port_bytes, "binned: rop.resolve_bytes_per_cycle, a load or store beat; else 4"},
+    {"TilePortWords", &RtlParams::tile_port_words, "binned: TilePortBytes / depth bytes, words of a beat; else 1"},
 };
 
 constexpr ParamField<ScanoutRtlParams> kScanoutFields[] = {
@@ -402,6 +407,18 @@ RtlParams rtl_params(const ArchParams& arch) {
   p.rop_pixels_per_cycle = static_cast<int>(t.rop_pixels_per_cycle);
   p.rop_clear_pixels_per_cycle = static_cast<int>(t.rop_clear_pixels_per_cycle);
   p.rop_len_w = std::bit_width(static_cast<unsigned>(p.rop_clear_pixels_per_cycle * p.max_samples));  // clog2(n + 1)
+  // The tile buffer (rtl/rast_tile_buffer.sv) is built in binned mode only: a sample is
+  // 4 colour bytes + the reference's depth bytes (ref/binning.h bin_depth_sample_bytes).
+  const bool binned = st.bin.mode == PipelineMode::Binned;
+  const uint64_t sample_bytes = 4 + uint64_t(depth_bytes_per_sample(st.depth_bits));
+  p.tile_buffer_samples = binned ? static_cast<int>(st.bin.tile_buffer_bytes / sample_bytes) : 0;
+  p.tile_port_bytes = binned ? static_cast<int>(t.rop_resolve_bytes_per_cycle) : 4;
+  p.tile_port_words = binned ? p.tile_port_bytes / depth_bytes_per_sample(st.depth_bits) : 1;
+  // Binned: rast_tri_setup sees only the render pass's triangles, which the timed model's
+  // binner hands to coarse raster set up already (one a cycle through fifos.bin_fifo, the
+  // setup FIFO's depth; setup's interval and latency are paid in the binning pass, which
+  // the testbench times: docs/rtl.md "Tile buffer"), so it is built with one cycle of each.
+  if (binned) p.setup_interval = p.setup_latency = 1;
   return p;
 }
 

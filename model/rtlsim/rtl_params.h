@@ -72,6 +72,10 @@ struct RtlParams {
   int fragment_fifo_entries = 0;  // fifo.fragment_depth + the interpolator's latency slots (TimingParams), tiles
   int rop_pixels_per_cycle = 0, rop_clear_pixels_per_cycle = 0;  // rop.pixels_per_cycle, rop.clear_pixels_per_cycle
   int rop_len_w = 0;  // a ROP burst length in words, up to a clear's: clog2(clear pixels x max_samples + 1) bits
+  // pipeline.mode = binned (rtl/rast_tile_buffer.sv): the tile buffer's samples (0: no
+  // tile buffer, immediate mode), its load/store beat in bytes (rop.resolve_bytes_per_cycle)
+  // and in words (bytes / a depth sample's bytes: the widest beat).
+  int tile_buffer_samples = 0, tile_port_bytes = 4, tile_port_words = 1;
 
   bool operator==(const RtlParams&) const = default;
 };
