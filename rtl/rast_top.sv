@@ -734,8 +734,9 @@ module rast_top #(
   // Binned mode (TileBufferSamples > 0, docs/rtl.md "Tile buffer"): the ROP's memory port
   // goes to the tile buffer, its framebuffer is the current bin (bin-local pixels, its
   // width and height, colour at 0 and depth at TileBufferSamples 4), and a bin command
-  // (op 4, 5) reaches it as a pass; while the tile buffer loads or stores, the ROP's
-  // port is not ready and its next command waits.
+  // (op 4, 5) and a bin's clear (1, 2: the tile buffer's flash clear) reach it as a pass;
+  // while the tile buffer loads, stores or clears, the ROP's port is not ready and its
+  // next command waits.
   logic                                   rop_rd_valid, rop_rd_ready, rop_rd_rvalid;
   logic [RopPixelsPerCycle-1:0]           rop_rd_lanes;
   logic [RopPixelsPerCycle*32-1:0]        rop_rd_addr;
@@ -751,21 +752,25 @@ module rast_top #(
   logic [PixelW-1:0]                      rop_fb_w, rop_fb_h;
   logic [31:0]                            rop_color_base, rop_depth_base;
   logic [Lanes*PixelW-1:0]                rop_x, rop_y;
+  logic [1:0]                             rop_cmd_op;
   assign rop_cmd_valid = cmd_valid_i && !tb_busy;
+  // Binned: every command is a pass at the ROP (the tile buffer clears, loads and stores).
+  assign rop_cmd_op = TileBufferSamples > 0 || cmd_op_i[2] ? 2'd0 : cmd_op_i[1:0];
   assign cmd_ready_o = rop_cmd_ready && !tb_busy;
   if (TileBufferSamples > 0) begin : g_bins
     logic [PixelW-1:0] bx0, by0;
     rast_tile_buffer #(
       .PixelW(PixelW), .DepthW(DepthW), .MaxSamples(MaxSamples), .SampleLog2W(SampleLog2W), .P(RopPixelsPerCycle),
-      .LenW(RopLenW), .Slots(TileBufferSamples), .PortBytes(TilePortBytes), .AddrW(32), .PortWords(TilePortWords)
+      .LenW(RopLenW), .Slots(TileBufferSamples), .PortBytes(TilePortBytes), .ClearPixelsPerCycle(RopClearPixelsPerCycle),
+      .AddrW(32), .PortWords(TilePortWords)
     ) u_tile_buffer (
       .clk_i, .rst_ni, .samples_log2_i(samples_log2_q), .fb_width_i, .color_base_i, .depth_base_i,
-      .cmd_take_i(rop_cmd_valid && rop_cmd_ready), .cmd_op_i, .cmd_flags_i(cmd_value_i[1:0]), .cmd_bin_i,
+      .cmd_take_i(rop_cmd_valid && rop_cmd_ready), .cmd_op_i, .cmd_value_i, .cmd_bin_i,
       .busy_o(tb_busy), .bin_x0_o(bx0), .bin_y0_o(by0), .bin_w_o(rop_fb_w), .bin_h_o(rop_fb_h),
       .rd_valid_i(rop_rd_valid), .rd_ready_o(rop_rd_ready), .rd_lanes_i(rop_rd_lanes), .rd_addr_i(rop_rd_addr),
       .rd_len_i(rop_rd_len), .rd_rvalid_o(rop_rd_rvalid), .rd_rdata_o(rop_rd_rdata),
       .wr_valid_i(rop_wr_valid), .wr_ready_o(rop_wr_ready), .wr_lanes_i(rop_wr_lanes), .wr_addr_i(rop_wr_addr),
-      .wr_len_i(rop_wr_len), .wr_fill_i(rop_wr_fill), .wr_be_i(rop_wr_be), .wr_data_i(rop_wr_data),
+      .wr_len_i(rop_wr_len), .wr_be_i(rop_wr_be), .wr_data_i(rop_wr_data),
       .tl_valid_o, .tl_ready_i, .tl_write_o, .tl_addr_o, .tl_count_o, .tl_wdata_o, .tl_rvalid_i, .tl_rdata_i,
       .idle_o(tb_idle));
     assign rop_color_base = '0;
@@ -776,7 +781,7 @@ module rast_top #(
     end
     assign {rd_valid_o, rd_lanes_o, rd_addr_o, rd_len_o} = '0;
     assign {wr_valid_o, wr_lanes_o, wr_addr_o, wr_len_o, wr_fill_o, wr_be_o, wr_data_o} = '0;
-    wire unused_bin_port = ^{rd_ready_i, rd_rvalid_i, rd_rdata_i, wr_ready_i, fb_height_i};
+    wire unused_bin_port = ^{rd_ready_i, rd_rvalid_i, rd_rdata_i, wr_ready_i, fb_height_i, rop_wr_fill};
   end else begin : g_immediate
     assign {rop_fb_w, rop_fb_h, rop_color_base, rop_depth_base} = {fb_width_i, fb_height_i, color_base_i, depth_base_i};
     assign {rop_x, rop_y} = {r_in.x, r_in.y};
@@ -798,7 +803,7 @@ module rast_top #(
     .in_valid_i(r_valid), .in_ready_o(r_ready), .in_marker_i(r_in.marker), .in_last_i(r_in.last),
     .in_lanes_i(r_in.lanes), .in_x_i(rop_x), .in_y_i(rop_y), .in_z_i(r_in.z), .in_rgb_i(r_in.rgb),
     .in_mask_i(r_in.mask),
-    .cmd_valid_i(rop_cmd_valid), .cmd_ready_o(rop_cmd_ready), .cmd_op_i(cmd_op_i[2] ? 2'd0 : cmd_op_i[1:0]),
+    .cmd_valid_i(rop_cmd_valid), .cmd_ready_o(rop_cmd_ready), .cmd_op_i(rop_cmd_op),
     .cmd_value_i,
     .rd_valid_o(rop_rd_valid), .rd_ready_i(rop_rd_ready), .rd_lanes_o(rop_rd_lanes), .rd_addr_o(rop_rd_addr),
     .rd_len_o(rop_rd_len), .rd_rvalid_i(rop_rd_rvalid), .rd_rdata_i(rop_rd_rdata),

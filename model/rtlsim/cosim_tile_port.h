@@ -24,14 +24,11 @@ template <class V>
 TileBeat tile_beat_of(const V& top, const RtlParams& p) {
   TileBeat b;
   b.valid = top.tl_valid_o;
-  if (!b.valid) return b;
   b.write = top.tl_write_o;
   b.addr = top.tl_addr_o;
   b.count = int(top.tl_count_o);
-  if (b.write) {
-    b.words.resize(size_t(p.tile_port_words));
-    for (int i = 0; i < p.tile_port_words; ++i) b.words[size_t(i)] = uint32_t(port_bits(top.tl_wdata_o, i * 32, 32));
-  }
+  b.words.resize(size_t(p.tile_port_words));  // the store beat taken a cycle ago
+  for (int i = 0; i < p.tile_port_words; ++i) b.words[size_t(i)] = uint32_t(port_bits(top.tl_wdata_o, i * 32, 32));
   return b;
 }
 

@@ -266,6 +266,10 @@ void TbBinner::drive_port(uint64_t t, RastPorts& ports) {
 // (beat k of n at max(its issue + 1, arrival - (n - 1 - k))).
 void TbBinner::serve_port(uint64_t t, RastPorts& ports) {
   const TileBeat b = ports.tile_beat();
+  if (store_pending_) {  // the words of the store beat taken in the cycle before
+    for (int i = 0; i < store_count_; ++i) write_(store_addr_ + 4 * uint32_t(i), b.words[size_t(i)], t);
+    store_pending_ = false;
+  }
   if (!b.valid) return;
   if (beats_left_ == 0 || b.write == loading_) {
     mismatch_("cycle " + std::to_string(t) + ": the tile buffer's " + (b.write ? "store" : "load") +
@@ -274,7 +278,9 @@ void TbBinner::serve_port(uint64_t t, RastPorts& ports) {
   }
   --beats_left_;
   if (b.write) {
-    for (int i = 0; i < b.count; ++i) write_(b.addr + 4 * uint32_t(i), b.words[size_t(i)], t);
+    store_pending_ = true;
+    store_addr_ = b.addr;
+    store_count_ = b.count;
     ++beat_;
     return;
   }

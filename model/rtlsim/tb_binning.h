@@ -103,8 +103,10 @@ class TbBinner {
   using WriteWord = std::function<void(uint32_t addr, uint32_t data, uint64_t t)>;
   TbBinner(const TbSetup& s, MemorySystem* mem, Mismatch mismatch, ReadWord read, WriteWord write);
 
-  bool done() const { return pc_ >= ops_.size() && responses_.empty() && beats_left_ == 0; }
-  // Before the clock falls: the item offered to rast_top's triangle port (null: none).
+  bool done() const { return pc_ >= ops_.size() && responses_.empty() && beats_left_ == 0 && !store_pending_; }
+  // Before the clock falls: the item offered to rast_top's triangle port (null: none; the
+  // RTL's triangle FIFO and setup FIFO hold it back when full: fifo.triangle_depth + 1
+  // items more ahead of coarse raster than the timed model's fifos.bin_fifo).
   const TbItem* feed(uint64_t t) const;
   // After: assembly offers `item` (or nothing); true when the binner takes it.
   bool take(uint64_t t, const TbItem* offered, size_t item);
@@ -129,6 +131,10 @@ class TbBinner {
   WriteWord write_;
   size_t pc_ = 0;
   uint64_t wait_until_ = 0;
+  // A store beat taken: its words come with the next cycle's port (rast_tile_buffer.sv).
+  bool store_pending_ = false;
+  uint32_t store_addr_ = 0;
+  int store_count_ = 0;
   // The load or store in progress: beats expected and issued, the load's arrival.
   uint64_t beats_left_ = 0, beats_ = 0, beat_ = 0, arrival_ = 0;
   bool loading_ = false;

@@ -359,6 +359,7 @@ bool Testbench::cycle(uint64_t t) {
   if (beat.valid && ports_.fragment_taken()) take_beat(t, beat);
   const bool granted = rop_wait_2d_;
   rop_serve(t);
+  if (binner_) binner_->serve_port(t, ports_);  // after rop_serve: a load or store starts with its command
   // A grant made now (the 2D marker waits at the quiet ROP): the engine takes the port and
   // is offered its first operation in this cycle, as the model's engine reads the grant
   // the ROP writes (drive_engine_read evaluates it again).
@@ -437,7 +438,6 @@ void Testbench::rop_serve(uint64_t t) {
     read_pending_ = true;
     read_due_ = (dram_ ? dram_->read(t, accesses) : t + 1) + std::exchange(perturb_now_, 0);
   }
-  if (binner_) binner_->serve_port(t, ports_);
   if (rop_commands_.empty() || !ports_.rop_command_wanted()) return;
   const TbItem& m = setup_.items[rop_commands_.front()];
   if (command_valid_ && m.bin_marker >= 0) {  // binned: the tile buffer starts its load or store

@@ -174,7 +174,7 @@ struct TileBeat {
   bool valid = false, write = false;  // tl_valid_o, tl_write_o
   uint32_t addr = 0;                  // tl_addr_o: the first word's byte address
   int count = 0;                      // tl_count_o: words
-  std::vector<uint32_t> words;        // tl_wdata_o (a store's)
+  std::vector<uint32_t> words;        // tl_wdata_o: the words of the store beat taken in the cycle before
 };
 
 // The 2D engine's memory addresses this cycle, sign-extended pixel indices.
