@@ -127,8 +127,9 @@ module rast_top #(
   // The ROP's commands, one a marker in stream order (rast_rop's cmd_*).
   input  wire logic                                  cmd_valid_i,     // a command
   output      logic                                  cmd_ready_o,     // taken with its marker (high while a marker waits for it)
-  input  wire logic [1:0]                            cmd_op_i,        // 0 pass, 1 clear colour, 2 clear depth
-  input  wire logic [31:0]                           cmd_value_i,     // clear word: colour {a, b, g, r}, or depth
+  input  wire logic [2:0]                            cmd_op_i,        // 0 pass, 1 clear colour, 2 clear depth; binned: 4 begin bin, 5 end bin
+  input  wire logic [31:0]                           cmd_value_i,     // clear word: colour {a, b, g, r}, or depth; bin: bit 0 colour, bit 1 depth loaded / stored
+  input  wire logic [4*PixelW-1:0]                   cmd_bin_i,       // bin commands: the bin {y1, x1, y0, x0}, half-open px
   // The ROP's memory port (rast_rop's rd_*, wr_*; docs/rtl.md "ROP").
   output      logic                                  rd_valid_o,
   input  wire logic                                  rd_ready_i,
@@ -145,6 +146,16 @@ module rast_top #(
   output      logic                                  wr_fill_o,
   output      logic [2*RopPixelsPerCycle*MaxSamples*4-1:0] wr_be_o,
   output      logic [2*RopPixelsPerCycle*32-1:0]     wr_data_o,
+  // Binned mode (TileBufferSamples > 0): the tile buffer's memory port (rast_tile_buffer's
+  // tl_*: a bin's loads and stores; the ROP's rd_* / wr_* above stay low).
+  output      logic                                  tl_valid_o,
+  input  wire logic                                  tl_ready_i,
+  output      logic                                  tl_write_o,
+  output      logic [31:0]                           tl_addr_o,
+  output      logic [$clog2(TilePortWords+1)-1:0]    tl_count_o,
+  output      logic [TilePortWords*32-1:0]           tl_wdata_o,
+  input  wire logic                                  tl_rvalid_i,
+  input  wire logic [TilePortWords*32-1:0]           tl_rdata_i,
   output      logic                                  idle_o,          // no work anywhere: pipeline, fragment FIFO and ROP drained
   // Stage handshake observation for the co-simulation's per-stage statistics (bit s:
   // 0 setup, 1 coarse raster, 2 fine raster, 3 interpolation, 4 ROP;
@@ -737,18 +748,84 @@ module rast_top #(
   end
 
   // ---- ROP ----
+  // Binned mode (TileBufferSamples > 0, docs/rtl.md "Tile buffer"): the ROP's memory port
+  // goes to the tile buffer, its framebuffer is the current bin (bin-local pixels, its
+  // width and height, colour at 0 and depth at TileBufferSamples 4), and a bin command
+  // (op 4, 5) and a bin's clear (1, 2: the tile buffer's flash clear) reach it as a pass;
+  // while the tile buffer loads, stores or clears, the ROP's port is not ready and its
+  // next command waits.
+  logic                                   rop_rd_valid, rop_rd_ready, rop_rd_rvalid;
+  logic [RopPixelsPerCycle-1:0]           rop_rd_lanes;
+  logic [RopPixelsPerCycle*32-1:0]        rop_rd_addr;
+  logic [RopPixelsPerCycle*RopLenW-1:0]   rop_rd_len;
+  logic [RopPixelsPerCycle*MaxSamples*32-1:0] rop_rd_rdata;
+  logic                                   rop_wr_valid, rop_wr_ready, rop_wr_fill;
+  logic [2*RopPixelsPerCycle-1:0]         rop_wr_lanes;
+  logic [2*RopPixelsPerCycle*32-1:0]      rop_wr_addr;
+  logic [2*RopPixelsPerCycle*RopLenW-1:0] rop_wr_len;
+  logic [2*RopPixelsPerCycle*MaxSamples*4-1:0] rop_wr_be;
+  logic [2*RopPixelsPerCycle*32-1:0]      rop_wr_data;
+  logic                                   rop_cmd_valid, rop_cmd_ready, tb_busy, tb_idle;
+  logic [PixelW-1:0]                      rop_fb_w, rop_fb_h;
+  logic [31:0]                            rop_color_base, rop_depth_base;
+  logic [Lanes*PixelW-1:0]                rop_x, rop_y;
+  logic [1:0]                             rop_cmd_op;
+  assign rop_cmd_valid = cmd_valid_i && !tb_busy;
+  // Binned: every command is a pass at the ROP (the tile buffer clears, loads and stores).
+  assign rop_cmd_op = TileBufferSamples > 0 || cmd_op_i[2] ? 2'd0 : cmd_op_i[1:0];
+  assign cmd_ready_o = rop_cmd_ready && !tb_busy;
+  if (TileBufferSamples > 0) begin : g_bins
+    logic [PixelW-1:0] bx0, by0;
+    rast_tile_buffer #(
+      .PixelW(PixelW), .DepthW(DepthW), .MaxSamples(MaxSamples), .SampleLog2W(SampleLog2W), .P(RopPixelsPerCycle),
+      .LenW(RopLenW), .Slots(TileBufferSamples), .PortBytes(TilePortBytes), .ClearPixelsPerCycle(RopClearPixelsPerCycle),
+      .AddrW(32), .PortWords(TilePortWords)
+    ) u_tile_buffer (
+      .clk_i, .rst_ni, .samples_log2_i(samples_log2_q), .fb_width_i, .color_base_i, .depth_base_i,
+      .cmd_take_i(rop_cmd_valid && rop_cmd_ready), .cmd_op_i, .cmd_value_i, .cmd_bin_i,
+      .busy_o(tb_busy), .bin_x0_o(bx0), .bin_y0_o(by0), .bin_w_o(rop_fb_w), .bin_h_o(rop_fb_h),
+      .rd_valid_i(rop_rd_valid), .rd_ready_o(rop_rd_ready), .rd_lanes_i(rop_rd_lanes), .rd_addr_i(rop_rd_addr),
+      .rd_len_i(rop_rd_len), .rd_rvalid_o(rop_rd_rvalid), .rd_rdata_o(rop_rd_rdata),
+      .wr_valid_i(rop_wr_valid), .wr_ready_o(rop_wr_ready), .wr_lanes_i(rop_wr_lanes), .wr_addr_i(rop_wr_addr),
+      .wr_len_i(rop_wr_len), .wr_be_i(rop_wr_be), .wr_data_i(rop_wr_data),
+      .tl_valid_o, .tl_ready_i, .tl_write_o, .tl_addr_o, .tl_count_o, .tl_wdata_o, .tl_rvalid_i, .tl_rdata_i,
+      .idle_o(tb_idle));
+    assign rop_color_base = '0;
+    assign rop_depth_base = 32'(TileBufferSamples * 4);
+    for (genvar j = 0; j < Lanes; j++) begin : g_local
+      assign rop_x[j*PixelW +: PixelW] = r_in.x[j*PixelW +: PixelW] - bx0;
+      assign rop_y[j*PixelW +: PixelW] = r_in.y[j*PixelW +: PixelW] - by0;
+    end
+    assign {rd_valid_o, rd_lanes_o, rd_addr_o, rd_len_o} = '0;
+    assign {wr_valid_o, wr_lanes_o, wr_addr_o, wr_len_o, wr_fill_o, wr_be_o, wr_data_o} = '0;
+    wire unused_bin_port = ^{rd_ready_i, rd_rvalid_i, rd_rdata_i, wr_ready_i, fb_height_i, rop_wr_fill};
+  end else begin : g_immediate
+    assign {rop_fb_w, rop_fb_h, rop_color_base, rop_depth_base} = {fb_width_i, fb_height_i, color_base_i, depth_base_i};
+    assign {rop_x, rop_y} = {r_in.x, r_in.y};
+    assign {tb_busy, tb_idle} = 2'b01;
+    assign {rd_valid_o, rd_lanes_o, rd_addr_o, rd_len_o} = {rop_rd_valid, rop_rd_lanes, rop_rd_addr, rop_rd_len};
+    assign {rop_rd_ready, rop_rd_rvalid, rop_rd_rdata} = {rd_ready_i, rd_rvalid_i, rd_rdata_i};
+    assign {wr_valid_o, wr_lanes_o, wr_addr_o, wr_len_o, wr_fill_o, wr_be_o, wr_data_o} =
+        {rop_wr_valid, rop_wr_lanes, rop_wr_addr, rop_wr_len, rop_wr_fill, rop_wr_be, rop_wr_data};
+    assign rop_wr_ready = wr_ready_i;
+    assign {tl_valid_o, tl_write_o, tl_addr_o, tl_count_o, tl_wdata_o} = '0;
+    wire unused_tile_port = ^{tl_ready_i, tl_rvalid_i, tl_rdata_i, cmd_bin_i};
+  end
   rast_rop #(
     .PixelW(PixelW), .DepthW(DepthW), .MaxSamples(MaxSamples), .SampleLog2W(SampleLog2W), .Lanes(Lanes),
     .PixelsPerCycle(RopPixelsPerCycle), .ClearPixelsPerCycle(RopClearPixelsPerCycle), .AddrW(32), .LenW(RopLenW)
   ) u_rop (
-    .clk_i, .rst_ni, .samples_log2_i(samples_log2_q), .fb_width_i, .fb_height_i, .color_base_i, .depth_base_i,
-    .depth_func_i, .depth_write_i,
+    .clk_i, .rst_ni, .samples_log2_i(samples_log2_q), .fb_width_i(rop_fb_w), .fb_height_i(rop_fb_h),
+    .color_base_i(rop_color_base), .depth_base_i(rop_depth_base), .depth_func_i, .depth_write_i,
     .in_valid_i(r_valid), .in_ready_o(r_ready), .in_marker_i(r_in.marker), .in_last_i(r_in.last),
-    .in_lanes_i(r_in.lanes), .in_x_i(r_in.x), .in_y_i(r_in.y), .in_z_i(r_in.z), .in_rgb_i(r_in.rgb),
+    .in_lanes_i(r_in.lanes), .in_x_i(rop_x), .in_y_i(rop_y), .in_z_i(r_in.z), .in_rgb_i(r_in.rgb),
     .in_mask_i(r_in.mask),
-    .cmd_valid_i, .cmd_ready_o, .cmd_op_i, .cmd_value_i,
-    .rd_valid_o, .rd_ready_i, .rd_lanes_o, .rd_addr_o, .rd_len_o, .rd_rvalid_i, .rd_rdata_i,
-    .wr_valid_o, .wr_ready_i, .wr_lanes_o, .wr_addr_o, .wr_len_o, .wr_fill_o, .wr_be_o, .wr_data_o,
+    .cmd_valid_i(rop_cmd_valid), .cmd_ready_o(rop_cmd_ready), .cmd_op_i(rop_cmd_op),
+    .cmd_value_i,
+    .rd_valid_o(rop_rd_valid), .rd_ready_i(rop_rd_ready), .rd_lanes_o(rop_rd_lanes), .rd_addr_o(rop_rd_addr),
+    .rd_len_o(rop_rd_len), .rd_rvalid_i(rop_rd_rvalid), .rd_rdata_i(rop_rd_rdata),
+    .wr_valid_o(rop_wr_valid), .wr_ready_i(rop_wr_ready), .wr_lanes_o(rop_wr_lanes), .wr_addr_o(rop_wr_addr),
+    .wr_len_o(rop_wr_len), .wr_fill_o(rop_wr_fill), .wr_be_o(rop_wr_be), .wr_data_o(rop_wr_data),
     .idle_o(rop_idle), .dbg_has_o(rop_has), .dbg_start_o(dbg_rop_start_o), .dbg_done_o(rop_done),
     .dbg_blocked_o(rop_blocked), .hiz_always_i(rop_hiz_always), .hiz_wr_lanes_o(rop_hiz_wr_lanes),
     .hiz_wr_x_o(rop_hiz_wr_x), .hiz_wr_y_o(rop_hiz_wr_y), .hiz_wr_z_o(rop_hiz_wr_z), .hiz_end_o(rop_hiz_end), .hiz_marker_o(rop_hiz_marker),
@@ -806,7 +883,7 @@ module rast_top #(
 
   // A held transaction shows as valid at the stage's input.
   assign idle_o = t_empty && !s_busy && c_empty && !c_valid && !c_busy && f_empty && !f_valid && !f_busy &&
-                  p_empty && !p_valid && !p_busy && ts_empty && !x_busy && r_fifo_empty && rop_idle;
+                  p_empty && !p_valid && !p_busy && ts_empty && !x_busy && r_fifo_empty && rop_idle && tb_idle;
 endmodule
 
 `default_nettype wire

@@ -7,8 +7,6 @@
 // decides is in testbench.cpp. Callers use cosim.h.
 #pragma once
 
-#include <bit>
-#include <cstdint>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -19,8 +17,7 @@
 #include "Vrast_engine2d.h"
 #include "Vrast_engine2d_rast_engine2d.h"  // its public parameters
 
-#include "rtlsim/port_bits.h"
-#include "rtlsim/testbench.h"
+#include "rtlsim/cosim_tile_port.h"  // port_bits.h, testbench.h
 
 namespace rastsim::rtlsim {
 
@@ -187,11 +184,14 @@ class VerilatedRast final : public RastPorts {
 
   // ---- The ROP's command and memory ports (32-bit addresses and data words) ----
   bool rop_command_wanted() const override { return top_->cmd_ready_o; }
-  void drive_rop_command(bool valid, int op, uint32_t value) override {
+  void drive_rop_command(bool valid, int op, uint32_t value, const int* bin) override {
     top_->cmd_valid_i = valid;
     top_->cmd_op_i = static_cast<uint8_t>(op);
     top_->cmd_value_i = value;
+    drive_bin_rect(*top_, params_, bin);
   }
+  TileBeat tile_beat() const override { return tile_beat_of(*top_, params_); }
+  void drive_tile(bool ready, bool rvalid, const std::vector<uint32_t>& w) override { drive_tile_of(*top_, ready, rvalid, w); }
   bool rop_read_valid() const override { return top_->rd_valid_o; }
   bool rop_read_lane_valid(int k) const override { return port_bits(top_->rd_lanes_o, k, 1) & 1; }
   RopLane rop_read_lane(int k) const override {

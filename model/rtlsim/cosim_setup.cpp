@@ -6,12 +6,14 @@
 
 #include <bit>
 #include <charconv>
+#include <memory>
 #include <optional>
 #include <set>
 #include <stdexcept>
 
 #include "config/timing_params.h"
 #include "display/scanout_fetch.h"
+#include "rtlsim/tb_binning.h"
 #include "rtlsim/testbench.h"
 #include "ref/pipeline.h"
 #include "ref/prim_assembly.h"
@@ -48,6 +50,7 @@ class StreamBuilder {
       : setup_(s), timing_(s.timing), state_(arch.raster), tile_size_(tile_size), command0_(command0) {
     state_.tile_size = tile_size;
     if (hiz_applies(state_)) hiz_.emplace(state_);
+    if (s.binned) bins_ = std::make_unique<BinProgram>(s, tile_size);
   }
 
   void add(const Command& cmd) {
@@ -106,6 +109,7 @@ class StreamBuilder {
     void done() {}
   };
   HizWalk hiz_walk(const SetupTriangle& t) { return HizWalk{hiz_ ? &*hiz_ : nullptr, t}; }
+  std::unique_ptr<BinProgram> bins_;  // pipeline.mode = binned: the binner's program (tb_binning.h)
 };
 
 // A textured triangle's state on rast_top's tri_tex_* ports, its texture placed as the
@@ -157,6 +161,7 @@ void StreamBuilder::state_marker(const Command& cmd, bool clear) {
   m.fetch_cost = timing_.fetch_cycles_per_command;
   m.rop_cost = clear ? timing_.rop_clear_cycles(uint64_t(state_.fb_width) * uint64_t(state_.fb_height)) : 1;
   setup_.items.push_back(m);
+  if (bins_) bins_->state(setup_.items.size() - 1, cmd, state_);  // binned: the binner keeps it
 }
 
 // A 2D command: its engine operations for the 2D path, and a marker through the RTL
@@ -263,6 +268,10 @@ void StreamBuilder::triangle(const Command& cmd, const CmdPrimitives& prims, siz
   it.origin[0] = static_cast<int>(state_.origin_x());
   it.origin[1] = static_cast<int>(state_.origin_y());
   setup_.items.push_back(it);
+  if (bins_) {  // binned: the binner lists it; its fragments come with the bins' draws
+    bins_->triangle(setup_.items.size() - 1, o == SetupOutcome::Accepted ? &t : nullptr, cmd.loc);
+    return;
+  }
   if (o != SetupOutcome::Accepted) return;
   // Per pixel with a covered sample: its fragment (msaa: one, at the centre, with the
   // mask; one sample: interpolate() with mask 1), as render_scene shades it.
@@ -292,6 +301,14 @@ void StreamBuilder::triangle(const Command& cmd, const CmdPrimitives& prims, siz
 // command (as the SystemC model's command fetch sends it); the ROP is busy
 // resolve_cycles(W H, S) on it.
 void StreamBuilder::end_of_frame() {
+  if (bins_) {  // binned: fetch sends it at any sample count; it ends the binning pass
+    TbItem m;
+    m.kind = TbItem::Marker;
+    m.fetch_cost = timing_.fetch_header_cycles();
+    setup_.items.push_back(m);
+    bins_->end_of_frame(setup_.items.size() - 1);
+    return;
+  }
   if (state_.samples <= 1) return;
   TbItem m;
   m.kind = TbItem::Marker;
@@ -310,6 +327,25 @@ void build(const Scene& scene, const ArchParams& arch, int tile_size, TbSetup& s
   s.commands = scene.commands.size();
   b.end_of_frame();
   b.finish_hiz();
+}
+
+// pipeline.mode = binned on the RTL (rtl/rast_tile_buffer.sv, docs/rtl.md "Tile buffer"):
+// what it does not build yet is refused, naming the key.
+void check_binned_cosim(const ArchParams& arch, const CosimOptions& opts) {
+  const Config& cfg = arch.config;
+  const RasterState& st = arch.raster;
+  if (st.bin.mode != PipelineMode::Binned) return;
+  if (st.samples > 1)
+    throw ConfigError(cfg.origin("raster.samples") + ": raster.samples = " + std::to_string(st.samples) +
+                      " with pipeline.mode = binned has no RTL yet (the tile buffer has no per-bin resolve): "
+                      "co-simulate binned mode with raster.samples = 1 (docs/rtl.md \"Tile buffer\")");
+  if (arch.timing.rop_resolve_bytes_per_cycle % 4 != 0)
+    throw ConfigError(cfg.origin("rop.resolve_bytes_per_cycle") + ": rop.resolve_bytes_per_cycle = " +
+                      std::to_string(arch.timing.rop_resolve_bytes_per_cycle) + " with pipeline.mode = binned: the "
+                      "tile buffer's beat (rtl/rast_tile_buffer.sv) is whole 32-bit words, a multiple of 4 bytes");
+  if (opts.initial_fb)
+    throw std::runtime_error("pipeline.mode = binned: a range of frames (--frames) has no binned co-simulation "
+                             "(the tile buffer starts from the frame's initial value)");
 }
 
 }  // namespace
@@ -361,6 +397,7 @@ RtlParams cosim_wanted_params(const ArchParams& arch, const CosimOptions& opts) 
     throw ConfigError(cfg.origin("depth.early") + ": depth.early = true has no RTL yet (the RTL shades every "
                       "fragment; the SystemC model would skip the hidden ones): co-simulate with depth.early = "
                       "false (render and simulate run early Z; docs/depth-culling.md)");
+  check_binned_cosim(arch, opts);
   RtlParams wanted = rtl_params(arch);
   if (!hiz) rtl_params_without_hiz(wanted);  // no table used: the model without one (the shipped models') runs it
   wanted.tile_log2_max = std::countr_zero(static_cast<unsigned>(tile));
@@ -401,9 +438,10 @@ void cosim_setup(const Scene& scene, const ArchParams& arch, const CosimOptions&
                       "empty after frames that wrote depth");
   RenderStats ref_stats;
   s.reference = opts.reference_fb ? *opts.reference_fb : render_scene(scene, s.arch, ref_stats);
-  build(scene, arch, tile, s);
   s.memory = arch.memory;
   s.dram = arch.dram;
+  s.binned = st.bin.mode == PipelineMode::Binned;
+  build(scene, arch, tile, s);
   s.texture = s.arch.texture;
 
   s.scanout = scanout_params_if_display(arch);
@@ -411,7 +449,7 @@ void cosim_setup(const Scene& scene, const ArchParams& arch, const CosimOptions&
   for (const TbItem& it : s.items)
     (it.kind == TbItem::Marker ? r.markers : r.triangles) += it.kind == TbItem::Marker || it.kind == TbItem::Triangle;
   r.commands_2d = s.work2d.size();
-  if (s.arch.samples > 1) r.resolve_cycles = s.items.back().rop_cost;
+  if (s.arch.samples > 1 && !s.binned) r.resolve_cycles = s.items.back().rop_cost;
 }
 
 // ---- The on-demand runner's request (rtl_runner_main.cpp) ----

@@ -13,6 +13,7 @@
 #include "config/raster_state_config.h"
 #include "config/video_timing.h"
 #include "ref/memory/rop_memory.h"
+#include "ref/memory/surface_layout.h"
 #include "config/texture_config.h"
 #include "scene/texture_file.h"
 
@@ -89,6 +90,10 @@ constexpr ParamField<RtlParams> kFields[] = {
     {"HizMode", &RtlParams::hiz_mode, "depth.hiz: 0 off (no table built), 1 max, 2 minmax"},
     {"HizBlockLog2", &RtlParams::hiz_block_log2, "log2 depth.hiz_block"},
     {"HizBlocks", &RtlParams::hiz_blocks, "Hi-Z entries on chip: depth.hiz_bytes / entry bytes, at most the display's"},
+    {"TileBufferSamples", &RtlParams::tile_buffer_samples,
+     "pipeline.mode = binned: bin.tile_buffer_bytes / (4 + depth bytes) samples; 0: immediate (no tile buffer)"},
+    {"TilePortBytes", &RtlParams::tile_port_bytes, "binned: rop.resolve_bytes_per_cycle, a load or store beat; else 4"},
+    {"TilePortWords", &RtlParams::tile_port_words, "binned: TilePortBytes / depth bytes, words of a beat; else 1"},
 };
 
 constexpr ParamField<ScanoutRtlParams> kScanoutFields[] = {
@@ -418,6 +423,18 @@ RtlParams rtl_params(const ArchParams& arch) {
     p.hiz_block_log2 = std::countr_zero(unsigned(st.hiz_block));
     p.hiz_blocks = int(hiz_blocks);
   }
+  // The tile buffer (rtl/rast_tile_buffer.sv) is built in binned mode only: a sample is
+  // 4 colour bytes + the reference's depth bytes (ref/binning.h bin_depth_sample_bytes).
+  const bool binned = st.bin.mode == PipelineMode::Binned;
+  const uint64_t sample_bytes = 4 + uint64_t(depth_bytes_per_sample(st.depth_bits));
+  p.tile_buffer_samples = binned ? static_cast<int>(st.bin.tile_buffer_bytes / sample_bytes) : 0;
+  p.tile_port_bytes = binned ? static_cast<int>(t.rop_resolve_bytes_per_cycle) : 4;
+  p.tile_port_words = binned ? p.tile_port_bytes / depth_bytes_per_sample(st.depth_bits) : 1;
+  // Binned: rast_tri_setup sees only the render pass's triangles, which the timed model's
+  // binner hands to coarse raster set up already (one a cycle through fifos.bin_fifo, the
+  // setup FIFO's depth; setup's interval and latency are paid in the binning pass, which
+  // the testbench times: docs/rtl.md "Tile buffer"), so it is built with one cycle of each.
+  if (binned) p.setup_interval = p.setup_latency = 1;
   return p;
 }
 

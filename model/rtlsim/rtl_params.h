@@ -75,6 +75,10 @@ struct RtlParams {
   // Hi-Z in rast_top (rtl/rast_top_hiz.sv): depth.hiz 0 off, 1 max, 2 minmax; its block
   // and on-chip entries (hiz_onchip_blocks; 3 and 1 when off, nothing built).
   int hiz_mode = 0, hiz_block_log2 = 0, hiz_blocks = 0;
+  // pipeline.mode = binned (rtl/rast_tile_buffer.sv): the tile buffer's samples (0: no
+  // tile buffer, immediate mode), its load/store beat in bytes (rop.resolve_bytes_per_cycle)
+  // and in words (bytes / a depth sample's bytes: the widest beat).
+  int tile_buffer_samples = 0, tile_port_bytes = 4, tile_port_words = 1;
 
   bool operator==(const RtlParams&) const = default;
 };

@@ -20,6 +20,10 @@ TbRopMemory::TbRopMemory(const TbSetup& s)
   if (s.scanout) scanout_ = attach_scanout_fetch(system_, *s.scanout, s.memory, s.arch);
   shadow_.clear_depth(static_cast<uint32_t>((uint64_t{1} << s.arch.depth_bits) - 1));
   if (s.opts.initial_fb) shadow_ = *s.opts.initial_fb;  // cosim --frames, as the testbench's memory
+  if (s.binned) {  // the ROP writes the tile buffer: no ROP client (tb_binning.h has the binned clients)
+    bin_stats_ = &s.binning.memory;
+    return;
+  }
   port_.begin(0);
   port_.functional().clear_depth();
   port_.cleared(MemClient::RopDepth);
@@ -64,14 +68,14 @@ uint64_t TbRopMemory::frame_end(uint64_t t, uint64_t resolve_cycles) {
 
 void TbRopMemory::finish(uint64_t cycles, CosimResult& r) {
   if (scanout_) scanout_->raster_done(cycles);
-  if (!frame_finished_) {
+  if (!frame_finished_ && !bin_stats_) {
     port_.begin(cycles);
     port_.finish();
     port_.end();
   }
   system_.drain();
   if (trace_) trace_->commit();
-  r.memory = port_.stats();
+  r.memory = bin_stats_ ? *bin_stats_ : port_.stats();
   r.dram = nlohmann::json::object();
   add_memory_system_json(r.dram, system_.report(cycles));
   if (scanout_) add_scanout_fetch_json(r.dram, scanout_->report());

@@ -76,6 +76,7 @@ class TbRopMemory {
   std::deque<Fragment> fragments_;  // taken by the fragment FIFO, not yet replayed
   uint64_t head_left_ = 0;          // accesses of the last replayed fragment not yet in a group
   bool frame_finished_ = false;     // the resolve made the frame end's accesses
+  const MemoryStats* bin_stats_ = nullptr;  // binned: the reference's binning and tile_store counts
 };
 
 }  // namespace rastsim::rtlsim

@@ -145,7 +145,12 @@ class Testbench {
       texture_.attach(dram_->system());  // after the scan-out and the ROP, as simulate attaches it
     }
     for (size_t i = 0; i < setup.items.size(); ++i)
-      if (!setup.items[i].from_front_end) fetched_.push_back(i);
+      if (!setup.items[i].from_front_end && !setup.items[i].fed) fetched_.push_back(i);
+    if (setup.binned)
+      binner_ = std::make_unique<TbBinner>(
+          setup, dram_ ? &dram_->system() : nullptr, [this](const std::string& m) { mismatch(m); },
+          [this](uint32_t a, uint64_t t) { return rop_read_word(a, t); },
+          [this](uint32_t a, uint32_t d, uint64_t t) { rop_write_word(a, d, 0xfu, t); });
   }
 
   void run();
@@ -231,6 +236,7 @@ class Testbench {
   int command_op_ = 0;                    // cmd_op_i this cycle
   uint64_t perturb_now_ = 0;              // CosimOptions::perturb_rop_*: the next read's extra latency
   std::unique_ptr<TbRopMemory> dram_;     // memory.model = "dram": the timed memory system (null: fixed)
+  std::unique_ptr<TbBinner> binner_;      // pipeline.mode = binned: the binner and the tile buffer's memory
   TbTexture texture_;                     // the texel memory behind the texel fetch port
   // The 2D path.
   std::deque<Entry> draw2d_fifo_, op2d_fifo_;  // fetch -> front end -> engine (items: work2d indices)
@@ -334,11 +340,18 @@ bool Testbench::cycle(uint64_t t) {
   front_end_step(t);
   bool op_valid = engine_drive();
   assembly_take(t);
-  const bool tri_valid = assembly_.offering() && !tri_valid_stress_.low();
-  ports_.drive_triangle(tri_valid ? &setup_.items[assembly_.item] : nullptr);
+  // Binned: assembly hands its items to the binner, which feeds rast_top (tb_binning.h).
+  const TbItem* fed = binner_ ? binner_->feed(t) : nullptr;
+  const bool tri_valid = (binner_ ? fed != nullptr : assembly_.offering()) && !tri_valid_stress_.low();
+  ports_.drive_triangle(!tri_valid ? nullptr : binner_ ? fed : &setup_.items[assembly_.item]);
   texture_.drive(t, ports_);
   ports_.clock_edge(false);
-  const bool tri_taken = tri_valid && ports_.triangle_ready();
+  bool tri_taken = tri_valid && ports_.triangle_ready();
+  if (binner_) {
+    binner_->advance(t, tri_taken, markers_in_flight_);
+    tri_taken = binner_->take(t, assembly_.offering() ? &setup_.items[assembly_.item] : nullptr, assembly_.item);
+    if (!binner_->done()) last_busy_ = std::max(last_busy_, t);
+  }
   {
     std::string error;
     texture_.serve(t, ports_, error);
@@ -351,6 +364,7 @@ bool Testbench::cycle(uint64_t t) {
   if (beat.valid && ports_.fragment_taken()) take_beat(t, beat);
   const bool granted = rop_wait_2d_;
   rop_serve(t);
+  if (binner_) binner_->serve_port(t, ports_);  // after rop_serve: a load or store starts with its command
   // A grant made now (the 2D marker waits at the quiet ROP): the engine takes the port and
   // is offered its first operation in this cycle, as the model's engine reads the grant
   // the ROP writes (drive_engine_read evaluates it again).
@@ -379,6 +393,7 @@ void Testbench::rop_drive(uint64_t t) {
   read_ready_ = !mem_ready_stress_.low();
   write_ready_ = !mem_ready_stress_.low();
   ports_.drive_rop_memory_ready(read_ready_, write_ready_);
+  if (binner_) binner_->drive_port(t, ports_);
   command_valid_ = false;
   if (rop_commands_.empty()) {
     ports_.drive_rop_command(false, 0, 0);
@@ -386,6 +401,12 @@ void Testbench::rop_drive(uint64_t t) {
   }
   const TbItem& m = setup_.items[rop_commands_.front()];
   command_valid_ = m.work2d < 0 || rop_2d_done_;
+  if (m.bin_marker >= 0) {  // binned: a bin command (tb_binning.h)
+    const TbBinMarker& b = setup_.binning.markers[size_t(m.bin_marker)];
+    command_op_ = b.op >= 4 ? 0 : b.op;  // a bin command is a pass at the ROP
+    ports_.drive_rop_command(command_valid_, b.op, b.value, b.rect);
+    return;
+  }
   const RopCommand c = m.cmd ? rop_command(*m.cmd, setup_.arch.depth_bits) : RopCommand{};  // none: the frame end
   command_op_ = c.op;
   ports_.drive_rop_command(command_valid_, c.op, c.value);
@@ -424,7 +445,10 @@ void Testbench::rop_serve(uint64_t t) {
   }
   if (rop_commands_.empty() || !ports_.rop_command_wanted()) return;
   const TbItem& m = setup_.items[rop_commands_.front()];
-  if (command_valid_) {
+  if (command_valid_ && m.bin_marker >= 0) {  // binned: the tile buffer starts its load or store
+    rop_commands_.pop_front();
+    binner_->command(t, setup_.binning.markers[size_t(m.bin_marker)]);
+  } else if (command_valid_) {
     rop_commands_.pop_front();
     rop_2d_done_ = false;
     if (!m.cmd) resolve_left_ = dram_ ? dram_->frame_end(t, m.rop_cost) : m.rop_cost;  // the frame end: its marker's cycle, then the resolve pass
@@ -789,7 +813,7 @@ void Testbench::assembly_step(uint64_t t, bool tri_taken) {
   assembly_offered_ = true;
   count(StageId::PrimAssembly, retry ? Cyc::Stalled : Cyc::Busy);
   if (tri_taken) {
-    if (setup_.items[assembly_.item].kind == TbItem::Marker) markers_in_flight_.push_back(assembly_.item);
+    if (setup_.items[assembly_.item].kind == TbItem::Marker && !binner_) markers_in_flight_.push_back(assembly_.item);
     assembly_.active = false;
     tx_end(StageId::PrimAssembly, retry ? t : t + 1);
   }
@@ -965,7 +989,7 @@ bool Testbench::done_but_rop() const {
          clip_fifo_.empty() && !geometry_.active && screen_fifo_.empty() && !assembly_clip_ &&
          ports_.idle() && !ports_.fragment_beat().valid && !read_pending_ && rop_commands_.empty() &&
          draw2d_fifo_.empty() && !front_end_.active && op2d_fifo_.empty() && engine_work_ < 0 && !engine_busy_ &&
-         !rop_wait_2d_ && !rop_2d_done_;
+         !rop_wait_2d_ && !rop_2d_done_ && (!binner_ || binner_->done());
 }
 void Testbench::end_of_run_check() {
   if (next_expected_ < setup_.expected.size())

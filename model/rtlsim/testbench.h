@@ -25,6 +25,7 @@
 #include "ref/scene.h"
 #include "ref/texture/texture.h"
 #include "rtlsim/cosim.h"
+#include "rtlsim/tb_binning.h"
 #include "timing/dram.h"
 
 namespace rastsim::rtlsim {
@@ -59,6 +60,8 @@ struct TbItem {
   bool from_front_end = false; // a clip-space command's triangle: the front end hands it to assembly
   size_t first_step = 0, steps = 0;  // ClipCommand: its steps in TbSetup::front_end_steps
   int64_t command = -1;        // the scene command it comes from (-1: the end-of-frame marker)
+  bool fed = false;            // binned: a render-pass item the binner feeds (fetch skips it)
+  int bin_marker = -1;         // binned: its bin command (TbSetup::binning.markers)
 };
 // One step of the geometry front end on a clip-space command (sc/front_end.cpp): busy
 // `cycles` (TimingParams::front_end_step_cycles), then a screen-FIFO entry: triangle
@@ -130,6 +133,9 @@ struct TbSetup {
   // expected fragments leave the culled tiles out).
   bool hiz = false;
   uint64_t tiles_culled_hiz = 0, tiles_accepted_hiz = 0;
+  // pipeline.mode = binned (tb_binning.h): the binner's program and bin commands.
+  bool binned = false;
+  TbBinning binning;
 };
 
 // ---- The RTL's ports (rtl/rast_top.sv, rtl/rast_engine2d.sv) as plain values ----
@@ -168,6 +174,14 @@ struct RopLane {
 inline uint32_t rop_depth_base(int width, int height, int samples) {
   return uint32_t(uint64_t(width) * uint64_t(height) * uint64_t(samples) * 4);
 }
+
+// Binned mode: a beat the tile buffer offers on rast_top's tl_* port (rtl/rast_tile_buffer.sv).
+struct TileBeat {
+  bool valid = false, write = false;  // tl_valid_o, tl_write_o
+  uint32_t addr = 0;                  // tl_addr_o: the first word's byte address
+  int count = 0;                      // tl_count_o: words
+  std::vector<uint32_t> words;        // tl_wdata_o: the words of the store beat taken in the cycle before
+};
 
 // The 2D engine's memory addresses this cycle, sign-extended pixel indices.
 struct Engine2dAccess {
@@ -221,9 +235,13 @@ class RastPorts {
   virtual RtlStageBits stage_bits() const = 0;
 
   // The ROP's command port: cmd_ready_o (a marker waits for its command, the ROP is
-  // quiet), and the command offered (cmd_valid_i, cmd_op_i, cmd_value_i).
+  // quiet), and the command offered (cmd_valid_i, cmd_op_i, cmd_value_i; cmd_bin_i: a bin
+  // command's rectangle x0, y0, x1, y1).
   virtual bool rop_command_wanted() const = 0;
-  virtual void drive_rop_command(bool valid, int op, uint32_t value) = 0;
+  virtual void drive_rop_command(bool valid, int op, uint32_t value, const int* bin = nullptr) = 0;
+  // Binned mode: the tile buffer's beat, and tl_ready_i, tl_rvalid_i with its words.
+  virtual TileBeat tile_beat() const = 0;
+  virtual void drive_tile(bool ready, bool rvalid, const std::vector<uint32_t>& words) = 0;
   // The ROP's memory port. Reads: rd_valid_o, lane k's rd_lanes_o bit and request.
   virtual bool rop_read_valid() const = 0;
   virtual bool rop_read_lane_valid(int k) const = 0;

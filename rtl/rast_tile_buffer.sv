@@ -1,0 +1,405 @@
+// SPDX-License-Identifier: Apache-2.0
+// rast_tile_buffer: the on-chip tile buffer of binned mode (pipeline.mode = binned;
+// docs/binning.md "Timed model", docs/rtl.md "Tile buffer"). The ROP reads and writes it
+// instead of the framebuffer in memory while a bin renders; a bin's begin marker loads it
+// from memory (or starts it from the frame's initial value), its end marker stores it.
+//
+//   ROP memory port (bin-local addresses) -> colour and depth arrays (Slots samples each)
+//   bin begin: loads, reads through the memory port tl_* (waited for), PortBytes a cycle
+//   bin end:   stores, posted writes through tl_*, PortBytes a cycle
+//   bin clear: a flash clear, ClearPixelsPerCycle pixels a cycle of time
+//
+// - Storage: Slots = bin.tile_buffer_bytes / (4 + depth bytes) samples (TileBufferSamples,
+//   model/rtlsim/rtl_params.cpp): a 32-bit colour word {a, b, g, r} and a DepthW-bit depth
+//   a sample, each with a valid bit. Sample s of bin pixel (x', y') (x' = x - bin x0) is
+//   slot (y' w + x') S + s, w the bin's width clipped to the screen: the ROP addresses it
+//   with fb_width_i = w, colour base 0 and depth base Slots 4 (rast_top), so its address
+//   arithmetic is the immediate mode's. A slot not valid reads as its surface's fill
+//   value: the frame's initial value (colour opaque black, depth the far value
+//   2^DepthW - 1: ref render_scene's framebuffer) after a begin marker that does not load
+//   the surface (the reference's tile buffer is the framebuffer, untouched before a
+//   bin's first pass), or a clear's value.
+// - ROP port: a read taken in cycle c answers in c + 1 from the arrays (which hold every
+//   write taken up to c: the ROP's one-cycle memory, rop_fragment_cycles); writes apply
+//   each lane's words under their byte enables. rd_ready_o and wr_ready_o are low while
+//   a load, store or clear runs (busy_o), and the ROP's next command waits.
+// - Commands (cmd_take_i: the ROP takes a marker with a command, rast_top's handshake;
+//   every one is a pass at the ROP): op 4 begins a bin (cmd_bin_i its rectangle {y1, x1,
+//   y0, x0}, half-open px; cmd_value_i bit 0 load colour, bit 1 load depth), op 5 ends it
+//   (bit 0 store colour, bit 1 store depth), op 1 / 2 clears the bin's colour / depth to
+//   cmd_value_i: valid bits cleared, the value the fill value, busy
+//   ceil(A / ClearPixelsPerCycle) cycles from the marker's (the timed model's
+//   rop_clear_cycles of the bin's A pixels).
+// - Loads and stores walk the bin's rows of each surface in turn, a beat of up to
+//   PortBytes a cycle from the marker's cycle (PortBytes / 4 colour words, PortBytes /
+//   DepthBytes depth words, DepthBytes = 2 for DepthW <= 16, else 4, as the reference
+//   counts a sample), never two rows in one beat: a row of w S samples is
+//   ceil(w S bytes / PortBytes) beats, a bin ceil(L / PortBytes) when a row is a multiple
+//   of PortBytes (the SystemC model's ceil(L / R), R = rop.resolve_bytes_per_cycle). Beat
+//   addresses are the memory's layout (docs/rtl.md "ROP": sample s of pixel (x, y) at base
+//   + ((y W + x) S + s) 4, W = fb_width_i). A load's responses come back in order
+//   (tl_rvalid_i, tl_rdata_i) and the ROP waits until the last (it may read in that
+//   cycle); a store beat's words follow its request by a cycle on tl_wdata_o (read from
+//   the arrays after the ROP's last write, which may be taken in the end marker's cycle)
+//   and the ROP waits until the last request is taken.
+`default_nettype none
+
+module rast_tile_buffer #(
+  parameter int PixelW = 12,        // pixel x, y, unsigned
+  parameter int DepthW = 24,        // raster.depth_bits
+  parameter int MaxSamples = 4,     // largest raster.samples
+  parameter int SampleLog2W = 3,    // samples_log2_i bits
+  parameter int P = 4,              // the ROP's accesses a cycle (rop.pixels_per_cycle)
+  parameter int LenW = 9,           // the ROP's burst length bits
+  parameter int Slots = 4096,       // samples held (TileBufferSamples)
+  parameter int PortBytes = 64,     // bytes a load or store beat (rop.resolve_bytes_per_cycle)
+  parameter int ClearPixelsPerCycle = 64,  // a clear's pixels a cycle (rop.clear_pixels_per_cycle)
+  parameter int AddrW = 32,         // byte address bits
+  // Derived (leave at the default).
+  parameter int DepthBytes = DepthW <= 16 ? 2 : 4,  // a depth sample's bytes in memory
+  parameter int PortWords = PortBytes / DepthBytes  // words of the widest beat (depth)
+) (
+  input  wire logic                              clk_i,
+  input  wire logic                              rst_ni,
+  input  wire logic [SampleLog2W-1:0]            samples_log2_i,  // log2 raster.samples (static)
+  input  wire logic [PixelW-1:0]                 fb_width_i,      // the screen's width, px (static)
+  input  wire logic [AddrW-1:0]                  color_base_i,    // colour surface in memory (static)
+  input  wire logic [AddrW-1:0]                  depth_base_i,    // depth surface in memory (static)
+  // The ROP takes a marker with a bin command.
+  input  wire logic                              cmd_take_i,
+  input  wire logic [2:0]                        cmd_op_i,        // 4 begin, 5 end (others: nothing here)
+  input  wire logic [31:0]                       cmd_value_i,     // bin: bit 0 colour, bit 1 depth loaded / stored; clear: its word
+  input  wire logic [4*PixelW-1:0]               cmd_bin_i,       // {y1, x1, y0, x0}, half-open px
+  output      logic                              busy_o,          // a load or store runs: the ROP waits
+  output      logic [PixelW-1:0]                 bin_x0_o,        // the bin's origin, px
+  output      logic [PixelW-1:0]                 bin_y0_o,
+  output      logic [PixelW-1:0]                 bin_w_o,         // its size, px (clipped to the screen)
+  output      logic [PixelW-1:0]                 bin_h_o,
+  // The ROP's memory port (rast_rop's rd_*, wr_*), bin-local byte addresses.
+  input  wire logic                              rd_valid_i,
+  output      logic                              rd_ready_o,
+  input  wire logic [P-1:0]                      rd_lanes_i,
+  input  wire logic [P*AddrW-1:0]                rd_addr_i,
+  input  wire logic [P*LenW-1:0]                 rd_len_i,
+  output      logic                              rd_rvalid_o,
+  output      logic [P*MaxSamples*32-1:0]        rd_rdata_o,
+  input  wire logic                              wr_valid_i,
+  output      logic                              wr_ready_o,
+  input  wire logic [2*P-1:0]                    wr_lanes_i,
+  input  wire logic [2*P*AddrW-1:0]              wr_addr_i,
+  input  wire logic [2*P*LenW-1:0]               wr_len_i,
+  input  wire logic [2*P*MaxSamples*4-1:0]       wr_be_i,
+  input  wire logic [2*P*32-1:0]                 wr_data_i,
+  // The memory port of loads and stores: a beat of tl_count_o words from byte address
+  // tl_addr_o (consecutive words; a depth word's low DepthW bits), written (tl_write_o,
+  // data tl_wdata_o word i at [32 i +: 32]) or read (its data later on tl_rdata_i, in order).
+  output      logic                              tl_valid_o,
+  input  wire logic                              tl_ready_i,
+  output      logic                              tl_write_o,
+  output      logic [AddrW-1:0]                  tl_addr_o,
+  output      logic [$clog2(PortWords+1)-1:0]    tl_count_o,
+  output      logic [PortWords*32-1:0]           tl_wdata_o,
+  input  wire logic                              tl_rvalid_i,
+  input  wire logic [PortWords*32-1:0]           tl_rdata_i,
+  output      logic                              idle_o
+);
+  localparam int SlotW = $clog2(Slots + 1);                 // a slot index, 0 .. Slots
+  localparam int CntW = $clog2(PortWords + 1);              // words of a beat
+  localparam int RowW = PixelW + SampleLog2W + 4;           // words of a bin row, w S (up to 2^SampleLog2W - 1 shifts)
+  localparam int ColorWords = PortBytes / 4;                // colour words a beat
+  localparam int DepthWords = PortBytes / DepthBytes;       // depth words a beat
+  localparam logic [31:0] InitColor = 32'hff000000;         // {a = 255, b, g, r = 0}: opaque black
+  localparam logic [DepthW-1:0] InitDepth = {DepthW{1'b1}}; // the far value
+
+  if (PortBytes < 4 || PortBytes % 4 != 0) begin : g_check_port
+    $error("rast_tile_buffer: PortBytes (%0d) must be a positive multiple of 4", PortBytes);
+  end
+  if (PortWords != PortBytes / DepthBytes) begin : g_check_words
+    $error("rast_tile_buffer: PortWords (%0d) must be PortBytes / DepthBytes (%0d)", PortWords, PortBytes / DepthBytes);
+  end
+  if (Slots < 2) begin : g_check_slots
+    $error("rast_tile_buffer: Slots (%0d) must be at least 2", Slots);
+  end
+  localparam int IdxW = $clog2(Slots);  // an array index
+
+  // ---- Storage ----
+  logic [31:0]       col_q [Slots];
+  logic [DepthW-1:0] dep_q [Slots];
+  logic [Slots-1:0]  col_v_q, dep_v_q;  // valid: else the surface's fill value
+  logic [31:0]       col_fill_q;        // what a slot not valid holds: the initial value or a clear's
+  logic [DepthW-1:0] dep_fill_q;
+  function automatic logic [31:0] col_word(input logic [SlotW-1:0] i);
+    col_word = i < SlotW'(Slots) && col_v_q[IdxW'(i)] ? col_q[IdxW'(i)] : col_fill_q;
+  endfunction
+  function automatic logic [31:0] dep_word(input logic [SlotW-1:0] i);
+    logic [DepthW-1:0] d;
+    d = i < SlotW'(Slots) && dep_v_q[IdxW'(i)] ? dep_q[IdxW'(i)] : dep_fill_q;
+    dep_word = 32'(d);
+  endfunction
+
+  // ---- The bin and its load or store ----
+  logic [PixelW-1:0] x0_q, y0_q, w_q, h_q;
+  logic              depth_too_q;  // the load or store goes on to depth after colour
+  logic              load_q;    // a load runs (else a store, when busy)
+  logic              busy_q;    // a load or store runs
+  logic              clr_busy_q;  // a clear's cycles after its marker's
+  logic [2*PixelW:0] clr_left_q;  // its pixels left after this cycle's
+  // The command taken this cycle.
+  logic begin_take, end_take, clear_take, xfer_take;
+  logic [1:0] cmd_flags;
+  logic [PixelW-1:0] cx0, cy0, cx1, cy1;
+  assign {cy1, cx1, cy0, cx0} = cmd_bin_i;
+  assign begin_take = cmd_take_i && cmd_op_i == 3'd4;
+  assign end_take = cmd_take_i && cmd_op_i == 3'd5;
+  assign clear_take = cmd_take_i && (cmd_op_i == 3'd1 || cmd_op_i == 3'd2);
+  assign xfer_take = begin_take || end_take;
+  assign cmd_flags = cmd_value_i[1:0];
+  // The bin as of this cycle: a begin's rectangle from its marker's cycle on.
+  logic [PixelW-1:0] bx0, by0, bw, bh;
+  logic depth_too;
+  assign {bx0, by0} = begin_take ? {cx0, cy0} : {x0_q, y0_q};
+  assign {bw, bh} = begin_take ? {cx1 - cx0, cy1 - cy0} : {w_q, h_q};
+  assign depth_too = xfer_take ? cmd_flags[1] : depth_too_q;
+  logic [RowW-1:0]   row_words, row_words_q;  // w S: of this cycle's bin, of the registered one
+  assign row_words = RowW'(bw) << samples_log2_i;
+  assign row_words_q = RowW'(w_q) << samples_log2_i;
+  // A walk over the surfaces' rows, a beat at a time: {done, surface (1: depth), row,
+  // word in the row, slot}. The beats issued and (loads) the responses each walk it.
+  localparam int WalkW = 2 + PixelW + RowW + SlotW;
+  // Beats walk rows of `rw` words, `h` rows, colour then (`dtoo`) depth.
+  function automatic logic [CntW-1:0] beat_words(input logic [WalkW-1:0] wk, input logic [RowW-1:0] rw);
+    logic [RowW-1:0] left, most;
+    left = rw - wk[SlotW +: RowW];
+    most = wk[WalkW-2] ? RowW'(DepthWords) : RowW'(ColorWords);
+    beat_words = CntW'(left < most ? left : most);
+  endfunction
+  function automatic logic [WalkW-1:0] walk_start(input logic [1:0] flags);
+    walk_start = {!flags[0] && !flags[1], !flags[0], {(WalkW - 2){1'b0}}};
+  endfunction
+  function automatic logic [WalkW-1:0] walk_next(input logic [WalkW-1:0] wk, input logic [RowW-1:0] rw,
+                                               input logic [PixelW-1:0] h, input logic dtoo);
+    logic done, depth;
+    logic [PixelW-1:0] row;
+    logic [RowW-1:0] off;
+    logic [SlotW-1:0] slot;
+    done = 1'b0;
+    depth = wk[WalkW-2];
+    row = wk[SlotW + RowW +: PixelW];
+    off = wk[SlotW +: RowW] + RowW'(beat_words(wk, rw));
+    slot = wk[0 +: SlotW] + SlotW'(beat_words(wk, rw));
+    if (off == rw) begin
+      off = '0;
+      row = row + 1'b1;
+      if (row == h) begin
+        row = '0;
+        slot = '0;
+        if (!depth && dtoo) depth = 1'b1;
+        else done = 1'b1;
+      end
+    end
+    walk_next = {done, depth, row, off, slot};
+  endfunction
+  logic [WalkW-1:0] iss_q, rsp_q;  // the next beat to issue; the next response (loads)
+  logic [WalkW-1:0] iss_cur;       // the beat offered: a load's or store's first from its marker's cycle
+  assign iss_cur = xfer_take ? walk_start(cmd_flags) : iss_q;
+
+  // The offered beat: its memory address.
+  logic [AddrW-1:0] beat_addr;
+  always_comb begin
+    logic [2*PixelW-1:0] pixel;
+    pixel = ((2 * PixelW)'(by0) + (2 * PixelW)'(iss_cur[SlotW + RowW +: PixelW])) * (2 * PixelW)'(fb_width_i) +
+            (2 * PixelW)'(bx0);
+    beat_addr = (iss_cur[WalkW-2] ? depth_base_i : color_base_i) +
+                (((AddrW'(pixel) << samples_log2_i) + AddrW'(iss_cur[SlotW +: RowW])) << 2);
+  end
+  assign tl_valid_o = (xfer_take || busy_q) && !iss_cur[WalkW-1];
+  assign tl_write_o = xfer_take ? end_take : !load_q;
+  assign tl_addr_o = beat_addr;
+  assign tl_count_o = beat_words(iss_cur, row_words);
+  // A store beat's words follow its request by a cycle (read from the arrays then, after
+  // every write the ROP made before its end marker).
+  logic             wd_valid_q, wd_depth_q;
+  logic [SlotW-1:0] wd_slot_q;
+  logic [CntW-1:0]  wd_count_q;
+  always_comb begin
+    logic [SlotW-1:0] s;
+    for (int i = 0; i < PortWords; i++) begin
+      s = wd_slot_q + SlotW'(i);
+      tl_wdata_o[i*32 +: 32] = wd_valid_q && CntW'(i) < wd_count_q ? (wd_depth_q ? dep_word(s) : col_word(s)) : 32'h0;
+    end
+  end
+  logic iss_take, rsp_take;
+  assign iss_take = tl_valid_o && tl_ready_i;
+  assign rsp_take = busy_q && load_q && tl_rvalid_i && !rsp_q[WalkW-1];
+  // Busy until a load's last response is in, or a store's last beat is taken.
+  logic busy_next;
+  logic [WalkW-1:0] iss_next, rsp_next;
+  assign iss_next = walk_next(iss_cur, row_words, bh, depth_too);
+  assign rsp_next = walk_next(rsp_q, row_words_q, h_q, depth_too_q);  // a response: after its begin's cycle
+  always_comb begin
+    busy_next = busy_q;
+    if (xfer_take) busy_next = cmd_flags != 2'b00 && !(end_take && iss_take && iss_next[WalkW-1]);
+    else if (busy_q && load_q && rsp_take && rsp_next[WalkW-1]) busy_next = 1'b0;
+    else if (busy_q && !load_q && iss_take && iss_next[WalkW-1]) busy_next = 1'b0;
+  end
+  // A load's last response frees the ROP in its own cycle (it reads the arrays a cycle
+  // later); a store's last beat the cycle after.
+  assign busy_o = (busy_q && !(load_q && rsp_take && rsp_next[WalkW-1])) || clr_busy_q;
+  assign idle_o = !busy_q && !clr_busy_q && !wd_valid_q;
+  assign {bin_x0_o, bin_y0_o, bin_w_o, bin_h_o} = {x0_q, y0_q, w_q, h_q};
+
+  // A clear: its marker's cycle and ceil(A / ClearPixelsPerCycle) - 1 more (rop_clear_cycles).
+  logic [2*PixelW:0] clr_area;
+  assign clr_area = (2 * PixelW + 1)'(w_q) * (2 * PixelW + 1)'(h_q);
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      busy_q <= 1'b0;
+      load_q <= 1'b0;
+      clr_busy_q <= 1'b0;
+      wd_valid_q <= 1'b0;
+      iss_q <= {1'b1, {(WalkW - 1){1'b0}}};
+      rsp_q <= {1'b1, {(WalkW - 1){1'b0}}};
+    end else begin
+      busy_q <= busy_next;
+      if (xfer_take) load_q <= begin_take;
+      if (iss_take) iss_q <= iss_next;
+      else if (xfer_take) iss_q <= iss_cur;
+      if (begin_take) rsp_q <= walk_start(cmd_flags);
+      else if (rsp_take) rsp_q <= rsp_next;
+      wd_valid_q <= iss_take && tl_write_o;
+      if (clear_take) begin
+        clr_busy_q <= clr_area > (2 * PixelW + 1)'(ClearPixelsPerCycle);
+        clr_left_q <= clr_area - (2 * PixelW + 1)'(ClearPixelsPerCycle);
+      end else if (clr_busy_q) begin
+        clr_busy_q <= clr_left_q > (2 * PixelW + 1)'(ClearPixelsPerCycle);
+        clr_left_q <= clr_left_q - (2 * PixelW + 1)'(ClearPixelsPerCycle);
+      end
+    end
+  end
+  always_ff @(posedge clk_i) begin
+    if (begin_take) begin
+      x0_q <= cx0;
+      y0_q <= cy0;
+      w_q <= cx1 - cx0;
+      h_q <= cy1 - cy0;
+    end
+    if (xfer_take) depth_too_q <= cmd_flags[1];
+    wd_slot_q <= iss_cur[0 +: SlotW];
+    wd_count_q <= tl_count_o;
+    wd_depth_q <= iss_cur[WalkW-2];
+  end
+
+  // ---- The ROP's port: reads answered the next cycle, writes applied ----
+  localparam int DepthSlot = Slots * 4;  // the ROP's depth base (rast_top)
+  logic              rq_valid_q;
+  logic [P-1:0]      rq_lanes_q;
+  logic [P*AddrW-1:0] rq_addr_q;
+  logic [P*LenW-1:0] rq_len_q;
+  assign rd_ready_o = !busy_o;
+  assign wr_ready_o = !busy_o;
+  assign rd_rvalid_o = rq_valid_q;
+  // A bin-local byte address as {depth, slot}.
+  function automatic logic [SlotW:0] local_slot(input logic [AddrW-1:0] a);
+    local_slot = a >= AddrW'(DepthSlot) ? {1'b1, SlotW'((a - AddrW'(DepthSlot)) >> 2)} : {1'b0, SlotW'(a >> 2)};
+  endfunction
+  always_comb begin
+    logic [SlotW:0] ls;
+    logic [SlotW-1:0] s;
+    for (int k = 0; k < P; k++) begin
+      ls = local_slot(rq_addr_q[k*AddrW +: AddrW]);
+      for (int i = 0; i < MaxSamples; i++) begin
+        s = ls[SlotW-1:0] + SlotW'(i);
+        rd_rdata_o[(k*MaxSamples + i)*32 +: 32] =
+            rq_lanes_q[k] && LenW'(i) < rq_len_q[k*LenW +: LenW] ? (ls[SlotW] ? dep_word(s) : col_word(s)) : 32'h0;
+      end
+    end
+  end
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) rq_valid_q <= 1'b0;
+    else rq_valid_q <= rd_valid_i && rd_ready_o;
+  end
+  always_ff @(posedge clk_i) begin
+    if (rd_valid_i && rd_ready_o) begin
+      rq_lanes_q <= rd_lanes_i;
+      rq_addr_q <= rd_addr_i;
+      rq_len_q <= rd_len_i;
+    end
+  end
+
+  // Word writes: the ROP's (a group's lanes, or a clear's fill burst), a load's response.
+  function automatic logic [31:0] merge(input logic [31:0] old, input logic [31:0] d, input logic [3:0] be);
+    for (int b = 0; b < 4; b++) merge[b*8 +: 8] = be[b] ? d[b*8 +: 8] : old[b*8 +: 8];
+  endfunction
+  // Valid bits and fill values, in one process (a packed vector a surface). A clear (op 1
+  // colour, 2 depth: its word on cmd_value_i) clears the surface's valid bits and makes its
+  // value the fill value: a flash clear, timed as ClearPixelsPerCycle pixels a cycle.
+  logic rop_wr;
+  assign rop_wr = wr_valid_i && wr_ready_o;
+  /* verilator lint_off WIDTHCONCAT */  // the flash clears: Slots-bit zeros
+  always_ff @(posedge clk_i) begin
+    logic [SlotW:0] ls;
+    logic [SlotW-1:0] s;
+    if (rop_wr) begin
+      for (int k = 0; k < 2 * P; k++) begin
+        ls = local_slot(wr_addr_i[k*AddrW +: AddrW]);
+        for (int i = 0; i < MaxSamples; i++) begin
+          s = ls[SlotW-1:0] + SlotW'(i);
+          if (wr_lanes_i[k] && LenW'(i) < wr_len_i[k*LenW +: LenW] && wr_be_i[(k*MaxSamples + i)*4 +: 4] != 4'h0 &&
+              s < SlotW'(Slots)) begin
+            if (ls[SlotW]) dep_v_q[IdxW'(s)] <= 1'b1;
+            else col_v_q[IdxW'(s)] <= 1'b1;
+          end
+        end
+      end
+    end
+    if (rsp_take) begin
+      for (int i = 0; i < PortWords; i++) begin
+        s = rsp_q[0 +: SlotW] + SlotW'(i);
+        if (CntW'(i) < beat_words(rsp_q, row_words_q) && s < SlotW'(Slots)) begin
+          if (rsp_q[WalkW-2]) dep_v_q[IdxW'(s)] <= 1'b1;
+          else col_v_q[IdxW'(s)] <= 1'b1;
+        end
+      end
+    end
+    // Last: a clear taken with a load's last response wins over it.
+    if ((begin_take && !cmd_flags[0]) || (clear_take && cmd_op_i == 3'd1)) col_v_q <= '0;
+    if ((begin_take && !cmd_flags[1]) || (clear_take && cmd_op_i == 3'd2)) dep_v_q <= '0;
+    if (begin_take && !cmd_flags[0]) col_fill_q <= InitColor;
+    if (begin_take && !cmd_flags[1]) dep_fill_q <= InitDepth;
+    if (clear_take && cmd_op_i == 3'd1) col_fill_q <= cmd_value_i;
+    if (clear_take && cmd_op_i == 3'd2) dep_fill_q <= DepthW'(cmd_value_i);
+  end
+  /* verilator lint_on WIDTHCONCAT */
+
+  // Data words: one write port a ROP lane's word and a load beat's word, each its own
+  // process (one delayed array write each).
+  for (genvar k = 0; k < 2 * P; k++) begin : g_rop_lane
+    for (genvar i = 0; i < MaxSamples; i++) begin : g_word
+      logic [SlotW:0] ls;
+      logic [SlotW-1:0] s;
+      logic [3:0] be;
+      logic en;
+      assign ls = local_slot(wr_addr_i[k*AddrW +: AddrW]);
+      assign s = ls[SlotW-1:0] + SlotW'(i);
+      assign be = wr_be_i[(k*MaxSamples + i)*4 +: 4];
+      assign en = rop_wr && wr_lanes_i[k] && LenW'(i) < wr_len_i[k*LenW +: LenW] && be != 4'h0 &&
+                  s < SlotW'(Slots);
+      always_ff @(posedge clk_i) begin
+        if (en && ls[SlotW]) dep_q[IdxW'(s)] <= DepthW'(merge(dep_word(s), wr_data_i[k*32 +: 32], be));
+        if (en && !ls[SlotW]) col_q[IdxW'(s)] <= merge(col_word(s), wr_data_i[k*32 +: 32], be);
+      end
+    end
+  end
+  for (genvar i = 0; i < PortWords; i++) begin : g_load_word
+    logic [SlotW-1:0] s;
+    logic en;
+    assign s = rsp_q[0 +: SlotW] + SlotW'(i);
+    assign en = rsp_take && CntW'(i) < beat_words(rsp_q, row_words_q) && s < SlotW'(Slots);
+    always_ff @(posedge clk_i) begin
+      if (en && rsp_q[WalkW-2]) dep_q[IdxW'(s)] <= DepthW'(tl_rdata_i[i*32 +: 32]);
+      if (en && !rsp_q[WalkW-2]) col_q[IdxW'(s)] <= tl_rdata_i[i*32 +: 32];
+    end
+  end
+endmodule
+
+`default_nettype wire
