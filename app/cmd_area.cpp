@@ -60,9 +60,11 @@ void run_area_command(const AreaCommandOptions& o) {
   ao.progress = progress_printer(o.quiet);
   const bool tty = isatty(2);
   AreaReport r = synthesize_area(p, ao);
-  // The memory system's arrays belong to the whole design, not to one module; the ROP
-  // cache's module synthesises its tags and state and counts its data array.
-  if (o.top.empty()) add_storage(r, memory_storage(arch));
+  // The memory system's arrays belong to the whole design, not to one module; rast_top
+  // and the ROP and texture caches' modules synthesise their tags and state and count
+  // their data arrays (blackboxes to Yosys).
+  if (o.top.empty()) add_storage(r, design_storage(arch));
+  if (o.top == "rast_top") add_storage(r, rast_top_storage(arch));
   if (o.top == "rast_rop_cache") add_storage(r, rop_cache_data_storage(arch));
   if (o.top == "rast_texture_cache") add_storage(r, texture_cache_data_storage(arch));
   if (!o.quiet && tty) std::cerr << "\r\033[K" << std::flush;

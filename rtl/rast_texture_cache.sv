@@ -26,9 +26,11 @@
 //   (blocking, as the timed model's texture port).
 // - Stats: evt_hits_o (texels that hit this cycle) and evt_miss_o (a miss this cycle): their
 //   sums are texture_cache_hits and texture_cache_misses; the fills are the misses.
-// - Storage: tags, valid bits and ranks in flip-flops; the data in Ports copies of
-//   rast_rop_cache_data (single-port SRAM, registered read), copy p reading the texel
-//   looked up at position p of a cycle, every fill written to all copies.
+// - Storage: tags, valid bits and ranks in flip-flops, a row a set (Sets-entry arrays of
+//   rows: a port reads its set's row through a Sets-way select, a write enables one row);
+//   the data in Ports copies of rast_rop_cache_data (single-port SRAM, registered read),
+//   copy p reading the texel looked up at position p of a cycle, every fill written to all
+//   copies.
 //
 // Cycles (docs/texture.md): a request whose texels all hit takes ceil(count / Ports)
 // lookup cycles, back to back (the next request is taken in the cycle of the last
@@ -76,6 +78,7 @@ module rast_texture_cache #(
   localparam int Beats = LineBytes / BeatBytes;
   localparam int BeatW = Beats > 1 ? $clog2(Beats) : 1;
   localparam int RowRankW = Ways * WayW;
+  localparam int RowTagW = Ways * TagW;
 
   if (Sets < 1 || (Sets & (Sets - 1)) != 0 || Sets * Ways * LineBytes != CacheBytes) begin : g_check_sets
     $error("rast_texture_cache: CacheBytes (%0d) must be Ways (%0d) x LineBytes (%0d) x a power of two", CacheBytes,
@@ -97,9 +100,13 @@ module rast_texture_cache #(
 
   // ---- State ----
   state_e                  state_q;
-  logic [Entries*TagW-1:0] tag_q;      // entry e = set Ways + way at [e TagW +: TagW]
-  logic [Entries*WayW-1:0] rank_q;     // recency: 0 most recent
-  logic [Entries-1:0]      valid_q;
+  // A row a set, way w at [w TagW +: TagW], [w WayW +: WayW], [w]. Rows, not one flat vector
+  // of Entries: a part-select at a variable offset of a 7,680-bit vector (the default's tags)
+  // made Yosys build barrel shifters across all of it for each of the 16 tag reads, and its
+  // synthesis did not finish in 45 minutes (docs/texture.md, "Area").
+  logic [RowTagW-1:0]      tag_q [Sets];
+  logic [RowRankW-1:0]     rank_q [Sets];   // recency: 0 most recent
+  logic [Ways-1:0]         valid_q [Sets];
   // The request being looked up.
   logic                    cur_valid_q;
   logic [4*AddrW-1:0]      cur_addr_q;
@@ -149,26 +156,38 @@ module rast_texture_cache #(
   logic [Ports*WayW-1:0]    way;       // the hit way (position 0: the victim on a miss)
   logic [Ports*SetIdxW-1:0] set;
   logic [Ports*RowRankW-1:0] row_after;  // position p's set's ranks after its touch
+  logic [RowTagW-1:0]       tags0;     // position 0's set's row of tags and valid bits
+  logic [Ways-1:0]          valid0;
   logic [2:0]               n_take;
   always_comb begin
     logic prefix;
     logic found;
     logic [RowRankW-1:0] row_before;
+    logic [RowTagW-1:0] row_tag;
+    logic [Ways-1:0] row_valid;
     prefix = 1'b1;
     found = 1'b0;
     n_take = '0;
     row_after = '0;
+    tags0 = '0;
+    valid0 = '0;
     for (int p = 0; p < Ports; p++) begin
       logic [LineW-1:0] l;
       logic [SetIdxW-1:0] s;
       l = cur_addr_q[(32'(k_q) + p) % 4 * AddrW + OffW +: LineW];
       s = set_of(l);
       set[p*SetIdxW +: SetIdxW] = s;
+      row_tag = tag_q[s];
+      row_valid = valid_q[s];
+      if (p == 0) begin
+        tags0 = row_tag;
+        valid0 = row_valid;
+      end
       active[p] = 32'(k_q) + p < 32'(cur_count_q);
       hit[p] = 1'b0;
       way[p*WayW +: WayW] = '0;
       for (int w = 0; w < Ways; w++)
-        if (valid_q[entry(s, WayW'(w))] && tag_q[entry(s, WayW'(w))*TagW +: TagW] == l[LineW-1 -: TagW]) begin
+        if (row_valid[w] && row_tag[w*TagW +: TagW] == l[LineW-1 -: TagW]) begin
           hit[p] = 1'b1;
           way[p*WayW +: WayW] = WayW'(w);
         end
@@ -176,12 +195,12 @@ module rast_texture_cache #(
       take[p] = prefix;
       if (prefix) n_take = n_take + 1'b1;
       // The set's ranks before this touch: the last earlier position in the same set, else the array's.
-      row_before = rank_q[s * RowRankW +: RowRankW];
+      row_before = rank_q[s];
       for (int q = 0; q < p; q++)
         if (take[q] && set[q*SetIdxW +: SetIdxW] == s) row_before = row_after[q*RowRankW +: RowRankW];
       if (p == 0 && !hit[0]) begin  // the victim: the first invalid way, else rank Ways - 1
         for (int w = 0; w < Ways; w++)
-          if (!found && !valid_q[entry(s, WayW'(w))]) begin
+          if (!found && !row_valid[w]) begin
             found = 1'b1;
             way[WayW-1:0] = WayW'(w);
           end
@@ -243,18 +262,33 @@ module rast_texture_cache #(
   end
 
   // ---- Tags, valid bits, ranks ----
+  // A miss's set row: the victim way's tag replaced and made valid.
+  logic [RowTagW-1:0] fill_tags;
+  logic [Ways-1:0]    fill_valid;
+  always_comb begin
+    fill_tags = tags0;
+    fill_tags[way[WayW-1:0]*TagW +: TagW] = cur_addr_q[32'(k_q) * AddrW + AddrW - TagW +: TagW];
+    fill_valid = valid0;
+    fill_valid[way[WayW-1:0]] = 1'b1;
+  end
+  // The ranks at reset: way w has rank w in every set.
+  function automatic logic [RowRankW-1:0] ranks_reset();
+    for (int w = 0; w < Ways; w++) ranks_reset[w*WayW +: WayW] = WayW'(w);
+  endfunction
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      valid_q <= '0;
-      tag_q <= '0;
-      for (int e = 0; e < Entries; e++) rank_q[e*WayW +: WayW] <= WayW'(e % Ways);
+      for (int s = 0; s < Sets; s++) begin
+        valid_q[s] <= '0;
+        tag_q[s] <= '0;
+        rank_q[s] <= ranks_reset();
+      end
     end else if (miss) begin
-      valid_q[entry(set[SetIdxW-1:0], way[WayW-1:0])] <= 1'b1;
-      tag_q[entry(set[SetIdxW-1:0], way[WayW-1:0])*TagW +: TagW] <= cur_addr_q[32'(k_q) * AddrW + AddrW - TagW +: TagW];
-      rank_q[set[SetIdxW-1:0] * RowRankW +: RowRankW] <= row_after[RowRankW-1:0];
+      valid_q[set[SetIdxW-1:0]] <= fill_valid;
+      tag_q[set[SetIdxW-1:0]] <= fill_tags;
+      rank_q[set[SetIdxW-1:0]] <= row_after[RowRankW-1:0];
     end else if (lookup) begin
       for (int p = 0; p < Ports; p++)  // in order: a later touch of the same set includes the earlier ones
-        if (take[p]) rank_q[set[p*SetIdxW +: SetIdxW] * RowRankW +: RowRankW] <= row_after[p*RowRankW +: RowRankW];
+        if (take[p]) rank_q[set[p*SetIdxW +: SetIdxW]] <= row_after[p*RowRankW +: RowRankW];
     end
   end
 

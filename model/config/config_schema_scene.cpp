@@ -85,6 +85,13 @@ void add_scene_params(std::vector<ParamDef>& s) {
                "OBJ reading with scene.camera = ortho: 'l' (polyline) and 'p' (point) statements, which only the "
                "perspective camera draws (error: stop at the first with its file:line; skip: leave them out, "
                "counted in obj_ignored); with scene.camera = perspective they are drawn"});
+  // MTL has no texture filter or mipmap statement: a textured face draws with these (a
+  // trace sets them with texfilter and mipmap), so one mesh can be drawn in each filter
+  // mode (the filter-mode study, scripts/texture_study).
+  s.push_back({"scene.obj_texfilter", T::Enum, std::string("bilinear"), "", 1, 0, {"nearest", "bilinear", "trilinear"},
+               "OBJ reading: the texture filter a textured (map_Kd) face draws with, as a trace's texfilter"});
+  s.push_back({"scene.obj_mipmap", T::Bool, false, "", 1, 0, {},
+               "OBJ reading: textured faces sample the mip chain (a trace's mipmap on), else level 0 only"});
   add_camera_params(s);
 }
 

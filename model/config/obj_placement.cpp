@@ -39,6 +39,10 @@ ObjPlacement obj_placement_from_config(const Config& cfg) {
   p.near = cfg.get_float("scene.near");
   p.far = cfg.get_float("scene.far");
   p.distance = cfg.get_float("scene.distance");
+  const std::string& filter = cfg.get_string("scene.obj_texfilter");
+  p.tex_filter = filter == "nearest" ? TexFilter::Nearest : filter == "trilinear" ? TexFilter::Trilinear
+                                                                                  : TexFilter::Bilinear;
+  p.tex_mipmap = cfg.get_bool("scene.obj_mipmap");
   if (!(p.far > p.near)) {
     std::ostringstream why;  // the shortest form of each value, as written in a config
     why << cfg.origin("scene.far") << ": scene.far = " << p.far << " must exceed scene.near = " << p.near << " ("

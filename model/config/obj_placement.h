@@ -10,6 +10,7 @@
 
 #include "config/config.h"
 #include "ref/fixed_point.h"
+#include "ref/texture/texture.h"
 
 namespace rastsim {
 
@@ -54,6 +55,10 @@ struct ObjPlacement {
   ObjCamera camera = ObjCamera::Ortho;
   double fov_deg = 0, near = 0, far = 0, distance = 0;
   uint8_t clear_r = 0, clear_g = 0, clear_b = 0;
+  // scene.obj_texfilter and scene.obj_mipmap: a textured face's filter and whether it
+  // samples the mip chain (MTL has neither).
+  TexFilter tex_filter = TexFilter::Bilinear;
+  bool tex_mipmap = false;
 };
 
 // From a validated config: the display size, raster.coord_format and the scene.obj_* keys.

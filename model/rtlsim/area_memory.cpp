@@ -78,8 +78,17 @@ std::vector<StorageArray> rop_cache_data_storage(const ArchParams& arch) {
 std::vector<StorageArray> texture_cache_data_storage(const ArchParams& arch) {
   const TextureRtlParams p = texture_rtl_params(arch);
   std::vector<StorageArray> out;
+  if (p.cache_bytes == 0) return out;  // no cache: rast_top ties the texel port off
   for (int k = 0; k < p.ports; ++k)
     out.push_back(cache_data_array("texture_cache.copy" + std::to_string(k), uint64_t(p.cache_bytes)));
+  return out;
+}
+
+std::vector<StorageArray> rast_top_storage(const ArchParams& arch) { return texture_cache_data_storage(arch); }
+
+std::vector<StorageArray> design_storage(const ArchParams& arch) {
+  std::vector<StorageArray> out = memory_storage(arch);
+  for (StorageArray& a : rast_top_storage(arch)) out.push_back(std::move(a));
   return out;
 }
 

@@ -68,8 +68,14 @@ std::vector<StorageArray> memory_storage(const ArchParams& arch);
 std::vector<StorageArray> rop_cache_data_storage(const ArchParams& arch);
 // The data arrays of rast_texture_cache as `rastsim area --top rast_texture_cache` builds
 // it: Ports copies (a read port each, every fill written to all), "texture_cache.copy<p>.data",
-// texture.cache_bytes x 8 bits each.
+// texture.cache_bytes x 8 bits each; none without a cache (texture.cache_bytes = 0).
 std::vector<StorageArray> texture_cache_data_storage(const ArchParams& arch);
+// What rast_top holds as blackboxes: the texture cache's data copies (rast_top's
+// g_tex_cache), counted for `--top rast_top` and the whole design.
+std::vector<StorageArray> rast_top_storage(const ArchParams& arch);
+// The whole design's counted arrays (`rastsim area`, `rastsim sweep --area`): the memory
+// system's (memory_storage), then rast_top's (rast_top_storage).
+std::vector<StorageArray> design_storage(const ArchParams& arch);
 
 // Adds the arrays to the report (its storage rows) and their transistors to its total.
 void add_storage(AreaReport& r, const std::vector<StorageArray>& arrays);

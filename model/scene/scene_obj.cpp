@@ -614,7 +614,9 @@ Scene place(ObjParser& obj, const std::string& name, const ObjPlacement& pl) {
       faces_in_command = 0;
     if (faces_in_command == 0) {
       CmdPrimitives p{Topology::List, {}};
-      p.texture.image = f.texture;  // the initial texture state otherwise (docs/texture.md)
+      p.texture.image = f.texture;  // the initial texture state otherwise (docs/texture.md) but
+      p.texture.filter = pl.tex_filter;  // scene.obj_texfilter and scene.obj_mipmap
+      p.texture.mipmap = pl.tex_mipmap;
       scene.commands.push_back({std::move(p), SourceLoc{name, f.line}});
     }
     append_face(std::get<CmdPrimitives>(scene.commands.back().body), f, m);

@@ -48,7 +48,7 @@ class AreaColumns {
     // The memory system's arrays (not synthesised) follow the point's memory keys, which
     // the RTL parameters do not hold: counted a point.
     uint64_t storage = 0;
-    for (const StorageArray& a : memory_storage(arch)) storage += a.transistors;
+    for (const StorageArray& a : design_storage(arch)) storage += a.transistors;
     p.stats["area"] = {{"cells", t.cells}, {"flip_flops", t.flip_flops}, {"transistors", t.transistors + storage},
                        {"storage_transistors", storage}};
   }

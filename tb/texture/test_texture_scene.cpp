@@ -273,5 +273,35 @@ TEST(TextureRender, TexturedBoxObjRenders) {
   EXPECT_TRUE(cool);
 }
 
+// scene.obj_texfilter and scene.obj_mipmap set every textured face's filter and mipmap
+// (MTL has neither): nearest reads one texel a fragment; trilinear mipmapped is counted
+// as trilinear samples (the box magnifies its texture: level 0, one level read).
+TEST(TextureRender, ObjFilterAndMipmapKeys) {
+  Config cfg;
+  cfg.set_from_string("scene.obj_texfilter", "nearest", "test");
+  RasterState rs = default_raster();
+  rs.cull = CullMode::Back;
+  RenderStats nearest;
+  render_scene(load_obj(kData + "/boxT.obj", obj_placement_from_config(cfg)), rs, nearest);
+  EXPECT_GT(nearest.fragments_shaded, 0u);
+  EXPECT_EQ(nearest.texture.samples[size_t(TexFilter::Nearest)], nearest.fragments_shaded);
+  EXPECT_EQ(nearest.texture.texel_fetches, nearest.fragments_shaded);
+  cfg.set_from_string("scene.obj_texfilter", "trilinear", "test");
+  cfg.set_from_string("scene.obj_mipmap", "true", "test");
+  const Scene sc = load_obj(kData + "/boxT.obj", obj_placement_from_config(cfg));
+  size_t textured = 0;
+  for (const Command& c : sc.commands)
+    if (const auto* p = std::get_if<CmdPrimitives>(&c.body); p && p->texture.enabled()) {
+      ++textured;
+      EXPECT_EQ(p->texture.filter, TexFilter::Trilinear);
+      EXPECT_TRUE(p->texture.mipmap);
+    }
+  EXPECT_GT(textured, 0u);
+  RenderStats tri;
+  render_scene(sc, rs, tri);
+  EXPECT_EQ(tri.texture.samples[size_t(TexFilter::Trilinear)], tri.fragments_shaded);
+  EXPECT_EQ(tri.fragments_shaded, nearest.fragments_shaded);
+}
+
 }  // namespace
 }  // namespace rastsim
