@@ -346,6 +346,38 @@ std::string scanout_rtl_params_verilog(const ScanoutRtlParams& p, const std::str
   return os.str();
 }
 
+// Hi-Z (rtl/rast_top_hiz.sv): built when depth.hiz is on (the state decides at run time
+// whether it applies: rast_top_hiz's `on`), with at least one entry on chip.
+static void set_hiz_params(const RasterState& st, RtlParams& p) {
+  const int64_t hiz_blocks =
+      st.hiz_mode == HizMode::Off
+          ? 0
+          : hiz_onchip_blocks(st.hiz_mode, st.hiz_block, st.hiz_bytes, st.fb_width, st.fb_height, st.depth_bits);
+  if (hiz_blocks == 0) {
+    rtl_params_without_hiz(p);
+  } else {
+    p.hiz_mode = st.hiz_mode == HizMode::MinMax ? 2 : 1;
+    p.hiz_block_log2 = std::countr_zero(unsigned(st.hiz_block));
+    p.hiz_blocks = int(hiz_blocks);
+  }
+}
+
+// pipeline.mode = binned's tile buffer and its port.
+static void set_tile_buffer_params(const RasterState& st, const TimingParams& t, RtlParams& p) {
+  // The tile buffer (rtl/rast_tile_buffer.sv) is built in binned mode only: a sample is
+  // 4 colour bytes + the reference's depth bytes (ref/binning.h bin_depth_sample_bytes).
+  const bool binned = st.bin.mode == PipelineMode::Binned;
+  const uint64_t sample_bytes = 4 + uint64_t(depth_bytes_per_sample(st.depth_bits));
+  p.tile_buffer_samples = binned ? static_cast<int>(st.bin.tile_buffer_bytes / sample_bytes) : 0;
+  p.tile_port_bytes = binned ? static_cast<int>(t.rop_resolve_bytes_per_cycle) : 4;
+  p.tile_port_words = binned ? p.tile_port_bytes / depth_bytes_per_sample(st.depth_bits) : 1;
+  // Binned: rast_tri_setup sees only the render pass's triangles, which the timed model's
+  // binner hands to coarse raster set up already (one a cycle through fifos.bin_fifo, the
+  // setup FIFO's depth; setup's interval and latency are paid in the binning pass, which
+  // the testbench times: docs/rtl.md "Tile buffer"), so it is built with one cycle of each.
+  if (binned) p.setup_interval = p.setup_latency = 1;
+}
+
 RtlParams rtl_params(const ArchParams& arch) {
   const RasterState& st = arch.raster;
   RtlParams p;
@@ -410,31 +442,8 @@ RtlParams rtl_params(const ArchParams& arch) {
   p.rop_pixels_per_cycle = static_cast<int>(t.rop_pixels_per_cycle);
   p.rop_clear_pixels_per_cycle = static_cast<int>(t.rop_clear_pixels_per_cycle);
   p.rop_len_w = std::bit_width(static_cast<unsigned>(p.rop_clear_pixels_per_cycle * p.max_samples));  // clog2(n + 1)
-  // Hi-Z: built when depth.hiz is on (the state decides at run time whether it applies:
-  // rast_top_hiz's `on`), with at least one entry on chip.
-  const int64_t hiz_blocks =
-      st.hiz_mode == HizMode::Off
-          ? 0
-          : hiz_onchip_blocks(st.hiz_mode, st.hiz_block, st.hiz_bytes, st.fb_width, st.fb_height, st.depth_bits);
-  if (hiz_blocks == 0) {
-    rtl_params_without_hiz(p);
-  } else {
-    p.hiz_mode = st.hiz_mode == HizMode::MinMax ? 2 : 1;
-    p.hiz_block_log2 = std::countr_zero(unsigned(st.hiz_block));
-    p.hiz_blocks = int(hiz_blocks);
-  }
-  // The tile buffer (rtl/rast_tile_buffer.sv) is built in binned mode only: a sample is
-  // 4 colour bytes + the reference's depth bytes (ref/binning.h bin_depth_sample_bytes).
-  const bool binned = st.bin.mode == PipelineMode::Binned;
-  const uint64_t sample_bytes = 4 + uint64_t(depth_bytes_per_sample(st.depth_bits));
-  p.tile_buffer_samples = binned ? static_cast<int>(st.bin.tile_buffer_bytes / sample_bytes) : 0;
-  p.tile_port_bytes = binned ? static_cast<int>(t.rop_resolve_bytes_per_cycle) : 4;
-  p.tile_port_words = binned ? p.tile_port_bytes / depth_bytes_per_sample(st.depth_bits) : 1;
-  // Binned: rast_tri_setup sees only the render pass's triangles, which the timed model's
-  // binner hands to coarse raster set up already (one a cycle through fifos.bin_fifo, the
-  // setup FIFO's depth; setup's interval and latency are paid in the binning pass, which
-  // the testbench times: docs/rtl.md "Tile buffer"), so it is built with one cycle of each.
-  if (binned) p.setup_interval = p.setup_latency = 1;
+  set_hiz_params(st, p);
+  set_tile_buffer_params(st, t, p);
   return p;
 }
 
