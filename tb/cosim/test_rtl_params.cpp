@@ -21,10 +21,21 @@ TEST(RtlRegistry, CompiledParametersEqualTheShippedConfigs) {
   const auto models = rtl_models();
   ASSERT_FALSE(models.empty());
   for (const RtlModelInfo& m : models) {
-    const RtlParams want = rtl_params(ArchParams::resolve(load_shipped_config(m.config)));
+    // <cfg>_binned: the shipped config with pipeline.mode = "binned" (rtl/CMakeLists.txt
+    // RAST_RTL_BINNED_CONFIGS prepends that line to the config file).
+    const bool binned = m.name == m.config + "_binned";
+    Config cfg = load_shipped_config(m.config);
+    if (binned) {
+      cfg.apply_override("pipeline.mode=binned");
+      cfg.validate();
+    }
+    const RtlParams want = rtl_params(ArchParams::resolve(cfg));
     std::string why;
     EXPECT_TRUE(m.params == want) << m.name << ": " << (rtl_params_compatible(m.params, want, &why) ? "" : why);
-    EXPECT_TRUE(m.name == m.config || m.name == m.config + "_circuit") << m.name;
+    EXPECT_TRUE(m.name == m.config || m.name == m.config + "_circuit" || binned) << m.name;
+    if (binned) {
+      EXPECT_GT(m.params.tile_buffer_samples, 0) << m.name;
+    }
   }
   // The default config also with the divider circuit (rtl/CMakeLists.txt RAST_RTL_CIRCUIT_CONFIGS).
   EXPECT_TRUE(std::any_of(models.begin(), models.end(), [](const RtlModelInfo& m) {
