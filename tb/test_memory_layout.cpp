@@ -44,22 +44,26 @@ TEST(MemoryLayout, TiledAddressesByHand) {
   EXPECT_EQ(m.address_of(1, 1, 1), 0x100u + (5 * 2 + 1) * 4);
 }
 
+// Samples and bytes a sample of 3, 13 and 21 pixels a row (2 and 3 tiles) take
+// sample_at's divisions, the powers of two its shifts.
 TEST(MemoryLayout, SampleAtInvertsAddressOf) {
   for (FbLayout layout : {FbLayout::Linear, FbLayout::Tiled})
-    for (int samples : {1, 4}) {
-      const SurfaceLayout l(layout, 8, 4, 4096, 13, 7, samples, 2);
-      int stored = 0;
-      for (uint64_t off = 0; off < l.footprint_bytes(); off += 2) {
-        int x, y, s;
-        if (!l.sample_at(off, x, y, s)) continue;
-        ++stored;
-        ASSERT_EQ(l.offset_of(x, y, s), off) << "offset " << off;
-        int x2, y2, s2;
-        ASSERT_TRUE(l.sample_at(off + 1, x2, y2, s2));  // any byte of the sample
-        ASSERT_EQ(x2 * 100 + y2 * 10 + s2, x * 100 + y * 10 + s);
-      }
-      EXPECT_EQ(stored, 13 * 7 * samples);  // every sample once, padding skipped
-    }
+    for (int width : {13, 21})
+      for (int samples : {1, 3, 4})
+        for (int bpp : {2, 3}) {
+          const SurfaceLayout l(layout, 8, 4, 4096, width, 7, samples, bpp);
+          int stored = 0;
+          for (uint64_t off = 0; off < l.footprint_bytes(); off += uint64_t(bpp)) {
+            int x, y, s;
+            if (!l.sample_at(off, x, y, s)) continue;
+            ++stored;
+            ASSERT_EQ(l.offset_of(x, y, s), off) << "offset " << off;
+            int x2, y2, s2;
+            ASSERT_TRUE(l.sample_at(off + uint64_t(bpp) - 1, x2, y2, s2));  // any byte of the sample
+            ASSERT_EQ(x2 * 100 + y2 * 10 + s2, x * 100 + y * 10 + s);
+          }
+          EXPECT_EQ(stored, width * 7 * samples);  // every sample once, padding skipped
+        }
 }
 
 using Samples = std::vector<std::array<int, 3>>;

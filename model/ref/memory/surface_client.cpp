@@ -56,12 +56,16 @@ void SurfaceClient::cached_miss(uint64_t line, const SetAssocCache::Victim& vict
 // f(block, samples) for each piece of the bytes [offset, offset + len) that lies in one
 // fast-clear block, in address order (a run of a row cut at the blocks' edges); stops
 // early when f returns false.
+// The blocks' sides are powers of two on every shipped config: a shift then, not a
+// division (the divisions were a fifth of write_back_range's time, perf on the torus).
 template <class F>
 void SurfaceClient::for_each_block_piece(uint64_t offset, uint64_t len, F&& f) const {
   const int samples = layout_.samples();
+  const bool pow2 = (block_w_ & (block_w_ - 1)) == 0 && (block_h_ & (block_h_ - 1)) == 0;  // both > 0
+  const int w_log2 = std::countr_zero(unsigned(block_w_)), h_log2 = std::countr_zero(unsigned(block_h_));
   layout_.for_each_run(offset, len, [&](int x, int y, int s, uint64_t n) {
-    const size_t row = size_t(y / block_h_) * size_t(blocks_x_);
-    for (int bx = x / block_w_; n > 0; ++bx) {
+    const size_t row = size_t(pow2 ? y >> h_log2 : y / block_h_) * size_t(blocks_x_);
+    for (int bx = pow2 ? x >> w_log2 : x / block_w_; n > 0; ++bx) {
       // The samples from (x, s) to the block's right edge, at most the run's rest.
       const uint64_t m = std::min(n, uint64_t((bx + 1) * block_w_ - x) * uint64_t(samples) - uint64_t(s));
       if (!f(row + size_t(bx), m)) return false;
