@@ -42,6 +42,15 @@
 //   cycle); a store beat's words follow its request by a cycle on tl_wdata_o (read from
 //   the arrays after the ROP's last write, which may be taken in the end marker's cycle)
 //   and the ROP waits until the last request is taken.
+// - The per-bin resolve (end marker value bit 2: the frame's last pass with S =
+//   2^samples_log2_i > 1, docs/binning.md "Timed model"): the colour surface is stored
+//   resolved, one word a pixel at the one-sample layout (pixel (x, y) at base + (y W + x) 4),
+//   each channel of a pixel's S samples averaged as the reference's Framebuffer::resolve
+//   ((sum + S / 2) / S, 8 bits). A beat of k pixels first reads its k S samples,
+//   ColorWords a cycle (ceil(k S / ColorWords) cycles from the marker's or the last beat's
+//   next), then is issued: a row of ColorWords-multiple pixels costs its samples' bytes and
+//   its resolved bytes at PortBytes a cycle, the SystemC ROP's resolve_cycles(A, S) =
+//   ceil((A S 4 + A 4) / R). Depth, when stored too, follows every sample as before.
 `default_nettype none
 
 module rast_tile_buffer #(
@@ -68,7 +77,7 @@ module rast_tile_buffer #(
   // The ROP takes a marker with a bin command.
   input  wire logic                              cmd_take_i,
   input  wire logic [2:0]                        cmd_op_i,        // 4 begin, 5 end (others: nothing here)
-  input  wire logic [31:0]                       cmd_value_i,     // bin: bit 0 colour, bit 1 depth loaded / stored; clear: its word
+  input  wire logic [31:0]                       cmd_value_i,     // bin: bit 0 colour, bit 1 depth loaded / stored, bit 2 (end) colour resolved; clear: its word
   input  wire logic [4*PixelW-1:0]               cmd_bin_i,       // {y1, x1, y0, x0}, half-open px
   output      logic                              busy_o,          // a load or store runs: the ROP waits
   output      logic [PixelW-1:0]                 bin_x0_o,        // the bin's origin, px
@@ -136,6 +145,21 @@ module rast_tile_buffer #(
     d = i < SlotW'(Slots) && dep_v_q[IdxW'(i)] ? dep_q[IdxW'(i)] : dep_fill_q;
     dep_word = 32'(d);
   endfunction
+  // A pixel's resolved colour: each channel of its 2^l2 samples from slot `first` averaged,
+  // (sum + 2^l2 / 2) >> l2 (ref Framebuffer::resolve; 8 + SampleLog2W bits a sum).
+  localparam int SumW = 9 + $clog2(MaxSamples);
+  function automatic logic [31:0] resolved_word(input logic [SlotW-1:0] first, input logic [SampleLog2W-1:0] l2);
+    logic [SumW-1:0] sum;
+    logic [31:0] w;
+    for (int c = 0; c < 4; c++) begin
+      sum = SumW'((1 << l2) >> 1);
+      for (int k = 0; k < MaxSamples; k++) begin
+        w = col_word(first + SlotW'(k));
+        if (k < (1 << l2)) sum = sum + SumW'(w[c*8 +: 8]);
+      end
+      resolved_word[c*8 +: 8] = 8'(sum >> l2);
+    end
+  endfunction
 
   // ---- The bin and its load or store ----
   logic [PixelW-1:0] x0_q, y0_q, w_q, h_q;
@@ -163,13 +187,20 @@ module rast_tile_buffer #(
   logic [RowW-1:0]   row_words, row_words_q;  // w S: of this cycle's bin, of the registered one
   assign row_words = RowW'(bw) << samples_log2_i;
   assign row_words_q = RowW'(w_q) << samples_log2_i;
+  // The store resolves colour (end marker bit 2, S > 1): its colour rows are w words.
+  logic rsv_q, rsv;
+  assign rsv = xfer_take ? end_take && cmd_value_i[2] && samples_log2_i != '0 : rsv_q;
+  logic [RowW-1:0] crow_words;  // this cycle's colour row: w resolved, else w S
+  assign crow_words = rsv ? RowW'(bw) : row_words;
   // A walk over the surfaces' rows, a beat at a time: {done, surface (1: depth), row,
   // word in the row, slot}. The beats issued and (loads) the responses each walk it.
   localparam int WalkW = 2 + PixelW + RowW + SlotW;
-  // Beats walk rows of `rw` words, `h` rows, colour then (`dtoo`) depth.
-  function automatic logic [CntW-1:0] beat_words(input logic [WalkW-1:0] wk, input logic [RowW-1:0] rw);
+  // Beats walk rows of `rw` words (colour: `crw`), `h` rows, colour then (`dtoo`) depth; a
+  // resolved colour word (`rs`) is 2^`l2` slots.
+  function automatic logic [CntW-1:0] beat_words(input logic [WalkW-1:0] wk, input logic [RowW-1:0] rw,
+                                                 input logic [RowW-1:0] crw);
     logic [RowW-1:0] left, most;
-    left = rw - wk[SlotW +: RowW];
+    left = (wk[WalkW-2] ? rw : crw) - wk[SlotW +: RowW];
     most = wk[WalkW-2] ? RowW'(DepthWords) : RowW'(ColorWords);
     beat_words = CntW'(left < most ? left : most);
   endfunction
@@ -177,7 +208,8 @@ module rast_tile_buffer #(
     walk_start = {!flags[0] && !flags[1], !flags[0], {(WalkW - 2){1'b0}}};
   endfunction
   function automatic logic [WalkW-1:0] walk_next(input logic [WalkW-1:0] wk, input logic [RowW-1:0] rw,
-                                               input logic [PixelW-1:0] h, input logic dtoo);
+                                               input logic [RowW-1:0] crw, input logic [PixelW-1:0] h,
+                                               input logic dtoo, input logic rs, input logic [SampleLog2W-1:0] l2);
     logic done, depth;
     logic [PixelW-1:0] row;
     logic [RowW-1:0] off;
@@ -185,9 +217,9 @@ module rast_tile_buffer #(
     done = 1'b0;
     depth = wk[WalkW-2];
     row = wk[SlotW + RowW +: PixelW];
-    off = wk[SlotW +: RowW] + RowW'(beat_words(wk, rw));
-    slot = wk[0 +: SlotW] + SlotW'(beat_words(wk, rw));
-    if (off == rw) begin
+    off = wk[SlotW +: RowW] + RowW'(beat_words(wk, rw, crw));
+    slot = wk[0 +: SlotW] + (SlotW'(beat_words(wk, rw, crw)) << (rs && !depth ? l2 : '0));
+    if (off == (depth ? rw : crw)) begin
       off = '0;
       row = row + 1'b1;
       if (row == h) begin
@@ -202,6 +234,8 @@ module rast_tile_buffer #(
   logic [WalkW-1:0] iss_q, rsp_q;  // the next beat to issue; the next response (loads)
   logic [WalkW-1:0] iss_cur;       // the beat offered: a load's or store's first from its marker's cycle
   assign iss_cur = xfer_take ? walk_start(cmd_flags) : iss_q;
+  logic            rs_beat;          // the offered beat is resolved colour
+  logic [RowW-1:0] rdw_q, rdw_cur;   // its samples' words read so far
 
   // The offered beat: its memory address.
   logic [AddrW-1:0] beat_addr;
@@ -210,22 +244,30 @@ module rast_tile_buffer #(
     pixel = ((2 * PixelW)'(by0) + (2 * PixelW)'(iss_cur[SlotW + RowW +: PixelW])) * (2 * PixelW)'(fb_width_i) +
             (2 * PixelW)'(bx0);
     beat_addr = (iss_cur[WalkW-2] ? depth_base_i : color_base_i) +
-                (((AddrW'(pixel) << samples_log2_i) + AddrW'(iss_cur[SlotW +: RowW])) << 2);
+                (((AddrW'(pixel) << (rs_beat ? '0 : samples_log2_i)) + AddrW'(iss_cur[SlotW +: RowW])) << 2);
   end
-  assign tl_valid_o = (xfer_take || busy_q) && !iss_cur[WalkW-1];
+  // A resolved beat waits for its samples' reads: rdw words read so far, ColorWords a cycle.
+  assign rs_beat = rsv && !iss_cur[WalkW-2];
+  assign rdw_cur = xfer_take ? '0 : rdw_q;
+  logic            rs_wait;       // its samples not all read yet
+  assign rs_wait = rs_beat && rdw_cur < (RowW'(tl_count_o) << samples_log2_i);
+  assign tl_valid_o = (xfer_take || busy_q) && !iss_cur[WalkW-1] && !rs_wait;
   assign tl_write_o = xfer_take ? end_take : !load_q;
   assign tl_addr_o = beat_addr;
-  assign tl_count_o = beat_words(iss_cur, row_words);
+  assign tl_count_o = beat_words(iss_cur, row_words, crow_words);
   // A store beat's words follow its request by a cycle (read from the arrays then, after
   // every write the ROP made before its end marker).
-  logic             wd_valid_q, wd_depth_q;
+  logic             wd_valid_q, wd_depth_q, wd_rsv_q;
   logic [SlotW-1:0] wd_slot_q;
   logic [CntW-1:0]  wd_count_q;
   always_comb begin
     logic [SlotW-1:0] s;
     for (int i = 0; i < PortWords; i++) begin
       s = wd_slot_q + SlotW'(i);
-      tl_wdata_o[i*32 +: 32] = wd_valid_q && CntW'(i) < wd_count_q ? (wd_depth_q ? dep_word(s) : col_word(s)) : 32'h0;
+      tl_wdata_o[i*32 +: 32] = !wd_valid_q || CntW'(i) >= wd_count_q ? 32'h0 :
+                               wd_depth_q ? dep_word(s) :
+                               wd_rsv_q ? resolved_word(wd_slot_q + (SlotW'(i) << samples_log2_i), samples_log2_i) :
+                               col_word(s);
     end
   end
   logic iss_take, rsp_take;
@@ -234,8 +276,8 @@ module rast_tile_buffer #(
   // Busy until a load's last response is in, or a store's last beat is taken.
   logic busy_next;
   logic [WalkW-1:0] iss_next, rsp_next;
-  assign iss_next = walk_next(iss_cur, row_words, bh, depth_too);
-  assign rsp_next = walk_next(rsp_q, row_words_q, h_q, depth_too_q);  // a response: after its begin's cycle
+  assign iss_next = walk_next(iss_cur, row_words, crow_words, bh, depth_too, rsv, samples_log2_i);
+  assign rsp_next = walk_next(rsp_q, row_words_q, row_words_q, h_q, depth_too_q, 1'b0, samples_log2_i);  // a response: after its begin's cycle
   always_comb begin
     busy_next = busy_q;
     if (xfer_take) busy_next = cmd_flags != 2'b00 && !(end_take && iss_take && iss_next[WalkW-1]);
@@ -259,7 +301,12 @@ module rast_tile_buffer #(
       wd_valid_q <= 1'b0;
       iss_q <= {1'b1, {(WalkW - 1){1'b0}}};
       rsp_q <= {1'b1, {(WalkW - 1){1'b0}}};
+      rsv_q <= 1'b0;
+      rdw_q <= '0;
     end else begin
+      if (xfer_take) rsv_q <= rsv;
+      if (iss_take) rdw_q <= '0;
+      else if (rs_wait && (xfer_take || busy_q) && !iss_cur[WalkW-1]) rdw_q <= rdw_cur + RowW'(ColorWords);
       busy_q <= busy_next;
       if (xfer_take) load_q <= begin_take;
       if (iss_take) iss_q <= iss_next;
@@ -287,6 +334,7 @@ module rast_tile_buffer #(
     wd_slot_q <= iss_cur[0 +: SlotW];
     wd_count_q <= tl_count_o;
     wd_depth_q <= iss_cur[WalkW-2];
+    wd_rsv_q <= rs_beat;
   end
 
   // ---- The ROP's port: reads answered the next cycle, writes applied ----
@@ -355,7 +403,7 @@ module rast_tile_buffer #(
     if (rsp_take) begin
       for (int i = 0; i < PortWords; i++) begin
         s = rsp_q[0 +: SlotW] + SlotW'(i);
-        if (CntW'(i) < beat_words(rsp_q, row_words_q) && s < SlotW'(Slots)) begin
+        if (CntW'(i) < beat_words(rsp_q, row_words_q, row_words_q) && s < SlotW'(Slots)) begin
           if (rsp_q[WalkW-2]) dep_v_q[IdxW'(s)] <= 1'b1;
           else col_v_q[IdxW'(s)] <= 1'b1;
         end
@@ -394,7 +442,7 @@ module rast_tile_buffer #(
     logic [SlotW-1:0] s;
     logic en;
     assign s = rsp_q[0 +: SlotW] + SlotW'(i);
-    assign en = rsp_take && CntW'(i) < beat_words(rsp_q, row_words_q) && s < SlotW'(Slots);
+    assign en = rsp_take && CntW'(i) < beat_words(rsp_q, row_words_q, row_words_q) && s < SlotW'(Slots);
     always_ff @(posedge clk_i) begin
       if (en && rsp_q[WalkW-2]) dep_q[IdxW'(s)] <= DepthW'(tl_rdata_i[i*32 +: 32]);
       if (en && !rsp_q[WalkW-2]) col_q[IdxW'(s)] <= tl_rdata_i[i*32 +: 32];

@@ -335,10 +335,6 @@ void check_binned_cosim(const ArchParams& arch, const CosimOptions& opts) {
   const Config& cfg = arch.config;
   const RasterState& st = arch.raster;
   if (st.bin.mode != PipelineMode::Binned) return;
-  if (st.samples > 1)
-    throw ConfigError(cfg.origin("raster.samples") + ": raster.samples = " + std::to_string(st.samples) +
-                      " with pipeline.mode = binned has no RTL yet (the tile buffer has no per-bin resolve): "
-                      "co-simulate binned mode with raster.samples = 1 (docs/rtl.md \"Tile buffer\")");
   if (arch.timing.rop_resolve_bytes_per_cycle % 4 != 0)
     throw ConfigError(cfg.origin("rop.resolve_bytes_per_cycle") + ": rop.resolve_bytes_per_cycle = " +
                       std::to_string(arch.timing.rop_resolve_bytes_per_cycle) + " with pipeline.mode = binned: the "

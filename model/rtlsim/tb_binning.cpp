@@ -17,10 +17,10 @@ namespace rastsim::rtlsim {
 uint64_t tile_beats(const int rect[4], uint32_t flags, int samples, int depth_bits, int port_bytes) {
   const uint64_t w = uint64_t(rect[2] - rect[0]), h = uint64_t(rect[3] - rect[1]);
   const uint64_t row = w * uint64_t(samples);  // samples a row
-  const auto beats = [&](uint64_t per_beat) { return h * ((row + per_beat - 1) / per_beat); };
+  const auto beats = [&](uint64_t words, uint64_t per_beat) { return h * ((words + per_beat - 1) / per_beat); };
   uint64_t n = 0;
-  if (flags & 1) n += beats(uint64_t(port_bytes) / 4);
-  if (flags & 2) n += beats(uint64_t(port_bytes) / bin_depth_sample_bytes(depth_bits));
+  if (flags & 1) n += beats(flags & 4 ? w : row, uint64_t(port_bytes) / 4);
+  if (flags & 2) n += beats(row, uint64_t(port_bytes) / bin_depth_sample_bytes(depth_bits));
   return n;
 }
 
@@ -31,7 +31,7 @@ struct BinProgram::Impl {
   void draw(const SetupTriangle& tri, const SetupTriangle& walk);
   void begin_bin(const PixelRect& r, BinBytes load);
   void clear(const BinClear& c);
-  void end_bin(const PixelRect& r, BinBytes store);
+  void end_bin(const PixelRect& r, bool final_pass, BinBytes store);
   size_t marker(TbBinMarker m);
   template <class F>
   void call(F&& f);
@@ -66,7 +66,7 @@ BinProgram::Impl::Impl(TbSetup& setup, int tile_px) : s(setup), tile_size(tile_p
   Binner::Hooks h;
   h.begin_bin = [this](int, const PixelRect& r, BinBytes load) { begin_bin(r, load); };
   h.clear = [this](const BinClear& c, const PixelRect&) { clear(c); };
-  h.end_bin = [this](int, const PixelRect& r, bool, BinBytes store) { end_bin(r, store); };
+  h.end_bin = [this](int, const PixelRect& r, bool final_pass, BinBytes store) { end_bin(r, final_pass, store); };
   binner->set_hooks(std::move(h));
 }
 
@@ -122,7 +122,7 @@ void BinProgram::Impl::draw(const SetupTriangle& tri, const SetupTriangle& walk)
   });
 }
 
-void BinProgram::Impl::end_bin(const PixelRect& r, BinBytes store) {
+void BinProgram::Impl::end_bin(const PixelRect& r, bool final_pass, BinBytes store) {
   const auto split = std::stable_partition(tile.begin(), tile.end(), [](const MemoryTransfer& t) { return !t.write; });
   s.binning.ops[prefetch_op].transfers = reads;
   TbBinMarker& b = s.binning.markers[begin_marker];
@@ -130,7 +130,7 @@ void BinProgram::Impl::end_bin(const PixelRect& r, BinBytes store) {
   b.beats = tile_beats(b.rect, b.value, s.arch.samples, s.arch.depth_bits, s.params.tile_port_bytes);
   TbBinMarker m;
   m.op = 5;
-  m.value = 1u | (store.depth ? 2u : 0u);
+  m.value = 1u | (store.depth ? 2u : 0u) | (final_pass && s.arch.samples > 1 ? 4u : 0u);
   m.transfers.assign(split, tile.end());
   rect = r;
   const size_t e = marker(std::move(m));
@@ -244,6 +244,7 @@ void TbBinner::command(uint64_t t, const TbBinMarker& m) {
   if (beats_left_ != 0 || !responses_.empty())
     mismatch_("cycle " + std::to_string(t) + ": a bin command while the tile buffer's last load or store runs");
   loading_ = m.op == 4;
+  resolving_ = m.op == 5 && (m.value & 4u) != 0;
   beats_left_ = beats_ = m.beats;
   beat_ = 0;
   arrival_ = t + 1;
@@ -267,7 +268,9 @@ void TbBinner::drive_port(uint64_t t, RastPorts& ports) {
 void TbBinner::serve_port(uint64_t t, RastPorts& ports) {
   const TileBeat b = ports.tile_beat();
   if (store_pending_) {  // the words of the store beat taken in the cycle before
-    for (int i = 0; i < store_count_; ++i) write_(store_addr_ + 4 * uint32_t(i), b.words[size_t(i)], t);
+    const uint32_t S = store_resolved_ ? uint32_t(s_.samples) : 1;
+    for (uint32_t i = 0; i < uint32_t(store_count_); ++i)
+      for (uint32_t k = 0; k < S; ++k) write_(((store_addr_ / 4 + i) * S + k) * 4, b.words[size_t(i)], t);
     store_pending_ = false;
   }
   if (!b.valid) return;
@@ -281,6 +284,8 @@ void TbBinner::serve_port(uint64_t t, RastPorts& ports) {
     store_pending_ = true;
     store_addr_ = b.addr;
     store_count_ = b.count;
+    // A resolved store's colour beats (below the depth surface) hold pixels.
+    store_resolved_ = resolving_ && b.addr < rop_depth_base(s_.arch.fb_width, s_.arch.fb_height, s_.samples);
     ++beat_;
     return;
   }

@@ -49,7 +49,8 @@ struct TbItem;
 class RastPorts;
 
 // A bin command on rast_top's command port (rast_tile_buffer.sv): op 4 begins the bin
-// (value bit 0: colour loaded, bit 1: depth loaded), 5 ends it (bits: stored), 1 and 2
+// (value bit 0: colour loaded, bit 1: depth loaded), 5 ends it (bits: stored; bit 2: the
+// colour resolved, the frame's last pass with raster.samples > 1), 1 and 2
 // clear it (value: the clear word), 0 passes (the end of frame).
 struct TbBinMarker {
   int op = 0;
@@ -72,8 +73,9 @@ struct TbBinning {
 };
 
 // Beats of a tile buffer's load or store of bin `rect`'s surfaces in `flags` (bit 0
-// colour, bit 1 depth): each row of w S samples in beats of port_bytes / 4 colour or
-// port_bytes / depth bytes depth samples (rast_tile_buffer.sv's walk).
+// colour, bit 1 depth, bit 2 colour resolved): each row of w S samples (resolved colour:
+// w pixels) in beats of port_bytes / 4 colour or port_bytes / depth bytes depth samples
+// (rast_tile_buffer.sv's walk).
 uint64_t tile_beats(const int rect[4], uint32_t flags, int samples, int depth_bits, int port_bytes);
 
 // Builds setup.binning and the render pass's items and expected fragments (set-up time).
@@ -135,6 +137,9 @@ class TbBinner {
   bool store_pending_ = false;
   uint32_t store_addr_ = 0;
   int store_count_ = 0;
+  // The store in progress resolves colour (marker bit 2): a colour beat's words are pixels
+  // of the one-sample layout, each written to every sample (S equal samples resolve to it).
+  bool resolving_ = false, store_resolved_ = false;
   // The load or store in progress: beats expected and issued, the load's arrival.
   uint64_t beats_left_ = 0, beats_ = 0, beat_ = 0, arrival_ = 0;
   bool loading_ = false;

@@ -235,6 +235,10 @@ void configure(SimContext& ctx, const SimOptions& opts, const RasterState& arch)
   ctx.on_fetch = opts.on_fetch;
   count_multisample_footprint(arch, ctx.render);
   ctx.render.depth_early = arch.depth_early;  // its stats keys, as the reference's
+  // Binned mode has two memory clients in different processes, the binner (parameter
+  // buffer) and the ROP (tile loads and stores): their requests enter in time order
+  // (docs/binning.md, "Timed model").
+  ctx.memory_time_order = arch.bin.mode == PipelineMode::Binned;
 }
 
 // The run ends with the last stage's last step: the latest stage time (in lock-step,
