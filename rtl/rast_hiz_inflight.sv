@@ -16,7 +16,9 @@
 // - Queries (combinational): wait_o[n] when an entry not ended overlaps query n's blocks.
 //   An entry pushed or ended in a cycle counts from the next.
 // - rop_accept_o: the Hi-Z accept of the oldest entry not ended (the batch whose group is
-//   at the ROP's response: one group in flight, never two batches' in one group).
+//   at the ROP's response: one group in flight, never two batches' in one group);
+//   rop_accept_next_o the next one's (a batch whose first group the ROP issues in the
+//   cycle the oldest's last response comes: rast_rop's read skips an accepted tile's depth).
 // - Entries free from the oldest once ended (all ended ones before the oldest live one,
 //   in a cycle). room_o: a push fits (Depth is sized so that it never binds: rast_top).
 `default_nettype none
@@ -39,6 +41,7 @@ module rast_hiz_inflight #(
   input  wire logic                        rop_end_i,     // the ROP ends its oldest entry (a batch)
   input  wire logic                        rop_marker_i,  // ... (a marker; after rop_end_i's in the same cycle)
   output      logic                        rop_accept_o,  // that entry's accept
+  output      logic                        rop_accept_next_o, // the next entry not ended's accept
   input  wire logic [Queries*4*PixelW-1:0] q_fp_i,        // query n's footprint at [n*4*PixelW +: 4*PixelW]
   output      logic [Queries-1:0]          wait_o,        // query n's blocks have an entry not ended
   output      logic                        empty_o        // no entry
@@ -94,6 +97,7 @@ module rast_hiz_inflight #(
   assign end1 = (rop_end_i || rop_marker_i) && rop_found;
   assign end2 = rop_end_i && rop_marker_i && rop_found2;
   assign rop_accept_o = rop_found && acc_q[rop_idx];
+  assign rop_accept_next_o = rop_found2 && acc_q[rop_idx2];
   assign room_o = count_q - lead != CntW'(Depth);
   assign empty_o = count_q == '0;
 

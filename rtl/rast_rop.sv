@@ -91,6 +91,7 @@ module rast_rop #(
   output      logic [PixelsPerCycle-1:0]              rd_lanes_o,     // lanes of the request
   output      logic [PixelsPerCycle*AddrW-1:0]        rd_addr_o,      // lane k byte address
   output      logic [PixelsPerCycle*LenW-1:0]         rd_len_o,       // lane k burst, words
+  output      logic                                   rd_no_depth_o,  // the group's tile is tested with always: no depth read
   input  wire logic                                   rd_rvalid_i,    // the oldest read's data
   input  wire logic [PixelsPerCycle*MaxSamples*32-1:0] rd_rdata_i,    // lane k word i at [(k MaxSamples + i) 32 +: 32]
   // Memory writes: colour (lane k) and depth (lane PixelsPerCycle + k).
@@ -110,11 +111,14 @@ module rast_rop #(
   output      logic                                   dbg_start_o,
   output      logic                                   dbg_done_o,
   output      logic                                   dbg_blocked_o,
-  // Hi-Z hooks (rast_top with a table; docs/depth-culling.md "RTL"): the group at the
-  // response is tested with `always` (its tile was Hi-Z accepted); the depth writes it
-  // decides this cycle (one sample: lane k's pixel and depth); a batch's end (its last
-  // group decided) or a marker taken; a depth clear's marker taken (value cmd_value_i).
+  // Hi-Z hooks (rast_top with a table; docs/depth-culling.md "RTL"): the oldest batch not
+  // ended (hiz_always_i) and the next one (hiz_always_next_i) are tested with `always`
+  // (their tile was Hi-Z accepted): a batch's groups then read no depth (rd_no_depth_o),
+  // taken at its first group's read; the depth writes it decides this cycle (one sample:
+  // lane k's pixel and depth); a batch's end (its last group decided) or a marker taken;
+  // a depth clear's marker taken (value cmd_value_i).
   input  wire logic                                   hiz_always_i,
+  input  wire logic                                   hiz_always_next_i,
   output      logic [PixelsPerCycle-1:0]              hiz_wr_lanes_o,
   output      logic [PixelsPerCycle*PixelW-1:0]       hiz_wr_x_o,
   output      logic [PixelsPerCycle*PixelW-1:0]       hiz_wr_y_o,
@@ -186,6 +190,8 @@ module rast_rop #(
   logic            depth_write_q;   // depth_write_i
   logic            q_last_q;        // the group in flight ends a batch
   logic            first_q;         // the next group starts a batch
+  logic            batch_always_q;  // the batch of the last group read is tested with always
+  logic            q_always_q;      // the group in flight is
   logic            clr_active_q;    // a clear in progress
   logic            clr_depth_q;     // of the depth surface
   logic [31:0]     clr_value_q;
@@ -312,7 +318,7 @@ module rast_rop #(
       // (Verilator stores into a wide vector a field at a time).
       for (int i = 0; i < MaxSamples; i++) begin
         pass[i] = q_lanes_q[k] && LenW'(i) < len &&
-                  depth_pass(hiz_always_i ? 3'd7 : depth_func_q, a[AccZ +: DepthW], rd_rdata_i[(k*MaxSamples + i)*32 +: DepthW]);
+                  depth_pass(q_always_q ? 3'd7 : depth_func_q, a[AccZ +: DepthW], rd_rdata_i[(k*MaxSamples + i)*32 +: DepthW]);
         cbe[i*4 +: 4] = pass[i] ? 4'hf : 4'h0;
         zbe[i*4 +: 4] = pass[i] && depth_write_q ? DepthBe : 4'h0;
       end
@@ -362,6 +368,13 @@ module rast_rop #(
     end
   end
   assign rd_take = rd_valid_o && rd_ready_i;
+  // The group's batch is tested with `always`: a batch's first group is the oldest batch
+  // not ended when no group is in flight (the previous batch ended at its last response),
+  // else the next (the read goes out in the cycle the previous batch's last response
+  // ends it); its later groups keep the batch's answer.
+  logic grp_always;
+  assign grp_always = first_q ? (q_valid_q ? hiz_always_next_i : hiz_always_i) : batch_always_q;
+  assign rd_no_depth_o = grp_always;
 
   wreq_t wr;
   assign wr = clr_active_q ? clr_w : w_valid_q ? w_q : resp_w;
@@ -465,6 +478,8 @@ module rast_rop #(
     if (rd_take) begin
       q_acc_q <= grp;
       q_lanes_q <= grp_lanes;
+      q_always_q <= grp_always;
+      batch_always_q <= grp_always;
     end
     if (resp_now && resp_any && !wr_ready_i) begin
       w_q <= resp_w;

@@ -136,6 +136,7 @@ module rast_top #(
   output      logic [RopPixelsPerCycle-1:0]          rd_lanes_o,
   output      logic [RopPixelsPerCycle*32-1:0]       rd_addr_o,
   output      logic [RopPixelsPerCycle*RopLenW-1:0]  rd_len_o,
+  output      logic                                  rd_no_depth_o,   // the group reads no depth (Hi-Z accepted tile)
   input  wire logic                                  rd_rvalid_i,
   input  wire logic [RopPixelsPerCycle*MaxSamples*32-1:0] rd_rdata_i,
   output      logic                                  wr_valid_o,
@@ -414,7 +415,7 @@ module rast_top #(
   logic [KLanes-1:0]   k_lane_wait, k_lane_cull, k_lane_accept;
   logic                k_hiz_accept, k_room;
   logic [$clog2(KLanes+1)-1:0] k_hiz_culled;
-  logic                rop_hiz_always, rop_hiz_end, rop_hiz_marker, rop_hiz_clear;
+  logic                rop_hiz_always, rop_hiz_always_next, rop_hiz_end, rop_hiz_marker, rop_hiz_clear;
   logic [RopPixelsPerCycle-1:0]        rop_hiz_wr_lanes;
   logic [RopPixelsPerCycle*PixelW-1:0] rop_hiz_wr_x, rop_hiz_wr_y;
   logic [RopPixelsPerCycle*DepthW-1:0] rop_hiz_wr_z;
@@ -754,7 +755,7 @@ module rast_top #(
   // (op 4, 5) and a bin's clear (1, 2: the tile buffer's flash clear) reach it as a pass;
   // while the tile buffer loads, stores or clears, the ROP's port is not ready and its
   // next command waits.
-  logic                                   rop_rd_valid, rop_rd_ready, rop_rd_rvalid;
+  logic                                   rop_rd_valid, rop_rd_ready, rop_rd_rvalid, rop_rd_no_depth;
   logic [RopPixelsPerCycle-1:0]           rop_rd_lanes;
   logic [RopPixelsPerCycle*32-1:0]        rop_rd_addr;
   logic [RopPixelsPerCycle*RopLenW-1:0]   rop_rd_len;
@@ -796,14 +797,15 @@ module rast_top #(
       assign rop_x[j*PixelW +: PixelW] = r_in.x[j*PixelW +: PixelW] - bx0;
       assign rop_y[j*PixelW +: PixelW] = r_in.y[j*PixelW +: PixelW] - by0;
     end
-    assign {rd_valid_o, rd_lanes_o, rd_addr_o, rd_len_o} = '0;
+    assign {rd_valid_o, rd_lanes_o, rd_addr_o, rd_len_o, rd_no_depth_o} = '0;
     assign {wr_valid_o, wr_lanes_o, wr_addr_o, wr_len_o, wr_fill_o, wr_be_o, wr_data_o} = '0;
-    wire unused_bin_port = ^{rd_ready_i, rd_rvalid_i, rd_rdata_i, wr_ready_i, fb_height_i, rop_wr_fill};
+    wire unused_bin_port = ^{rd_ready_i, rd_rvalid_i, rd_rdata_i, wr_ready_i, fb_height_i, rop_wr_fill, rop_rd_no_depth};
   end else begin : g_immediate
     assign {rop_fb_w, rop_fb_h, rop_color_base, rop_depth_base} = {fb_width_i, fb_height_i, color_base_i, depth_base_i};
     assign {rop_x, rop_y} = {r_in.x, r_in.y};
     assign {tb_busy, tb_idle} = 2'b01;
-    assign {rd_valid_o, rd_lanes_o, rd_addr_o, rd_len_o} = {rop_rd_valid, rop_rd_lanes, rop_rd_addr, rop_rd_len};
+    assign {rd_valid_o, rd_lanes_o, rd_addr_o, rd_len_o, rd_no_depth_o} =
+        {rop_rd_valid, rop_rd_lanes, rop_rd_addr, rop_rd_len, rop_rd_no_depth};
     assign {rop_rd_ready, rop_rd_rvalid, rop_rd_rdata} = {rd_ready_i, rd_rvalid_i, rd_rdata_i};
     assign {wr_valid_o, wr_lanes_o, wr_addr_o, wr_len_o, wr_fill_o, wr_be_o, wr_data_o} =
         {rop_wr_valid, rop_wr_lanes, rop_wr_addr, rop_wr_len, rop_wr_fill, rop_wr_be, rop_wr_data};
@@ -823,11 +825,11 @@ module rast_top #(
     .cmd_valid_i(rop_cmd_valid), .cmd_ready_o(rop_cmd_ready), .cmd_op_i(rop_cmd_op),
     .cmd_value_i,
     .rd_valid_o(rop_rd_valid), .rd_ready_i(rop_rd_ready), .rd_lanes_o(rop_rd_lanes), .rd_addr_o(rop_rd_addr),
-    .rd_len_o(rop_rd_len), .rd_rvalid_i(rop_rd_rvalid), .rd_rdata_i(rop_rd_rdata),
+    .rd_len_o(rop_rd_len), .rd_no_depth_o(rop_rd_no_depth), .rd_rvalid_i(rop_rd_rvalid), .rd_rdata_i(rop_rd_rdata),
     .wr_valid_o(rop_wr_valid), .wr_ready_i(rop_wr_ready), .wr_lanes_o(rop_wr_lanes), .wr_addr_o(rop_wr_addr),
     .wr_len_o(rop_wr_len), .wr_fill_o(rop_wr_fill), .wr_be_o(rop_wr_be), .wr_data_o(rop_wr_data),
     .idle_o(rop_idle), .dbg_has_o(rop_has), .dbg_start_o(dbg_rop_start_o), .dbg_done_o(rop_done),
-    .dbg_blocked_o(rop_blocked), .hiz_always_i(rop_hiz_always), .hiz_wr_lanes_o(rop_hiz_wr_lanes),
+    .dbg_blocked_o(rop_blocked), .hiz_always_i(rop_hiz_always), .hiz_always_next_i(rop_hiz_always_next), .hiz_wr_lanes_o(rop_hiz_wr_lanes),
     .hiz_wr_x_o(rop_hiz_wr_x), .hiz_wr_y_o(rop_hiz_wr_y), .hiz_wr_z_o(rop_hiz_wr_z), .hiz_end_o(rop_hiz_end), .hiz_marker_o(rop_hiz_marker),
     .hiz_clear_o(rop_hiz_clear));
 
@@ -851,7 +853,8 @@ module rast_top #(
       .lane_cull_o(k_lane_cull), .lane_accept_o(k_lane_accept),
       .push_i(k_valid && k_ready), .push_marker_i(k_marker), .push_fp_i(k_fp), .push_accept_i(k_hiz_accept),
       .room_o(k_room), .fine_valid_i(f_valid && f_ready), .fine_drop_i(!f_in.marker && !m_valid),
-      .rop_end_i(rop_hiz_end), .rop_marker_i(rop_hiz_marker), .rop_always_o(rop_hiz_always), .rop_clear_i(rop_hiz_clear),
+      .rop_end_i(rop_hiz_end), .rop_marker_i(rop_hiz_marker), .rop_always_o(rop_hiz_always), .rop_always_next_o(rop_hiz_always_next),
+      .rop_clear_i(rop_hiz_clear),
       .rop_clear_z_i(cmd_value_i[DepthW-1:0]), .wr_lanes_i(rop_hiz_wr_lanes), .wr_x_i(rop_hiz_wr_x),
       .wr_y_i(rop_hiz_wr_y), .wr_z_i(rop_hiz_wr_z));
     assign dbg_hiz_culled_o = k_hiz_culled;
@@ -862,6 +865,7 @@ module rast_top #(
     assign k_lane_accept = '0;
     assign k_room = 1'b1;
     assign rop_hiz_always = 1'b0;
+    assign rop_hiz_always_next = 1'b0;
     assign dbg_hiz_culled_o = '0;
     assign dbg_hiz_accepted_o = 1'b0;
     wire unused_hiz = ^{k_lane_fp, k_hiz_accept, k_hiz_culled, rop_hiz_end, rop_hiz_marker, rop_hiz_clear, rop_hiz_wr_lanes,

@@ -13,8 +13,9 @@
 //   depth function the mode tests (less, lequal; minmax also greater, gequal). Otherwise
 //   every answer is low and nothing waits: the run is the Hi-Z-off one.
 // - The ROP's depth writes (wr_*, one sample: its group's lanes decided this cycle) update
-//   the table, a depth clear's marker (rop_clear_i) sets it; rop_always_o: the tile whose
-//   group is at the ROP's response was accepted (tested with `always`).
+//   the table, a depth clear's marker (rop_clear_i) sets it; rop_always_o: the oldest tile
+//   the ROP has not finished was accepted (tested with `always`, no depth read);
+//   rop_always_next_o: the one after it was.
 // - The table is the on-chip part only: Blocks must cover the framebuffer (the spilled
 //   entries have no port: `rastsim cosim` refuses depth.hiz_bytes below the display's).
 `default_nettype none
@@ -66,6 +67,7 @@ module rast_top_hiz #(
   input  wire logic                          rop_end_i,      // a batch ends
   input  wire logic                          rop_marker_i,   // a marker is taken (after that batch, same cycle)
   output      logic                          rop_always_o,
+  output      logic                          rop_always_next_o,
   input  wire logic                          rop_clear_i,
   input  wire logic [DepthW-1:0]             rop_clear_z_i,
   input  wire logic [WriteLanes-1:0]         wr_lanes_i,
@@ -114,6 +116,7 @@ module rast_top_hiz #(
   rast_hiz_inflight #(.PixelW(PixelW), .BlockLog2(BlockLog2), .Depth(InflightDepth), .Queries(Lanes)) u_inflight (
     .clk_i, .rst_ni, .push_i(on && push_i), .push_all_i(push_marker_i), .push_fp_i, .push_accept_i, .room_o,
     .fine_valid_i(on && fine_valid_i), .fine_drop_i, .rop_end_i(on && rop_end_i), .rop_marker_i(on && rop_marker_i), .rop_accept_o(rop_always_o),
+    .rop_accept_next_o(rop_always_next_o),
     .q_fp_i(lane_fp_i), .wait_o(wait_q), .empty_o(empty));
   assign lane_wait_o = on ? wait_q : '0;
 endmodule

@@ -194,6 +194,7 @@ class VerilatedRast final : public RastPorts {
   void drive_tile(bool ready, bool rvalid, const std::vector<uint32_t>& w) override { drive_tile_of(*top_, ready, rvalid, w); }
   bool rop_read_valid() const override { return top_->rd_valid_o; }
   bool rop_read_lane_valid(int k) const override { return port_bits(top_->rd_lanes_o, k, 1) & 1; }
+  bool rop_read_no_depth() const override { return top_->rd_no_depth_o; }
   RopLane rop_read_lane(int k) const override {
     const int lw = params_.rop_len_w;
     return {uint32_t(port_bits(top_->rd_addr_o, k * 32, 32)), uint32_t(port_bits(top_->rd_len_o, k * lw, lw))};

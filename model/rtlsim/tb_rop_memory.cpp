@@ -29,14 +29,15 @@ TbRopMemory::TbRopMemory(const TbSetup& s)
   port_.cleared(MemClient::RopDepth);
 }
 
-uint64_t TbRopMemory::read(uint64_t t, uint32_t accesses) {
+uint64_t TbRopMemory::read(uint64_t t, uint32_t accesses, bool no_depth) {
   port_.begin(t);
   for (uint64_t left = accesses; left > 0;) {
     if (head_left_ == 0) {  // the next fragment's first access is in this group: all its accesses now
       if (fragments_.empty()) break;  // more accesses than fragments: the fragment check reports it
       const Fragment f = fragments_.front();
       fragments_.pop_front();
-      rop_write(shadow_, f, state_.depth_func, state_.depth_write, nullptr, &port_.functional());
+      rop_write(shadow_, f, no_depth ? DepthFunc::Always : state_.depth_func, state_.depth_write, nullptr,
+                &port_.functional());
       head_left_ = TimingParams::rop_accesses(f.mask, shadow_.samples);
     }
     const uint64_t n = std::min(left, head_left_);

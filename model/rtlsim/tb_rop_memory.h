@@ -47,8 +47,9 @@ class TbRopMemory {
   // A fragment the ROP's fragment FIFO took (in order).
   void fragment(const Fragment& f) { fragments_.push_back(f); }
   // The ROP's read of a group of `accesses` accesses, taken at core cycle `t`: the cycle
-  // its response is due.
-  uint64_t read(uint64_t t, uint32_t accesses);
+  // its response is due. `no_depth`: the group's tile was Hi-Z accepted, its fragments
+  // tested with `always` (no depth read), as the reference's ROP tests them.
+  uint64_t read(uint64_t t, uint32_t accesses, bool no_depth);
   // A 2D operation of `work` starting at core cycle `start` (the 2D engine draws through
   // the ROP's port: the colour client, as sc/engine2d.cpp): its accesses made, its fills
   // issued; returns the cycle its fills have been used (start + memory_transaction_cycles

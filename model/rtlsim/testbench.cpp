@@ -433,15 +433,17 @@ void Testbench::rop_serve(uint64_t t) {
     if (read_pending_) mismatch("cycle " + std::to_string(t) + ": the ROP read again before its read's data");
     read_data_.assign(size_t(setup_.params.rop_pixels_per_cycle * ms), 0);
     uint32_t accesses = 0;  // one a lane
+    const bool no_depth = ports_.rop_read_no_depth();  // a Hi-Z accepted tile's group: no depth read
     for (int k = 0; k < setup_.params.rop_pixels_per_cycle; ++k) {
       if (!ports_.rop_read_lane_valid(k)) continue;
       ++accesses;
       const RopLane l = ports_.rop_read_lane(k);
       if (l.len > uint32_t(ms)) mismatch("cycle " + std::to_string(t) + ": a read burst longer than MaxSamples");
-      for (uint32_t i = 0; i < l.len && i < uint32_t(ms); ++i) read_data_[size_t(k * ms) + i] = rop_read_word(l.addr + 4 * i, t);
+      for (uint32_t i = 0; i < l.len && i < uint32_t(ms) && !no_depth; ++i)
+        read_data_[size_t(k * ms) + i] = rop_read_word(l.addr + 4 * i, t);
     }
     read_pending_ = true;
-    read_due_ = (dram_ ? dram_->read(t, accesses) : t + 1) + std::exchange(perturb_now_, 0);
+    read_due_ = (dram_ ? dram_->read(t, accesses, no_depth) : t + 1) + std::exchange(perturb_now_, 0);
   }
   if (rop_commands_.empty() || !ports_.rop_command_wanted()) return;
   const TbItem& m = setup_.items[rop_commands_.front()];

@@ -245,6 +245,9 @@ class RastPorts {
   // The ROP's memory port. Reads: rd_valid_o, lane k's rd_lanes_o bit and request.
   virtual bool rop_read_valid() const = 0;
   virtual bool rop_read_lane_valid(int k) const = 0;
+  // rd_no_depth_o: the group's tile was Hi-Z accepted (tested with `always`): its accesses
+  // read no depth (the response still comes, its words unused).
+  virtual bool rop_read_no_depth() const = 0;
   virtual RopLane rop_read_lane(int k) const = 0;
   // rd_ready_i and wr_ready_i.
   virtual void drive_rop_memory_ready(bool read, bool write) = 0;
