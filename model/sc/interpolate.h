@@ -18,7 +18,8 @@
 //   PixelShader::shade_run, the reference's run path (ref/pipeline.cpp, RunWriter): a
 //   flat-shaded run is one fragment with its x moved along.
 // - A batch of a triangle drawn with a texture bound goes to the texture stage
-//   (sc/texture.h) on the texture FIFO; everything else to the ROP on the fragment FIFO,
+//   (sc/texture.h) on the texture FIFO as the interpolator starts it, ready at its first
+//   beat, with its beats (FragmentBatch::Beats); everything else to the ROP on the fragment FIFO,
 //   after a fence when textured batches are ahead of it: the fence goes down the texture
 //   FIFO, its token comes back on texture_done (starved until then) and the transaction
 //   enters the fragment FIFO behind them, ready no earlier than its own pipeline allows.

@@ -15,6 +15,12 @@
 //   blocking line fill through the memory system (timing/texture_memory_port.h: the batch
 //   is busy the miss-free cycles plus the stall until each fill has arrived), made at its
 //   sample's slot in the batch as the RTL's texture cache makes it (fill()).
+// - The start on the first beat (as rast_texture_stage): the batch arrives when its first
+//   beat does (FragmentBatch::Beats, the interpolator's), and each fragment's first sample
+//   slot waits for the beat completing its quad, the next fragment's beat (the
+//   serialiser's hold), the serialiser's one covered lane a cycle (a cycle a helper-only
+//   beat) and a level table fill (a mipmapped texture of a new size): slot_wait(); the
+//   batch is busy from its start to its last slot.
 // - Latency: the shaded batch is ready for the ROP texture.latency_cycles after the
 //   batch's cycles (Stage::write's extra latency; the stage is not busy meanwhile).
 // - A fence (a transaction without a batch) from interpolation: every batch before it is
