@@ -39,9 +39,9 @@ void add_texture_params(std::vector<ParamDef>& s) {
   s.push_back({"texture.combine_per_cycle", T::Int, int64_t{4}, "fragments/cycle", 1, 64, {},
                "Timed texture stage: fragments through the texenv combine a cycle"});
   s.push_back({"texture.latency_cycles", T::Int, int64_t{8}, "cycles", 0, 4096, {},
-               "Timed texture stage: cycles from a textured batch's end in the stage to the ROP's start on it (the "
-               "RTL's datapath after the batch's last sample, net of its start on the interpolator's first beat; "
-               "docs/texture.md, \"Timed texture stage\")"});
+               "Timed texture stage: cycles from a textured batch's last sample in the stage to the ROP's start on it (the "
+               "RTL's datapath after its last texel lookup: the cache's response 2, the filter 3, the combine 2, the "
+               "fragment FIFO 1; docs/texture.md, \"Timed texture stage\")"});
   s.push_back({"texture.miss_cycles", T::Int, int64_t{20}, "cycles", 0, 65536, {},
                "Timed texture stage, memory.model = \"fixed\": cycles each texture-cache line miss stalls the stage "
                "(its line read from memory); with memory.model = \"dram\" each miss is a blocking line fill through the "

@@ -20,8 +20,8 @@ uint64_t quad_key(int x, int y) { return uint64_t(uint32_t(y >> 1)) << 32 | uint
 // quad table), so each row pair of q quads costs interp_batch_cycles(4 q) (the same as
 // ceil(4 Q / lanes) over the tile at 1, 2 or 4 lanes). Where early Z culled some fragments
 // (depth.early), the quads of the kept ones: a quad none of whose fragments is kept is
-// not shaded.
-uint64_t Interpolate::textured_batch_cycles(const FragmentBatch& frags, bool affine) {
+// not shaded. The beats go in frags.beats for the texture stage (FragmentBatch::Beats).
+uint64_t Interpolate::textured_batch_cycles(FragmentBatch& frags, bool affine) {
   quad_keys_.clear();
   if (frags.culled_count == 0) {
     for (const PixelRun& r : frags.pixels->runs)
@@ -32,10 +32,16 @@ uint64_t Interpolate::textured_batch_cycles(const FragmentBatch& frags, bool aff
   }
   std::sort(quad_keys_.begin(), quad_keys_.end());
   const auto end = std::unique(quad_keys_.begin(), quad_keys_.end());
+  FragmentBatch::Beats& b = frags.beats;
+  b.lanes = p_.interp_lanes(affine);
+  b.rows.clear();
+  b.quad_x.clear();
   uint64_t cycles = 0;
   for (auto i = quad_keys_.begin(); i != end;) {  // keys sorted by row pair (the high word)
     auto j = i;
     while (j != end && (*j >> 32) == (*i >> 32)) ++j;
+    b.rows.push_back({int32_t(*i >> 32), uint32_t(b.quad_x.size()), uint32_t(j - i), cycles});
+    for (auto k = i; k != j; ++k) b.quad_x.push_back(int32_t(uint32_t(*k)));
     cycles += p_.interp_batch_cycles(4 * uint64_t(j - i), affine);
     i = j;
   }
@@ -69,12 +75,14 @@ void Interpolate::body() {
       ctx_.recip_reciprocals += frags->kept();
       ctx_.recip_busy_cycles += cycles;
     }
-    busy(cycles);
-    if (tri.texture.enabled()) {
+    if (tri.texture.enabled()) {  // the texture stage starts on its first beat (sc/texture.h)
       textured_ahead_ = true;
-      write(texture_out_, FragmentItem{nullptr, std::move(frags)}, p_.interp_pipeline_latency());
+      frags->beats.first = now() + 1 + p_.interp_pipeline_latency();
+      write(texture_out_, FragmentItem{nullptr, std::move(frags)}, 1 + p_.interp_pipeline_latency());
+      busy(cycles);
       continue;
     }
+    busy(cycles);
     const uint64_t latency = behind_texture(now() + p_.interp_pipeline_latency());
     write(out_, FragmentItem{nullptr, std::move(frags)}, latency);
   }

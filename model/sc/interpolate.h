@@ -18,7 +18,8 @@
 //   PixelShader::shade_run, the reference's run path (ref/pipeline.cpp, RunWriter): a
 //   flat-shaded run is one fragment with its x moved along.
 // - A batch of a triangle drawn with a texture bound goes to the texture stage
-//   (sc/texture.h) on the texture FIFO; everything else to the ROP on the fragment FIFO,
+//   (sc/texture.h) on the texture FIFO as the interpolator starts it, ready at its first
+//   beat, with its beats (FragmentBatch::Beats); everything else to the ROP on the fragment FIFO,
 //   after a fence when textured batches are ahead of it: the fence goes down the texture
 //   FIFO, its token comes back on texture_done (starved until then) and the transaction
 //   enters the fragment FIFO behind them, ready no earlier than its own pipeline allows.
@@ -69,6 +70,22 @@ struct FragmentBatch {
   size_t count = 0;  // fragments in storage[0, count)
   std::vector<uint8_t> culled;
   size_t culled_count = 0;
+  // A textured batch's beats, as the interpolator sends them (Interpolate::
+  // textured_batch_cycles; the texture stage starts on the first, sc/texture.h): its 2x2
+  // quads whole, a row pair (pixel rows 2m, 2m + 1) at a time in row order, each row pair
+  // row-major (its top row's quad columns left to right, then its bottom row's), `lanes`
+  // pixels a beat, a row pair starting a beat; beat b reaches the texture stage at cycle
+  // first + b.
+  struct RowPair {
+    int32_t pair;                // y / 2
+    uint32_t first_quad, quads;  // its quad columns: quad_x[first_quad, first_quad + quads)
+    uint64_t beat;               // its first beat in the batch
+  };
+  struct Beats {
+    uint64_t first = 0, lanes = 1;  // cycle; pixels a beat
+    std::vector<RowPair> rows;
+    std::vector<int32_t> quad_x;    // x / 2, ascending in each row pair
+  } beats;
 };
 using FragmentItem = Item<LocalPtr<const FragmentBatch>>;
 
@@ -106,8 +123,9 @@ class Interpolate : public Stage {
   // transaction whose pipeline ends at cycle `ready` ready then (0 when already past).
   uint64_t behind_texture(uint64_t ready);
   // A textured batch's cycles in the lanes: its 2x2 quads whole, helper pixels included,
-  // a row pair at a time; under early Z the quads of the kept fragments only.
-  uint64_t textured_batch_cycles(const FragmentBatch& frags, bool affine);
+  // a row pair at a time; under early Z the quads of the kept fragments only. Records
+  // the beats in frags.beats (all but their first cycle).
+  uint64_t textured_batch_cycles(FragmentBatch& frags, bool affine);
   int frac_bits_;
   const TimingParams& p_;
   Link<PixelItem>& in_;

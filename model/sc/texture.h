@@ -15,6 +15,12 @@
 //   blocking line fill through the memory system (timing/texture_memory_port.h: the batch
 //   is busy the miss-free cycles plus the stall until each fill has arrived), made at its
 //   sample's slot in the batch as the RTL's texture cache makes it (fill()).
+// - The start on the first beat (as rast_texture_stage): the batch arrives when its first
+//   beat does (FragmentBatch::Beats, the interpolator's), and each fragment's first sample
+//   slot waits for the beat completing its quad, the next fragment's beat (the
+//   serialiser's hold), the serialiser's one covered lane a cycle (a cycle a helper-only
+//   beat) and a level table fill (a mipmapped texture of a new size): slot_wait(); the
+//   batch is busy from its start to its last slot.
 // - Latency: the shaded batch is ready for the ROP texture.latency_cycles after the
 //   batch's cycles (Stage::write's extra latency; the stage is not busy meanwhile).
 // - A fence (a transaction without a batch) from interpolation: every batch before it is
@@ -27,6 +33,7 @@
 
 #include <memory>
 #include <unordered_set>
+#include <vector>
 
 #include "ref/texture/texture_unit.h"
 #include "sc/interpolate.h"
@@ -37,6 +44,12 @@ namespace rastsim::sc {
 class Texture : public Stage {
  public:
   static constexpr StageId kId = StageId::Texture;
+  // rast_texture_stage's depths (docs/texture.md "Timed texture stage"), cycles: from a
+  // fragment's leaving the serialiser's hold to its first sample slot, the LOD unit (3)
+  // and the address unit (4), plus the beat FIFO's (1); from the last sample slot ahead
+  // of a level table fill to the waiting fragment's first slot, the table's start (2),
+  // the LOD unit's (3) less the address unit's slot (1).
+  static constexpr uint64_t kBeatToRequest = 8, kTableToSlot = 4;
   Texture(SimContext& ctx, const RasterState& arch, const TimingParams& p, Link<FragmentItem>& in,
           Link<FragmentItem>& out, Link<TextureFence>& done, sc_core::sc_module_name name = stage_name(kId).data())
       : Stage(name, ctx, kId), arch_(arch), p_(p), in_(in), out_(out), done_(done) {}
@@ -55,6 +68,12 @@ class Texture : public Stage {
   void next_triangle(const LocalPtr<const SetupTriangle>& tri);
   uint64_t kept_quads(const FragmentBatch& batch);
   void fill(uint64_t address, uint64_t bytes);  // TextureUnit::on_fill
+  // The beats' arrivals (FragmentBatch::Beats): arrive_[k] the cycle the beat completing
+  // fragment k's quad reaches the stage.
+  void beat_arrivals(const FragmentBatch& batch);
+  // Cycles the slot stream waits before fragment k's first level sample (its beats, the
+  // level table's fill); `misses` the batch's line misses so far.
+  uint64_t slot_wait(const FragmentBatch& batch, size_t k, const SetupTriangle& tri, uint64_t misses);
 
   const RasterState& arch_;
   const TimingParams& p_;
@@ -70,9 +89,20 @@ class Texture : public Stage {
   // Where the unit's fetches are in the batch being shaded (fill()): the fragment's first
   // fetch and sample slot, texels a request, the request and lookup group of the last
   // miss, the batch's split lookup groups.
+  // wait: the cycles the batch's sample slots waited for its beats and the level table.
   struct FetchPlace {
-    uint64_t base = 0, slot = 0, per_request = 1, request = 0, group = 0, splits = 0;
+    uint64_t base = 0, slot = 0, per_request = 1, request = 0, group = 0, splits = 0, wait = 0;
   } fetch_;
+  uint64_t start_ = 0;              // the batch's first cycle (its read)
+  std::vector<uint64_t> arrive_;    // beat_arrivals()
+  std::vector<uint64_t> beat_;      // fragment k's own beat in the batch
+  std::vector<uint8_t> covered_;    // beat j holds a covered (kept) lane
+  uint64_t empty_beats(uint64_t from, uint64_t to) const;
+  // The serialiser (slot_wait): the last fragment's first slot (0: none yet), its beat,
+  // and the empty beats the last batch ended with.
+  uint64_t serial_ = 0, prev_beat_ = 0, trailing_empty_ = 0;
+  // The level table's texture size (rast_texture_stage's key_w_q, key_h_q; 0: never filled).
+  int table_w_ = 0, table_h_ = 0;
 };
 
 }  // namespace rastsim::sc
