@@ -63,6 +63,9 @@ class VerilatedRast final : public RastPorts {
     top_->tex_layout_i = static_cast<uint8_t>(s.texture.layout);
     top_->tex_mem_req_ready_i = 0;
     top_->tex_mem_rsp_valid_i = 0;
+    top_->hiz_base_i = s.hiz_base;
+    top_->hiz_mem_req_ready_i = 1;
+    top_->hiz_mem_rsp_valid_i = 0;
     top_->tri_valid_i = 0;
     top_->cmd_valid_i = 0;
     top_->rd_ready_i = 0;
@@ -175,6 +178,21 @@ class VerilatedRast final : public RastPorts {
     set_port_bytes(top_->tex_mem_rsp_data_i, bytes);
   }
   bool texture_beat_taken() const override { return top_->tex_mem_rsp_ready_o; }
+  HizRequest hiz_request() const override {
+    HizRequest r;
+    r.valid = top_->hiz_mem_req_valid_o;
+    if (!r.valid) return r;
+    r.write = top_->hiz_mem_req_write_o;
+    r.flush = top_->hiz_mem_req_flush_o;
+    r.address = top_->hiz_mem_req_addr_o;
+    for (size_t i = 0; i < r.data.size(); ++i) r.data[i] = uint8_t(port_bits(top_->hiz_mem_req_data_o, int(8 * i), 8));
+    return r;
+  }
+  void drive_hiz_response(bool valid, const std::array<uint8_t, 64>& data) override {
+    top_->hiz_mem_rsp_valid_i = valid;
+    set_port_bytes(top_->hiz_mem_rsp_data_i, data);
+  }
+  bool hiz_error() const override { return top_->dbg_hiz_error_o; }
   TexCacheEvents texture_cache_events() const override { return {int(top_->tex_hits_o), bool(top_->tex_miss_o)}; }
   int helper_pixels() const override { return top_->tex_helpers_o; }
   RtlStageBits stage_bits() const override {
