@@ -74,7 +74,7 @@ class StreamBuilder {
     if (!hiz_) return;
     setup_.tiles_culled_hiz = hiz_->table.stats.tiles_culled;
     setup_.tiles_accepted_hiz = hiz_->table.stats.tiles_accepted;
-    setup_.hiz_entry_bytes = hiz_->table.entry_bytes();
+    setup_.hiz_entry_bytes = uint64_t(hiz_->table.entry_bytes());
     setup_.hiz_base = hiz_->table.dram_base;
     setup_.hiz_bytes_read = hiz_->table.stats.bytes_read;
     setup_.hiz_bytes_written = hiz_->table.stats.bytes_written;

@@ -27,7 +27,7 @@ void TbHiz::drive(uint64_t t, RastPorts& ports) {
   const HizRequest q = ports.hiz_request();
   if (unresolved_ > 0 && !(q.valid && !q.write && !q.flush)) resolve_tests(t);  // the test's reads ended
   offered_ = !rsp_.empty() && rsp_.front().due != 0 && rsp_.front().due <= t;
-  ports.drive_hiz_response(offered_, offered_ ? rsp_.front().data : std::array<uint8_t, 64>{});
+  ports.drive_hiz(s_.hiz_base, offered_, offered_ ? rsp_.front().data : std::array<uint8_t, 64>{});
 }
 
 void TbHiz::serve(uint64_t t, RastPorts& ports, std::string& error) {
@@ -43,7 +43,7 @@ void TbHiz::serve(uint64_t t, RastPorts& ports, std::string& error) {
             std::to_string(q.address) + ", the reference's " +
             (n < want.size() ? "at byte " + std::to_string(want[n]) : std::string("end before it"));
   ++n;
-  const uint64_t bytes = uint64_t(s_.hiz_entry_bytes);
+  const uint64_t bytes = s_.hiz_entry_bytes;
   if (q.write) {
     std::array<uint8_t, 64>& e = entries_[q.address];
     std::copy_n(q.data.begin(), size_t(bytes), e.begin());

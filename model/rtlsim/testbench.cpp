@@ -366,7 +366,7 @@ bool Testbench::cycle(uint64_t t) {
     if (!error.empty()) mismatch(error);
     error.clear();
     hiz_.serve(t, ports_, error);
-    if (ports_.hiz_error() && !hiz_overflow_) {  // sticky in the RTL: reported once
+    if (ports_.hiz_request().error && !hiz_overflow_) {  // sticky in the RTL: reported once
       hiz_overflow_ = true;
       error = "cycle " + std::to_string(t) + ": Hi-Z's spilled-entry write FIFO overflowed";
     }

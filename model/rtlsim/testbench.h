@@ -129,16 +129,12 @@ struct TbSetup {
   TextureMemory texture_memory;
   std::vector<uint64_t> texture_fills;
   uint64_t helper_pixels = 0;
-  // Hi-Z (hiz_applies): the reference's tiles culled and accepted (HizTracker's, the
-  // expected fragments leave the culled tiles out).
+  // Hi-Z (hiz_applies): the reference's tiles culled and accepted (the expected fragments
+  // leave the culled out) and its spilled entries' accesses by kind, in order (tb_hiz.h).
   bool hiz = false;
   uint64_t tiles_culled_hiz = 0, tiles_accepted_hiz = 0;
-  // Its spilled entries (rast_hiz_spill; tb_hiz.h): the reference's accesses in order
-  // (HizTable::on_access: byte addresses), the tests' reads, the flushes' reads and the
-  // write-backs apart, an entry's bytes, depth.hiz_base, and its bytes moved.
   std::vector<uint64_t> hiz_test_reads, hiz_flush_reads, hiz_writes;
-  int hiz_entry_bytes = 0;
-  uint64_t hiz_base = 0, hiz_bytes_read = 0, hiz_bytes_written = 0;
+  uint64_t hiz_entry_bytes = 0, hiz_base = 0, hiz_bytes_read = 0, hiz_bytes_written = 0;
   // pipeline.mode = binned (tb_binning.h): the binner's program and bin commands.
   bool binned = false;
   TbBinning binning;
@@ -169,12 +165,11 @@ struct RtlStageBits {
   int hiz_culled = 0;         // dbg_hiz_culled_o: tiles coarse raster culled (Hi-Z)
   bool hiz_accepted = false;  // dbg_hiz_accepted_o: the tile it sent was accepted
 };
-// rast_top's Hi-Z spilled-entry request this cycle (hiz_mem_req_*): an entry's byte
-// address; a write-back's entry bytes (data, the entry in the low bytes).
+// rast_top's hiz_mem_req_* (a flush's read, a write-back and its entry) and dbg_hiz_error_o.
 struct HizRequest {
-  bool valid = false, write = false, flush = false;  // _valid_o, _write_o, _flush_o (a flush's read)
-  uint64_t address = 0;                              // _addr_o
-  std::array<uint8_t, 64> data{};                    // _data_o
+  bool valid = false, write = false, flush = false, error = false;
+  uint64_t address = 0;
+  std::array<uint8_t, 64> data{};
 };
 // One lane of a ROP memory request (rast_top's rd_* / wr_*): a byte address and a burst
 // length in 32-bit words.
@@ -246,12 +241,9 @@ class RastPorts {
   virtual TexCacheEvents texture_cache_events() const = 0;
   virtual int helper_pixels() const = 0;
   virtual RtlStageBits stage_bits() const = 0;
-  // Hi-Z's spilled entries (hiz_mem_*): the request offered (taken whenever offered:
-  // hiz_mem_req_ready_i is high), a read's response (hiz_mem_rsp_valid_i and its data),
-  // dbg_hiz_error_o (the spill unit's write FIFO overflowed).
+  // Hi-Z's spilled entries: the request (taken whenever offered); hiz_base_i and a response.
   virtual HizRequest hiz_request() const = 0;
-  virtual void drive_hiz_response(bool valid, const std::array<uint8_t, 64>& data) = 0;
-  virtual bool hiz_error() const = 0;
+  virtual void drive_hiz(uint64_t base, bool valid, const std::array<uint8_t, 64>& data) = 0;
 
   // The ROP's command port: cmd_ready_o (a marker waits for its command, the ROP is
   // quiet), and the command offered (cmd_valid_i, cmd_op_i, cmd_value_i; cmd_bin_i: a bin
