@@ -119,31 +119,33 @@ module rast_hiz #(
   logic [IdxW-1:0]         w_idx [Lanes];
   logic [Lanes-1:0]        w_on;    // lane j writes an on-chip block
   logic [Lanes-1:0]        w_done;  // lane j completed its block's layer
+  /* verilator lint_off UNOPTFLAT */
   logic [Lanes*EntryW-1:0] w_new;   // lane j's entry after its write at [j*EntryW +: EntryW]
+  /* verilator lint_on UNOPTFLAT */
   for (genvar j = 0; j < Lanes; j++) begin : g_lane
     /* verilator lint_off UNUSEDSIGNAL */  // the index's high bits: on_chip's
     logic [2*BlkW-1:0] bi;
     /* verilator lint_on UNUSEDSIGNAL */
     logic [PixelW-1:0] x, y;
-    logic [EntryW-1:0] e_out;
     logic              done;
     // The entry lane j updates: the table's, or the last earlier lane's on the same block
-    // (chain[k + 1]: after lanes 0 .. k; each lane's output a signal of its own, so the
-    // chain has no loop; Verilator sees the array whole: chain[k + 1] reads chain[k]).
+    // (lane k < j's slice of w_new: each lane reads only earlier lanes' outputs, so the
+    // chain has no loop; Verilator sees the vectors whole).
     /* verilator lint_off UNOPTFLAT */
-    logic [EntryW-1:0] chain [j + 1];
+    logic [EntryW-1:0] e_in, e_out;
     /* verilator lint_on UNOPTFLAT */
     assign x = wr_x_i[j*PixelW +: PixelW];
     assign y = wr_y_i[j*PixelW +: PixelW];
     assign bi = index_of(BlkW'(x >> BlockLog2), BlkW'(y >> BlockLog2), nx);
     assign w_idx[j] = IdxW'(bi);
     assign w_on[j] = wr_valid_i[j] && on_chip(bi);
-    assign chain[0] = table_q[w_idx[j]];
-    for (genvar k = 0; k < j; k++) begin : g_prev
-      assign chain[k + 1] = w_on[k] && w_idx[k] == w_idx[j] ? g_lane[k].e_out : chain[k];
+    always_comb begin
+      e_in = table_q[w_idx[j]];
+      for (int k = 0; k < j; k++)
+        if (w_on[k] && w_idx[k] == w_idx[j]) e_in = w_new[k*EntryW +: EntryW];
     end
     rast_hiz_update #(.DepthW(DepthW), .PixelW(PixelW), .BlockLog2(BlockLog2)) u_update (
-      .fb_width_i, .fb_height_i, .e_i(chain[j]), .x_i(x), .y_i(y), .z_i(wr_z_i[j*DepthW +: DepthW]),
+      .fb_width_i, .fb_height_i, .e_i(e_in), .x_i(x), .y_i(y), .z_i(wr_z_i[j*DepthW +: DepthW]),
       .e_o(e_out), .done_o(done));
     assign w_new[j*EntryW +: EntryW] = e_out;
     assign w_done[j] = w_on[j] && done;
