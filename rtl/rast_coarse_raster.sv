@@ -59,6 +59,7 @@ module rast_coarse_raster #(
   output      logic                 busy_o,        // a walk is in progress
   // Hi-Z hooks (rast_top; tied low without a table).
   output      logic [TilesPerCycle*4*PixelW-1:0] lane_fp_o,  // lane j's footprint at [j*4*PixelW +: 4*PixelW]
+  output      logic [TilesPerCycle-1:0] lane_keep_o,   // lane j holds a triangle's tile not rejected (Hi-Z tests it)
   input  wire logic [TilesPerCycle-1:0] lane_wait_i,   // lane j's blocks have a tile in flight
   input  wire logic [TilesPerCycle-1:0] lane_cull_i,   // lane j culled (valid when not waiting)
   input  wire logic [TilesPerCycle-1:0] lane_accept_i, // lane j accepted (minmax)
@@ -165,6 +166,7 @@ module rast_coarse_raster #(
   logic [Lanes-1:0] lane_stop, lane_culled;
   localparam int CullW = $clog2(Lanes + 1);  // derived: hiz_culled_o bits
   logic [CullW-1:0] culled_n;
+  assign lane_keep_o = in_valid_i && !in_marker_i ? lane_keep : '0;
   assign lane_stop = lane_keep & ~(lane_cull_i & ~lane_wait_i);
   assign lane_culled = lane_keep & lane_cull_i & ~lane_wait_i;
   always_comb begin

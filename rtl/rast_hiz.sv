@@ -6,18 +6,17 @@
 //   (nx = ceil(W / B) a row, the last column and row clipped to it): block i = by nx + bx.
 //   Entries 0 .. Blocks - 1 are held here (the on-chip part of the table: depth.hiz_bytes /
 //   entry bytes of them, rtl_params.cpp); a framebuffer with more blocks raises
-//   overflow_o (the spilled entries' port is not built yet: docs/rtl.md "Hi-Z").
+//   overflow_o, and the blocks past Blocks (spilled, rast_hiz_spill) are neither queried
+//   nor written here.
 // - An entry: zmax (>= every stored depth), zmin (<= every stored depth; MinMax only),
 //   the layer's lmax and lmin (D bits each) and its B^2-bit mask of pixels written since
 //   the layer started, with their count.
 // - Query (combinational, Queries ports): the bounds of the blocks a footprint overlaps, the nearest
 //   zmin and the farthest zmax (at most MaxSpan^2 blocks: a tile of 2^TileLog2Max px is
 //   aligned to the block grid, so it covers max(1, 2^TileLog2Max / B) blocks a side).
-// - Update, per depth write of z at (x, y), lane order within a cycle (lane j sees lanes
-//   0 .. j-1's writes to its block): zmax = max(zmax, z), zmin = min(zmin, z), lmax =
-//   max(lmax, z), lmin = min(lmin, z); a pixel new to the mask sets its bit, and when the
-//   count reaches the block's on-screen pixels, zmax = min(zmax, lmax), zmin = max(zmin,
-//   lmin) and the layer restarts empty (completions_o counts those a cycle).
+// - Update, per depth write of z at (x, y) to an on-chip block, lane order within a cycle
+//   (lane j sees lanes 0 .. j-1's writes to its block): the rule of rast_hiz_update
+//   (completions_o counts the layers completed a cycle).
 // - A depth clear to c (clear_i): every entry zmin = zmax = c, the layer empty; it takes
 //   precedence over a write in the same cycle (the ROP orders them).
 `default_nettype none
@@ -75,12 +74,14 @@ module rast_hiz #(
   assign nblocks = nx * ny;
   assign overflow_o = nblocks > (2 * BlkW)'(Blocks);
 
-  // Entry index by nx + bx (IdxW bits: exact while the framebuffer fits, !overflow_o).
-  /* verilator lint_off UNUSEDSIGNAL */  // the high bits matter only past the table (overflow_o)
-  function automatic logic [IdxW-1:0] index_of(logic [BlkW-1:0] bx, logic [BlkW-1:0] by, logic [BlkW-1:0] n);
-    index_of = IdxW'(by) * IdxW'(n) + IdxW'(bx);
+  // Block index by nx + bx (2 BlkW bits: every block of the framebuffer); an on-chip
+  // entry's index is its low IdxW bits.
+  function automatic logic [2*BlkW-1:0] index_of(logic [BlkW-1:0] bx, logic [BlkW-1:0] by, logic [BlkW-1:0] n);
+    index_of = (2 * BlkW)'(by) * (2 * BlkW)'(n) + (2 * BlkW)'(bx);
   endfunction
-  /* verilator lint_on UNUSEDSIGNAL */
+  function automatic logic on_chip(logic [2*BlkW-1:0] i);
+    on_chip = i < (2 * BlkW)'(Blocks);
+  endfunction
 
   // ---- Query: the footprint's blocks (one port a walk lane) ----
   for (genvar n = 0; n < Queries; n++) begin : g_query
@@ -93,15 +94,17 @@ module rast_hiz #(
     assign qbx1 = BlkW'((fp[2*PixelW +: PixelW] - 1'b1) >> BlockLog2);
     assign qby1 = BlkW'((fp[3*PixelW +: PixelW] - 1'b1) >> BlockLog2);
     always_comb begin
-      /* verilator lint_off UNUSEDSIGNAL */  // the layer fields: the update's
+      /* verilator lint_off UNUSEDSIGNAL */  // the layer fields: the update's; the index's high bits: on_chip's
       logic [EntryW-1:0] e;
+      logic [2*BlkW-1:0] qi;
       /* verilator lint_on UNUSEDSIGNAL */
       qmin = '1;
       qmax = '0;
       for (int j = 0; j < MaxSpan; j++)
         for (int i = 0; i < MaxSpan; i++) begin
-          e = table_q[index_of(qbx0 + BlkW'(i), qby0 + BlkW'(j), nx)];
-          if (qbx0 + BlkW'(i) <= qbx1 && qby0 + BlkW'(j) <= qby1) begin
+          qi = index_of(qbx0 + BlkW'(i), qby0 + BlkW'(j), nx);
+          e = table_q[IdxW'(qi)];
+          if (qbx0 + BlkW'(i) <= qbx1 && qby0 + BlkW'(j) <= qby1 && on_chip(qi)) begin
             if (e[OZmin +: DepthW] < qmin) qmin = e[OZmin +: DepthW];
             if (e[OZmax +: DepthW] > qmax) qmax = e[OZmax +: DepthW];
           end
@@ -112,65 +115,41 @@ module rast_hiz #(
     assign q_max_o[n*DepthW +: DepthW] = qmax;
   end
 
-  // ---- Update: each lane's block, pixel bit and the block's on-screen pixels ----
-  logic [IdxW-1:0]        w_idx [Lanes];
-  logic [2*BlockLog2-1:0] w_bit [Lanes];
-  logic [CntW-1:0]        w_full [Lanes];
+  // ---- Update: each lane's on-chip entry after lanes 0 .. j-1 (rast_hiz_update) ----
+  logic [IdxW-1:0]         w_idx [Lanes];
+  logic [Lanes-1:0]        w_on;    // lane j writes an on-chip block
+  logic [Lanes-1:0]        w_done;  // lane j completed its block's layer
+  /* verilator lint_off UNOPTFLAT */
+  logic [Lanes*EntryW-1:0] w_new;   // lane j's entry after its write at [j*EntryW +: EntryW]
+  /* verilator lint_on UNOPTFLAT */
   for (genvar j = 0; j < Lanes; j++) begin : g_lane
+    /* verilator lint_off UNUSEDSIGNAL */  // the index's high bits: on_chip's
+    logic [2*BlkW-1:0] bi;
+    /* verilator lint_on UNUSEDSIGNAL */
     logic [PixelW-1:0] x, y;
-    logic [BlkW-1:0]   bx, by;
-    logic [PixelW:0]   rx, ry, wx, wy;  // pixels from the block's left (top) edge to the framebuffer's; clipped to B
+    logic              done;
+    // The entry lane j updates: the table's, or the last earlier lane's on the same block
+    // (lane k < j's slice of w_new: each lane reads only earlier lanes' outputs, so the
+    // chain has no loop; Verilator sees the vectors whole).
+    /* verilator lint_off UNOPTFLAT */
+    logic [EntryW-1:0] e_in, e_out;
+    /* verilator lint_on UNOPTFLAT */
     assign x = wr_x_i[j*PixelW +: PixelW];
     assign y = wr_y_i[j*PixelW +: PixelW];
-    assign bx = BlkW'(x >> BlockLog2);
-    assign by = BlkW'(y >> BlockLog2);
-    assign w_idx[j] = index_of(bx, by, nx);
-    assign rx = {1'b0, fb_width_i} - ((PixelW + 1)'(bx) << BlockLog2);
-    assign ry = {1'b0, fb_height_i} - ((PixelW + 1)'(by) << BlockLog2);
-    assign wx = rx > (PixelW + 1)'(B) ? (PixelW + 1)'(B) : rx;
-    assign wy = ry > (PixelW + 1)'(B) ? (PixelW + 1)'(B) : ry;
-    assign w_full[j] = CntW'(wx * wy);
-    assign w_bit[j] = {y[BlockLog2-1:0], x[BlockLog2-1:0]};
-  end
-  // Lane j's entry after lanes 0 .. j-1, in lane order (lane k's slice of w_new is read
-  // only for k < j, already written: Verilator's order check sees the vector whole).
-  /* verilator lint_off ALWCOMBORDER */
-  logic [Lanes*EntryW-1:0] w_new;  // lane j's entry at [j*EntryW +: EntryW]
-  logic [Lanes-1:0] w_done;  // lane j completed its block's layer
-  always_comb begin
-    logic [EntryW-1:0] e;
-    logic [DepthW-1:0] z, zmin, zmax, lmin, lmax;
-    logic [MaskW-1:0]  mask;
-    logic [CntW-1:0]   count;
-    w_new = '0;
-    for (int j = 0; j < Lanes; j++) begin
-      z = wr_z_i[j*DepthW +: DepthW];
-      e = table_q[w_idx[j]];
+    assign bi = index_of(BlkW'(x >> BlockLog2), BlkW'(y >> BlockLog2), nx);
+    assign w_idx[j] = IdxW'(bi);
+    assign w_on[j] = wr_valid_i[j] && on_chip(bi);
+    always_comb begin
+      e_in = table_q[w_idx[j]];
       for (int k = 0; k < j; k++)
-        if (wr_valid_i[k] && w_idx[k] == w_idx[j]) e = w_new[k*EntryW +: EntryW];
-      {zmin, zmax, lmin, lmax, mask, count} = e;
-      if (z > zmax) zmax = z;
-      if (z < zmin) zmin = z;
-      if (z > lmax) lmax = z;
-      if (z < lmin) lmin = z;
-      w_done[j] = 1'b0;
-      if (!mask[w_bit[j]]) begin
-        mask[w_bit[j]] = 1'b1;
-        count = count + 1'b1;
-        if (count == w_full[j]) begin  // every pixel written during the layer
-          if (lmax < zmax) zmax = lmax;
-          if (lmin > zmin) zmin = lmin;
-          mask = '0;
-          count = '0;
-          lmin = '1;
-          lmax = '0;
-          w_done[j] = wr_valid_i[j];
-        end
-      end
-      w_new[j*EntryW +: EntryW] = {zmin, zmax, lmin, lmax, mask, count};
+        if (w_on[k] && w_idx[k] == w_idx[j]) e_in = w_new[k*EntryW +: EntryW];
     end
+    rast_hiz_update #(.DepthW(DepthW), .PixelW(PixelW), .BlockLog2(BlockLog2)) u_update (
+      .fb_width_i, .fb_height_i, .e_i(e_in), .x_i(x), .y_i(y), .z_i(wr_z_i[j*DepthW +: DepthW]),
+      .e_o(e_out), .done_o(done));
+    assign w_new[j*EntryW +: EntryW] = e_out;
+    assign w_done[j] = w_on[j] && done;
   end
-  /* verilator lint_on ALWCOMBORDER */
   always_comb begin
     completions_o = '0;
     for (int j = 0; j < Lanes; j++) completions_o = completions_o + CompW'(w_done[j]);
@@ -186,7 +165,7 @@ module rast_hiz #(
         table_q[i] <= {clear_z_i, clear_z_i, {DepthW{1'b1}}, {DepthW{1'b0}}, {MaskW{1'b0}}, {CntW{1'b0}}};  // {zmin, zmax, lmin, lmax, mask, count}
       end else begin
         for (int j = 0; j < Lanes; j++)
-          if (wr_valid_i[j] && w_idx[j] == IdxW'(i)) table_q[i] <= w_new[j*EntryW +: EntryW];
+          if (w_on[j] && w_idx[j] == IdxW'(i)) table_q[i] <= w_new[j*EntryW +: EntryW];
       end
     end
   end

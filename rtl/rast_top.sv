@@ -169,7 +169,20 @@ module rast_top #(
   // Hi-Z (HizMode != 0; docs/depth-culling.md "RTL"): tiles coarse raster culled this
   // cycle, and a tile it sent accepted (tiles_culled_hiz, tiles_accepted_hiz). 0 without.
   output      logic [$clog2(CoarseTilesPerCycle+1)-1:0] dbg_hiz_culled_o,
-  output      logic                                  dbg_hiz_accepted_o
+  output      logic                                  dbg_hiz_accepted_o,
+  // Hi-Z's spilled entries (HizSpillBlocks > 0; rast_hiz_spill): the memory port the
+  // testbench serves as client `hiz`, requests in order, read responses in order, an
+  // entry (2^HizEntryBytesLog2 bytes) in the low bits of the 512. Tied off without.
+  input  wire logic [39:0]                           hiz_base_i,           // depth.hiz_base (static)
+  output      logic                                  hiz_mem_req_valid_o,
+  input  wire logic                                  hiz_mem_req_ready_i,
+  output      logic                                  hiz_mem_req_write_o,  // a write-back
+  output      logic                                  hiz_mem_req_flush_o,  // a flush's read (else a test's)
+  output      logic [39:0]                           hiz_mem_req_addr_o,   // the entry's byte address
+  output      logic [511:0]                          hiz_mem_req_data_o,
+  input  wire logic                                  hiz_mem_rsp_valid_i,
+  input  wire logic [511:0]                          hiz_mem_rsp_data_i,
+  output      logic                                  dbg_hiz_error_o       // its write FIFO overflowed
 );
   localparam int MaskW = 1 << (2 * TileLog2Max);      // derived: coverage mask bits
   localparam int SMaskW = MaskW * MaxSamples;         // derived: sample mask bits of a tile
@@ -412,13 +425,14 @@ module rast_top #(
   // Hi-Z hooks (rast_top_hiz below): coarse raster's lanes and their answers.
   localparam int KLanes = CoarseTilesPerCycle;  // derived
   logic [KLanes*4*PixelW-1:0] k_lane_fp;
-  logic [KLanes-1:0]   k_lane_wait, k_lane_cull, k_lane_accept;
+  logic [KLanes-1:0]   k_lane_keep, k_lane_wait, k_lane_cull, k_lane_accept;
   logic                k_hiz_accept, k_room;
   logic [$clog2(KLanes+1)-1:0] k_hiz_culled;
   logic                rop_hiz_always, rop_hiz_always_next, rop_hiz_end, rop_hiz_marker, rop_hiz_clear;
   logic [RopPixelsPerCycle-1:0]        rop_hiz_wr_lanes;
   logic [RopPixelsPerCycle*PixelW-1:0] rop_hiz_wr_x, rop_hiz_wr_y;
   logic [RopPixelsPerCycle*DepthW-1:0] rop_hiz_wr_z;
+  logic                hiz_busy;  // Hi-Z's spilled entries: writes not yet written back
   rast_coarse_raster #(
     .CoordW(CoordW), .CoordFrac(CoordFrac), .CoefW(CoefW), .EdgeW(EdgeW), .PixelW(PixelW),
     .TileLog2W(TileLog2W), .SampleOffW(SampleOffW), .TilesPerCycle(CoarseTilesPerCycle)
@@ -427,7 +441,7 @@ module rast_top #(
     .in_marker_i(c_in.marker), .in_a_i(c_in.edges.a), .in_b_i(c_in.edges.b), .in_c_i(c_in.edges.c),
     .in_bias_i(c_in.edges.bias), .in_bbox_i(c_in.bbox), .in_origin_i(c_in.origin),
     .out_valid_o(k_valid), .out_ready_i(k_ready), .out_marker_o(k_marker), .out_accepted_o(k_accepted),
-    .out_fp_o(k_fp), .busy_o(c_busy), .lane_fp_o(k_lane_fp), .lane_wait_i(k_lane_wait), .lane_cull_i(k_lane_cull),
+    .out_fp_o(k_fp), .busy_o(c_busy), .lane_fp_o(k_lane_fp), .lane_keep_o(k_lane_keep), .lane_wait_i(k_lane_wait), .lane_cull_i(k_lane_cull),
     .lane_accept_i(k_lane_accept), .out_hiz_accept_o(k_hiz_accept), .hiz_culled_o(k_hiz_culled));
   assign k_push.marker = k_marker;
   assign k_push.accepted = k_accepted;
@@ -845,7 +859,7 @@ module rast_top #(
       .CoordW(CoordW), .CoordFrac(CoordFrac), .CoefW(CoefW), .EdgeW(EdgeW), .AreaW(AreaW), .DepthW(DepthW),
       .PixelW(PixelW), .BlockLog2(HizBlockLog2), .MinMax(HizMode == 2 ? 1 : 0), .Blocks(HizBlocks),
       .TileLog2Max(TileLog2Max), .WriteLanes(RopPixelsPerCycle), .Lanes(KLanes), .SampleLog2W(SampleLog2W),
-      .InflightDepth(InflightDepth)
+      .InflightDepth(InflightDepth), .SpillBlocks(HizSpillBlocks), .EntryBytesLog2(HizEntryBytesLog2)
     ) u_hiz (
       .clk_i, .rst_ni, .fb_width_i, .fb_height_i, .depth_func_i, .samples_log2_i(samples_log2_q),
       .tri_a_i(c_in.edges.a), .tri_b_i(c_in.edges.b), .tri_c_i(c_in.edges.c), .tri_area2_i(c_in.area2),
@@ -856,7 +870,11 @@ module rast_top #(
       .rop_end_i(rop_hiz_end), .rop_marker_i(rop_hiz_marker), .rop_always_o(rop_hiz_always), .rop_always_next_o(rop_hiz_always_next),
       .rop_clear_i(rop_hiz_clear),
       .rop_clear_z_i(cmd_value_i[DepthW-1:0]), .wr_lanes_i(rop_hiz_wr_lanes), .wr_x_i(rop_hiz_wr_x),
-      .wr_y_i(rop_hiz_wr_y), .wr_z_i(rop_hiz_wr_z));
+      .wr_y_i(rop_hiz_wr_y), .wr_z_i(rop_hiz_wr_z), .lane_keep_i(k_lane_keep), .culled_i(k_hiz_culled != '0),
+      .base_i(hiz_base_i), .mem_req_valid_o(hiz_mem_req_valid_o), .mem_req_ready_i(hiz_mem_req_ready_i),
+      .mem_req_write_o(hiz_mem_req_write_o), .mem_req_flush_o(hiz_mem_req_flush_o), .mem_req_addr_o(hiz_mem_req_addr_o),
+      .mem_req_data_o(hiz_mem_req_data_o), .mem_rsp_valid_i(hiz_mem_rsp_valid_i), .mem_rsp_data_i(hiz_mem_rsp_data_i),
+      .error_o(dbg_hiz_error_o), .busy_o(hiz_busy));
     assign dbg_hiz_culled_o = k_hiz_culled;
     assign dbg_hiz_accepted_o = k_valid && k_ready && !k_marker && k_hiz_accept;
   end else begin : g_no_hiz
@@ -868,8 +886,12 @@ module rast_top #(
     assign rop_hiz_always_next = 1'b0;
     assign dbg_hiz_culled_o = '0;
     assign dbg_hiz_accepted_o = 1'b0;
-    wire unused_hiz = ^{k_lane_fp, k_hiz_accept, k_hiz_culled, rop_hiz_end, rop_hiz_marker, rop_hiz_clear, rop_hiz_wr_lanes,
-                        rop_hiz_wr_x, rop_hiz_wr_y, rop_hiz_wr_z};
+    assign {hiz_mem_req_valid_o, hiz_mem_req_write_o, hiz_mem_req_flush_o, hiz_mem_req_addr_o, hiz_mem_req_data_o} = '0;
+    assign dbg_hiz_error_o = 1'b0;
+    assign hiz_busy = 1'b0;
+    wire unused_hiz = ^{k_lane_fp, k_lane_keep, k_hiz_accept, k_hiz_culled, rop_hiz_end, rop_hiz_marker, rop_hiz_clear,
+                        rop_hiz_wr_lanes, rop_hiz_wr_x, rop_hiz_wr_y, rop_hiz_wr_z, hiz_base_i, hiz_mem_req_ready_i,
+                        hiz_mem_rsp_valid_i, hiz_mem_rsp_data_i};
   end
 
   // ---- Stage observation (debug ports): setup holds a triangle from the FIFO head or
@@ -887,7 +909,7 @@ module rast_top #(
 
   // A held transaction shows as valid at the stage's input.
   assign idle_o = t_empty && !s_busy && c_empty && !c_valid && !c_busy && f_empty && !f_valid && !f_busy &&
-                  p_empty && !p_valid && !p_busy && ts_empty && !x_busy && r_fifo_empty && rop_idle && tb_idle;
+                  p_empty && !p_valid && !p_busy && ts_empty && !x_busy && r_fifo_empty && rop_idle && tb_idle && !hiz_busy;
 endmodule
 
 `default_nettype wire

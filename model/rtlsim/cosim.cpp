@@ -117,6 +117,8 @@ nlohmann::json CosimResult::to_json(const CosimOptions& opts) const {
   if (hiz) {  // render --stats' Hi-Z keys the RTL counts
     j["tiles_culled_hiz"] = tiles_culled_hiz;
     j["tiles_accepted_hiz"] = tiles_accepted_hiz;
+    j["hiz_dram_bytes_read"] = hiz_dram_bytes_read;
+    j["hiz_dram_bytes_written"] = hiz_dram_bytes_written;
   }
   if (memory.enabled) {  // render's memory keys, then the DRAM's (simulate --stats' names)
     add_memory(j, memory);

@@ -126,6 +126,9 @@ struct CosimResult {
   // tiles_culled_hiz, tiles_accepted_hiz; a difference from the reference's is a mismatch).
   bool hiz = false;
   uint64_t tiles_culled_hiz = 0, tiles_accepted_hiz = 0;
+  // Its spilled entries' bytes through the hiz port (render's hiz_dram_bytes_read,
+  // hiz_dram_bytes_written; tb_hiz.h: unlike the reference's, a mismatch).
+  uint64_t hiz_dram_bytes_read = 0, hiz_dram_bytes_written = 0;
   // memory.model = "dram": the ROP's functional memory counts (render --stats' keys) and
   // the DRAM's figures (add_memory_system_json's keys: dram_row_hit_rate, memory.dram.*,
   // memory.clients.<client>.bursts_read, ...); memory.enabled false and {} with fixed.
@@ -153,7 +156,8 @@ NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(CosimResult, rtl_config, rtl_mod
                                                 mismatches, first_mismatch, triangles, markers, commands_2d, pixels_2d,
                                                 crc_rtl, crc_ref, samples, rop_accesses, resolve_cycles, helper_pixels,
                                                 texel_fetches, texture_cache_hits, texture_cache_misses, hiz,
-                                                tiles_culled_hiz, tiles_accepted_hiz, memory, dram,
+                                                tiles_culled_hiz, tiles_accepted_hiz, hiz_dram_bytes_read,
+                                                hiz_dram_bytes_written, memory, dram,
                                                 wall_seconds, stages, command_starts, command_mismatches)
 
 // The verilated configs linked into this binary, and the parameters each was built with

@@ -1,10 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
-// The port adapter between the testbench (testbench.h, a plain .cpp) and one verilated
-// config: RastPorts on a Vrast_<config> (rast_top) and the Vrast_engine2d beside it, one
-// template instance per verilated config (the generated registry rtl_registry.cpp, and
-// the on-demand runner rtl_runner_main.cpp). It only moves values between C++ and the
-// models' ports (widths from RtlParams and Engine2dRtlParams); everything the testbench
-// decides is in testbench.cpp. Callers use cosim.h.
+// The port adapter between the testbench (testbench.h, a plain .cpp) and one verilated config: RastPorts on a
+// Vrast_<config> (rast_top) and the Vrast_engine2d beside it, one template instance per verilated config (the
+// generated registry rtl_registry.cpp, and the on-demand runner rtl_runner_main.cpp). It only moves values between
+// C++ and the models' ports (widths from RtlParams, Engine2dRtlParams); the testbench decides in testbench.cpp.
 #pragma once
 
 #include <memory>
@@ -17,7 +15,7 @@
 #include "Vrast_engine2d.h"
 #include "Vrast_engine2d_rast_engine2d.h"  // its public parameters
 
-#include "rtlsim/cosim_tile_port.h"  // port_bits.h, testbench.h
+#include "rtlsim/cosim_hiz_port.h"  // cosim_tile_port.h, port_bits.h, testbench.h
 
 namespace rastsim::rtlsim {
 
@@ -175,6 +173,8 @@ class VerilatedRast final : public RastPorts {
     set_port_bytes(top_->tex_mem_rsp_data_i, bytes);
   }
   bool texture_beat_taken() const override { return top_->tex_mem_rsp_ready_o; }
+  HizRequest hiz_request() const override { return hiz_request_of(*top_); }
+  void drive_hiz(uint64_t b, bool v, const std::array<uint8_t, 64>& d) override { drive_hiz_of(*top_, b, v, d); }
   TexCacheEvents texture_cache_events() const override { return {int(top_->tex_hits_o), bool(top_->tex_miss_o)}; }
   int helper_pixels() const override { return top_->tex_helpers_o; }
   RtlStageBits stage_bits() const override {

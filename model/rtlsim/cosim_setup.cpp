@@ -49,7 +49,11 @@ class StreamBuilder {
   StreamBuilder(const ArchParams& arch, int tile_size, TbSetup& s, const Command* command0)
       : setup_(s), timing_(s.timing), state_(arch.raster), tile_size_(tile_size), command0_(command0) {
     state_.tile_size = tile_size;
-    if (hiz_applies(state_)) hiz_.emplace(state_);
+    if (hiz_applies(state_)) {
+      hiz_.emplace(state_);
+      // Its spilled entries' accesses, in order (tb_hiz.h checks the RTL's against them).
+      hiz_->table.on_access = [this](uint64_t address, uint64_t, bool write) { hiz_access(address, write); };
+    }
     if (s.binned) bins_ = std::make_unique<BinProgram>(s, tile_size);
   }
 
@@ -70,6 +74,11 @@ class StreamBuilder {
     if (!hiz_) return;
     setup_.tiles_culled_hiz = hiz_->table.stats.tiles_culled;
     setup_.tiles_accepted_hiz = hiz_->table.stats.tiles_accepted;
+    setup_.hiz_entry_bytes = uint64_t(hiz_->table.entry_bytes());
+    setup_.hiz_base = hiz_->table.dram_base;
+    setup_.hiz_bytes_read = hiz_->table.stats.bytes_read;
+    setup_.hiz_bytes_written = hiz_->table.stats.bytes_written;
+    if (hiz_read_) setup_.hiz_test_reads.push_back(*hiz_read_);
   }
 
  private:
@@ -96,6 +105,20 @@ class StreamBuilder {
   // Hi-Z (hiz_applies): the zero-lag table rast_top's interlock makes its decisions equal
   // to (ref/hiz.h); a culled tile's fragments are not expected.
   std::optional<HizTracker> hiz_;
+  // A spilled entry's access: a read directly followed by the write of its address is a
+  // flush's read-modify-write (HizTable::flush), any other read a test's.
+  std::optional<uint64_t> hiz_read_;  // the last read, not yet classified
+  void hiz_access(uint64_t address, bool write) {
+    if (write) {
+      if (hiz_read_ != address) throw std::logic_error("Hi-Z: a write-back without its read");
+      setup_.hiz_flush_reads.push_back(address);
+      setup_.hiz_writes.push_back(address);
+      hiz_read_.reset();
+      return;
+    }
+    if (hiz_read_) setup_.hiz_test_reads.push_back(*hiz_read_);
+    hiz_read_ = address;
+  }
   // traverse_triangle's tile filter: the tracker's test, then the drawn tile's writes.
   struct HizWalk {
     HizTracker* h;
@@ -370,9 +393,10 @@ RtlParams cosim_wanted_params(const ArchParams& arch, const CosimOptions& opts) 
     throw ConfigError(cfg.origin("raster.aa_mode") + ": raster.aa_mode = " + cfg.get_string("raster.aa_mode") +
                       " has no RTL (the RTL shades once a pixel, at its centre: msaa); co-simulate with "
                       "raster.aa_mode = msaa (render and simulate run ssaa)");
-  // Depth culling (docs/depth-culling.md "RTL"): rast_top holds Hi-Z's table on chip
-  // (rtl/rast_top_hiz.sv); the spilled entries have no memory port yet, and early Z no
-  // RTL, while the SystemC model it is timed against would use them: refused by name.
+  // Depth culling (docs/depth-culling.md "RTL"): rast_top holds Hi-Z's table, its first
+  // entries on chip and the rest through the hiz port (rtl/rast_top_hiz.sv,
+  // rast_hiz_spill.sv), at least one on chip; early Z has no RTL, while the SystemC model
+  // it is timed against would use it: refused by name.
   // Hi-Z that does not apply to this state (hiz_applies: e.g. multisampling) leaves the run
   // exactly the Hi-Z-off one (the shipped models, no table built).
   const bool hiz = hiz_applies(st);
@@ -381,13 +405,12 @@ RtlParams cosim_wanted_params(const ArchParams& arch, const CosimOptions& opts) 
                            ((st.fb_height + st.hiz_block - 1) / st.hiz_block);
     const int64_t onchip =
         hiz_onchip_blocks(st.hiz_mode, st.hiz_block, st.hiz_bytes, st.fb_width, st.fb_height, st.depth_bits);
-    if (onchip < blocks)
+    if (onchip < 1)
       throw ConfigError(cfg.origin("depth.hiz_bytes") + ": depth.hiz_bytes = " + std::to_string(st.hiz_bytes) +
-                        " holds " + std::to_string(onchip) + " of the display's " + std::to_string(blocks) +
-                        " Hi-Z blocks, and the RTL has no port for the spilled entries yet: co-simulate with "
-                        "depth.hiz_bytes >= " + std::to_string(blocks * hiz_entry_bytes(st.hiz_mode, st.hiz_block,
-                                                                                         st.depth_bits)) +
-                        " (render and simulate spill; docs/depth-culling.md)");
+                        " holds none of the display's " + std::to_string(blocks) +
+                        " Hi-Z blocks, and the RTL keeps at least one entry on chip: co-simulate with "
+                        "depth.hiz_bytes >= " + std::to_string(hiz_entry_bytes(st.hiz_mode, st.hiz_block, st.depth_bits)) +
+                        " (render and simulate spill the whole table; docs/depth-culling.md)");
   }
   if (st.depth_early)
     throw ConfigError(cfg.origin("depth.early") + ": depth.early = true has no RTL yet (the RTL shades every "

@@ -90,6 +90,8 @@ constexpr ParamField<RtlParams> kFields[] = {
     {"HizMode", &RtlParams::hiz_mode, "depth.hiz: 0 off (no table built), 1 max, 2 minmax"},
     {"HizBlockLog2", &RtlParams::hiz_block_log2, "log2 depth.hiz_block"},
     {"HizBlocks", &RtlParams::hiz_blocks, "Hi-Z entries on chip: depth.hiz_bytes / entry bytes, at most the display's"},
+    {"HizSpillBlocks", &RtlParams::hiz_spill_blocks, "the display's Hi-Z blocks past HizBlocks, in memory (client hiz)"},
+    {"HizEntryBytesLog2", &RtlParams::hiz_entry_bytes_log2, "log2 of a Hi-Z entry's bytes (hiz_entry_bytes)"},
     {"TileBufferSamples", &RtlParams::tile_buffer_samples,
      "pipeline.mode = binned: bin.tile_buffer_bytes / (4 + depth bytes) samples; 0: immediate (no tile buffer)"},
     {"TilePortBytes", &RtlParams::tile_port_bytes, "binned: rop.resolve_bytes_per_cycle, a load or store beat; else 4"},
@@ -359,6 +361,10 @@ static void set_hiz_params(const RasterState& st, RtlParams& p) {
     p.hiz_mode = st.hiz_mode == HizMode::MinMax ? 2 : 1;
     p.hiz_block_log2 = std::countr_zero(unsigned(st.hiz_block));
     p.hiz_blocks = int(hiz_blocks);
+    const int64_t blocks = int64_t((st.fb_width + st.hiz_block - 1) / st.hiz_block) *
+                           ((st.fb_height + st.hiz_block - 1) / st.hiz_block);
+    p.hiz_spill_blocks = int(blocks - hiz_blocks);
+    p.hiz_entry_bytes_log2 = std::countr_zero(unsigned(hiz_entry_bytes(st.hiz_mode, st.hiz_block, st.depth_bits)));
   }
 }
 
@@ -451,6 +457,8 @@ void rtl_params_without_hiz(RtlParams& p) {
   p.hiz_mode = 0;
   p.hiz_block_log2 = 3;  // any: nothing is built
   p.hiz_blocks = 1;
+  p.hiz_spill_blocks = 0;
+  p.hiz_entry_bytes_log2 = 3;
 }
 
 std::string rtl_params_verilog(const RtlParams& p, const std::string& source) {

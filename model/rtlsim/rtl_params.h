@@ -75,6 +75,9 @@ struct RtlParams {
   // Hi-Z in rast_top (rtl/rast_top_hiz.sv): depth.hiz 0 off, 1 max, 2 minmax; its block
   // and on-chip entries (hiz_onchip_blocks; 3 and 1 when off, nothing built).
   int hiz_mode = 0, hiz_block_log2 = 0, hiz_blocks = 0;
+  // The display's blocks past those (rtl/rast_hiz_spill.sv, in memory: 0 none, no spill
+  // unit built) and log2 of an entry's bytes (hiz_entry_bytes).
+  int hiz_spill_blocks = 0, hiz_entry_bytes_log2 = 0;
   // pipeline.mode = binned (rtl/rast_tile_buffer.sv): the tile buffer's samples (0: no
   // tile buffer, immediate mode), its load/store beat in bytes (rop.resolve_bytes_per_cycle)
   // and in words (bytes / a depth sample's bytes: the widest beat).

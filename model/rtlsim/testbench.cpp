@@ -41,6 +41,7 @@
 #include <utility>
 
 #include "ref/fixed_point.h"
+#include "rtlsim/tb_hiz.h"
 #include "rtlsim/tb_rop_memory.h"
 #include "rtlsim/tb_texture.h"
 #include "ref/pipeline.h"
@@ -137,12 +138,13 @@ class Testbench {
         clip_depth_(size_t(setup.timing.fifo_entries(FifoId::ClipCommand))),
         screen_depth_(size_t(setup.timing.fifo_entries(FifoId::Screen))),
         fb_(setup.arch.fb_width, setup.arch.fb_height, setup.samples),
-        depth_base_(rop_depth_base(fb_.width, fb_.height, fb_.samples)), texture_(setup) {
+        depth_base_(rop_depth_base(fb_.width, fb_.height, fb_.samples)), texture_(setup), hiz_(setup) {
     fb_.clear_depth(static_cast<uint32_t>((uint64_t{1} << setup.arch.depth_bits) - 1));  // as render_scene
     if (setup.opts.initial_fb) fb_ = *setup.opts.initial_fb;  // cosim --frames: the frames before the range
     if (setup.memory.enabled) {
       dram_ = std::make_unique<TbRopMemory>(setup);
       texture_.attach(dram_->system());  // after the scan-out and the ROP, as simulate attaches it
+      hiz_.attach(dram_->system());
     }
     for (size_t i = 0; i < setup.items.size(); ++i)
       if (!setup.items[i].from_front_end && !setup.items[i].fed) fetched_.push_back(i);
@@ -238,6 +240,8 @@ class Testbench {
   std::unique_ptr<TbRopMemory> dram_;     // memory.model = "dram": the timed memory system (null: fixed)
   std::unique_ptr<TbBinner> binner_;      // pipeline.mode = binned: the binner and the tile buffer's memory
   TbTexture texture_;                     // the texel memory behind the texel fetch port
+  TbHiz hiz_;                             // Hi-Z's spilled entries behind hiz_mem_*
+  bool hiz_overflow_ = false;             // dbg_hiz_error_o seen
   // The 2D path.
   std::deque<Entry> draw2d_fifo_, op2d_fifo_;  // fetch -> front end -> engine (items: work2d indices)
   TbStage front_end_;                     // the 2D front end
@@ -310,6 +314,9 @@ void Testbench::run() {
     std::string error;
     texture_.finish(result_, error);
     if (!error.empty()) mismatch(error);
+    error.clear();
+    if (setup_.hiz) hiz_.finish(result_, error);
+    if (!error.empty()) mismatch(error);
   }
   if (result_.helper_pixels != setup_.helper_pixels)
     mismatch("helper pixels: the RTL dropped " + std::to_string(result_.helper_pixels) + ", the reference counts " +
@@ -345,6 +352,7 @@ bool Testbench::cycle(uint64_t t) {
   const bool tri_valid = (binner_ ? fed != nullptr : assembly_.offering()) && !tri_valid_stress_.low();
   ports_.drive_triangle(!tri_valid ? nullptr : binner_ ? fed : &setup_.items[assembly_.item]);
   texture_.drive(t, ports_);
+  hiz_.drive(t, ports_);
   ports_.clock_edge(false);
   bool tri_taken = tri_valid && ports_.triangle_ready();
   if (binner_) {
@@ -355,6 +363,13 @@ bool Testbench::cycle(uint64_t t) {
   {
     std::string error;
     texture_.serve(t, ports_, error);
+    if (!error.empty()) mismatch(error);
+    error.clear();
+    hiz_.serve(t, ports_, error);
+    if (ports_.hiz_request().error && !hiz_overflow_) {  // sticky in the RTL: reported once
+      hiz_overflow_ = true;
+      error = "cycle " + std::to_string(t) + ": Hi-Z's spilled-entry write FIFO overflowed";
+    }
     if (!error.empty()) mismatch(error);
     result_.helper_pixels += uint64_t(ports_.helper_pixels());
   }

@@ -129,10 +129,12 @@ struct TbSetup {
   TextureMemory texture_memory;
   std::vector<uint64_t> texture_fills;
   uint64_t helper_pixels = 0;
-  // Hi-Z (hiz_applies): the reference's tiles culled and accepted (HizTracker's, the
-  // expected fragments leave the culled tiles out).
+  // Hi-Z (hiz_applies): the reference's tiles culled and accepted (the expected fragments
+  // leave the culled out) and its spilled entries' accesses by kind, in order (tb_hiz.h).
   bool hiz = false;
   uint64_t tiles_culled_hiz = 0, tiles_accepted_hiz = 0;
+  std::vector<uint64_t> hiz_test_reads, hiz_flush_reads, hiz_writes;
+  uint64_t hiz_entry_bytes = 0, hiz_base = 0, hiz_bytes_read = 0, hiz_bytes_written = 0;
   // pipeline.mode = binned (tb_binning.h): the binner's program and bin commands.
   bool binned = false;
   TbBinning binning;
@@ -162,6 +164,12 @@ struct RtlStageBits {
   bool tex_blocked = false;  // dbg_tex_blocked_o: its output refused
   int hiz_culled = 0;         // dbg_hiz_culled_o: tiles coarse raster culled (Hi-Z)
   bool hiz_accepted = false;  // dbg_hiz_accepted_o: the tile it sent was accepted
+};
+// rast_top's hiz_mem_req_* (a flush's read, a write-back and its entry) and dbg_hiz_error_o.
+struct HizRequest {
+  bool valid = false, write = false, flush = false, error = false;
+  uint64_t address = 0;
+  std::array<uint8_t, 64> data{};
 };
 // One lane of a ROP memory request (rast_top's rd_* / wr_*): a byte address and a burst
 // length in 32-bit words.
@@ -233,6 +241,9 @@ class RastPorts {
   virtual TexCacheEvents texture_cache_events() const = 0;
   virtual int helper_pixels() const = 0;
   virtual RtlStageBits stage_bits() const = 0;
+  // Hi-Z's spilled entries: the request (taken whenever offered); hiz_base_i and a response.
+  virtual HizRequest hiz_request() const = 0;
+  virtual void drive_hiz(uint64_t base, bool valid, const std::array<uint8_t, 64>& data) = 0;
 
   // The ROP's command port: cmd_ready_o (a marker waits for its command, the ROP is
   // quiet), and the command offered (cmd_valid_i, cmd_op_i, cmd_value_i; cmd_bin_i: a bin
