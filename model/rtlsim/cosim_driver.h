@@ -252,8 +252,9 @@ class VerilatedRast final : public RastPorts {
   }
   bool operation_ready() const override { return engine_->in_ready_o; }
   Engine2dAccess engine_access() const override {
-    return {signed_index(engine_->mem_x_o), signed_index(engine_->mem_y_o), signed_index(engine_->mem_sx_o),
-            signed_index(engine_->mem_sy_o)};
+    const int w = engine_params_.width;
+    return {signed_field(engine_->mem_x_o, w), signed_field(engine_->mem_y_o, w), signed_field(engine_->mem_sx_o, w),
+            signed_field(engine_->mem_sy_o, w)};
   }
   Engine2dRead engine_read() const override {
     return {bool(engine_->rd_valid_o), uint32_t(engine_->rd_lanes_o), bool(engine_->rd_src_o)};
@@ -277,12 +278,6 @@ class VerilatedRast final : public RastPorts {
   }
 
  private:
-  // A Width-bit port value as a signed index.
-  int signed_index(uint32_t v) const {
-    const int unused = 32 - engine_params_.width;
-    return int(int32_t(v << unused) >> unused);
-  }
-
   const RtlParams& params_;
   const Engine2dRtlParams& engine_params_;
   std::unique_ptr<VerilatedContext> context_;

@@ -12,6 +12,12 @@
 
 namespace rastsim::rtlsim {
 
+// A w-bit two's-complement port value (w <= 32, in the low bits of v) as a signed int.
+inline int signed_field(uint32_t v, int w) {
+  const int unused = 32 - w;
+  return int(int32_t(v << unused) >> unused);
+}
+
 // Bits [lsb, lsb + w) of a verilated port (C integer or VlWide), w <= 64.
 template <class T>
 uint64_t port_bits(const T& v, int lsb, int w) {
