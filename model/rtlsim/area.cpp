@@ -94,7 +94,8 @@ std::string replace_all(std::string s, const std::string& from, const std::strin
 // Yosys 0.23 had sat in `share` for more than 20 minutes on the interpolator and on
 // rast_top's own logic (issue 28). Where both finish (embedded, raster.max_samples=2) the
 // interpolator's own logic is the same netlist with and without it (111,080 gates,
-// 859,316 transistors). Every other module keeps it (and its cache entries).
+// 859,316 transistors); without it the default's finishes (701,352 gates, 517 CPU s).
+// Every other module keeps it (and its cache entries).
 bool skips_share(const std::string& module) {
   return module == "rast_interpolate" || module == "rast_top";
 }
