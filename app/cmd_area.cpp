@@ -67,6 +67,7 @@ void run_area_command(const AreaCommandOptions& o) {
   if (o.top == "rast_top") add_storage(r, rast_top_storage(arch));
   if (o.top == "rast_rop_cache") add_storage(r, rop_cache_data_storage(arch));
   if (o.top == "rast_texture_cache") add_storage(r, texture_cache_data_storage(arch));
+  if (o.top == "rast_tile_buffer") add_storage(r, tile_buffer_storage(arch));
   if (!o.quiet && tty) std::cerr << "\r\033[K" << std::flush;
   std::ostream& out = summary_stream(o.stats_path, o.quiet);
   out << "area: " << cfg.source_name() << ", " << (r.top.empty() ? "rast_top + rast_engine2d" : r.top) << ", "

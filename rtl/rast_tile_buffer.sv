@@ -14,7 +14,9 @@
 //   a sample, each with a valid bit. Sample s of bin pixel (x', y') (x' = x - bin x0) is
 //   slot (y' w + x') S + s, w the bin's width clipped to the screen: the ROP addresses it
 //   with fb_width_i = w, colour base 0 and depth base Slots 4 (rast_top), so its address
-//   arithmetic is the immediate mode's. A slot not valid reads as its surface's fill
+//   arithmetic is the immediate mode's. The arrays and their valid bits are
+//   rast_tile_buffer_data (an SRAM macro: a blackbox to `rastsim area`, counted as
+//   storage rows; this module's ports and logic around it). A slot not valid reads as its surface's fill
 //   value: the frame's initial value (colour opaque black, depth the far value
 //   2^DepthW - 1: ref render_scene's framebuffer) after a begin marker that does not load
 //   the surface (the reference's tile buffer is the framebuffer, untouched before a
@@ -131,30 +133,43 @@ module rast_tile_buffer #(
   end
   localparam int IdxW = $clog2(Slots);  // an array index
 
-  // ---- Storage ----
-  logic [31:0]       col_q [Slots];
-  logic [DepthW-1:0] dep_q [Slots];
-  logic [Slots-1:0]  col_v_q, dep_v_q;  // valid: else the surface's fill value
+  // ---- Storage: the arrays (rast_tile_buffer_data, an SRAM macro to `rastsim area`) ----
+  // Read ports: the ROP's, a lane's samples (P MaxSamples), then a store beat's words
+  // (PortWords), then a resolved store word's samples (PortWords MaxSamples). Write ports:
+  // the ROP's, a lane's samples (2 P MaxSamples), then a load beat's words (PortWords).
+  localparam int RopReads = P * MaxSamples;
+  localparam int ResolveReads0 = RopReads + PortWords;  // a resolved store word's samples
+  localparam int Reads = ResolveReads0 + PortWords * MaxSamples;
+  localparam int RopWrites = 2 * P * MaxSamples;
+  localparam int Writes = RopWrites + PortWords;
   logic [31:0]       col_fill_q;        // what a slot not valid holds: the initial value or a clear's
   logic [DepthW-1:0] dep_fill_q;
-  function automatic logic [31:0] col_word(input logic [SlotW-1:0] i);
-    col_word = i < SlotW'(Slots) && col_v_q[IdxW'(i)] ? col_q[IdxW'(i)] : col_fill_q;
+  logic              clear_col, clear_dep;  // a clear of the valid bits this cycle
+  logic [Reads-1:0]       rd_dep, rd_in, rd_valid;  // a read port: depth; its slot < Slots; valid there
+  logic [Reads*IdxW-1:0]  rd_slot;
+  logic [Reads*32-1:0]    rd_word;
+  logic [Writes-1:0]      wp_en, wp_dep;
+  logic [Writes*IdxW-1:0] wp_slot;
+  logic [Writes*4-1:0]    wp_be;
+  logic [Writes*32-1:0]   wp_data;
+  rast_tile_buffer_data #(.Slots(Slots), .DepthW(DepthW), .Reads(Reads), .Writes(Writes)) u_data (
+    .clk_i, .col_fill_i(col_fill_q), .dep_fill_i(dep_fill_q), .clear_col_i(clear_col), .clear_dep_i(clear_dep),
+    .rd_dep_i(rd_dep), .rd_slot_i(rd_slot), .rd_word_o(rd_word), .rd_valid_o(rd_valid), .wr_en_i(wp_en),
+    .wr_dep_i(wp_dep), .wr_slot_i(wp_slot), .wr_be_i(wp_be), .wr_data_i(wp_data));
+  // Read port r addressed at slot s of a surface (its word below: the fill value unless valid).
+  function automatic logic [31:0] port_word(input int r);
+    port_word = rd_in[r] && rd_valid[r] ? rd_word[r*32 +: 32] : rd_dep[r] ? 32'(dep_fill_q) : col_fill_q;
   endfunction
-  function automatic logic [31:0] dep_word(input logic [SlotW-1:0] i);
-    logic [DepthW-1:0] d;
-    d = i < SlotW'(Slots) && dep_v_q[IdxW'(i)] ? dep_q[IdxW'(i)] : dep_fill_q;
-    dep_word = 32'(d);
-  endfunction
-  // A pixel's resolved colour: each channel of its 2^l2 samples from slot `first` averaged,
+  // Store word i's resolved colour: each channel of its pixel's 2^l2 samples averaged,
   // (sum + 2^l2 / 2) >> l2 (ref Framebuffer::resolve; 8 + SampleLog2W bits a sum).
   localparam int SumW = 9 + $clog2(MaxSamples);
-  function automatic logic [31:0] resolved_word(input logic [SlotW-1:0] first, input logic [SampleLog2W-1:0] l2);
+  function automatic logic [31:0] resolved_word(input int i, input logic [SampleLog2W-1:0] l2);
     logic [SumW-1:0] sum;
     logic [31:0] w;
     for (int c = 0; c < 4; c++) begin
       sum = SumW'((1 << l2) >> 1);
       for (int k = 0; k < MaxSamples; k++) begin
-        w = col_word(first + SlotW'(k));
+        w = port_word(ResolveReads0 + i * MaxSamples + k);  // store word i's sample k
         if (k < (1 << l2)) sum = sum + SumW'(w[c*8 +: 8]);
       end
       resolved_word[c*8 +: 8] = 8'(sum >> l2);
@@ -260,15 +275,24 @@ module rast_tile_buffer #(
   logic             wd_valid_q, wd_depth_q, wd_rsv_q;
   logic [SlotW-1:0] wd_slot_q;
   logic [CntW-1:0]  wd_count_q;
-  always_comb begin
+  for (genvar i = 0; i < PortWords; i++) begin : g_store_word
     logic [SlotW-1:0] s;
-    for (int i = 0; i < PortWords; i++) begin
-      s = wd_slot_q + SlotW'(i);
-      tl_wdata_o[i*32 +: 32] = !wd_valid_q || CntW'(i) >= wd_count_q ? 32'h0 :
-                               wd_depth_q ? dep_word(s) :
-                               wd_rsv_q ? resolved_word(wd_slot_q + (SlotW'(i) << samples_log2_i), samples_log2_i) :
-                               col_word(s);
+    assign s = wd_slot_q + SlotW'(i);
+    assign rd_dep[RopReads + i] = wd_depth_q;
+    assign rd_in[RopReads + i] = s < SlotW'(Slots);
+    assign rd_slot[(RopReads + i)*IdxW +: IdxW] = IdxW'(s);
+    // A resolved word's samples: its pixel's MaxSamples slots from wd_slot_q + i S.
+    for (genvar k = 0; k < MaxSamples; k++) begin : g_sample
+      localparam int R = ResolveReads0 + i * MaxSamples + k;  // the read port
+      logic [SlotW-1:0] rs;
+      assign rs = wd_slot_q + (SlotW'(i) << samples_log2_i) + SlotW'(k);
+      assign rd_dep[R] = 1'b0;
+      assign rd_in[R] = rs < SlotW'(Slots);
+      assign rd_slot[R*IdxW +: IdxW] = IdxW'(rs);
     end
+    assign tl_wdata_o[i*32 +: 32] = !wd_valid_q || CntW'(i) >= wd_count_q ? 32'h0 :
+                                    wd_rsv_q && !wd_depth_q ? resolved_word(i, samples_log2_i) :
+                                    port_word(RopReads + i);
   end
   logic iss_take, rsp_take;
   assign iss_take = tl_valid_o && tl_ready_i;
@@ -350,16 +374,17 @@ module rast_tile_buffer #(
   function automatic logic [SlotW:0] local_slot(input logic [AddrW-1:0] a);
     local_slot = a >= AddrW'(DepthSlot) ? {1'b1, SlotW'((a - AddrW'(DepthSlot)) >> 2)} : {1'b0, SlotW'(a >> 2)};
   endfunction
-  always_comb begin
+  for (genvar k = 0; k < P; k++) begin : g_rop_read
     logic [SlotW:0] ls;
-    logic [SlotW-1:0] s;
-    for (int k = 0; k < P; k++) begin
-      ls = local_slot(rq_addr_q[k*AddrW +: AddrW]);
-      for (int i = 0; i < MaxSamples; i++) begin
-        s = ls[SlotW-1:0] + SlotW'(i);
-        rd_rdata_o[(k*MaxSamples + i)*32 +: 32] =
-            rq_lanes_q[k] && LenW'(i) < rq_len_q[k*LenW +: LenW] ? (ls[SlotW] ? dep_word(s) : col_word(s)) : 32'h0;
-      end
+    assign ls = local_slot(rq_addr_q[k*AddrW +: AddrW]);
+    for (genvar i = 0; i < MaxSamples; i++) begin : g_word
+      logic [SlotW-1:0] s;
+      assign s = ls[SlotW-1:0] + SlotW'(i);
+      assign rd_dep[k*MaxSamples + i] = ls[SlotW];
+      assign rd_in[k*MaxSamples + i] = s < SlotW'(Slots);
+      assign rd_slot[(k*MaxSamples + i)*IdxW +: IdxW] = IdxW'(s);
+      assign rd_rdata_o[(k*MaxSamples + i)*32 +: 32] =
+          rq_lanes_q[k] && LenW'(i) < rq_len_q[k*LenW +: LenW] ? port_word(k*MaxSamples + i) : 32'h0;
     end
   end
   always_ff @(posedge clk_i or negedge rst_ni) begin
@@ -374,79 +399,47 @@ module rast_tile_buffer #(
     end
   end
 
-  // Word writes: the ROP's (a group's lanes, or a clear's fill burst), a load's response.
-  function automatic logic [31:0] merge(input logic [31:0] old, input logic [31:0] d, input logic [3:0] be);
-    for (int b = 0; b < 4; b++) merge[b*8 +: 8] = be[b] ? d[b*8 +: 8] : old[b*8 +: 8];
-  endfunction
-  // Valid bits and fill values, in one process (a packed vector a surface). A clear (op 1
-  // colour, 2 depth: its word on cmd_value_i) clears the surface's valid bits and makes its
-  // value the fill value: a flash clear, timed as ClearPixelsPerCycle pixels a cycle.
+  // Word writes: the ROP's (a group's lanes, or a clear's fill burst), a load's response,
+  // each a write port of the arrays (the bytes not enabled of a word not valid: the fill
+  // value). A clear (op 1 colour, 2 depth: its word on cmd_value_i) clears the surface's
+  // valid bits and makes its value the fill value: a flash clear, timed as
+  // ClearPixelsPerCycle pixels a cycle. A clear taken with a load's last response wins.
   logic rop_wr;
   assign rop_wr = wr_valid_i && wr_ready_o;
-  /* verilator lint_off WIDTHCONCAT */  // the flash clears: Slots-bit zeros
+  assign clear_col = (begin_take && !cmd_flags[0]) || (clear_take && cmd_op_i == 3'd1);
+  assign clear_dep = (begin_take && !cmd_flags[1]) || (clear_take && cmd_op_i == 3'd2);
   always_ff @(posedge clk_i) begin
-    logic [SlotW:0] ls;
-    logic [SlotW-1:0] s;
-    if (rop_wr) begin
-      for (int k = 0; k < 2 * P; k++) begin
-        ls = local_slot(wr_addr_i[k*AddrW +: AddrW]);
-        for (int i = 0; i < MaxSamples; i++) begin
-          s = ls[SlotW-1:0] + SlotW'(i);
-          if (wr_lanes_i[k] && LenW'(i) < wr_len_i[k*LenW +: LenW] && wr_be_i[(k*MaxSamples + i)*4 +: 4] != 4'h0 &&
-              s < SlotW'(Slots)) begin
-            if (ls[SlotW]) dep_v_q[IdxW'(s)] <= 1'b1;
-            else col_v_q[IdxW'(s)] <= 1'b1;
-          end
-        end
-      end
-    end
-    if (rsp_take) begin
-      for (int i = 0; i < PortWords; i++) begin
-        s = rsp_q[0 +: SlotW] + SlotW'(i);
-        if (CntW'(i) < beat_words(rsp_q, row_words_q, row_words_q) && s < SlotW'(Slots)) begin
-          if (rsp_q[WalkW-2]) dep_v_q[IdxW'(s)] <= 1'b1;
-          else col_v_q[IdxW'(s)] <= 1'b1;
-        end
-      end
-    end
-    // Last: a clear taken with a load's last response wins over it.
-    if ((begin_take && !cmd_flags[0]) || (clear_take && cmd_op_i == 3'd1)) col_v_q <= '0;
-    if ((begin_take && !cmd_flags[1]) || (clear_take && cmd_op_i == 3'd2)) dep_v_q <= '0;
     if (begin_take && !cmd_flags[0]) col_fill_q <= InitColor;
     if (begin_take && !cmd_flags[1]) dep_fill_q <= InitDepth;
     if (clear_take && cmd_op_i == 3'd1) col_fill_q <= cmd_value_i;
     if (clear_take && cmd_op_i == 3'd2) dep_fill_q <= DepthW'(cmd_value_i);
   end
-  /* verilator lint_on WIDTHCONCAT */
-
-  // Data words: one write port a ROP lane's word and a load beat's word, each its own
-  // process (one delayed array write each).
   for (genvar k = 0; k < 2 * P; k++) begin : g_rop_lane
+    logic [SlotW:0] ls;
+    assign ls = local_slot(wr_addr_i[k*AddrW +: AddrW]);
     for (genvar i = 0; i < MaxSamples; i++) begin : g_word
-      logic [SlotW:0] ls;
+      localparam int W = k * MaxSamples + i;  // the write port
       logic [SlotW-1:0] s;
       logic [3:0] be;
-      logic en;
-      assign ls = local_slot(wr_addr_i[k*AddrW +: AddrW]);
       assign s = ls[SlotW-1:0] + SlotW'(i);
-      assign be = wr_be_i[(k*MaxSamples + i)*4 +: 4];
-      assign en = rop_wr && wr_lanes_i[k] && LenW'(i) < wr_len_i[k*LenW +: LenW] && be != 4'h0 &&
-                  s < SlotW'(Slots);
-      always_ff @(posedge clk_i) begin
-        if (en && ls[SlotW]) dep_q[IdxW'(s)] <= DepthW'(merge(dep_word(s), wr_data_i[k*32 +: 32], be));
-        if (en && !ls[SlotW]) col_q[IdxW'(s)] <= merge(col_word(s), wr_data_i[k*32 +: 32], be);
-      end
+      assign be = wr_be_i[W*4 +: 4];
+      assign wp_en[W] = rop_wr && wr_lanes_i[k] && LenW'(i) < wr_len_i[k*LenW +: LenW] && be != 4'h0 &&
+                        s < SlotW'(Slots);
+      assign wp_dep[W] = ls[SlotW];
+      assign wp_slot[W*IdxW +: IdxW] = IdxW'(s);
+      assign wp_be[W*4 +: 4] = be;
+      assign wp_data[W*32 +: 32] = wr_data_i[k*32 +: 32];
     end
   end
   for (genvar i = 0; i < PortWords; i++) begin : g_load_word
+    localparam int W = RopWrites + i;  // the write port
     logic [SlotW-1:0] s;
-    logic en;
     assign s = rsp_q[0 +: SlotW] + SlotW'(i);
-    assign en = rsp_take && CntW'(i) < beat_words(rsp_q, row_words_q, row_words_q) && s < SlotW'(Slots);
-    always_ff @(posedge clk_i) begin
-      if (en && rsp_q[WalkW-2]) dep_q[IdxW'(s)] <= DepthW'(tl_rdata_i[i*32 +: 32]);
-      if (en && !rsp_q[WalkW-2]) col_q[IdxW'(s)] <= tl_rdata_i[i*32 +: 32];
-    end
+    assign wp_en[W] = rsp_take && CntW'(i) < beat_words(rsp_q, row_words_q, row_words_q) && s < SlotW'(Slots);
+    assign wp_dep[W] = rsp_q[WalkW-2];
+    assign wp_slot[W*IdxW +: IdxW] = IdxW'(s);
+    assign wp_be[W*4 +: 4] = 4'hf;
+    assign wp_data[W*32 +: 32] = tl_rdata_i[i*32 +: 32];
   end
 endmodule
 

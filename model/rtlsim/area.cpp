@@ -68,7 +68,6 @@ setattr -mod -unset top *
 tee -q -o @WORK@/stat.json stat -json -tech cmos
 )";
 constexpr const char* kRead = "read_verilog -sv -I@DIR@ @FILES@\nhierarchy -top @ROOT@\n";
-const std::string kScript = std::string(kRead) + "@RETOP@" + kSynth;
 
 // Split synthesis of a hierarchy (docs/area.md, "Method"), so no Yosys process holds the
 // whole of rast_top:
@@ -88,6 +87,29 @@ constexpr const char* kModule = "read_rtlil @DIR@/elaborated.il\nblackbox @OTHER
 std::string replace_all(std::string s, const std::string& from, const std::string& to) {
   for (size_t at = 0; (at = s.find(from, at)) != std::string::npos; at += to.size()) s.replace(at, from.size(), to);
   return s;
+}
+
+// Modules synthesised without synth's `share` pass (SAT-based resource sharing of
+// mutually exclusive $mul, $shl, ... cells; docs/area.md "Method"): on the default config
+// Yosys 0.23 had sat in `share` for more than 20 minutes on the interpolator and on
+// rast_top's own logic (issue 28). Where both finish (embedded, raster.max_samples=2) the
+// interpolator's own logic is the same netlist with and without it (111,080 gates,
+// 859,316 transistors); without it the default's finishes (701,352 gates, 517 CPU s).
+// Every other module keeps it (and its cache entries).
+bool skips_share(const std::string& module) {
+  return module == "rast_interpolate" || module == "rast_top";
+}
+
+// kSynth for a module (its base name), with synth -noshare for those above.
+std::string synth_script(const std::string& module) {
+  if (!skips_share(module)) return kSynth;
+  return replace_all(kSynth, "synth -noabc -run begin:fine\n", "synth -noabc -noshare -run begin:fine\n");
+}
+
+// The synthesis of a one-process run: a stage alone (--top <module under rast_top>) as
+// that module's; a root whole (rast_top --one-process, rast_engine2d, the units) kSynth.
+std::string whole_synth_script(const std::string& stage) {
+  return stage.empty() ? std::string(kSynth) : synth_script(stage);
 }
 
 // "$paramod$<sha1>\rast_fifo", "$paramod\rast_hold\Width=..." and "\rast_top" -> the module's name.
@@ -115,9 +137,12 @@ struct ModuleInfo {
 };
 
 // Modules Yosys keeps as blackboxes (`(* blackbox *)`), SRAM macros whose bits the caller
-// counts as storage (area_memory.h): an instance adds no gate. The ROP cache's data array.
+// counts as storage (area_memory.h): an instance adds no gate. The ROP cache's data array
+// (also the texture cache's copies) and the tile buffer's arrays, by their base name
+// (a derived "$paramod$<hash>\\rast_tile_buffer_data" too).
 bool is_storage_blackbox(const std::string& type) {
-  return type == "rast_rop_cache_data" || type == "\\rast_rop_cache_data";
+  const std::string base = base_name(type);
+  return base == "rast_rop_cache_data" || base == "rast_tile_buffer_data";
 }
 
 // One module's entry of `stat -json [-tech cmos]`: its gates ($_*) as its own counts, the
@@ -288,8 +313,9 @@ AreaReport synth_run(const std::string& yosys, const std::string& params_vh, con
       stage.empty() ? "" : "setattr -mod -unset top " + root + "\nsetattr -mod -set top 1 *" + stage + "\nhierarchy\n";
   const std::string label = stage.empty() ? root : stage;
   YosysUsage usage;
-  const std::string script =
-      replace_all(replace_all(kScript, "@RETOP@", retop), "hierarchy -top @ROOT@\n", "hierarchy -top @ROOT@" + chparam + "\n");
+  const std::string script = replace_all(replace_all(std::string(kRead) + "@RETOP@" + whole_synth_script(stage),
+                                                   "@RETOP@", retop),
+                                       "hierarchy -top @ROOT@\n", "hierarchy -top @ROOT@" + chparam + "\n");
   const nlohmann::json stat = run.run(yosys, script, root, label, progress, usage);
   AreaReport rep = area_from_yosys_stat(stat, label);
   if (!split_children) rep.stages = {{label, rep.total}};
@@ -528,7 +554,7 @@ class SplitSynthesis {
     h.add(kRead);
     h.add(kElaborate);
     h.add(kModule);
-    h.add(kSynth);
+    h.add(synth_script(base_name(id)));
     h.add(root_);
     h.add(id);
     h.add(id.rfind("$paramod", 0) == 0 ? "" : params_vh_);
@@ -563,7 +589,7 @@ class SplitSynthesis {
     for (const auto& other : ids_)
       if (other != id) others += (others.empty() ? "=" : " =") + other;
     const std::string script =
-        replace_all(replace_all(std::string(kModule) + kSynth, "@OTHERS@", others), "@MODULE@", id);
+        replace_all(replace_all(std::string(kModule) + synth_script(base_name(id)), "@OTHERS@", others), "@MODULE@", id);
     const auto t1 = std::chrono::steady_clock::now();
     const fs::path work = elab_->dir / ("m" + std::to_string(k));
     fs::create_directories(work);
@@ -765,7 +791,7 @@ std::string chparam_args(const std::vector<std::pair<std::string, int>>& params)
 AreaReport synth_whole_part(const std::string& yosys, const std::string& yosys_ver, const std::string& params_vh,
                             const Part& part, const fs::path& dir, const AreaOptions& o, std::string& key) {
   Fnv64 h = base_key(yosys_ver);
-  h.add(kScript);
+  h.add(std::string(kRead) + "@RETOP@" + whole_synth_script(part.stage));
   h.add(part.root);
   h.add(part.stage);
   h.add(part.split ? "split" : "whole");

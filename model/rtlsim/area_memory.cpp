@@ -84,7 +84,21 @@ std::vector<StorageArray> texture_cache_data_storage(const ArchParams& arch) {
   return out;
 }
 
-std::vector<StorageArray> rast_top_storage(const ArchParams& arch) { return texture_cache_data_storage(arch); }
+std::vector<StorageArray> tile_buffer_storage(const ArchParams& arch) {
+  const RtlParams p = rtl_params(arch);  // Slots and DepthW as rast_top builds rast_tile_buffer_data
+  const uint64_t slots = uint64_t(p.tile_buffer_samples);
+  if (slots == 0) return {};  // immediate mode: rast_top builds no tile buffer
+  std::vector<StorageArray> out{{"tile_buffer.color", slots * (32 + 1), false, 0},
+                                {"tile_buffer.depth", slots * uint64_t(p.depth_w + 1), false, 0}};
+  for (StorageArray& a : out) a.transistors = storage_transistors(a.bits, a.sram);
+  return out;
+}
+
+std::vector<StorageArray> rast_top_storage(const ArchParams& arch) {
+  std::vector<StorageArray> out = texture_cache_data_storage(arch);
+  for (StorageArray& a : tile_buffer_storage(arch)) out.push_back(std::move(a));
+  return out;
+}
 
 std::vector<StorageArray> design_storage(const ArchParams& arch) {
   std::vector<StorageArray> out = memory_storage(arch);

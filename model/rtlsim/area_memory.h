@@ -70,8 +70,14 @@ std::vector<StorageArray> rop_cache_data_storage(const ArchParams& arch);
 // it: Ports copies (a read port each, every fill written to all), "texture_cache.copy<p>.data",
 // texture.cache_bytes x 8 bits each; none without a cache (texture.cache_bytes = 0).
 std::vector<StorageArray> texture_cache_data_storage(const ArchParams& arch);
+// The arrays of rast_tile_buffer (binned mode, rast_tile_buffer_data) as `rastsim area
+// --top rast_tile_buffer` builds it: "tile_buffer.color", TileBufferSamples x (32 + 1)
+// bits, and "tile_buffer.depth", TileBufferSamples x (raster.depth_bits + 1) bits (a
+// word and its valid bit a sample); none in immediate mode (no tile buffer).
+std::vector<StorageArray> tile_buffer_storage(const ArchParams& arch);
 // What rast_top holds as blackboxes: the texture cache's data copies (rast_top's
-// g_tex_cache), counted for `--top rast_top` and the whole design.
+// g_tex_cache) and the tile buffer's arrays (g_bins), counted for `--top rast_top` and
+// the whole design.
 std::vector<StorageArray> rast_top_storage(const ArchParams& arch);
 // The whole design's counted arrays (`rastsim area`, `rastsim sweep --area`): the memory
 // system's (memory_storage), then rast_top's (rast_top_storage).

@@ -87,6 +87,43 @@ TEST(AreaMemory, NothingWithoutTheMemorySystemOrACache) {
   EXPECT_EQ(s.count("rop_depth_cache.data"), 1u);
 }
 
+// The tile buffer's arrays (binned mode, rtl/rast_tile_buffer_data.sv, a blackbox to Yosys),
+// by hand: a sample is a 32-bit colour word and a depth word, each with a valid bit.
+// - The default 256 KiB at 24-bit depth (4 + 4 bytes a sample): 262,144 / 8 = 32,768
+//   samples. Colour 32,768 x 33 = 1,081,344 bits, SRAM: 6,488,064 + 10 % (648,806) =
+//   7,136,870; depth 32,768 x 25 = 819,200 bits: 4,915,200 + 491,520 = 5,406,720.
+// - 512 bytes at 16-bit depth (4 + 2 bytes): 85 samples (510 bytes). Colour 85 x 33 =
+//   2,805 bits, depth 85 x 17 = 1,445, both under 4,096: flip-flops, x 40 = 112,200 and
+//   57,800.
+// - Immediate mode: no tile buffer, no rows; rast_top's rows are the texture cache's
+//   copies, then the tile buffer's.
+TEST(AreaMemory, TileBufferArrays) {
+  const auto rows = [](const std::vector<std::string>& sets) {
+    app::ConfigOptions c;
+    c.sets = sets;
+    std::map<std::string, StorageArray> by_name;
+    for (const StorageArray& a : tile_buffer_storage(app::resolve_arch(c))) by_name[a.name] = a;
+    return by_name;
+  };
+  const auto d = rows({"pipeline.mode=binned"});
+  EXPECT_EQ(d.size(), 2u);
+  expect_array(d, "tile_buffer.color", 1081344, true, 7136870);
+  expect_array(d, "tile_buffer.depth", 819200, true, 5406720);
+  const auto s = rows({"pipeline.mode=binned", "bin.width=8", "bin.height=8", "bin.tile_buffer_bytes=512",
+                       "raster.depth_bits=16"});
+  EXPECT_EQ(s.size(), 2u);
+  expect_array(s, "tile_buffer.color", 2805, false, 112200);
+  expect_array(s, "tile_buffer.depth", 1445, false, 57800);
+  EXPECT_TRUE(rows({}).empty());
+  app::ConfigOptions c;
+  c.sets = {"pipeline.mode=binned"};
+  const std::vector<StorageArray> top = rast_top_storage(app::resolve_arch(c));
+  ASSERT_EQ(top.size(), 6u);  // the default texture cache's 4 copies, then the tile buffer
+  EXPECT_EQ(top[3].name, "texture_cache.copy3.data");
+  EXPECT_EQ(top[4].name, "tile_buffer.color");
+  EXPECT_EQ(top[5].name, "tile_buffer.depth");
+}
+
 // The rows reach the report's total and its JSON, in order, and come back from it.
 TEST(AreaMemory, RowsInTotalAndJson) {
   AreaReport r;
