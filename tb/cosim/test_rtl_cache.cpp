@@ -108,14 +108,15 @@ TEST(RtlOnDemand, ConfigTheRtlCannotRunNamesTheKey) {
 }
 
 // Depth culling the RTL lacks is refused by its key (the SystemC model would cull what the
-// RTL draws, so the cycles would compare two machines): Hi-Z's spilled entries (no memory
-// port yet: depth.hiz_bytes below the display's blocks) and early Z. Hi-Z that does not
-// apply (depth.func always) is the Hi-Z-off run and runs on the shipped model.
+// RTL draws, so the cycles would compare two machines): a Hi-Z table with no entry on chip
+// (rast_top_hiz keeps at least one; the rest go through the hiz port) and early Z. Hi-Z
+// that does not apply (depth.func always) is the Hi-Z-off run and runs on the shipped model.
 TEST(RtlOnDemand, DepthCullingTheRtlLacksNamesTheKey) {
   for (const char* mode : {"max", "minmax"}) {
-    const std::string m = cosim_error({std::string("depth.hiz=") + mode, "depth.hiz_bytes=16"});
-    EXPECT_NE(m.find("--set depth.hiz_bytes=16: depth.hiz_bytes = 16 holds "), std::string::npos) << m;
-    EXPECT_NE(m.find("no port for the spilled entries"), std::string::npos) << m;
+    const std::string m = cosim_error({std::string("depth.hiz=") + mode, "depth.hiz_bytes=0"});
+    EXPECT_NE(m.find("--set depth.hiz_bytes=0: depth.hiz_bytes = 0 holds none of the display's "), std::string::npos)
+        << m;
+    EXPECT_NE(m.find("the RTL keeps at least one entry on chip"), std::string::npos) << m;
   }
   const std::string e = cosim_error("depth.early=true");
   EXPECT_NE(e.find("--set depth.early=true: depth.early = true has no RTL yet"), std::string::npos) << e;
