@@ -166,8 +166,8 @@ void run_simulate_command(const SimulateOptions& o) {
     return run_simulate_frames(o, arch);
   std::unique_ptr<AtomicFile> frag_file;
   sc::SimOptions sim = sim_options(o, frag_file);
-  std::vector<uint64_t> frame_starts;  // a multi-frame trace's frames (frames[])
-  sim.on_fetch = record_frame_starts(frame_starts);
+  FrameStarts frame_starts;  // a multi-frame trace's frames (frames[])
+  record_frame_starts(sim, frame_starts);
   // Fails before a long simulation, not after it, when an output cannot be written.
   for (const std::string* p :
        {&o.out_path, &o.stats_path, &o.timeline_path, &o.heatmap_path, &o.heatmap_data_path, &o.mem_trace_path})

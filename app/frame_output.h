@@ -11,6 +11,7 @@
 #include "common.h"
 #include "config/arch_params.h"
 #include "fidelity/frames.h"
+#include "sc/raster_pipeline.h"
 
 namespace rastsim::app {
 
@@ -63,13 +64,21 @@ struct CosimFrames {
               const std::vector<uint64_t>& mismatches);
 };
 
-// `rastsim simulate`'s multi-frame parts (app/simulate_frames.cpp). on_fetch of a full run:
-// the cycle each frame after the first starts (command fetch starting its first command).
-std::function<void(const Command&, size_t, uint64_t)> record_frame_starts(std::vector<uint64_t>& starts);
+// `rastsim simulate`'s multi-frame parts (app/simulate_frames.cpp). What a full run
+// records of its frames: the cycle each frame after the first starts (command fetch
+// starting its first command) and, with memory.model = "dram", the DRAM's backlog then
+// (MemorySystem::backlog_cycles, cycles).
+struct FrameStarts {
+  std::vector<uint64_t> cycles, backlog;
+  const MemorySystem* memory = nullptr;  // the run's (SimOptions::on_memory_system)
+};
+// Sets sim's on_fetch and on_memory_system to fill `f`, which must outlive the run.
+void record_frame_starts(sc::SimOptions& sim, FrameStarts& f);
 // frames[] of a full run from those starts (nothing for one frame): the reference
-// model's counts, the cycles, the analytic walk's per-stage busy.
-void add_frames_of_run(nlohmann::json& j, const SimulateOptions& o, const ArchParams& arch,
-                       const std::vector<uint64_t>& starts, uint64_t end_cycle);
+// model's counts, the cycles, the DRAM backlog at the frame's start, the analytic walk's
+// per-stage busy.
+void add_frames_of_run(nlohmann::json& j, const SimulateOptions& o, const ArchParams& arch, const FrameStarts& f,
+                       uint64_t end_cycle);
 // --frames A:B or an -o pattern: the whole scene loaded, the range timed.
 void run_simulate_frames(const SimulateOptions& o, const ArchParams& arch);
 // --frame-sample F: the frame-sampled level.

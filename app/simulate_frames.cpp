@@ -15,14 +15,18 @@
 
 namespace rastsim::app {
 
-std::function<void(const Command&, size_t, uint64_t)> record_frame_starts(std::vector<uint64_t>& starts) {
-  return [&starts](const Command& cmd, size_t triangle, uint64_t cycle) {
-    if (cmd.frame_line > 0 && triangle == 0) starts.push_back(cycle);
+void record_frame_starts(sc::SimOptions& sim, FrameStarts& f) {
+  sim.on_memory_system = [&f](const MemorySystem& m) { f.memory = &m; };
+  sim.on_fetch = [&f](const Command& cmd, size_t triangle, uint64_t cycle) {
+    if (cmd.frame_line == 0 || triangle != 0) return;
+    f.cycles.push_back(cycle);
+    if (f.memory) f.backlog.push_back(f.memory->backlog_cycles(cycle));
   };
 }
 
-void add_frames_of_run(nlohmann::json& j, const SimulateOptions& o, const ArchParams& arch,
-                       const std::vector<uint64_t>& starts, uint64_t end_cycle) {
+void add_frames_of_run(nlohmann::json& j, const SimulateOptions& o, const ArchParams& arch, const FrameStarts& f,
+                       uint64_t end_cycle) {
+  const std::vector<uint64_t>& starts = f.cycles;
   if (starts.empty()) return;  // one frame: no frames[]
   const Scene scene = load_scene(o.scene_path, arch.placement);
   FrameOutput out("", "");
@@ -34,6 +38,7 @@ void add_frames_of_run(nlohmann::json& j, const SimulateOptions& o, const ArchPa
   for (size_t k = 0; k < out.frames.size(); ++k) {
     const uint64_t from = k == 0 ? 0 : starts[k - 1], to = k < starts.size() ? starts[k] : end_cycle;
     out.frames[k]["cycles"] = to - from;
+    if (f.memory) out.frames[k]["dram_backlog_cycles"] = k == 0 ? 0 : f.backlog[k - 1];
     fidelity::add_frame_work(out.frames[k], work[k]);
   }
   out.add_to(j);

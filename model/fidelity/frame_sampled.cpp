@@ -87,7 +87,7 @@ std::map<int, size_t> allocate(const std::map<int, std::vector<size_t>>& strata,
 
 }  // namespace
 
-FramePlan plan_frames(const std::vector<FrameWork>& work, double fraction) {
+FramePlan plan_frames(const std::vector<FrameWork>& work, double fraction, uint64_t fill_triangles) {
   if (!(fraction > 0 && fraction <= 1)) throw std::invalid_argument("--frame-sample: F must be in (0, 1]");
   const size_t N = work.size();
   FramePlan p;
@@ -98,9 +98,11 @@ FramePlan plan_frames(const std::vector<FrameWork>& work, double fraction) {
   p.cluster.assign(N, -1);
   std::map<int, std::vector<size_t>> strata;  // the uncertain frames by bottleneck stage
   size_t M = 0;
+  uint64_t through = 0;  // triangles from frame 0 through frame k
   for (size_t k = 0; k < N; ++k) {
     p.x[k] = work[k].size();
-    p.certain[k] = k == 0 || k + 1 == N;
+    through += work[k].triangles;
+    p.certain[k] = k == 0 || k + 1 == N || through < fill_triangles;
     if (p.certain[k]) continue;
     p.stratum[k] = frame_stratum(work[k]);
     strata[p.stratum[k]].push_back(k);
@@ -214,15 +216,21 @@ size_t command_triangles(const Command& c) {
 // frame -3.5 .. 0 %, a quarter -1.7 .. +0.7 %.
 constexpr double kWarmShare = 0.25;
 
-// Where the warm-up in frame `s` starts: its last whole commands holding at least
-// max(`warm`, kWarmShare of its triangles) triangles (`warm`: the FIFOs' entries, the
-// backlog the next frame meets at its first fetch).
-size_t warm_start(const Scene& scene, const FrameSpan& s, size_t warm) {
+// Where the warm-up before frame k (> 0) starts: the last whole commands before it
+// holding at least max(`warm`, kWarmShare of frame k - 1's triangles) triangles (`warm`:
+// the FIFOs' entries, the backlog frame k meets at its first fetch), reaching back past
+// frame k - 1 into the frames before it when that frame holds fewer (glmark2's texture
+// scene: 12 triangles a frame, each 30,000 texture-bound cycles, so command fetch runs
+// frames ahead of the texture stage; a one-frame tail left the FIFOs empty and the
+// measured frames at 45-68 cycles against 450,000: docs/results.md), at most to the
+// scene's start.
+size_t warm_start(const Scene& scene, const std::vector<FrameSpan>& spans, size_t k, size_t warm) {
+  const FrameSpan& s = spans[k - 1];
   size_t all = 0;
   for (size_t i = s.begin; i < s.end; ++i) all += command_triangles(scene.commands[i]);
   warm = std::max(warm, size_t(std::ceil(kWarmShare * double(all))));
   size_t i = s.end, tri = 0;
-  while (i > s.begin && tri < warm) tri += command_triangles(scene.commands[--i]);
+  while (i > spans[0].begin && tri < warm) tri += command_triangles(scene.commands[--i]);
   return i;
 }
 
@@ -239,7 +247,7 @@ std::vector<Segment> segments_of(const Scene& scene, const std::vector<FrameSpan
   std::vector<Segment> out;
   for (size_t k = 0; k < spans.size(); ++k) {
     if (!chosen[k] || (k > 0 && chosen[k - 1])) continue;
-    Segment s{k, k, k == 0 ? spans[0].begin : warm_start(scene, spans[k - 1], warm)};
+    Segment s{k, k, k == 0 ? spans[0].begin : warm_start(scene, spans, k, warm)};
     while (s.last < spans.size() && chosen[s.last]) ++s.last;
     out.push_back(s);
   }
@@ -269,7 +277,19 @@ nlohmann::json run_segment(const Scene& sub, const std::vector<size_t>& frame_at
   return run_in_child([&] {
     std::vector<uint64_t> starts;
     sc::SimOptions o;
-    o.on_fetch = record_command_starts(sub, starts);
+    const auto record = record_command_starts(sub, starts);
+    // The DRAM backlog (MemorySystem::backlog_cycles) when each frame_at command is first
+    // fetched: the one each measured frame meets and leaves (reported).
+    const MemorySystem* mem = nullptr;
+    std::vector<uint64_t> backlog(frame_at.size(), 0);
+    o.on_memory_system = [&mem](const MemorySystem& m) { mem = &m; };
+    o.on_fetch = [&](const Command& c, size_t t, uint64_t cycle) {
+      const size_t i = size_t(&c - sub.commands.data());
+      const bool first = i < starts.size() && starts[i] == UINT64_MAX;
+      record(c, t, cycle);
+      for (size_t f = 0; first && mem && f < frame_at.size(); ++f)
+        if (frame_at[f] == i) backlog[f] = mem->backlog_cycles(cycle);
+    };
     o.initial_fb = warm ? &warm->fb : nullptr;
     o.warm_memory = warm ? warm->mem.get() : nullptr;
     o.scanout_phase = scanout_phase;
@@ -279,13 +299,16 @@ nlohmann::json run_segment(const Scene& sub, const std::vector<size_t>& frame_at
       const uint64_t to = i + 1 < frame_at.size() ? starts.at(frame_at[i + 1]) : r.cycles;
       y.push_back(to - starts.at(frame_at[i]));
     }
-    return nlohmann::json{{"y", y}, {"cycles", r.cycles}};
+    return nlohmann::json{{"y", y}, {"backlog", backlog}, {"cycles", r.cycles}};
   });
 }
 
 // Every segment run, in order: the chosen frames' y and what the warm-ups cost.
 struct SegmentRuns {
   std::vector<double> y;  // by frame; 0 where not chosen
+  // By frame: the DRAM backlog at the frame's start and at its end (the next frame's
+  // first fetch; 0 at the scene's end), cycles.
+  std::vector<double> backlog_in, backlog_out;
   uint64_t cycles = 0;    // the runs' own cycles, summed
   size_t warm_frames = 0, warm_triangles = 0;
   double warm_share = 0;
@@ -296,9 +319,9 @@ struct SegmentRuns {
 // (SimOptions::scanout_phase): the frames before it at their measured y where simulated,
 // else x times the y/x ratio measured so far on frames of their kind (frame_stratum; no
 // such frame yet: on every frame measured so far; none: frame 0's; frame 0, a cold start
-// whose y/x is atypical, counts only there), and the tail's predecessor
-// up to the warm-up's start by its share of that frame's triangles. Segments run in
-// frame order, so the first is frame 0's, from cycle 0.
+// whose y/x is atypical, counts only there), less each frame of the warm-up tail by the
+// tail's share of that frame's triangles. Segments run in frame order, so the first is
+// frame 0's, from cycle 0.
 class StartEstimate {
  public:
   StartEstimate(const FramePlan& plan, const std::vector<FrameWork>& work) : x_(plan.x) {
@@ -309,12 +332,12 @@ class StartEstimate {
     r.y += y, r.x += x_[k];
     if (k > 0) all_.y += y, all_.x += x_[k];
   }
-  // The full run's cycle at the start of frame `first`, then minus `tail_share` of frame
-  // first - 1 (the warm-up's triangles over the frame's).
-  uint64_t cycle(size_t first, double tail_share, const std::vector<double>& y) const {
+  // The full run's cycle at the start of frame `first`, then minus each tail frame's
+  // share of its cycles (`tail`: frame, the warm-up's triangles over the frame's).
+  uint64_t cycle(size_t first, const std::vector<std::pair<size_t, double>>& tail, const std::vector<double>& y) const {
     double t = 0;
     for (size_t j = 0; j < first; ++j) t += y[j] > 0 ? y[j] : guess(j);
-    if (first > 0) t -= tail_share * (y[first - 1] > 0 ? y[first - 1] : guess(first - 1));
+    for (const auto& [j, share] : tail) t -= share * (y[j] > 0 ? y[j] : guess(j));
     return t > 0 ? uint64_t(std::llround(t)) : 0;
   }
 
@@ -333,42 +356,58 @@ class StartEstimate {
   Ratio all_, first_;  // every frame measured but frame 0; frame 0
 };
 
-// The warm-up tail's triangles and its frame's (frame s.first - 1).
-std::pair<size_t, size_t> tail_triangles(const Scene& scene, const std::vector<FrameSpan>& spans, const Segment& s) {
-  size_t tri = 0, all = 0;
-  for (size_t i = spans[s.first - 1].begin; i < spans[s.first - 1].end; ++i) {
-    const size_t t = command_triangles(scene.commands[i]);
-    all += t;
-    if (i >= s.from) tri += t;
+// The warm-up tail's frames (those before s.first it reaches into, usually s.first - 1
+// alone: warm_start), each with the tail's share of its triangles (1 for a frame without
+// any); the tail's triangles into `tri`.
+std::vector<std::pair<size_t, double>> tail_shares(const Scene& scene, const std::vector<FrameSpan>& spans,
+                                                   const Segment& s, size_t& tri) {
+  std::vector<std::pair<size_t, double>> out;
+  tri = 0;
+  for (size_t j = s.first; j-- > 0 && spans[j].end > s.from;) {
+    size_t in = 0, all = 0;
+    for (size_t i = spans[j].begin; i < spans[j].end; ++i) {
+      const size_t t = command_triangles(scene.commands[i]);
+      all += t;
+      if (i >= s.from) in += t;
+    }
+    tri += in;
+    out.emplace_back(j, all ? double(in) / double(all) : 1.0);
   }
-  return {tri, all};
+  return out;
 }
 
 SegmentRuns run_segments(const Scene& scene, const std::vector<FrameSpan>& spans, const ArchParams& arch,
                          const std::vector<Segment>& segs, const WarmStates& warm, StartEstimate& at) {
   SegmentRuns out;
   out.y.assign(spans.size(), 0.0);
+  out.backlog_in.assign(spans.size(), 0.0);
+  out.backlog_out.assign(spans.size(), 0.0);
   std::vector<size_t> frame_at;
   for (const Segment& s : segs) {
     // The reference's state at the segment's start (functional_pass's snapshot); none at
     // the scene's start (cold).
     const WarmState* w = s.from == 0 ? nullptr : warm.at(s.from).get();
-    const auto [tri, all] = s.first > 0 ? tail_triangles(scene, spans, s) : std::pair<size_t, size_t>{0, 0};
-    const double share = all ? double(tri) / double(all) : 1.0;
-    const uint64_t phase = s.from == 0 ? 0 : at.cycle(s.first, share, out.y);
+    size_t tri = 0;
+    const auto tail = tail_shares(scene, spans, s, tri);
+    const uint64_t phase = s.from == 0 ? 0 : at.cycle(s.first, tail, out.y);
     const Scene sub = segment_scene(scene, spans, s, frame_at);
     const nlohmann::json j = run_segment(sub, frame_at, s.last - s.first, arch, w, phase);
     const auto ys = j.at("y").get<std::vector<uint64_t>>();
+    const auto bs = j.at("backlog").get<std::vector<uint64_t>>();
     for (size_t k = s.first; k < s.last; ++k) {
-      out.y[k] = double(ys.at(k - s.first));
+      const size_t i = k - s.first;
+      out.y[k] = double(ys.at(i));
       at.measured(k, out.y[k]);
+      // Reported, not counted: y + backlog_out - backlog_in as the estimator's y was tried
+      // and made 3 of 13 pairs worse (docs/results.md).
+      out.backlog_in[k] = double(bs.at(i));
+      out.backlog_out[k] = i + 1 < bs.size() ? double(bs[i + 1]) : 0.0;
     }
     out.cycles += j.at("cycles").get<uint64_t>();
     out.scanout_phase.push_back(phase);
-    if (s.first == 0) continue;
-    ++out.warm_frames;
+    out.warm_frames += tail.size();
     out.warm_triangles += tri;
-    out.warm_share += share;
+    for (const auto& [f, share] : tail) out.warm_share += share;
   }
   return out;
 }
@@ -383,12 +422,12 @@ FrameSampledResult simulate_frame_sampled(const Scene& scene, const ArchParams& 
   // One functional pass: the whole scene's counts, each frame's DRAM bytes read, and the
   // state at every frame's possible warm-up start (the plan needs the bytes first).
   std::vector<size_t> starts;
-  for (size_t k = 1; k < spans.size(); ++k) starts.push_back(warm_start(scene, spans[k - 1], W));
+  for (size_t k = 1; k < spans.size(); ++k) starts.push_back(warm_start(scene, spans, k, W));
   FunctionalPass pass = functional_pass(scene, spans, arch, starts, snapshot_budget);
   EstimateResult whole;
   std::vector<FrameWork> work = frame_work(scene, arch, &whole, &pass.stats);
   add_frame_dram_reads(arch, pass.dram_bytes_read, whole.dram_peak_bytes_per_cycle, work);
-  const FramePlan plan = plan_frames(work, spans.size() < kFrameSampledMinFrames ? 1.0 : fraction);
+  const FramePlan plan = plan_frames(work, spans.size() < kFrameSampledMinFrames ? 1.0 : fraction, W);
   const std::vector<Segment> segs = segments_of(scene, spans, plan.chosen, W);
   std::vector<size_t> froms;
   for (const Segment& s : segs) froms.push_back(s.from);
@@ -403,6 +442,10 @@ FrameSampledResult simulate_frame_sampled(const Scene& scene, const ArchParams& 
   r.warm_frame_share = runs.warm_share;
   r.warm_functional_seconds = pass.seconds + fallback;
   r.scanout_phase = runs.scanout_phase;
+  for (size_t k : r.simulated) {
+    r.backlog_in.push_back(runs.backlog_in[k]);
+    r.backlog_out.push_back(runs.backlog_out[k]);
+  }
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;
 }
@@ -421,6 +464,8 @@ nlohmann::json FrameSampledResult::to_json() const {
           {"frame_clusters", clusters},
           {"frames_simulated_list", simulated},
           {"frames_simulated_cycles", y},
+          {"frames_simulated_backlog_in", backlog_in},
+          {"frames_simulated_backlog_out", backlog_out},
           {"cycles_simulated", cycles_simulated},
           {"warm_frames", warm_frames},
           {"warm_triangles", warm_triangles},

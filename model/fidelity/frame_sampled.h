@@ -9,8 +9,10 @@
 //   the DRAM's peak (add_frame_dram_reads). The reference model runs once for the whole
 //   level (functional_pass.h: the estimate's whole counts, the per-frame bytes and the
 //   warm-up snapshots).
-// - Certain frames, always simulated: the first (the pipeline fills, the state is set)
-//   and the last (the drain and the frame-end resolve and flush are in its cycles).
+// - Certain frames, always simulated: the first (the pipeline fills, the state is set),
+//   those after it whose successor starts while the FIFOs still fill (fewer triangles
+//   from frame 0 than their entries) and the last (the drain and the frame-end resolve
+//   and flush are in its cycles).
 // - Strata: the other M frames by their analytic bottleneck stage and the set of stages
 //   with any work (a frame whose 2D fill or clear dominates, or that has one at all, is
 //   not timed like one whose fragments do). A stratum of fewer than 4 frames is
@@ -28,8 +30,9 @@
 //   SimOptions::initial_fb, warm_memory; functional_pass's snapshot) with its scan-out
 //   at the phase the run's start has in the full run, estimated (SimOptions::
 //   scanout_phase), and simulates, unmeasured, the tail of the frame before it (its last
-//   commands holding a quarter of its triangles, at least the FIFOs' entries: the
-//   backlog and DRAM state the chosen frame meets), then the frames, then the next
+//   commands holding a quarter of its triangles, at least the FIFOs' entries, reaching
+//   into the frames before it when it holds fewer: the backlog and DRAM state the
+//   chosen frame meets), then the frames, then the next
 //   frame's first command. The DRAM starts idle (docs/fidelity.md says what that leaves).
 //   A chosen frame's y: from command fetch starting its first command to command fetch
 //   starting the next frame's first command (the last: to the end), as frames[].cycles of
@@ -64,7 +67,12 @@ struct FramePlan {
   size_t clusters = 0;
 };
 // The plan for `work` (frame_work's) at fraction F in (0, 1]. F = 1 chooses every frame.
-FramePlan plan_frames(const std::vector<FrameWork>& work, double fraction);
+// `fill_triangles` (the FIFOs' entries, triangle_path_entries): a frame is also certain
+// while the triangles from frame 0 through it are fewer, since its successor's first
+// fetch then comes while the pipeline fills and its cycles are not its work's (glmark2's
+// texture scene, 12 triangles a frame: frames 1 and 2 take 48 cycles each in the full
+// run and their work lands in the last frame's drain; docs/results.md).
+FramePlan plan_frames(const std::vector<FrameWork>& work, double fraction, uint64_t fill_triangles = 0);
 
 struct FrameSampledResult {
   double cycles = 0, ci_low = 0, ci_high = 0, confidence = kDefaultConfidence;
@@ -72,8 +80,11 @@ struct FrameSampledResult {
   size_t frames_total = 0, frames_simulated = 0, clusters = 0;
   std::vector<size_t> simulated;  // the frames simulated in detail
   std::vector<double> y;          // their measured cycles, in the same order
+  // Their DRAM backlog (MemorySystem::backlog_cycles) at their first fetch and at the
+  // next frame's, cycles; empty from extrapolate_frames alone.
+  std::vector<double> backlog_in, backlog_out;
   uint64_t cycles_simulated = 0;  // the sub-run's own cycles
-  size_t warm_frames = 0;         // frames whose tail warms a chosen frame (its predecessor, not chosen)
+  size_t warm_frames = 0;         // frames whose tail warms a chosen frame (its predecessor, or more: warm_start)
   size_t warm_triangles = 0;      // the triangles those tails draw, simulated unmeasured
   double warm_frame_share = 0;    // the tails' share of their frames' triangles, summed (frames' worth)
   double warm_functional_seconds = 0;  // wall time of the one functional pass (functional_pass.h), any fallback's too

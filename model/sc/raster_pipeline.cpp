@@ -362,6 +362,7 @@ SimResult simulate_commands(CommandSource source, const ArchParams& params, cons
     if (!opts.mem_trace_path.empty()) memory->record_trace(&mem_trace.emplace(opts.mem_trace_path).stream());
     scanout = attach_scanout_fetch(*memory, params, opts.scanout_phase).release();  // first: its requests at cycle 0 go first
     attach_memory_clients(*memory, *top, binned ? binner : nullptr, params, opts, ctx);
+    if (opts.on_memory_system) opts.on_memory_system(*memory);
   } else if (!opts.mem_trace_path.empty()) {
     throw std::invalid_argument("--mem-trace needs memory.model = \"dram\" (the DRAM requests it lists)");
   }

@@ -69,6 +69,10 @@ struct SimOptions {
   // this run's cycle 0 (ScanoutFetch::set_phase; 0: the display frame starts with the run).
   // Frame sampling's segments: their estimated start in the full run.
   uint64_t scanout_phase = 0;
+  // memory.model = "dram": called once, before the run starts, with the run's memory
+  // system, which lives through the run, so on_fetch may ask it (MemorySystem::
+  // backlog_cycles: frame sampling's DRAM backlog at each frame's first fetch).
+  std::function<void(const MemorySystem& memory)> on_memory_system;
 };
 
 struct StageReport {

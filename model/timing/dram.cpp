@@ -492,6 +492,17 @@ void DramModel::advance_to(uint64_t cycle) {
   return advanced;
 }
 
+uint64_t DramModel::drain_end_cycle() const {
+  DramModel copy(*this);
+  copy.log_ = nullptr;
+  uint64_t end = 0;
+  for (uint64_t e = copy.next_event(); e != kNoEvent; e = copy.next_event()) {
+    copy.advance_to(e);
+    for (const DramCompletion& d : copy.take_completions()) end = std::max(end, d.cycle);
+  }
+  return end;
+}
+
 const std::vector<DramCompletion>& DramModel::take_completions() {
   taken_.clear();
   for (; !done_.empty() && done_.top().completion.cycle <= advanced_; done_.pop())

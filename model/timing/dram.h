@@ -160,6 +160,12 @@ class DramModel {
   // if (has_completions()) break; }`.
   uint64_t advance_events(uint64_t last);
 
+  // The core cycle the last request queued now would complete at if none arrived after
+  // it (its last completion, posted writes included; 0 when idle): a copy of the model
+  // advanced event by event, this one untouched. Frame sampling's DRAM backlog
+  // (MemorySystem::backlog_cycles).
+  uint64_t drain_end_cycle() const;
+
   // Appends every command issued from now on to *log (nullptr: stop).
   void log_commands(std::vector<DramCommand>* log) { log_ = log; }
 

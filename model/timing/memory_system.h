@@ -95,6 +95,16 @@ class MemorySystem {
   // Every request completed (the frame end): returns the last completion's cycle.
   uint64_t drain();
 
+  // The DRAM's backlog at core cycle `now`: the cycles from `now` until every request
+  // queued so far would have completed with no further arrival (DramModel::
+  // drain_end_cycle; the self-timed client's later requests not counted), 0 when it
+  // would be done by then. The stats' frames[].dram_backlog_cycles and frame sampling's
+  // frames_simulated_backlog_in/out (docs/fidelity.md, "Frame sampling").
+  uint64_t backlog_cycles(uint64_t now) const {
+    const uint64_t end = dram_.drain_end_cycle();
+    return end > now ? end - now : 0;
+  }
+
   // The self-timed client (at most one: the scan-out, requests as MemClient::Scanout);
   // it must outlive the object's use.
   void attach(SelfTimedClient& c) { timed_ = &c; }

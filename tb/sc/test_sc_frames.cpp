@@ -174,6 +174,19 @@ TEST(ScFrames, PlanAndEstimatorWorkedByHand) {
   EXPECT_EQ(std::count(all.chosen.begin(), all.chosen.end(), true), 8);
 }
 
+TEST(ScFrames, FramesInThePipelineFillAreCertain) {
+  // 12 triangles a frame, fill_triangles 49: frames 0..3 hold 12, 24, 36, 48 < 49 triangles
+  // through them (their successors start while the FIFOs fill), frame 4 60: certain are
+  // frames 0-3 and the last; with fill 0 (or 12: 12 < 12 fails) only frames 0 and 19.
+  std::vector<fidelity::FrameWork> work(20);
+  for (size_t k = 0; k < 20; ++k) work[k].busy[3] = 10 + k, work[k].triangles = 12;
+  for (const uint64_t fill : {49u, 12u, 0u}) {
+    const fidelity::FramePlan p = fidelity::plan_frames(work, 0.1, fill);
+    for (size_t k = 0; k < 20; ++k)
+      EXPECT_EQ(p.certain[k], k == 19 || k == 0 || (fill == 49 && k <= 3)) << "fill " << fill << " frame " << k;
+  }
+}
+
 TEST(ScFrames, RepresentativesAllocatedByHand) {
   // Frames 1..20 busy 10 in stage 3 (stratum A, X = 200), 21..26 busy 100 in stage 5 (B,
   // X = 600); frames 0 and 27 certain. F = 0.25 of M = 26: n = ceil(6.5) = 7; T =

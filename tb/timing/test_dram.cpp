@@ -84,6 +84,29 @@ TEST(Dram, RowMissCostsRcdPlusClPlusBurst) {
   EXPECT_EQ(m.stats().clients[0].row_misses, 1u);
 }
 
+TEST(Dram, DrainEndCycleIsTheLastCompletionAndLeavesTheModelAsItWas) {
+  DramModel m(test_params());
+  EXPECT_EQ(m.drain_end_cycle(), 0u);  // idle
+  // One read to a closed row at 100: tRCD + tCL + the burst, by hand.
+  m.enqueue({address(5, 0, 0, 0), false, 64, 0, 2}, 100);
+  EXPECT_EQ(m.drain_end_cycle(), 100u + 13u + 11u + 4u);
+  // A conflicting read and a posted write behind it: the copy's answer is the last of the
+  // completions the model itself reports when it is drained afterwards (asking did not
+  // advance it: a second ask gives the same, and the first completion is still 128).
+  m.enqueue({address(6, 0, 0, 0), false, 64, 0, 4}, 100);
+  m.enqueue({address(7, 1, 0, 0), true, 256, 1, 5}, 100);
+  const uint64_t end = m.drain_end_cycle();
+  EXPECT_EQ(m.drain_end_cycle(), end);
+  const auto done = drain(m);
+  ASSERT_EQ(done.size(), 3u);
+  EXPECT_EQ(done[0].cycle, 128u);
+  uint64_t last = 0;
+  for (const DramCompletion& c : done) last = std::max(last, c.cycle);
+  EXPECT_EQ(end, last);
+  EXPECT_GT(end, 128u + 17u);  // the conflict's precharge at least
+  EXPECT_EQ(m.drain_end_cycle(), 0u);  // idle again
+}
+
 TEST(Dram, RowHitCostsClPlusBurst) {
   DramModel m(test_params());
   read_latency(m, address(5, 0, 0, 0), 100);
