@@ -15,6 +15,10 @@
 //   ended. The stages run decoupled (sc/stage.h), so an end may not be known yet when
 //   coarse raster asks: it then waits (SystemC) for the ROP or fine raster to record it;
 //   the tile in question is already downstream, so the wait always ends.
+// - depth.hiz_sync = lagged: coarse raster never holds a tile for its blocks; it asks
+//   free_at only to know whether they are busy at the test (an accept then waits for
+//   nothing: the tile is drawn), end_of to time the lagged table's updates at each
+//   entry's end, and holds a tile only while a state item (a depth clear) is in flight.
 #pragma once
 
 #include <algorithm>
@@ -33,11 +37,16 @@ class HizInterlock {
  public:
   explicit HizInterlock(int block) : log2b_(std::countr_zero(unsigned(block))) {}
 
-  // Coarse raster sends a tile of footprint fp / a state item (every block).
-  void sent(const PixelRect& fp) {
+  // Coarse raster sends a tile of footprint fp / a state item (every block); returns the
+  // entry's number (send order, from 0: end_of's argument).
+  uint64_t sent(const PixelRect& fp) {
     q_.push_back({{fp.x0 >> log2b_, fp.y0 >> log2b_, (fp.x1 - 1) >> log2b_, (fp.y1 - 1) >> log2b_}, false, kOpen});
+    return base_ + q_.size() - 1;
   }
-  void sent_state() { q_.push_back({{}, true, kOpen}); }
+  uint64_t sent_state() {
+    q_.push_back({{}, true, kOpen});
+    return base_ + q_.size() - 1;
+  }
   // Fine raster finished its next entry at cycle t: dropped (ends it) or passed on.
   void fine(bool dropped, uint64_t t) {
     if (dropped) end(at(fine_), t);
@@ -64,6 +73,24 @@ class HizInterlock {
       t = std::max(t, q_[i].end);
     }
     return t;
+  }
+  // The first cycle from which no state item is in flight (depth.hiz_sync = lagged: a depth
+  // clear in flight would make every stale bound unsafe). Call after free_at or alone.
+  uint64_t state_free_at() {
+    uint64_t t = 0;
+    for (size_t i = 0; i < q_.size(); ++i) {
+      if (!q_[i].all) continue;
+      while (q_[i].end == kOpen) sc_core::wait(ended_);
+      t = std::max(t, q_[i].end);
+    }
+    return t;
+  }
+  // Entry i's end (waiting for it to be recorded); 0 for an entry already forgotten,
+  // which ended by coarse raster's time then (free_at).
+  uint64_t end_of(uint64_t i) {
+    if (i < base_) return 0;
+    while (at(i).end == kOpen) sc_core::wait(ended_);
+    return at(i).end;
   }
 
  private:

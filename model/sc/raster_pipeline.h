@@ -69,6 +69,11 @@ struct SimOptions {
   // this run's cycle 0 (ScanoutFetch::set_phase; 0: the display frame starts with the run).
   // Frame sampling's segments: their estimated start in the full run.
   uint64_t scanout_phase = 0;
+  // Tests of depth.hiz_sync = lagged (tb/sc/test_sc_hiz.cpp): every Hi-Z cull and accept
+  // coarse raster makes, and a planted bug (accept on blocks a tile in flight touches),
+  // which the tests must catch. Never set by the tool.
+  std::function<void(const SetupTriangle& t, const PixelRect& fp, HizDecision d)> on_hiz;
+  bool hiz_lag_accept_busy = false;
 };
 
 struct StageReport {
