@@ -83,9 +83,7 @@ HizDecision HizTable::test(const PixelRect& fp, DepthRange z, DepthFunc func, bo
                        (minmax && (func == DepthFunc::Greater || func == DepthFunc::GEqual));
   if (!handled || fp.empty()) return HizDecision::Draw;
   ++stats.tiles_tested;
-  for (int by = fp.y0 >> log2B_; by <= (fp.y1 - 1) >> log2B_; ++by)
-    for (int bx = fp.x0 >> log2B_; bx <= (fp.x1 - 1) >> log2B_; ++bx)
-      if (spilled(index(bx, by))) spilled_access(index(bx, by), false);
+  read_spilled(fp);
   const DepthRange b = bounds(fp);  // b.lo: nearest stored (minmax only), b.hi: farthest
   bool cull = false, accept = false;
   switch (func) {
@@ -104,6 +102,12 @@ HizDecision HizTable::test(const PixelRect& fp, DepthRange z, DepthFunc func, bo
     return HizDecision::Accepted;
   }
   return HizDecision::Draw;
+}
+
+void HizTable::read_spilled(const PixelRect& fp) {
+  for (int by = fp.y0 >> log2B_; by <= (fp.y1 - 1) >> log2B_; ++by)
+    for (int bx = fp.x0 >> log2B_; bx <= (fp.x1 - 1) >> log2B_; ++bx)
+      if (spilled(index(bx, by))) spilled_access(index(bx, by), false);
 }
 
 void HizTable::write(int x, int y, uint32_t z) {
@@ -174,6 +178,7 @@ HizDecision HizTracker::test(const SetupTriangle& t, const PixelRect& fp, TileCl
 
 HizDecision HizTracker::test_lagged(const SetupTriangle& t, const PixelRect& fp, TileClass cls, HizTable& stale,
                                     bool idle) {
+  if (!fp.empty()) table.read_spilled(fp);  // the entries test() reads (a tracker's function is handled)
   const HizDecision d = stale.test(fp, tile_depth_range(t, fp, st_.coord_format.frac_bits), st_.depth_func, idle);
   if (d == HizDecision::Culled) count_culled(t, fp, cls);
   return d;

@@ -88,10 +88,9 @@ class HizTable {
   // the entry reads of spilled blocks. Draw for a function Hi-Z does not handle, and in
   // place of an accept when !may_accept (a lagged table's busy blocks: HizTracker::test_lagged).
   HizDecision test(const PixelRect& fp, DepthRange r, DepthFunc func, bool may_accept = true);
-  // Every block fp overlaps is on chip (row-major: its last block is).
-  bool onchip(const PixelRect& fp) const {
-    return index((fp.x1 - 1) >> log2B_, (fp.y1 - 1) >> log2B_) < onchip_;
-  }
+  // The entry reads of fp's spilled blocks a test makes (test() makes them too): a lagged
+  // test against another table still reads this table's entries (the traffic is the same).
+  void read_spilled(const PixelRect& fp);
   // One depth write of z at pixel (x, y): the update rule above (on chip at once; the
   // block is marked for flush()).
   void write(int x, int y, uint32_t z);
@@ -148,7 +147,8 @@ class HizTracker {
   HizDecision test(const SetupTriangle& t, const PixelRect& fp, TileClass cls);
   // depth.hiz_sync = lagged (docs/depth-culling.md "Lagged"): the decision against
   // `stale`, the table as the ROP has written it (a prefix of the writes `table` holds),
-  // its counts in stale.stats (the culled fragments in table.stats). A cull from stale
+  // its counts in stale.stats (the culled fragments, and the spilled entries' reads, which
+  // the test makes as test() does, in table.stats). A cull from stale
   // bounds is one the zero-lag table makes too (stored depths move one way between
   // clears); an accept is made only when `idle` (no tile in flight touches fp's blocks,
   // so stale holds every write to them), else the tile is drawn.

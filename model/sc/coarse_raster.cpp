@@ -86,8 +86,8 @@ void CoarseRaster::walk_tiled(const SetupItem& in) {
         const PixelRect fp = tile_footprint(box, tile_size_, tx, ty);
         ++c.tiles_visited;
         const TileClass cls = classify_tile(t, fp, frac_bits_);
-        // depth.hiz_sync = lagged: on-chip blocks are tested against the lagged table.
-        const bool lagged = lag_ && cls != TileClass::Rejected && hiz_->table.onchip(fp);
+        // depth.hiz_sync = lagged: the test is against the lagged table.
+        const bool lagged = lag_ && cls != TileClass::Rejected;
         if (cls != TileClass::Rejected && interlock_ && !lagged) hiz_interlock_wait(walk, fp, cycles_done);
         if (mem_) mem_->begin(now());  // the tile's entry reads from now (timing/hiz_memory_port.h)
         HizDecision hiz = HizDecision::Draw;
@@ -150,7 +150,7 @@ HizDecision CoarseRaster::hiz_lagged(const SetupTriangle& t, TiledWalk& walk, co
     walk.restart(state_free - now() + 1 + done);
     test_at = state_free;
   }
-  const bool idle = interlock_->free_at(fp, now()) <= test_at;
+  const bool idle = !interlock_->busy_at(fp, now(), test_at);
   lag_absorb(test_at);
   return hiz_->test_lagged(t, fp, cls, *lag_, idle || ctx_.hiz_lag_accept_busy);
 }
@@ -158,7 +158,7 @@ HizDecision CoarseRaster::hiz_lagged(const SetupTriangle& t, TiledWalk& walk, co
 // The lagged table takes the updates whose entries ended by cycle `at`, in send order
 // (the ROP ends its entries in that order, so the first not ended stops the rest).
 void CoarseRaster::lag_absorb(uint64_t at) {
-  while (!lag_pending_.empty() && interlock_->end_of(lag_pending_.front().entry) <= at) {
+  while (!lag_pending_.empty() && interlock_->ended_by(lag_pending_.front().entry, at)) {
     const LagUpdate& u = lag_pending_.front();
     if (u.clear) lag_->clear(*u.clear);
     for (const HizWrite& w : u.writes) lag_->write(w.x, w.y, w.z);

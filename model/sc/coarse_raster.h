@@ -22,11 +22,11 @@
 //   The interlock (sc/hiz_interlock.h, as rast_top's): a tile is tested only once every
 //   earlier tile on its blocks has left the ROP; until then the walk holds it, and its
 //   window restarts at it in the cycle the last of them ends (TiledWalk::restart).
-//   depth.hiz_sync = lagged: no hold; a tile whose blocks are all on chip is tested
-//   against lag_, the table as the ROP has written it by the test's cycle (each sent
-//   tile's depth writes applied at its ROP end, a depth clear at its), accepted only when
-//   no tile in flight touches its blocks (HizTracker::test_lagged); the walk holds only
-//   while a state item is in flight. A footprint with a spilled block: the interlock.
+//   depth.hiz_sync = lagged: no hold; a tile is tested against lag_, the table as the
+//   ROP has written it by the test's cycle (each sent tile's depth writes applied at its
+//   ROP end, a depth clear at its), accepted only when no tile in flight touches its
+//   blocks (HizTracker::test_lagged); the walk holds only while a state item is in
+//   flight. Spilled entries: read (and their reads waited for) as with the interlock.
 // The other raster.traversal methods (docs/traversal.md), same functions as the
 // reference (ref/traverse.h):
 // - bbox: one partial "tile", the whole clipped bbox, in 1 cycle.
@@ -80,7 +80,7 @@ class CoarseRaster : public Stage {
     // ROP record their ends through ctx. Not in the binned pipeline (its bins reorder the
     // ROP's work).
     if (hiz_ && !binned_) {
-      interlock_ = std::make_unique<HizInterlock>(arch.hiz_block);
+      interlock_ = std::make_unique<HizInterlock>(arch.hiz_block, ctx_);
       ctx_.hiz_interlock = interlock_.get();
       if (arch.hiz_sync == HizSync::Lagged)
         lag_ = std::make_unique<HizTable>(arch.hiz_mode, arch.hiz_block, arch.hiz_bytes, arch.fb_width, arch.fb_height,
