@@ -111,7 +111,7 @@ nlohmann::json lagged_run(const Scene& scene, const Config& cfg, bool bug) {
 
 // depth.hiz_sync = lagged (docs/depth-culling.md "Lagged"): random scenes (clears,
 // scissor, viewport changes) under every mode and handled depth function, blocks of 4 and
-// 8, tiles of 8 and 16, the table on chip and mostly spilled (the interlock's blocks).
+// 8, tiles of 8 and 16, the table on chip and mostly spilled (256 bytes).
 // The image and depth buffer are the reference's; every tile the timed model culls or
 // accepts is one the reference culls or accepts (so its counts are at most render's);
 // the planted bug (an accept on blocks a tile in flight touches) must break one of these.
