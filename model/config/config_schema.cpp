@@ -81,6 +81,11 @@ std::vector<ParamDef> make_schema() {
   add({"depth.hiz_base", T::Int, int64_t{3} << 30, "bytes", 0, double(int64_t{1} << 40), {},
        "Byte address of the spilled Hi-Z table's first entry (block depth.hiz_bytes / entry bytes, "
        "row-major; docs/depth-culling.md)", is_page_multiple, "a multiple of 4096"});
+  add({"depth.hiz_sync", T::Enum, std::string("interlock"), "", 1, 0, {"interlock", "lagged"},
+       "How the timed levels (simulate, cosim) keep the Hi-Z table in step with the ROP: interlock tests a tile "
+       "only once no tile in flight touches its blocks (the reference's decisions); lagged never waits, culls "
+       "against the table as the ROP has written it and accepts only on idle blocks (docs/depth-culling.md; "
+       "render and estimate are zero-lag either way)"});
   return s;
 }
 

@@ -74,6 +74,8 @@ RasterState raster_state_from_config(const Config& cfg) {
   s.hiz_block = static_cast<int>(cfg.get_int("depth.hiz_block"));
   s.hiz_bytes = cfg.get_int("depth.hiz_bytes");
   s.hiz_base = uint64_t(cfg.get_int("depth.hiz_base"));
+  s.hiz_sync = pick<HizSync>(cfg.get_string("depth.hiz_sync"),
+                             {{"interlock", HizSync::Interlock}, {"lagged", HizSync::Lagged}});
   s.out_of_range = cfg.get_string("raster.out_of_range") == "cull" ? OutOfRange::Cull : OutOfRange::Error;
   s.fb_width = static_cast<int>(cfg.get_int("display.width"));
   s.fb_height = static_cast<int>(cfg.get_int("display.height"));

@@ -77,15 +77,13 @@ DepthRange HizTable::bounds(const PixelRect& fp) const {
   return r;
 }
 
-HizDecision HizTable::test(const PixelRect& fp, DepthRange z, DepthFunc func) {
+HizDecision HizTable::test(const PixelRect& fp, DepthRange z, DepthFunc func, bool may_accept) {
   const bool minmax = mode_ == HizMode::MinMax;
   const bool handled = func == DepthFunc::Less || func == DepthFunc::LEqual ||
                        (minmax && (func == DepthFunc::Greater || func == DepthFunc::GEqual));
   if (!handled || fp.empty()) return HizDecision::Draw;
   ++stats.tiles_tested;
-  for (int by = fp.y0 >> log2B_; by <= (fp.y1 - 1) >> log2B_; ++by)
-    for (int bx = fp.x0 >> log2B_; bx <= (fp.x1 - 1) >> log2B_; ++bx)
-      if (spilled(index(bx, by))) spilled_access(index(bx, by), false);
+  read_spilled(fp);
   const DepthRange b = bounds(fp);  // b.lo: nearest stored (minmax only), b.hi: farthest
   bool cull = false, accept = false;
   switch (func) {
@@ -99,11 +97,17 @@ HizDecision HizTable::test(const PixelRect& fp, DepthRange z, DepthFunc func) {
     ++stats.tiles_culled;
     return HizDecision::Culled;
   }
-  if (accept) {
+  if (accept && may_accept) {
     ++stats.tiles_accepted;
     return HizDecision::Accepted;
   }
   return HizDecision::Draw;
+}
+
+void HizTable::read_spilled(const PixelRect& fp) {
+  for (int by = fp.y0 >> log2B_; by <= (fp.y1 - 1) >> log2B_; ++by)
+    for (int bx = fp.x0 >> log2B_; bx <= (fp.x1 - 1) >> log2B_; ++bx)
+      if (spilled(index(bx, by))) spilled_access(index(bx, by), false);
 }
 
 void HizTable::write(int x, int y, uint32_t z) {
@@ -158,38 +162,52 @@ HizTracker::HizTracker(const RasterState& st)
   depth_.clear_depth(static_cast<uint32_t>((uint64_t{1} << st.depth_bits) - 1));  // as the ROP's
 }
 
+void HizTracker::count_culled(const SetupTriangle& t, const PixelRect& fp, TileClass cls) {
+  uint64_t n = 0;
+  if (cls == TileClass::Accepted) n = uint64_t(fp.area());
+  else fine_raster_partial(t, fp, st_.coord_format.frac_bits, [&](int, int, uint32_t) { ++n; });
+  table.stats.fragments_culled += n;
+}
+
 // The reference's test (pipeline.cpp HizFilter): a culled tile's covered pixels counted.
 HizDecision HizTracker::test(const SetupTriangle& t, const PixelRect& fp, TileClass cls) {
-  const int F = st_.coord_format.frac_bits;
-  const HizDecision d = table.test(fp, tile_depth_range(t, fp, F), st_.depth_func);
-  if (d == HizDecision::Culled) {
-    uint64_t n = 0;
-    if (cls == TileClass::Accepted) n = uint64_t(fp.area());
-    else fine_raster_partial(t, fp, F, [&](int, int, uint32_t) { ++n; });
-    table.stats.fragments_culled += n;
-  }
+  const HizDecision d = table.test(fp, tile_depth_range(t, fp, st_.coord_format.frac_bits), st_.depth_func);
+  if (d == HizDecision::Culled) count_culled(t, fp, cls);
+  return d;
+}
+
+HizDecision HizTracker::test_lagged(const SetupTriangle& t, const PixelRect& fp, TileClass cls, HizTable& stale,
+                                    bool idle) {
+  if (!fp.empty()) table.read_spilled(fp);  // the entries test() reads (a tracker's function is handled)
+  const HizDecision d = stale.test(fp, tile_depth_range(t, fp, st_.coord_format.frac_bits), st_.depth_func, idle);
+  if (d == HizDecision::Culled) count_culled(t, fp, cls);
   return d;
 }
 
 // The depth writes the ROP will make for this tile, applied to the copy and the table
 // now, then the tile's blocks flushed (the reference's order: walk order, one sample).
-void HizTracker::apply(const SetupTriangle& t, const PixelRect& fp, TileClass cls) {
+void HizTracker::apply(const SetupTriangle& t, const PixelRect& fp, TileClass cls, std::vector<HizWrite>* writes) {
   const int F = st_.coord_format.frac_bits;
   const auto pixel = [&](int px, int py, uint32_t) {
     const uint32_t z = interpolate_plane(t, px, py, F).z;
     if (!depth_test(st_.depth_func, z, std::as_const(depth_).depth_at(px, py, 0)) || !st_.depth_write) return;
     depth_.set_depth(px, py, 0, z);
     table.write(px, py, z);
+    if (writes) writes->push_back({px, py, z});
   };
   if (cls == TileClass::Accepted) fine_raster_accepted(fp, pixel);
   else fine_raster_partial(t, fp, F, pixel);
   table.flush();
 }
 
-void HizTracker::state(const Command& cmd) {
+std::optional<uint32_t> HizTracker::depth_clear(const Command& cmd) const {
   const auto* c = std::get_if<CmdClearDepth>(&cmd.body);
-  if (!c) return;
-  if (const auto z = quantize_unorm(c->z, st_.depth_bits)) {  // a bad value is the ROP's error to report
+  if (!c) return std::nullopt;
+  return quantize_unorm(c->z, st_.depth_bits);  // a bad value is the ROP's error to report
+}
+
+void HizTracker::state(const Command& cmd) {
+  if (const auto z = depth_clear(cmd)) {
     depth_.clear_depth(*z);
     table.clear(*z);
   }

@@ -27,6 +27,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <vector>
 
 #include "ref/coarse_raster.h"
@@ -84,8 +85,12 @@ class HizTable {
   int64_t onchip_blocks() const { return onchip_; }
 
   // The decision for fragments of depth range r over footprint fp under `func`; counts
-  // the entry reads of spilled blocks. Draw for a function Hi-Z does not handle.
-  HizDecision test(const PixelRect& fp, DepthRange r, DepthFunc func);
+  // the entry reads of spilled blocks. Draw for a function Hi-Z does not handle, and in
+  // place of an accept when !may_accept (a lagged table's busy blocks: HizTracker::test_lagged).
+  HizDecision test(const PixelRect& fp, DepthRange r, DepthFunc func, bool may_accept = true);
+  // The entry reads of fp's spilled blocks a test makes (test() makes them too): a lagged
+  // test against another table still reads this table's entries (the traffic is the same).
+  void read_spilled(const PixelRect& fp);
   // One depth write of z at pixel (x, y): the update rule above (on chip at once; the
   // block is marked for flush()).
   void write(int x, int y, uint32_t z);
@@ -128,19 +133,37 @@ class HizTable {
 // reference would have at each tile, kept by applying each drawn tile's depth writes
 // (one sample, the plane depths, the state's function and raster.depth_write) at once,
 // in walk order: a zero-lag table (docs/depth-culling.md, "The timed model").
+// One depth write the ROP will make (pixel, depth): a lagged table's update.
+struct HizWrite {
+  int x = 0, y = 0;
+  uint32_t z = 0;
+};
+
 class HizTracker {
  public:
   explicit HizTracker(const RasterState& st);
   // The decision for tile footprint fp (class cls, not rejected) of t; a culled tile's
   // covered pixels counted into table.stats.fragments_culled (as the reference's filter).
   HizDecision test(const SetupTriangle& t, const PixelRect& fp, TileClass cls);
-  // A drawn tile's depth writes, then its blocks flushed.
-  void apply(const SetupTriangle& t, const PixelRect& fp, TileClass cls);
+  // depth.hiz_sync = lagged (docs/depth-culling.md "Lagged"): the decision against
+  // `stale`, the table as the ROP has written it (a prefix of the writes `table` holds),
+  // its counts in stale.stats (the culled fragments, and the spilled entries' reads, which
+  // the test makes as test() does, in table.stats). A cull from stale
+  // bounds is one the zero-lag table makes too (stored depths move one way between
+  // clears); an accept is made only when `idle` (no tile in flight touches fp's blocks,
+  // so stale holds every write to them), else the tile is drawn.
+  HizDecision test_lagged(const SetupTriangle& t, const PixelRect& fp, TileClass cls, HizTable& stale, bool idle);
+  // A drawn tile's depth writes, then its blocks flushed; each write also appended to
+  // `writes` when given (a lagged table applies them when the ROP has).
+  void apply(const SetupTriangle& t, const PixelRect& fp, TileClass cls, std::vector<HizWrite>* writes = nullptr);
   // A state command: a depth clear resets the depth and the table.
   void state(const Command& cmd);
+  // The value a depth clear command sets (D bits), none for any other command.
+  std::optional<uint32_t> depth_clear(const Command& cmd) const;
   HizTable table;
 
  private:
+  void count_culled(const SetupTriangle& t, const PixelRect& fp, TileClass cls);
   RasterState st_;
   Framebuffer depth_;  // one sample, colour unused
 };

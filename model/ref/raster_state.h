@@ -38,6 +38,11 @@ enum class RecipMethod { Exact, Newton };
 // Half-open pixel rectangle [x0, x1) x [y0, y1).
 // depth.hiz: no bound table, the farthest depth of a block, or its nearest and farthest.
 enum class HizMode { Off, Max, MinMax };
+// depth.hiz_sync: how the timed levels keep the table in step with the ROP (the
+// reference's table is zero-lag either way): an exact interlock (a tile is tested once
+// nothing in flight touches its blocks), or a table that lags the ROP (no wait; culls
+// from stale bounds, accepts only on idle blocks: docs/depth-culling.md "Lagged").
+enum class HizSync { Interlock, Lagged };
 
 struct PixelRect {
   int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
@@ -68,6 +73,7 @@ struct RasterState {
   int hiz_block = 0;
   int64_t hiz_bytes = 0;
   uint64_t hiz_base = 0;  // depth.hiz_base: byte address of the spilled table in DRAM
+  HizSync hiz_sync = HizSync::Interlock;  // depth.hiz_sync (SystemC and RTL only)
   OutOfRange out_of_range = OutOfRange::Error;
   int fb_width = 0, fb_height = 0;  // framebuffer (display) size, px
   // 2D primitives (config keys line.*, polygon.*).

@@ -412,6 +412,10 @@ RtlParams cosim_wanted_params(const ArchParams& arch, const CosimOptions& opts) 
                         "depth.hiz_bytes >= " + std::to_string(hiz_entry_bytes(st.hiz_mode, st.hiz_block, st.depth_bits)) +
                         " (render and simulate spill the whole table; docs/depth-culling.md)");
   }
+  if (hiz && st.hiz_sync == HizSync::Lagged)
+    throw ConfigError(cfg.origin("depth.hiz_sync") + ": depth.hiz_sync = lagged has no RTL yet (rast_top's walk "
+                      "holds a tile under the interlock): co-simulate with depth.hiz_sync = interlock (simulate "
+                      "runs the lagged table; docs/depth-culling.md)");
   if (st.depth_early)
     throw ConfigError(cfg.origin("depth.early") + ": depth.early = true has no RTL yet (the RTL shades every "
                       "fragment; the SystemC model would skip the hidden ones): co-simulate with depth.early = "

@@ -13,7 +13,11 @@ void CoarseRaster::body() {
     const SetupItem in = read(in_);
     if (in.state && hiz_) hiz_->state(*in.state);
     if (in.state && binned_) bin_clip_ = bin_walk_clip(*in.state, bin_clip_);
-    if (in.state && interlock_) interlock_->sent_state();
+    if (in.state && interlock_) {
+      const uint64_t entry = interlock_->sent_state();
+      if (lag_)
+        if (const auto z = hiz_->depth_clear(*in.state)) lag_pending_.push_back({entry, {}, z});
+    }
     if (pass_state(in, out_)) continue;
     switch (tp_.method) {
       case Traversal::Tiled: walk_tiled(in); break;
@@ -82,9 +86,14 @@ void CoarseRaster::walk_tiled(const SetupItem& in) {
         const PixelRect fp = tile_footprint(box, tile_size_, tx, ty);
         ++c.tiles_visited;
         const TileClass cls = classify_tile(t, fp, frac_bits_);
-        if (cls != TileClass::Rejected && interlock_) hiz_interlock_wait(walk, fp, cycles_done);
+        // depth.hiz_sync = lagged: the test is against the lagged table.
+        const bool lagged = lag_ && cls != TileClass::Rejected;
+        if (cls != TileClass::Rejected && interlock_ && !lagged) hiz_interlock_wait(walk, fp, cycles_done);
         if (mem_) mem_->begin(now());  // the tile's entry reads from now (timing/hiz_memory_port.h)
-        const HizDecision hiz = cls != TileClass::Rejected && hiz_ ? hiz_->test(t, fp, cls) : HizDecision::Draw;
+        HizDecision hiz = HizDecision::Draw;
+        if (lagged) hiz = hiz_lagged(t, walk, fp, cls, cycles_done);
+        else if (cls != TileClass::Rejected && hiz_) hiz = hiz_->test(t, fp, cls);
+        if (hiz != HizDecision::Draw && ctx_.on_hiz) ctx_.on_hiz(t, fp, hiz);
         const bool culled = hiz == HizDecision::Culled;
         hiz_stall();  // the test's entries
         const uint64_t leave_at = walk.visit(cls != TileClass::Rejected && !culled);
@@ -94,14 +103,18 @@ void CoarseRaster::walk_tiled(const SetupItem& in) {
         }
         ++(cls == TileClass::Accepted ? c.tiles_accepted : c.tiles_partial);
         if (culled) continue;  // counted by its class, as the reference's walk does
+        std::vector<HizWrite> writes;
         if (hiz_) {
-          hiz_->apply(t, fp, cls);
+          hiz_->apply(t, fp, cls, lag_ ? &writes : nullptr);
           hiz_stall();
         }
         attribute_to(fp.x0, fp.y0);  // the walk up to this tile, rejected tiles included
         busy(leave_at - cycles_done);
         cycles_done = leave_at;
-        if (interlock_) interlock_->sent(fp);
+        if (interlock_) {
+          const uint64_t entry = interlock_->sent(fp);
+          if (!writes.empty()) lag_pending_.push_back({entry, std::move(writes), std::nullopt});
+        }
         write(out_, TileItem{nullptr, TileWork{in.work, fp, cls, false, hiz == HizDecision::Accepted}});
       }
     }
@@ -122,6 +135,36 @@ void CoarseRaster::hiz_interlock_wait(TiledWalk& walk, const PixelRect& fp, uint
   const uint64_t test_at = now() + walk.next_window() - 1 - done;
   const uint64_t free = interlock_->free_at(fp, now());
   if (free > test_at) walk.restart(free - now() + 1 + done);
+}
+
+// depth.hiz_sync = lagged (docs/depth-culling.md "Lagged"): the tile is tested in walk
+// cycle w at t_test = now() + w - 1 - done, as under the interlock, but not held for its
+// blocks: against the table as the ROP has written it by t_test (every update whose
+// entry ended by then), accepted only when no entry in flight at t_test touches its
+// blocks. A state item in flight (a depth clear) holds it to the item's end.
+HizDecision CoarseRaster::hiz_lagged(const SetupTriangle& t, TiledWalk& walk, const PixelRect& fp, TileClass cls,
+                                     uint64_t done) {
+  uint64_t test_at = now() + walk.next_window() - 1 - done;
+  const uint64_t state_free = interlock_->state_free_at();
+  if (state_free > test_at) {
+    walk.restart(state_free - now() + 1 + done);
+    test_at = state_free;
+  }
+  const bool idle = !interlock_->busy_at(fp, now(), test_at);
+  lag_absorb(test_at);
+  return hiz_->test_lagged(t, fp, cls, *lag_, idle || ctx_.hiz_lag_accept_busy);
+}
+
+// The lagged table takes the updates whose entries ended by cycle `at`, in send order
+// (the ROP ends its entries in that order, so the first not ended stops the rest).
+void CoarseRaster::lag_absorb(uint64_t at) {
+  while (!lag_pending_.empty() && interlock_->ended_by(lag_pending_.front().entry, at)) {
+    const LagUpdate& u = lag_pending_.front();
+    if (u.clear) lag_->clear(*u.clear);
+    for (const HizWrite& w : u.writes) lag_->write(w.x, w.y, w.z);
+    lag_->flush();
+    lag_pending_.pop_front();
+  }
 }
 
 // The walk waits for the step's spilled entries: busy the stall; the next step starts

@@ -22,6 +22,11 @@
 //   The interlock (sc/hiz_interlock.h, as rast_top's): a tile is tested only once every
 //   earlier tile on its blocks has left the ROP; until then the walk holds it, and its
 //   window restarts at it in the cycle the last of them ends (TiledWalk::restart).
+//   depth.hiz_sync = lagged: no hold; a tile is tested against lag_, the table as the
+//   ROP has written it by the test's cycle (each sent tile's depth writes applied at its
+//   ROP end, a depth clear at its), accepted only when no tile in flight touches its
+//   blocks (HizTracker::test_lagged); the walk holds only while a state item is in
+//   flight. Spilled entries: read (and their reads waited for) as with the interlock.
 // The other raster.traversal methods (docs/traversal.md), same functions as the
 // reference (ref/traverse.h):
 // - bbox: one partial "tile", the whole clipped bbox, in 1 cycle.
@@ -34,8 +39,10 @@
 //   (ref/study/coverage_check.h), where the whole triangle's pixels are known.
 #pragma once
 
+#include <deque>
 #include <memory>
 #include <optional>
+#include <vector>
 
 #include "ref/framebuffer.h"
 #include "ref/hiz.h"
@@ -73,8 +80,11 @@ class CoarseRaster : public Stage {
     // ROP record their ends through ctx. Not in the binned pipeline (its bins reorder the
     // ROP's work).
     if (hiz_ && !binned_) {
-      interlock_ = std::make_unique<HizInterlock>(arch.hiz_block);
+      interlock_ = std::make_unique<HizInterlock>(arch.hiz_block, ctx_);
       ctx_.hiz_interlock = interlock_.get();
+      if (arch.hiz_sync == HizSync::Lagged)
+        lag_ = std::make_unique<HizTable>(arch.hiz_mode, arch.hiz_block, arch.hiz_bytes, arch.fb_width, arch.fb_height,
+                                          arch.depth_bits);
     }
   }
   // memory.model = "dram" (before the run): the spilled Hi-Z table's entries become
@@ -88,7 +98,12 @@ class CoarseRaster : public Stage {
   const HizMemoryPort* memory_port() const { return mem_.get(); }
   // The Hi-Z unit's counts into ctx.render.hiz (call once, after the simulation).
   void finish_hiz() {
-    if (hiz_) ctx_.render.hiz = hiz_->table.stats;
+    if (!hiz_) return;
+    ctx_.render.hiz = hiz_->table.stats;
+    if (!lag_) return;  // lagged: the tests against lag_ too (its writes' counts are table's)
+    ctx_.render.hiz.tiles_tested += lag_->stats.tiles_tested;
+    ctx_.render.hiz.tiles_culled += lag_->stats.tiles_culled;
+    ctx_.render.hiz.tiles_accepted += lag_->stats.tiles_accepted;
   }
   // Counts cracks and overlaps of every triangle walked into ctx.render.coverage (call
   // once, after the simulation).
@@ -101,6 +116,8 @@ class CoarseRaster : public Stage {
   void walk_tiled(const SetupItem& in);
   void hiz_stall();
   void hiz_interlock_wait(TiledWalk& walk, const PixelRect& fp, uint64_t done);
+  HizDecision hiz_lagged(const SetupTriangle& t, TiledWalk& walk, const PixelRect& fp, TileClass cls, uint64_t done);
+  void lag_absorb(uint64_t at);
   void walk_hierarchical(const SetupItem& in);
   void walk_scanline(const SetupItem& in);
   int tile_size_, frac_bits_;
@@ -113,6 +130,16 @@ class CoarseRaster : public Stage {
   std::optional<HizTracker> hiz_;  // functional-first Hi-Z (ref/hiz.h)
   std::unique_ptr<HizMemoryPort> mem_;  // memory.model = "dram" with a table, else null
   std::unique_ptr<HizInterlock> interlock_;  // with a table (immediate mode), else null
+  // depth.hiz_sync = lagged (with the interlock's record of what is in flight): the table
+  // as the ROP has written it, and the updates sent but not yet in it, in send order
+  // (a drawn tile's depth writes or a depth clear; its interlock entry gives its end).
+  struct LagUpdate {
+    uint64_t entry = 0;
+    std::vector<HizWrite> writes;
+    std::optional<uint32_t> clear;
+  };
+  std::unique_ptr<HizTable> lag_;
+  std::deque<LagUpdate> lag_pending_;
   // pipeline.mode = binned (sc/binning.h): each triangle's box clipped to the bin of the
   // last begin marker (the reference's draw(tri, walk)); the triangle itself, its full
   // box, goes on to fine raster and interpolation.

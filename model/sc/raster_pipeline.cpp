@@ -233,6 +233,8 @@ void configure(SimContext& ctx, const SimOptions& opts, const RasterState& arch)
   ctx.stall_probability = opts.stall_probability;
   ctx.on_fragment = opts.on_fragment;
   ctx.on_fetch = opts.on_fetch;
+  ctx.on_hiz = opts.on_hiz;
+  ctx.hiz_lag_accept_busy = opts.hiz_lag_accept_busy;
   count_multisample_footprint(arch, ctx.render);
   ctx.render.depth_early = arch.depth_early;  // its stats keys, as the reference's
   // Binned mode has two memory clients in different processes, the binner (parameter

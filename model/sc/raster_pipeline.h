@@ -73,6 +73,11 @@ struct SimOptions {
   // system, which lives through the run, so on_fetch may ask it (MemorySystem::
   // backlog_cycles: frame sampling's DRAM backlog at each frame's first fetch).
   std::function<void(const MemorySystem& memory)> on_memory_system;
+  // Tests of depth.hiz_sync = lagged (tb/sc/test_sc_hiz.cpp): every Hi-Z cull and accept
+  // coarse raster makes, and a planted bug (accept on blocks a tile in flight touches),
+  // which the tests must catch. Never set by the tool.
+  std::function<void(const SetupTriangle& t, const PixelRect& fp, HizDecision d)> on_hiz;
+  bool hiz_lag_accept_busy = false;
 };
 
 struct StageReport {

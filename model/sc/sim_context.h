@@ -69,6 +69,10 @@ struct SimContext {
   // Hi-Z's interlock (coarse raster's, with a table): fine raster and the ROP record the
   // ends of the tiles and state items it sent. Null without.
   HizInterlock* hiz_interlock = nullptr;
+  // Sees coarse raster's every Hi-Z cull and accept (tests: a lagged run's culls must be
+  // the reference's), and the planted bug of the lagged tests (an accept on busy blocks).
+  std::function<void(const SetupTriangle& t, const PixelRect& fp, HizDecision d)> on_hiz;
+  bool hiz_lag_accept_busy = false;
   // Sees command fetch start each transaction (a command, or triangle k of a primitive
   // command) at `cycle`, in program order (the sampled level's unit boundaries).
   std::function<void(const Command& cmd, size_t triangle, uint64_t cycle)> on_fetch;

@@ -121,6 +121,10 @@ TEST(RtlOnDemand, DepthCullingTheRtlLacksNamesTheKey) {
   const std::string e = cosim_error("depth.early=true");
   EXPECT_NE(e.find("--set depth.early=true: depth.early = true has no RTL yet"), std::string::npos) << e;
   EXPECT_EQ(cosim_error({"depth.hiz=max", "raster.depth_func=always"}), "(no error)");
+  const std::string l = cosim_error({"depth.hiz=max", "raster.depth_func=less", "depth.hiz_sync=lagged"});
+  EXPECT_NE(l.find("--set depth.hiz_sync=lagged: depth.hiz_sync = lagged has no RTL yet"), std::string::npos) << l;
+  // Where Hi-Z does not apply the key changes nothing, and the run goes on.
+  EXPECT_EQ(cosim_error({"depth.hiz=max", "raster.depth_func=always", "depth.hiz_sync=lagged"}), "(no error)");
 }
 
 // memory.model = "dram" on a shipped model (memory needs no RTL parameter): the RTL ROP's

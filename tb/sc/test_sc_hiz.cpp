@@ -5,8 +5,11 @@
 // lock step; and they drop on a scene drawn front to back.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cstdio>
+#include <set>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "config/memory_config.h"
@@ -69,6 +72,90 @@ TEST(ScHiz, MemoryCountsMatchReference) {
   EXPECT_GT(accepted, 0u);
 }
 
+// A Hi-Z decision's tile, the same at both levels: the footprint and its triangle.
+using TileKey = std::tuple<int, int, int, int, int64_t, int64_t, std::array<int64_t, 3>, std::array<int64_t, 3>,
+                           std::array<uint32_t, 3>>;
+TileKey tile_key(const SetupTriangle& t, const PixelRect& fp) {
+  return {fp.x0, fp.y0, fp.x1, fp.y1, t.origin_x, t.origin_y, t.x, t.y, t.z};
+}
+
+// depth.hiz_sync = lagged on one scene: the reference's culls and accepts (render, a
+// zero-lag table) and the timed model's; `bug` plants an accept on busy blocks. Counts
+// the timed model's culls and accepts that are not the reference's (each matched once).
+nlohmann::json lagged_run(const Scene& scene, const Config& cfg, bool bug) {
+  std::multiset<TileKey> ref_culled, ref_accepted;
+  RenderStats ref_stats;
+  SceneRenderer renderer(raster_state_from_config(cfg), ref_stats);
+  renderer.set_hiz_observer([&](const HizEvent& e) {
+    (e.decision == HizDecision::Culled ? ref_culled : ref_accepted).insert(tile_key(e.tri, e.footprint));
+  });
+  renderer.run(scene.commands);
+  const Framebuffer ref_fb = renderer.finish();
+  uint64_t foreign_culls = 0, foreign_accepts = 0;
+  sc::SimOptions o;
+  o.hiz_lag_accept_busy = bug;
+  o.on_hiz = [&](const SetupTriangle& t, const PixelRect& fp, HizDecision d) {
+    std::multiset<TileKey>& ref = d == HizDecision::Culled ? ref_culled : ref_accepted;
+    const auto it = ref.find(tile_key(t, fp));
+    if (it == ref.end()) ++(d == HizDecision::Culled ? foreign_culls : foreign_accepts);
+    else ref.erase(it);
+  };
+  const sc::SimResult r = sc::simulate_scene(scene, ArchParams::resolve(cfg), o);
+  return {{"crc_ref", ref_fb.color_crc32()}, {"crc_sim", r.fb.color_crc32()}, {"depth_equal", ref_fb.same_depth(r.fb)},
+          {"culled_ref", ref_stats.hiz.tiles_culled}, {"culled_sim", r.render.hiz.tiles_culled},
+          {"accepted_ref", ref_stats.hiz.tiles_accepted}, {"accepted_sim", r.render.hiz.tiles_accepted},
+          {"tested_ref", ref_stats.hiz.tiles_tested}, {"tested_sim", r.render.hiz.tiles_tested},
+          {"passed_ref", ref_stats.fragments_passed}, {"passed_sim", r.render.fragments_passed},
+          {"foreign_culls", foreign_culls}, {"foreign_accepts", foreign_accepts}, {"stats", r.to_json()}};
+}
+
+// depth.hiz_sync = lagged (docs/depth-culling.md "Lagged"): random scenes (clears,
+// scissor, viewport changes) under every mode and handled depth function, blocks of 4 and
+// 8, tiles of 8 and 16, the table on chip and mostly spilled (256 bytes).
+// The image and depth buffer are the reference's; every tile the timed model culls or
+// accepts is one the reference culls or accepts (so its counts are at most render's);
+// the planted bug (an accept on blocks a tile in flight touches) must break one of these.
+TEST(ScHiz, LaggedDecisionsSubsetOfReference) {
+  uint64_t seed = 100, culled_ref = 0, culled_sim = 0, accepted_ref = 0, accepted_sim = 0, bug_caught = 0;
+  for (const char* mode : {"max", "minmax"})
+    for (const char* func : {"less", "lequal", "greater", "gequal"})
+      for (const char* block : {"4", "8"}) {
+        if (std::string(mode) == "max" && func[0] == 'g') continue;  // max handles less, lequal only
+        ++seed;
+        const Config cfg = make_config({std::string("raster.depth_func=") + func, std::string("depth.hiz=") + mode,
+                                        std::string("depth.hiz_block=") + block, "depth.hiz_sync=lagged",
+                                        seed % 3 == 0 ? "depth.hiz_bytes=256" : "depth.hiz_bytes=1048576",
+                                        seed % 2 ? "raster.tile_size=16" : "raster.tile_size=8"});
+        SCOPED_TRACE(std::string(mode) + " " + func + " block " + block + " seed " + std::to_string(seed));
+        const Scene scene = random_scene(seed, 96, 80, 120);
+        const nlohmann::json r = run_isolated([&] { return lagged_run(scene, cfg, false); });
+        ASSERT_FALSE(r.contains("error")) << r["error"];
+        EXPECT_EQ(r["crc_sim"], r["crc_ref"]);
+        EXPECT_TRUE(r["depth_equal"].get<bool>());
+        EXPECT_EQ(r["passed_sim"], r["passed_ref"]);
+        EXPECT_EQ(r["tested_sim"], r["tested_ref"]);
+        EXPECT_EQ(r["foreign_culls"], 0u);
+        EXPECT_EQ(r["foreign_accepts"], 0u);
+        EXPECT_LE(r["culled_sim"].get<uint64_t>(), r["culled_ref"].get<uint64_t>());
+        EXPECT_LE(r["accepted_sim"].get<uint64_t>(), r["accepted_ref"].get<uint64_t>());
+        EXPECT_GE(r["stats"]["cycles"].get<uint64_t>(), r["stats"]["cycles_lower_bound"].get<uint64_t>());
+        culled_ref += r["culled_ref"].get<uint64_t>(), culled_sim += r["culled_sim"].get<uint64_t>();
+        accepted_ref += r["accepted_ref"].get<uint64_t>(), accepted_sim += r["accepted_sim"].get<uint64_t>();
+        const nlohmann::json b = run_isolated([&] { return lagged_run(scene, cfg, true); });
+        ASSERT_FALSE(b.contains("error")) << b["error"];
+        if (b["foreign_accepts"].get<uint64_t>() > 0 || b["crc_sim"] != b["crc_ref"] || !b["depth_equal"].get<bool>())
+          ++bug_caught;
+      }
+  std::printf("lagged: culled %llu of the reference's %llu, accepted %llu of %llu; the planted bug caught in %llu "
+              "scenes of 12\n",
+              (unsigned long long)culled_sim, (unsigned long long)culled_ref, (unsigned long long)accepted_sim,
+              (unsigned long long)accepted_ref, (unsigned long long)bug_caught);
+  EXPECT_GT(culled_sim, 50u);  // the scenes exercise the lagged cull and accept
+  EXPECT_GT(accepted_sim, 10u);
+  EXPECT_LT(culled_sim + accepted_sim, culled_ref + accepted_ref);  // and the lag (busy blocks) shows
+  EXPECT_GT(bug_caught, 0u);
+}
+
 // d full-screen layers (two triangles each) at depths 0.1, 0.2, ... drawn front to back.
 Scene layers_front_to_back(int w, int h, int d) {
   Scene scene;
@@ -88,10 +175,11 @@ Scene layers_front_to_back(int w, int h, int d) {
 // to lock step.
 TEST(ScHiz, CyclesDropFrontToBackAndLockstepEqual) {
   const Scene scene = layers_front_to_back(128, 96, 8);
-  const auto stats = [&](const char* mode, bool lockstep) {
+  const auto stats = [&](const char* mode, bool lockstep, const char* sync = "interlock") {
     sc::SimOptions o;
     o.lockstep = lockstep;
-    const Config cfg = make_config({"raster.depth_func=less", std::string("depth.hiz=") + mode});
+    const Config cfg = make_config({"raster.depth_func=less", std::string("depth.hiz=") + mode,
+                                    std::string("depth.hiz_sync=") + sync});
     nlohmann::json j = run_isolated([&] { return simulate_stats(scene, cfg, o); });
     for (const char* k : {"sim_wall_seconds", "wall_seconds", "simulated_cycles_per_second"}) j.erase(k);
     return j;
@@ -107,6 +195,15 @@ TEST(ScHiz, CyclesDropFrontToBackAndLockstepEqual) {
   EXPECT_LT(c_max, c_off);
   EXPECT_EQ(max["fragments_culled_hiz"].get<uint64_t>(), 7u * 128u * 96u);  // every hidden fragment
   EXPECT_GE(c_max, max["cycles_lower_bound"].get<uint64_t>());
+  // Lagged (depth.hiz_sync): its decisions depend on the model's cycles, not on how far
+  // the stages run ahead of each other, so decoupled equals lock step too.
+  const nlohmann::json lag = stats("max", false, "lagged"), lag_lock = stats("max", true, "lagged");
+  ASSERT_FALSE(lag.contains("error")) << lag["error"];
+  EXPECT_EQ(lag, lag_lock);
+  std::printf("the same, lagged: %llu cycles (%llu tiles culled)\n", (unsigned long long)lag["cycles"].get<uint64_t>(),
+              (unsigned long long)lag["tiles_culled_hiz"].get<uint64_t>());
+  EXPECT_LE(lag["tiles_culled_hiz"].get<uint64_t>(), max["tiles_culled_hiz"].get<uint64_t>());
+  EXPECT_EQ(lag["framebuffer_crc32"], max["framebuffer_crc32"]);
 }
 
 // The spilled table through the timed memory system (memory.model = dram, client hiz,
