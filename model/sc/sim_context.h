@@ -69,6 +69,10 @@ struct SimContext {
   // Hi-Z's interlock (coarse raster's, with a table): fine raster and the ROP record the
   // ends of the tiles and state items it sent. Null without.
   HizInterlock* hiz_interlock = nullptr;
+  // Early Z's interlock (the interpolator's, depth.early with a depth function that reads:
+  // sc/interpolate.h), on pixels: the ROP records the ends of the batches and state items
+  // it was sent. Null without.
+  HizInterlock* early_interlock = nullptr;
   // Sees command fetch start each transaction (a command, or triangle k of a primitive
   // command) at `cycle`, in program order (the sampled level's unit boundaries).
   std::function<void(const Command& cmd, size_t triangle, uint64_t cycle)> on_fetch;

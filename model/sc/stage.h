@@ -138,6 +138,18 @@ class Stage : public sc_core::sc_module {
     idle_since_ = now_;
   }
 
+  // Holds its work `cycles` more without passing it on (an interlock's hold): stalled.
+  void stall(uint64_t cycles) {
+    if (cycles == 0) return;
+    set_state(StageState::Stalled);
+    const uint64_t t0 = now_;
+    now_ += cycles;
+    sync();
+    stats_.stalled += cycles;
+    record(StageState::Stalled, t0, now_);
+    idle_since_ = now_;
+  }
+
   // Writes one transaction; the reader may start on it `extra_latency` cycles from now.
   template <class P>
   void write(Link<P>& out, P payload, uint64_t extra_latency = 0) {
