@@ -63,8 +63,8 @@ void Interpolate::body() {
     // At most one fragment a covered sample (ssaa), one a pixel otherwise.
     Fragment* const first = frags->reset(size_t(batch.pixels) * size_t(tri.samples));
     frags->count = shade(batch, first);
+    if (early_interlock_) early_interlock_wait(batch);
     if (early_) early_test(*frags);
-    const uint64_t hold = early_interlock_ ? early_interlock_hold(batch) : 0;
     ctx_.render.fragments_shaded += frags->kept();
     if (frags->count != 0) attribute_to(first->x, first->y);  // the batch's tile
     // Early Z: the lanes interpolate every fragment, culled or not: the early test takes
@@ -84,7 +84,6 @@ void Interpolate::body() {
       continue;
     }
     busy(cycles);
-    stall(hold);  // early Z's interlock held the first beat: the pipeline frozen that long
     const uint64_t latency = behind_texture(now() + p_.interp_pipeline_latency());
     write(out_, FragmentItem{nullptr, std::move(frags)}, latency);
   }
@@ -150,26 +149,17 @@ void Interpolate::early_test(FragmentBatch& frags) {
   ctx_.render.texture_samples_saved += textured ? culled : 0;
 }
 
-// Early Z's interlock (rast_early_z's rule): the batch's first beat reaches the early test
-// in cycle now() + 1 + interp_pipeline_latency() (the texture stage passes an untextured
-// beat on in its cycle) and is held there until every earlier entry on its tile has ended
-// at the ROP (free); the pipeline stands still meanwhile: hold = max(0, free - first).
-// Then its tile's entry. A textured batch is not held here (its beats reach the RTL's
-// test through the texture stage, which co-simulation does not run with early Z).
-uint64_t Interpolate::early_interlock_hold(const PixelBatch& batch) {
+// Early Z's interlock (rast_early_z's rule): the batch enters the interpolator only once
+// every earlier entry on its tile has ended at the ROP (free_at: the RTL's tile waits at
+// the pixel FIFO's head until then, the stage starved); then its tile's entry.
+void Interpolate::early_interlock_wait(const PixelBatch& batch) {
   const PixelRun& r = batch.runs.front();
   const int size = 1 << tile_log2_;
   const int x0 = r.x0 >> tile_log2_ << tile_log2_, y0 = r.y >> tile_log2_ << tile_log2_;
   const PixelRect fp{x0, y0, x0 + size, y0 + size};
-  uint64_t hold = 0;
-  if (!batch.tri->texture.enabled()) {
-    const uint64_t first = now() + 1 + p_.interp_pipeline_latency();
-    const uint64_t free = early_interlock_->free_at(fp, now());
-    hold = free > first ? free - first : 0;
-  }
+  starve_until(early_interlock_->free_at(fp, now()) + 1);
   early_interlock_->sent(fp);
   early_interlock_->fine(false, now());
-  return hold;
 }
 
 void Interpolate::early_state(const Command& cmd) {

@@ -32,9 +32,9 @@
 //   the batch flagged, for its depth reads at the ROP's port, and costs no sample at the
 //   texture stage. Its lane it still takes: the lanes compute the depth the test uses
 //   (rtl/rast_early_z.sv tests the interpolator's output), so the batch takes
-//   interp_batch_cycles(every fragment). The interlock (as the RTL's): the batch's first
-//   beat is held until no batch or state item on its tile is in flight to the ROP's end
-//   (early_interlock_hold; docs/depth-culling.md "Early Z in the RTL").
+//   interp_batch_cycles(every fragment). The interlock (as the RTL's): a batch is read and
+//   then waited on (starved) until no batch or state item on its tile is in flight to
+//   the ROP's end (early_interlock_wait; docs/depth-culling.md "Early Z in the RTL").
 #pragma once
 
 #include <memory>
@@ -130,9 +130,9 @@ class Interpolate : public Stage {
   void early_test(FragmentBatch& frags);
   // A state command on the early test's copy of the depth buffer (a depth clear).
   void early_state(const Command& cmd);
-  // Early Z's interlock: the batch's entry, and the cycles its first beat is held at the
-  // early test (docs/depth-culling.md "Early Z in the RTL").
-  uint64_t early_interlock_hold(const PixelBatch& batch);
+  // Early Z's interlock: waits until the batch's tile has nothing in flight to the ROP's
+  // end, then records its entry (docs/depth-culling.md "Early Z in the RTL").
+  void early_interlock_wait(const PixelBatch& batch);
   // A state command with textured batches ahead: its issue cycle, then behind them.
   void pass_state_behind_texture(const PixelItem& in);
   // The fence, when textured batches are ahead; then the extra latency that makes a

@@ -138,15 +138,15 @@ class Stage : public sc_core::sc_module {
     idle_since_ = now_;
   }
 
-  // Holds its work `cycles` more without passing it on (an interlock's hold): stalled.
-  void stall(uint64_t cycles) {
-    if (cycles == 0) return;
-    set_state(StageState::Stalled);
-    const uint64_t t0 = now_;
-    now_ += cycles;
+  // Waits without work until cycle t (an interlock holding the transaction it read at its
+  // input): starved, as while waiting to read.
+  void starve_until(uint64_t t) {
+    if (t <= now_) return;
+    set_state(StageState::Starved);
+    stats_.starved += t - idle_since_;
+    record(StageState::Starved, idle_since_, t);
+    now_ = t;
     sync();
-    stats_.stalled += cycles;
-    record(StageState::Stalled, t0, now_);
     idle_since_ = now_;
   }
 
