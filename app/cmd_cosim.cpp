@@ -134,6 +134,7 @@ void print_rtl_run(const rtlsim::CosimResult& r, const rtlsim::CosimOptions& co,
             << r.mismatches << " mismatches";
   if (r.commands_2d) out << ", " << r.commands_2d << " 2D commands (" << r.pixels_2d << " pixels)";
   if (r.hiz) out << ", Hi-Z: " << r.tiles_culled_hiz << " tiles culled, " << r.tiles_accepted_hiz << " accepted";
+  if (r.depth_early) out << ", early Z: " << r.fragments_culled_early << " fragments culled";
   if (r.hiz && r.hiz_dram_bytes_read + r.hiz_dram_bytes_written > 0)
     out << ", spilled entries " << r.hiz_dram_bytes_read << " bytes read, " << r.hiz_dram_bytes_written << " written";
   out << ", crc32 " << crc32_hex(r.crc_rtl)

@@ -124,6 +124,13 @@ module rast_top #(
   output      logic [InterpFragmentsPerCycle*TexW-1:0]   frag_s_o,    // lane j texture coordinate s, raw signed
   output      logic [InterpFragmentsPerCycle*TexW-1:0]   frag_t_o,    // lane j t
   output      logic [InterpFragmentsPerCycle*MaxSamples-1:0] frag_mask_o,  // lane j sample mask (bit s: sample s)
+  // Early Z (DepthEarly; rtl/rast_early_z.sv): lane j of the beat culled early (still sent
+  // to the ROP for its depth reads), and the early test's depth read: the lanes whose
+  // pixels (frag_x_o, frag_y_o) are read, every sample's stored depth back in the same
+  // cycle (lane j sample s at [(j MaxSamples + s) DepthW +: DepthW]). 0 without.
+  output      logic [InterpFragmentsPerCycle-1:0]    frag_culled_o,
+  output      logic [InterpFragmentsPerCycle-1:0]    ez_rd_lanes_o,
+  input  wire logic [InterpFragmentsPerCycle*MaxSamples*DepthW-1:0] ez_rd_depth_i,
   // The ROP's commands, one a marker in stream order (rast_rop's cmd_*).
   input  wire logic                                  cmd_valid_i,     // a command
   output      logic                                  cmd_ready_o,     // taken with its marker (high while a marker waits for it)
@@ -504,10 +511,11 @@ module rast_top #(
     .out_valid_o(p_fifo_valid), .out_ready_i(p_fifo_ready), .out_data_o(p_fifo_data), .empty_o(p_empty));
   logic ts_room, ts_valid, ts_empty, ts_pop;  // the tile texture-state FIFO (below)
   logic cr_admit;  // the fragment FIFO's credits admit the head (below, "Interpolator credits")
+  logic ez_wait;   // early Z's interlock holds the head (below, "Early Z")
   // A tile enters the hold with room for its state and, untextured, a credit.
-  assign p_fifo_ready = p_hold_ready && ts_room && cr_admit;
+  assign p_fifo_ready = p_hold_ready && ts_room && cr_admit && !ez_wait;
   rast_hold #(.Width(PixW)) u_interp_hold (
-    .clk_i, .rst_ni, .in_valid_i(p_fifo_valid && ts_room && cr_admit), .in_ready_o(p_hold_ready), .in_data_i(p_fifo_data),
+    .clk_i, .rst_ni, .in_valid_i(p_fifo_valid && ts_room && cr_admit && !ez_wait), .in_ready_o(p_hold_ready), .in_data_i(p_fifo_data),
     .out_valid_o(p_valid), .out_ready_i(p_ready), .out_data_o(p_in));
 
   // ---- Tile texture-state FIFO: a tile's texture state from the interpolator's input
@@ -551,6 +559,7 @@ module rast_top #(
 
   // ---- Texture stage (textured tiles; the rest passes through) ----
   logic x_busy;
+  logic x_valid, x_ready;  // its output (seen by the early test, DepthEarly), into the fragment FIFO
   logic                 tex_req_valid, tex_req_ready, tex_rsp_valid, tex_rsp_ready;
   logic [4*TexAddrW-1:0] tex_req_addr;
   logic [2:0]           tex_req_count;
@@ -568,7 +577,7 @@ module rast_top #(
     .in_wrap_s_i(ts_head.wrap_s),
     .in_wrap_t_i(ts_head.wrap_t), .in_env_i(ts_head.env), .in_width_i(ts_head.width), .in_height_i(ts_head.height),
     .in_base_i(ts_head.base), .in_levels_i(ts_head.levels), .in_bias_i(ts_head.bias),
-    .out_valid_o(frag_valid_o), .out_ready_i(frag_ready_o), .out_marker_o(frag_marker_o),
+    .out_valid_o(x_valid), .out_ready_i(x_ready), .out_marker_o(frag_marker_o),
     .out_last_o(frag_last_o), .out_lanes_o(frag_lanes_o), .out_x_o(frag_x_o), .out_y_o(frag_y_o),
     .out_z_o(frag_z_o), .out_rgb_o(frag_rgb_o), .out_s_o(frag_s_o), .out_t_o(frag_t_o), .out_smask_o(frag_mask_o),
     .tex_req_valid_o(tex_req_valid), .tex_req_ready_i(tex_req_ready), .tex_req_addr_o(tex_req_addr),
@@ -606,6 +615,8 @@ module rast_top #(
                              tex_mem_req_ready_i, tex_mem_rsp_valid_i, tex_mem_rsp_data_i};
   end
   assign ts_pop = i_valid && i_ready && !i_marker && i_last;
+  assign frag_valid_o = x_valid;
+  assign x_ready = frag_ready_o;
   assign dbg_tex_busy_o = x_busy;
   assign dbg_tex_blocked_o = x_busy && frag_valid_o && !frag_ready_o;
 
@@ -846,6 +857,40 @@ module rast_top #(
     .dbg_blocked_o(rop_blocked), .hiz_always_i(rop_hiz_always), .hiz_always_next_i(rop_hiz_always_next), .hiz_wr_lanes_o(rop_hiz_wr_lanes),
     .hiz_wr_x_o(rop_hiz_wr_x), .hiz_wr_y_o(rop_hiz_wr_y), .hiz_wr_z_o(rop_hiz_wr_z), .hiz_end_o(rop_hiz_end), .hiz_marker_o(rop_hiz_marker),
     .hiz_clear_o(rop_hiz_clear));
+
+  // ---- Early Z (DepthEarly; rtl/rast_early_z.sv, docs/depth-culling.md "Early Z in the
+  // RTL"): the texture stage's beats tested against the stored depth; a tile at the pixel
+  // FIFO's head held (ez_wait) while a tile on its pixels or a marker is in flight to the
+  // ROP's end. A depth clear's marker ends at its last fill write (rop_done after its
+  // take), a pass at its take. ----
+  if (DepthEarly != 0) begin : g_early
+    logic clr_q;  // a depth clear taken, its writes not yet done
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni) clr_q <= 1'b0;
+      else if (rop_hiz_clear) clr_q <= 1'b1;
+      else if (rop_done) clr_q <= 1'b0;
+    end
+    // derived: tiles from the interpolator's input to the ROP's end (its pipeline, the
+    // texture stage's, the fragment FIFO's and the ROP's access buffer's, a fragment a
+    // tile), to a power of two; a full interlock holds the next tile.
+    localparam int EzDepth = 1 << $clog2(TileStateDepth + FragmentFifoEntries + 3 +
+                                         2 * (RopPixelsPerCycle + Lanes * MaxSamples) + 16);
+    rast_early_z #(
+      .PixelW(PixelW), .DepthW(DepthW), .MaxSamples(MaxSamples), .SampleLog2W(SampleLog2W), .Lanes(Lanes),
+      .TileLog2W(TileLog2W), .InflightDepth(EzDepth)
+    ) u_early_z (
+      .clk_i, .rst_ni, .tile_log2_i(tile_log2_q), .samples_log2_i(samples_log2_q), .depth_func_i,
+      .q_valid_i(p_fifo_valid), .q_marker_i(p_fifo_data.marker), .q_tile_i(p_fifo_data.tile), .q_wait_o(ez_wait),
+      .q_take_i(p_fifo_valid && p_fifo_ready),
+      .in_valid_i(x_valid), .in_marker_i(frag_marker_o), .in_lanes_i(frag_lanes_o), .in_z_i(frag_z_o),
+      .in_mask_i(frag_mask_o), .out_culled_o(frag_culled_o), .rd_lanes_o(ez_rd_lanes_o), .rd_depth_i(ez_rd_depth_i),
+      .rop_end_i(rop_hiz_end), .rop_marker_i((rop_hiz_marker && !rop_hiz_clear) || (clr_q && rop_done)));
+  end else begin : g_no_early
+    assign ez_wait = 1'b0;
+    assign frag_culled_o = '0;
+    assign ez_rd_lanes_o = '0;
+    wire unused_early = ^ez_rd_depth_i;
+  end
 
   // ---- Hi-Z: the bound table, the tile test of every walk lane and the interlock
   // (rast_top_hiz); without a table (HizMode 0) nothing is tested and nothing waits. ----

@@ -120,6 +120,7 @@ nlohmann::json CosimResult::to_json(const CosimOptions& opts) const {
     j["hiz_dram_bytes_read"] = hiz_dram_bytes_read;
     j["hiz_dram_bytes_written"] = hiz_dram_bytes_written;
   }
+  if (depth_early) j["fragments_culled_early"] = fragments_culled_early;  // render --stats' key
   if (memory.enabled) {  // render's memory keys, then the DRAM's (simulate --stats' names)
     add_memory(j, memory);
     j.merge_patch(dram);

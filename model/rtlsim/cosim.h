@@ -129,6 +129,10 @@ struct CosimResult {
   // Its spilled entries' bytes through the hiz port (render's hiz_dram_bytes_read,
   // hiz_dram_bytes_written; tb_hiz.h: unlike the reference's, a mismatch).
   uint64_t hiz_dram_bytes_read = 0, hiz_dram_bytes_written = 0;
+  // depth.early (rtl/rast_early_z.sv): fragments the RTL culled early (render's
+  // fragments_culled_early; each fragment's flag is compared with the reference's).
+  bool depth_early = false;
+  uint64_t fragments_culled_early = 0;
   // memory.model = "dram": the ROP's functional memory counts (render --stats' keys) and
   // the DRAM's figures (add_memory_system_json's keys: dram_row_hit_rate, memory.dram.*,
   // memory.clients.<client>.bursts_read, ...); memory.enabled false and {} with fixed.
@@ -157,7 +161,7 @@ NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(CosimResult, rtl_config, rtl_mod
                                                 crc_rtl, crc_ref, samples, rop_accesses, resolve_cycles, helper_pixels,
                                                 texel_fetches, texture_cache_hits, texture_cache_misses, hiz,
                                                 tiles_culled_hiz, tiles_accepted_hiz, hiz_dram_bytes_read,
-                                                hiz_dram_bytes_written, memory, dram,
+                                                hiz_dram_bytes_written, depth_early, fragments_culled_early, memory, dram,
                                                 wall_seconds, stages, command_starts, command_mismatches)
 
 // The verilated configs linked into this binary, and the parameters each was built with

@@ -15,7 +15,7 @@
 #include "Vrast_engine2d.h"
 #include "Vrast_engine2d_rast_engine2d.h"  // its public parameters
 
-#include "rtlsim/cosim_hiz_port.h"  // cosim_tile_port.h, port_bits.h, testbench.h
+#include "rtlsim/cosim_early_port.h"  // cosim_hiz_port.h, cosim_tile_port.h, port_bits.h, testbench.h
 
 namespace rastsim::rtlsim {
 
@@ -146,6 +146,9 @@ class VerilatedRast final : public RastPorts {
     return {bool(top_->frag_valid_o), bool(top_->frag_marker_o), bool(top_->frag_last_o)};
   }
   bool fragment_lane_valid(int lane) const override { return port_bits(top_->frag_lanes_o, lane, 1) & 1; }
+  bool fragment_lane_culled(int lane) const override { return port_bits(top_->frag_culled_o, lane, 1) & 1; }
+  uint32_t early_read_lanes() const override { return early_read_lanes_of(*top_); }
+  void drive_early_depth(const std::vector<uint32_t>& w) override { drive_early_depth_of(*top_, params_.depth_w, w); }
   Fragment fragment_lane(int j) const override {
     Fragment f;
     f.x = static_cast<int>(port_bits(top_->frag_x_o, j * params_.pixel_w, params_.pixel_w));

@@ -395,8 +395,8 @@ RtlParams cosim_wanted_params(const ArchParams& arch, const CosimOptions& opts) 
                       "raster.aa_mode = msaa (render and simulate run ssaa)");
   // Depth culling (docs/depth-culling.md "RTL"): rast_top holds Hi-Z's table, its first
   // entries on chip and the rest through the hiz port (rtl/rast_top_hiz.sv,
-  // rast_hiz_spill.sv), at least one on chip; early Z has no RTL, while the SystemC model
-  // it is timed against would use it: refused by name.
+  // rast_hiz_spill.sv), at least one on chip. Early Z (rtl/rast_early_z.sv) co-simulates
+  // alone, untextured (the textured check is cosim_setup's, on the scene), immediate mode.
   // Hi-Z that does not apply to this state (hiz_applies: e.g. multisampling) leaves the run
   // exactly the Hi-Z-off one (the shipped models, no table built).
   const bool hiz = hiz_applies(st);
@@ -416,16 +416,42 @@ RtlParams cosim_wanted_params(const ArchParams& arch, const CosimOptions& opts) 
     throw ConfigError(cfg.origin("depth.hiz_sync") + ": depth.hiz_sync = lagged has no RTL yet (rast_top's walk "
                       "holds a tile under the interlock): co-simulate with depth.hiz_sync = interlock (simulate "
                       "runs the lagged table; docs/depth-culling.md)");
-  if (st.depth_early)
-    throw ConfigError(cfg.origin("depth.early") + ": depth.early = true has no RTL yet (the RTL shades every "
-                      "fragment; the SystemC model would skip the hidden ones): co-simulate with depth.early = "
-                      "false (render and simulate run early Z; docs/depth-culling.md)");
+  if (st.depth_early && (hiz || st.bin.mode == PipelineMode::Binned))
+    throw ConfigError(cfg.origin("depth.early") + ": depth.early = true co-simulates without " +
+                      (hiz ? "an applied depth.hiz (the RTL's early test does not take Hi-Z's accepts yet)"
+                           : "pipeline.mode = binned (the SystemC model refuses it too)") +
+                      ": co-simulate one of them (render runs both; docs/depth-culling.md)");
   check_binned_cosim(arch, opts);
   RtlParams wanted = rtl_params(arch);
   if (!hiz) rtl_params_without_hiz(wanted);  // no table used: the model without one (the shipped models') runs it
   wanted.tile_log2_max = std::countr_zero(static_cast<unsigned>(tile));
   wanted.max_samples = st.samples;  // a run-time input up to the built maximum
   return wanted;
+}
+
+// depth.early: the expected stream holds every fragment the walk makes; those missing from
+// the reference's kept stream (render_scene's sink, the same order) are its early culls.
+// Refused: textured scenes (the texture stage, ahead of the early test, would sample the
+// culled fragments) and a run from earlier frames (the early test needs the whole scene).
+static void mark_early_culled(const ArchParams& arch, const CosimOptions& opts, const RenderStats& ref,
+                              const std::vector<Fragment>& kept, TbSetup& s) {
+  const std::string key = arch.config.origin("depth.early") + ": depth.early = true";
+  if (opts.initial_fb) throw ConfigError(key + " co-simulates whole scenes only (--frames from the first frame)");
+  for (const TbItem& it : s.items)
+    if (it.tex_on)
+      throw ConfigError(key + " co-simulates untextured scenes only (" + s.tri_names[size_t(it.tri)] +
+                        " is textured: the RTL's early test sits after the texture stage, which would sample "
+                        "the fragments it culls; render and simulate run it; docs/depth-culling.md)");
+  size_t k = 0;
+  for (Expected& e : s.expected) {
+    const bool keep = k < kept.size() && kept[k] == e.f;
+    e.culled = !keep;
+    k += keep ? 1 : 0;
+  }
+  if (k != kept.size())
+    throw std::logic_error("cosim_setup: the reference's kept fragments are not a subsequence of the walk's");
+  s.depth_early = true;
+  s.fragments_culled_early = ref.fragments_culled_early;
 }
 
 void cosim_setup(const Scene& scene, const ArchParams& arch, const CosimOptions& opts, const RtlParams& model, TbSetup& s,
@@ -460,11 +486,15 @@ void cosim_setup(const Scene& scene, const ArchParams& arch, const CosimOptions&
                       " co-simulates whole scenes only (--frames from the first frame): the table would start "
                       "empty after frames that wrote depth");
   RenderStats ref_stats;
-  s.reference = opts.reference_fb ? *opts.reference_fb : render_scene(scene, s.arch, ref_stats);
+  std::vector<Fragment> kept;  // depth.early: the reference's fragments out of its early test
+  FragmentSink sink;
+  if (st.depth_early) sink = [&kept](const Fragment& f) { kept.push_back(f); };
+  s.reference = opts.reference_fb && !st.depth_early ? *opts.reference_fb : render_scene(scene, s.arch, ref_stats, sink);
   s.memory = arch.memory;
   s.dram = arch.dram;
   s.binned = st.bin.mode == PipelineMode::Binned;
   build(scene, arch, tile, s);
+  if (st.depth_early) mark_early_culled(arch, opts, ref_stats, kept, s);
   s.texture = s.arch.texture;
 
   s.scanout = scanout_params_if_display(arch);

@@ -92,6 +92,7 @@ constexpr ParamField<RtlParams> kFields[] = {
     {"HizBlocks", &RtlParams::hiz_blocks, "Hi-Z entries on chip: depth.hiz_bytes / entry bytes, at most the display's"},
     {"HizSpillBlocks", &RtlParams::hiz_spill_blocks, "the display's Hi-Z blocks past HizBlocks, in memory (client hiz)"},
     {"HizEntryBytesLog2", &RtlParams::hiz_entry_bytes_log2, "log2 of a Hi-Z entry's bytes (hiz_entry_bytes)"},
+    {"DepthEarly", &RtlParams::depth_early, "depth.early: 1 builds the early depth test (rtl/rast_early_z.sv)"},
     {"TileBufferSamples", &RtlParams::tile_buffer_samples,
      "pipeline.mode = binned: bin.tile_buffer_bytes / (4 + depth bytes) samples; 0: immediate (no tile buffer)"},
     {"TilePortBytes", &RtlParams::tile_port_bytes, "binned: rop.resolve_bytes_per_cycle, a load or store beat; else 4"},
@@ -449,6 +450,7 @@ RtlParams rtl_params(const ArchParams& arch) {
   p.rop_clear_pixels_per_cycle = static_cast<int>(t.rop_clear_pixels_per_cycle);
   p.rop_len_w = std::bit_width(static_cast<unsigned>(p.rop_clear_pixels_per_cycle * p.max_samples));  // clog2(n + 1)
   set_hiz_params(st, p);
+  p.depth_early = st.depth_early ? 1 : 0;
   set_tile_buffer_params(st, t, p);
   return p;
 }

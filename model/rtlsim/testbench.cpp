@@ -202,7 +202,8 @@ class Testbench {
   void close_stage_counts(uint64_t counted);
   // Checks.
   void mismatch(const std::string& what);
-  void compare(const Fragment& f);
+  void compare(const Fragment& f, bool culled);
+  void early_serve();  // depth.early: the early test's depth read, answered in its cycle
   bool done() const { return resolve_left_ == 0 && done_but_rop(); }
   bool done_but_rop() const;
   void end_of_run_check();
@@ -326,6 +327,10 @@ void Testbench::run() {
              std::to_string(result_.tiles_accepted_hiz) + ", the reference " + std::to_string(setup_.tiles_culled_hiz) +
              " and " + std::to_string(setup_.tiles_accepted_hiz));
   result_.hiz = setup_.hiz;
+  result_.depth_early = setup_.depth_early;
+  if (result_.fragments_culled_early != setup_.fragments_culled_early)
+    mismatch("early Z: the RTL culled " + std::to_string(result_.fragments_culled_early) + " fragments, the reference " +
+             std::to_string(setup_.fragments_culled_early));
   end_of_run_check();
   ports_.finish();
   result_.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -354,6 +359,7 @@ bool Testbench::cycle(uint64_t t) {
   texture_.drive(t, ports_);
   hiz_.drive(t, ports_);
   ports_.clock_edge(false);
+  if (setup_.depth_early) early_serve();  // first: its answer changes rast_top's outputs
   bool tri_taken = tri_valid && ports_.triangle_ready();
   if (binner_) {
     binner_->advance(t, tri_taken, markers_in_flight_);
@@ -548,7 +554,9 @@ void Testbench::take_beat(uint64_t t, const FragmentBeat& beat) {
     Fragment f = ports_.fragment_lane(j);
     f.samples = static_cast<uint8_t>(setup_.samples);
     result_.rop_accesses += TimingParams::rop_accesses(f.mask, setup_.samples);
-    compare(f);
+    const bool culled = ports_.fragment_lane_culled(j);  // early Z: still the ROP's, for its depth reads
+    result_.fragments_culled_early += culled ? 1 : 0;
+    compare(f, culled);
     if (dram_) dram_->fragment(f);
   }
 }
@@ -983,13 +991,34 @@ void Testbench::mismatch(const std::string& what) {
   if (result_.first_mismatch.empty()) result_.first_mismatch = what;
   ++result_.mismatches;
 }
-void Testbench::compare(const Fragment& f) {
+// The early test's depth read (rtl/rast_early_z.sv): each lane's samples' stored depth
+// from the memory's depth surface as the ROP's writes have left it by this cycle.
+void Testbench::early_serve() {
+  const uint32_t lanes = ports_.early_read_lanes();
+  if (lanes == 0) return;
+  const int ms = setup_.params.max_samples;
+  std::vector<uint32_t> words(size_t(setup_.params.interp_fragments_per_cycle * ms), 0);
+  for (int j = 0; j < setup_.params.interp_fragments_per_cycle; ++j) {
+    if (!((lanes >> j) & 1)) continue;
+    const Fragment f = ports_.fragment_lane(j);
+    if (f.x >= fb_.width || f.y >= fb_.height) continue;  // the fragment check reports it
+    for (int smp = 0; smp < fb_.samples; ++smp) words[size_t(j * ms + smp)] = fb_.depth_at(f.x, f.y, smp);
+  }
+  ports_.drive_early_depth(words);
+}
+void Testbench::compare(const Fragment& f, bool culled) {
   ++result_.fragments_compared;
   if (next_expected_ >= setup_.expected.size()) {
     mismatch("extra fragment from the RTL: " + fragment_trace_line(f));
     return;
   }
   const Expected& e = setup_.expected[next_expected_++];
+  if (e.culled != culled) {
+    ++result_.command_mismatches[setup_.tri_command[size_t(e.tri)]];
+    mismatch("fragment #" + std::to_string(next_expected_ - 1) + " of " + setup_.tri_names[e.tri] + ": pixel (" +
+             std::to_string(e.f.x) + ", " + std::to_string(e.f.y) + ") the reference " +
+             (e.culled ? "culls it early, the RTL kept it" : "keeps it, the RTL culled it early"));
+  }
   if (!(e.f == f)) {
     ++result_.command_mismatches[setup_.tri_command[size_t(e.tri)]];
     mismatch("fragment #" + std::to_string(next_expected_ - 1) + " of " + setup_.tri_names[e.tri] + ": pixel (" +

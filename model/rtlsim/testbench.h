@@ -93,6 +93,7 @@ struct TextureMemory {
 struct Expected {
   Fragment f;
   int tri = 0;
+  bool culled = false;  // depth.early: the reference culls it early (render_scene's kept stream lacks it)
 };
 
 struct TbSetup {
@@ -136,6 +137,10 @@ struct TbSetup {
   uint64_t tiles_culled_hiz = 0, tiles_accepted_hiz = 0;
   std::vector<uint64_t> hiz_test_reads, hiz_flush_reads, hiz_writes;
   uint64_t hiz_entry_bytes = 0, hiz_base = 0, hiz_bytes_read = 0, hiz_bytes_written = 0;
+  // depth.early (rtl/rast_early_z.sv): the reference's fragments_culled_early (the expected
+  // stream holds every fragment, each flagged as the reference decides).
+  bool depth_early = false;
+  uint64_t fragments_culled_early = 0;
   // pipeline.mode = binned (tb_binning.h): the binner's program and bin commands.
   bool binned = false;
   TbBinning binning;
@@ -165,6 +170,12 @@ class RastPorts {
   virtual bool fragment_taken() const = 0;  // frag_ready_o: the fragment FIFO takes the beat
   virtual FragmentBeat fragment_beat() const = 0;
   virtual bool fragment_lane_valid(int lane) const = 0;  // frag_lanes_o bit
+  virtual bool fragment_lane_culled(int lane) const = 0;  // frag_culled_o bit (early Z)
+  // The early test's depth read (ez_rd_*): the lanes read (ez_rd_lanes_o, their pixels
+  // those of the fragment port); their samples' stored depth (lane j sample s at
+  // words[j MaxSamples + s]) driven on ez_rd_depth_i and rast_top evaluated again.
+  virtual uint32_t early_read_lanes() const = 0;
+  virtual void drive_early_depth(const std::vector<uint32_t>& words) = 0;
   // Lane `lane` of the fragment port (x, y, z, colour, sample mask; samples left 1).
   virtual Fragment fragment_lane(int lane) const = 0;
   virtual bool idle() const = 0;  // idle_o

@@ -18,18 +18,13 @@ uint64_t quad_key(int x, int y) { return uint64_t(uint32_t(y >> 1)) << 32 | uint
 // rtl/rast_fine_raster.sv; docs/texture.md "RTL"), a row pair (pixel rows 2m, 2m + 1) at
 // a time: the RTL interpolator never puts two row pairs in one beat (the texture stage's
 // quad table), so each row pair of q quads costs interp_batch_cycles(4 q) (the same as
-// ceil(4 Q / lanes) over the tile at 1, 2 or 4 lanes). Where early Z culled some fragments
-// (depth.early), the quads of the kept ones: a quad none of whose fragments is kept is
-// not shaded. The beats go in frags.beats for the texture stage (FragmentBatch::Beats).
+// ceil(4 Q / lanes) over the tile at 1, 2 or 4 lanes), with early Z too (the lanes compute
+// the depth the early test takes). The beats go in frags.beats for the texture stage
+// (FragmentBatch::Beats).
 uint64_t Interpolate::textured_batch_cycles(FragmentBatch& frags, bool affine) {
   quad_keys_.clear();
-  if (frags.culled_count == 0) {
-    for (const PixelRun& r : frags.pixels->runs)
-      for (int x = r.x0 & ~1; x < r.x1; x += 2) quad_keys_.push_back(quad_key(x, r.y));
-  } else {
-    for (size_t k = 0; k < frags.count; ++k)
-      if (!frags.is_culled(k)) quad_keys_.push_back(quad_key(frags.storage[k].x, frags.storage[k].y));
-  }
+  for (const PixelRun& r : frags.pixels->runs)
+    for (int x = r.x0 & ~1; x < r.x1; x += 2) quad_keys_.push_back(quad_key(x, r.y));
   std::sort(quad_keys_.begin(), quad_keys_.end());
   const auto end = std::unique(quad_keys_.begin(), quad_keys_.end());
   FragmentBatch::Beats& b = frags.beats;
@@ -52,6 +47,10 @@ void Interpolate::body() {
   for (;;) {
     const PixelItem in = read(in_);
     if (early_ && in.state) early_state(*in.state);
+    if (early_interlock_ && in.state) {  // its entry: every pixel, until the ROP ends it
+      early_interlock_->sent_state();
+      early_interlock_->fine(false, now());
+    }
     if (!textured_ahead_ && pass_state(in, out_, p_.interp_pipeline_latency())) continue;
     if (in.state) {
       pass_state_behind_texture(in);
@@ -64,15 +63,17 @@ void Interpolate::body() {
     // At most one fragment a covered sample (ssaa), one a pixel otherwise.
     Fragment* const first = frags->reset(size_t(batch.pixels) * size_t(tri.samples));
     frags->count = shade(batch, first);
+    if (early_interlock_) early_interlock_wait(batch);
     if (early_) early_test(*frags);
     ctx_.render.fragments_shaded += frags->kept();
     if (frags->count != 0) attribute_to(first->x, first->y);  // the batch's tile
-    // Early Z: the attribute lanes shade the kept fragments only (docs/depth-culling.md); a
-    // textured batch its quads whole.
+    // Early Z: the lanes interpolate every fragment, culled or not: the early test takes
+    // the depth they compute (docs/depth-culling.md "Early Z in the RTL"); a textured
+    // batch its quads whole.
     const uint64_t cycles = tri.texture.enabled() ? textured_batch_cycles(*frags, tri.affine)
-                                                  : p_.interp_batch_cycles(frags->kept(), tri.affine);
+                                                  : p_.interp_batch_cycles(frags->count, tri.affine);
     if (!tri.affine) {  // a reciprocal a fragment (docs/clip-space.md, "Timing")
-      ctx_.recip_reciprocals += frags->kept();
+      ctx_.recip_reciprocals += frags->count;
       ctx_.recip_busy_cycles += cycles;
     }
     if (tri.texture.enabled()) {  // the texture stage starts on its first beat (sc/texture.h)
@@ -146,6 +147,19 @@ void Interpolate::early_test(FragmentBatch& frags) {
   ctx_.render.fragments_culled_early += culled;
   ctx_.render.interpolations_saved += culled * early_interpolations_saved(textured);
   ctx_.render.texture_samples_saved += textured ? culled : 0;
+}
+
+// Early Z's interlock (rast_early_z's rule): the batch enters the interpolator only once
+// every earlier entry on its tile has ended at the ROP (free_at: the RTL's tile waits at
+// the pixel FIFO's head until then, the stage starved); then its tile's entry.
+void Interpolate::early_interlock_wait(const PixelBatch& batch) {
+  const PixelRun& r = batch.runs.front();
+  const int size = 1 << tile_log2_;
+  const int x0 = r.x0 >> tile_log2_ << tile_log2_, y0 = r.y >> tile_log2_ << tile_log2_;
+  const PixelRect fp{x0, y0, x0 + size, y0 + size};
+  starve_until(early_interlock_->free_at(fp, now()) + 1);
+  early_interlock_->sent(fp);
+  early_interlock_->fine(false, now());
 }
 
 void Interpolate::early_state(const Command& cmd) {

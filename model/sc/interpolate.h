@@ -29,16 +29,22 @@
 //   of the depth buffer as the ROP will have it (functional-first, zero lag); a fragment
 //   failing at every covered sample is culled (fragments_culled_early,
 //   interpolations_saved, texture_samples_saved as the reference counts them): it stays in
-//   the batch flagged, for its depth reads at the ROP's port, but costs no lane here nor a
-//   sample at the texture stage. The batch takes interp_batch_cycles(kept fragments).
+//   the batch flagged, for its depth reads at the ROP's port, and costs no sample at the
+//   texture stage. Its lane it still takes: the lanes compute the depth the test uses
+//   (rtl/rast_early_z.sv tests the interpolator's output), so the batch takes
+//   interp_batch_cycles(every fragment). The interlock (as the RTL's): a batch is read and
+//   then waited on (starved) until no batch or state item on its tile is in flight to
+//   the ROP's end (early_interlock_wait; docs/depth-culling.md "Early Z in the RTL").
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <span>
 #include <vector>
 
 #include "ref/interpolate.h"
 #include "sc/fine_raster.h"
+#include "sc/hiz_interlock.h"
 #include "sc/recycler.h"
 
 namespace rastsim::sc {
@@ -102,6 +108,13 @@ class Interpolate : public Stage {
       : Stage(name, ctx, kId), frac_bits_(arch.coord_format.frac_bits), p_(p), in_(in), out_(out),
         texture_out_(texture_out), texture_done_(texture_done) {
     if (arch.depth_early) early_.emplace(arch);
+    // Its interlock (as rast_early_z's) where the test reads the stored depth; not in the
+    // binned pipeline (which refuses early Z).
+    if (arch.depth_early && arch.depth_func != DepthFunc::Always && arch.bin.mode != PipelineMode::Binned) {
+      early_interlock_ = std::make_unique<HizInterlock>(1, ctx_);
+      ctx_.early_interlock = early_interlock_.get();
+      tile_log2_ = std::countr_zero(unsigned(arch.tile_size));
+    }
   }
   // Before the run, with depth.early: the depth the frame starts with (the ROP's).
   void start_early_depth(const Framebuffer& fb) {
@@ -117,6 +130,9 @@ class Interpolate : public Stage {
   void early_test(FragmentBatch& frags);
   // A state command on the early test's copy of the depth buffer (a depth clear).
   void early_state(const Command& cmd);
+  // Early Z's interlock: waits until the batch's tile has nothing in flight to the ROP's
+  // end, then records its entry (docs/depth-culling.md "Early Z in the RTL").
+  void early_interlock_wait(const PixelBatch& batch);
   // A state command with textured batches ahead: its issue cycle, then behind them.
   void pass_state_behind_texture(const PixelItem& in);
   // The fence, when textured batches are ahead; then the extra latency that makes a
@@ -152,6 +168,10 @@ class Interpolate : public Stage {
     Framebuffer depth;  // colour unused
   };
   std::optional<EarlyZ> early_;
+  // Early Z's interlock (rast_early_z's rule, pixel blocks): entries a batch or state item
+  // from here to the ROP's end of it; null without. tile_log2_: raster.tile_size's log2.
+  std::unique_ptr<HizInterlock> early_interlock_;
+  int tile_log2_ = 0;
 };
 
 }  // namespace rastsim::sc

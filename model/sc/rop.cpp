@@ -175,6 +175,10 @@ void Rop::body() {
       const uint64_t taken = now() + 1;
       command(in.state);
       if (ctx_.hiz_interlock) ctx_.hiz_interlock->rop_end(taken);
+      // Early Z's (sc/interpolate.h): the early test reads the depth surface, so a depth
+      // clear ends at its last write (the end of its busy), anything else at its take.
+      if (ctx_.early_interlock)
+        ctx_.early_interlock->rop_end(std::holds_alternative<CmdClearDepth>(in.state->body) ? now() : taken);
       continue;
     }
     const FragmentBatch& batch = *in.work;
@@ -226,6 +230,7 @@ void Rop::body() {
     // that group's read data, in the cycle after its busy (the busy runs up to the
     // response's cycle, which rast_rop does not count when the write is taken in it).
     if (ctx_.hiz_interlock) ctx_.hiz_interlock->rop_end(now() + 1);
+    if (ctx_.early_interlock) ctx_.early_interlock->rop_end(now() + 1);  // early Z's, the same end
   }
 }
 

@@ -73,6 +73,10 @@ struct SimContext {
   // the reference's), and the planted bug of the lagged tests (an accept on busy blocks).
   std::function<void(const SetupTriangle& t, const PixelRect& fp, HizDecision d)> on_hiz;
   bool hiz_lag_accept_busy = false;
+  // Early Z's interlock (the interpolator's, depth.early with a depth function that reads:
+  // sc/interpolate.h), on pixels: the ROP records the ends of the batches and state items
+  // it was sent. Null without.
+  HizInterlock* early_interlock = nullptr;
   // Sees command fetch start each transaction (a command, or triangle k of a primitive
   // command) at `cycle`, in program order (the sampled level's unit boundaries).
   std::function<void(const Command& cmd, size_t triangle, uint64_t cycle)> on_fetch;

@@ -138,6 +138,18 @@ class Stage : public sc_core::sc_module {
     idle_since_ = now_;
   }
 
+  // Waits without work until cycle t (an interlock holding the transaction it read at its
+  // input): starved, as while waiting to read.
+  void starve_until(uint64_t t) {
+    if (t <= now_) return;
+    set_state(StageState::Starved);
+    stats_.starved += t - idle_since_;
+    record(StageState::Starved, idle_since_, t);
+    now_ = t;
+    sync();
+    idle_since_ = now_;
+  }
+
   // Writes one transaction; the reader may start on it `extra_latency` cycles from now.
   template <class P>
   void write(Link<P>& out, P payload, uint64_t extra_latency = 0) {

@@ -109,8 +109,9 @@ TEST(RtlOnDemand, ConfigTheRtlCannotRunNamesTheKey) {
 
 // Depth culling the RTL lacks is refused by its key (the SystemC model would cull what the
 // RTL draws, so the cycles would compare two machines): a Hi-Z table with no entry on chip
-// (rast_top_hiz keeps at least one; the rest go through the hiz port) and early Z. Hi-Z
-// that does not apply (depth.func always) is the Hi-Z-off run and runs on the shipped model.
+// (rast_top_hiz keeps at least one; the rest go through the hiz port) and early Z with an
+// applied Hi-Z (rast_early_z does not take Hi-Z's accepts). Hi-Z that does not apply
+// (depth.func always) is the Hi-Z-off run and runs on the shipped model.
 TEST(RtlOnDemand, DepthCullingTheRtlLacksNamesTheKey) {
   for (const char* mode : {"max", "minmax"}) {
     const std::string m = cosim_error({std::string("depth.hiz=") + mode, "depth.hiz_bytes=0"});
@@ -118,8 +119,9 @@ TEST(RtlOnDemand, DepthCullingTheRtlLacksNamesTheKey) {
         << m;
     EXPECT_NE(m.find("the RTL keeps at least one entry on chip"), std::string::npos) << m;
   }
-  const std::string e = cosim_error("depth.early=true");
-  EXPECT_NE(e.find("--set depth.early=true: depth.early = true has no RTL yet"), std::string::npos) << e;
+  const std::string e = cosim_error({"depth.early=true", "depth.hiz=max", "raster.depth_func=less"});
+  EXPECT_NE(e.find("--set depth.early=true: depth.early = true co-simulates without an applied depth.hiz"),
+            std::string::npos) << e;
   EXPECT_EQ(cosim_error({"depth.hiz=max", "raster.depth_func=always"}), "(no error)");
   const std::string l = cosim_error({"depth.hiz=max", "raster.depth_func=less", "depth.hiz_sync=lagged"});
   EXPECT_NE(l.find("--set depth.hiz_sync=lagged: depth.hiz_sync = lagged has no RTL yet"), std::string::npos) << l;

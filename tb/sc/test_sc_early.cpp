@@ -99,10 +99,14 @@ Scene layers_front_to_back(int w, int h, int d, const std::string& texture) {
 }
 
 // 8 layers front to back, untextured and textured (trilinear), memory fixed and dram:
-// early Z culls the 7 hidden layers' fragments after fine raster; interpolation and the
-// texture stage work on one layer. Untextured, or with the DRAM, the ROP (a depth read a
-// culled fragment, its fills) bounds the run, so the cycles may only not rise; textured
-// with memory.model = fixed the texture stage bounded it, so they drop; decoupled equals
+// early Z culls the 7 hidden layers' fragments; the texture stage works on one layer,
+// interpolation on all eight (its lanes compute the depth the test takes, as the RTL's:
+// docs/depth-culling.md "Early Z in the RTL"). Untextured, or with the DRAM, the ROP (a
+// depth read a culled fragment, its fills) bounds the run, so the cycles may rise only by
+// the interlock's waits (a layer's tile comes back 48 tiles later, but the diagonal's
+// tiles, which both triangles of a layer cover, wait for the first's: 24734 -> 24746 with
+// fixed memory, within 1 %); textured with memory.model = fixed the texture stage bounded
+// it, so they drop; decoupled equals
 // lock step (but textured with the DRAM, below); the figures printed are
 // docs/depth-culling.md's.
 TEST(ScEarlyZ, CyclesDropFrontToBackAndLockstepEqual) {
@@ -140,8 +144,9 @@ TEST(ScEarlyZ, CyclesDropFrontToBackAndLockstepEqual) {
                   (unsigned long long)c_on, 100.0 * (double(c_on) - double(c_off)) / double(c_off),
                   (unsigned long long)off["stages"]["interpolate"]["busy"].get<uint64_t>(),
                   (unsigned long long)on["stages"]["interpolate"]["busy"].get<uint64_t>());
-      EXPECT_LT(on["stages"]["interpolate"]["busy"].get<uint64_t>(), off["stages"]["interpolate"]["busy"].get<uint64_t>());
-      if (texture.empty() || std::string(memory) == "dram") EXPECT_LE(c_on, c_off);  // the ROP's (and DRAM's) bound
+      EXPECT_EQ(on["stages"]["interpolate"]["busy"].get<uint64_t>(), off["stages"]["interpolate"]["busy"].get<uint64_t>());
+      if (texture.empty()) EXPECT_LE(c_on, c_off + c_off / 100);  // the ROP's bound, the interlock's waits
+      else if (std::string(memory) == "dram") EXPECT_LE(c_on, c_off);  // the DRAM's bound
       else EXPECT_LT(c_on, c_off);
       EXPECT_EQ(on["fragments_culled_early"].get<uint64_t>(), 7u * uint64_t(w * h));  // every hidden fragment
       EXPECT_EQ(on["framebuffer_crc32"], off["framebuffer_crc32"]);
