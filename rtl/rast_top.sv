@@ -556,13 +556,16 @@ module rast_top #(
   logic [2:0]           tex_req_count;
   logic [1:0]           tex_req_format;
   logic [127:0]         tex_rsp_texels;
+  logic                 x_hold;      // a textured tile's first beat held for a credit ("Interpolator credits")
+  logic                 x_in_ready;  // the stage takes the beat
+  assign i_ready = x_in_ready && !x_hold;
   rast_texture_stage #(
     .Lanes(Lanes), .PixelW(PixelW), .DepthW(DepthW), .MaxSamples(MaxSamples), .TexW(TexW), .TexFrac(TexFrac),
     .WeightBits(TexWeightBits), .SizeW(TexSizeW), .AddrW(TexAddrW), .TileLog2Max(TileLog2Max),
     .LevelW(TexLevelW), .BiasW(TexBiasW)
   ) u_texture (
     .clk_i, .rst_ni, .format_i(tex_format_q), .layout_i(tex_layout_q),
-    .in_valid_i(i_valid), .in_ready_o(i_ready), .in_marker_i(i_marker), .in_last_i(i_last), .in_lanes_i(i_lanes),
+    .in_valid_i(i_valid && !x_hold), .in_ready_o(x_in_ready), .in_marker_i(i_marker), .in_last_i(i_last), .in_lanes_i(i_lanes),
     .in_x_i(i_x), .in_y_i(i_y), .in_z_i(i_z), .in_rgb_i(i_rgb), .in_s_i(i_s), .in_t_i(i_t), .in_smask_i(i_smask),
     .in_tex_on_i(ts_head.on), .in_bilinear_i(ts_head.bilinear), .in_trilinear_i(ts_head.trilinear),
     .in_wrap_s_i(ts_head.wrap_s),
@@ -760,6 +763,29 @@ module rast_top #(
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) cr_q <= '0;
     else cr_q <= cr_q + CrW'(cr_take) + CrW'(cr_tex_end) - CrW'(cr_start);
+  end
+  // The texture stage's credits: xq_q counts every tile and marker from the cycle the
+  // texture stage takes its first beat until the ROP starts it, and a textured tile's
+  // first beat enters the stage only while at most FragmentFifoEntries are counted
+  // (after this cycle's start): the SystemC texture stage reads its next batch only once
+  // its write of the last one is done, at most FragmentFifoEntries + 1 batches between
+  // its input and the ROP, as the interpolator's. Without it the stage sampled the next
+  // tile's head (its misses' fills) with FragmentFifoEntries + 1 complete tiles waiting,
+  // a tile ahead of the model (textured_mip_cosim dram -2.66 %, docs/texture.md). Only
+  // tiles ahead of the held one are counted, so it never waits on a tile behind it.
+  logic [CrW-1:0] xq_q;
+  logic           xq_in_tile_q, xq_take;  // the stage took a tile's first beat and not its last
+  assign xq_take = i_valid && i_ready && (i_marker || !xq_in_tile_q);
+  assign x_hold = i_valid && !i_marker && !xq_in_tile_q && ts_head.on &&
+                  (xq_q - CrW'(cr_start)) > CrW'(FragmentFifoEntries);
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      xq_q <= '0;
+      xq_in_tile_q <= 1'b0;
+    end else begin
+      xq_q <= xq_q + CrW'(xq_take) - CrW'(cr_start);
+      if (i_valid && i_ready && !i_marker) xq_in_tile_q <= !i_last;
+    end
   end
 
   // ---- ROP ----
