@@ -38,8 +38,9 @@
 //   untextured tile or a marker enters the interpolator only while at most
 //   FragmentFifoEntries tiles are between its input and the ROP's start of them (credits,
 //   the pipeline's beats and the ROP's access buffer included: the model's interpolator
-//   blocked in its write), and a textured tile's beat waits while FragmentFifoEntries + 1
-//   complete tiles wait for the ROP.
+//   blocked in its write), and a textured tile enters the texture stage only while at
+//   most FragmentFifoEntries tiles are between the stage's input and the ROP's start (the
+//   model's texture stage blocked in its write).
 `default_nettype none
 
 module rast_top #(
@@ -111,7 +112,7 @@ module rast_top #(
   output      logic                                  tex_miss_o,          // a texture cache miss this cycle
   output      logic [$clog2(InterpFragmentsPerCycle+1)-1:0] tex_helpers_o,  // helper pixels dropped this cycle
   output      logic                                  dbg_tex_busy_o,    // the texture stage holds textured work
-  output      logic                                  dbg_tex_blocked_o, // its output is refused (the fragment FIFO)
+  output      logic                                  dbg_tex_blocked_o, // its output is refused (the fragment FIFO), or its input held for a credit
   output      logic                                  frag_valid_o,    // a fragment beat or marker
   output      logic                                  frag_ready_o,    // taken by the fragment FIFO
   output      logic                                  frag_marker_o,   // the beat is a marker
@@ -609,15 +610,17 @@ module rast_top #(
                              tex_mem_req_ready_i, tex_mem_rsp_valid_i, tex_mem_rsp_data_i};
   end
   assign ts_pop = i_valid && i_ready && !i_marker && i_last;
-  assign dbg_tex_busy_o = x_busy;
-  assign dbg_tex_blocked_o = x_busy && frag_valid_o && !frag_ready_o;
+  // Idle with a textured tile held for a credit (x_hold) is blocked: the SystemC stage
+  // blocked in the write of its last batch.
+  assign dbg_tex_busy_o = x_busy || x_hold;
+  assign dbg_tex_blocked_o = x_busy ? frag_valid_o && !frag_ready_o : x_hold;
 
   // ---- Fragment FIFO (beats; whole tiles: FragmentFifoEntries of them waiting) ----
   // batches_q: complete tiles (a tile's last beat or a marker pushed) whose first beat
   // the ROP has not taken. The ROP reads a tile's beats only once the tile is complete
   // (in_tile_q: it took a tile's first beat and not yet its last). The interpolator's
   // beat is refused while FragmentFifoEntries + 1 tiles are complete and waiting (after
-  // this cycle's take by the ROP); for untextured tiles the credits below bind first.
+  // this cycle's take by the ROP); the credits below bind first (this guards the ring).
   beat_t            r_push, r_in;
   logic             r_fifo_valid, r_fifo_empty, r_fifo_room;
   logic             r_valid, r_ready, r_take, r_first, r_end, w_end;
@@ -747,8 +750,8 @@ module rast_top #(
   // accesses: dozens of one-fragment tiles), and the model's ROP reads a batch only when
   // it starts on it. An untextured tile or a marker at the pixel FIFO's head enters only
   // while at most FragmentFifoEntries are counted (after this cycle's start); a textured
-  // one is not held here, so the texture stage, whose pushes wait on batches_q alone,
-  // never waits on a credit (no deadlock). ----
+  // one is not held here but at the texture stage's input (xq_q below), behind the
+  // tiles ahead of it alone, so it never waits on an untextured tile behind it. ----
   // Derived: up to 2 (Entries + 1) tiles before the ROP, plus one a fragment in its
   // access buffer (textured tiles, counted without a bound, may fill it).
   localparam int CrW = $clog2(2 * FragmentFifoEntries + 3 + 2 * (RopPixelsPerCycle + Lanes * MaxSamples));
