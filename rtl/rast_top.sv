@@ -38,8 +38,9 @@
 //   untextured tile or a marker enters the interpolator only while at most
 //   FragmentFifoEntries tiles are between its input and the ROP's start of them (credits,
 //   the pipeline's beats and the ROP's access buffer included: the model's interpolator
-//   blocked in its write), and a textured tile's beat waits while FragmentFifoEntries + 1
-//   complete tiles wait for the ROP.
+//   blocked in its write), and a textured tile enters the texture stage only while at
+//   most FragmentFifoEntries tiles are between the stage's input and the ROP's start (the
+//   model's texture stage blocked in its write).
 `default_nettype none
 
 module rast_top #(
@@ -111,7 +112,7 @@ module rast_top #(
   output      logic                                  tex_miss_o,          // a texture cache miss this cycle
   output      logic [$clog2(InterpFragmentsPerCycle+1)-1:0] tex_helpers_o,  // helper pixels dropped this cycle
   output      logic                                  dbg_tex_busy_o,    // the texture stage holds textured work
-  output      logic                                  dbg_tex_blocked_o, // its output is refused (the fragment FIFO)
+  output      logic                                  dbg_tex_blocked_o, // its output is refused (the fragment FIFO), or its input held for a credit
   output      logic                                  frag_valid_o,    // a fragment beat or marker
   output      logic                                  frag_ready_o,    // taken by the fragment FIFO
   output      logic                                  frag_marker_o,   // the beat is a marker
@@ -565,13 +566,16 @@ module rast_top #(
   logic [2:0]           tex_req_count;
   logic [1:0]           tex_req_format;
   logic [127:0]         tex_rsp_texels;
+  logic                 x_hold;      // a textured tile's first beat held for a credit ("Interpolator credits")
+  logic                 x_in_ready;  // the stage takes the beat
+  assign i_ready = x_in_ready && !x_hold;
   rast_texture_stage #(
     .Lanes(Lanes), .PixelW(PixelW), .DepthW(DepthW), .MaxSamples(MaxSamples), .TexW(TexW), .TexFrac(TexFrac),
     .WeightBits(TexWeightBits), .SizeW(TexSizeW), .AddrW(TexAddrW), .TileLog2Max(TileLog2Max),
     .LevelW(TexLevelW), .BiasW(TexBiasW)
   ) u_texture (
     .clk_i, .rst_ni, .format_i(tex_format_q), .layout_i(tex_layout_q),
-    .in_valid_i(i_valid), .in_ready_o(i_ready), .in_marker_i(i_marker), .in_last_i(i_last), .in_lanes_i(i_lanes),
+    .in_valid_i(i_valid && !x_hold), .in_ready_o(x_in_ready), .in_marker_i(i_marker), .in_last_i(i_last), .in_lanes_i(i_lanes),
     .in_x_i(i_x), .in_y_i(i_y), .in_z_i(i_z), .in_rgb_i(i_rgb), .in_s_i(i_s), .in_t_i(i_t), .in_smask_i(i_smask),
     .in_tex_on_i(ts_head.on), .in_bilinear_i(ts_head.bilinear), .in_trilinear_i(ts_head.trilinear),
     .in_wrap_s_i(ts_head.wrap_s),
@@ -617,15 +621,17 @@ module rast_top #(
   assign ts_pop = i_valid && i_ready && !i_marker && i_last;
   assign frag_valid_o = x_valid;
   assign x_ready = frag_ready_o;
-  assign dbg_tex_busy_o = x_busy;
-  assign dbg_tex_blocked_o = x_busy && frag_valid_o && !frag_ready_o;
+  // Idle with a textured tile held for a credit (x_hold) is blocked: the SystemC stage
+  // blocked in the write of its last batch.
+  assign dbg_tex_busy_o = x_busy || x_hold;
+  assign dbg_tex_blocked_o = x_busy ? frag_valid_o && !frag_ready_o : x_hold;
 
   // ---- Fragment FIFO (beats; whole tiles: FragmentFifoEntries of them waiting) ----
   // batches_q: complete tiles (a tile's last beat or a marker pushed) whose first beat
   // the ROP has not taken. The ROP reads a tile's beats only once the tile is complete
   // (in_tile_q: it took a tile's first beat and not yet its last). The interpolator's
   // beat is refused while FragmentFifoEntries + 1 tiles are complete and waiting (after
-  // this cycle's take by the ROP); for untextured tiles the credits below bind first.
+  // this cycle's take by the ROP); the credits below bind first (this guards the ring).
   beat_t            r_push, r_in;
   logic             r_fifo_valid, r_fifo_empty, r_fifo_room;
   logic             r_valid, r_ready, r_take, r_first, r_end, w_end;
@@ -755,8 +761,8 @@ module rast_top #(
   // accesses: dozens of one-fragment tiles), and the model's ROP reads a batch only when
   // it starts on it. An untextured tile or a marker at the pixel FIFO's head enters only
   // while at most FragmentFifoEntries are counted (after this cycle's start); a textured
-  // one is not held here, so the texture stage, whose pushes wait on batches_q alone,
-  // never waits on a credit (no deadlock). ----
+  // one is not held here but at the texture stage's input (xq_q below), behind the
+  // tiles ahead of it alone, so it never waits on an untextured tile behind it. ----
   // Derived: up to 2 (Entries + 1) tiles before the ROP, plus one a fragment in its
   // access buffer (textured tiles, counted without a bound, may fill it).
   localparam int CrW = $clog2(2 * FragmentFifoEntries + 3 + 2 * (RopPixelsPerCycle + Lanes * MaxSamples));
@@ -771,6 +777,29 @@ module rast_top #(
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) cr_q <= '0;
     else cr_q <= cr_q + CrW'(cr_take) + CrW'(cr_tex_end) - CrW'(cr_start);
+  end
+  // The texture stage's credits: xq_q counts every tile and marker from the cycle the
+  // texture stage takes its first beat until the ROP starts it, and a textured tile's
+  // first beat enters the stage only while at most FragmentFifoEntries are counted
+  // (after this cycle's start): the SystemC texture stage reads its next batch only once
+  // its write of the last one is done, at most FragmentFifoEntries + 1 batches between
+  // its input and the ROP, as the interpolator's. Without it the stage sampled the next
+  // tile's head (its misses' fills) with FragmentFifoEntries + 1 complete tiles waiting,
+  // a tile ahead of the model (textured_mip_cosim dram -2.66 %, docs/texture.md). Only
+  // tiles ahead of the held one are counted, so it never waits on a tile behind it.
+  logic [CrW-1:0] xq_q;
+  logic           xq_in_tile_q, xq_take;  // the stage took a tile's first beat and not its last
+  assign xq_take = i_valid && i_ready && (i_marker || !xq_in_tile_q);
+  assign x_hold = i_valid && !i_marker && !xq_in_tile_q && ts_head.on &&
+                  (xq_q - CrW'(cr_start)) > CrW'(FragmentFifoEntries);
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      xq_q <= '0;
+      xq_in_tile_q <= 1'b0;
+    end else begin
+      xq_q <= xq_q + CrW'(xq_take) - CrW'(cr_start);
+      if (i_valid && i_ready && !i_marker) xq_in_tile_q <= !i_last;
+    end
   end
 
   // ---- ROP ----

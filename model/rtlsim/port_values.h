@@ -31,7 +31,7 @@ struct RtlStageBits {
   uint32_t blocked = 0;  // dbg_blocked_o: stage s offers an output that is not taken
   bool rop_start = false;  // dbg_rop_start_o: the ROP starts a batch or command
   bool tex_busy = false;     // dbg_tex_busy_o: the texture stage holds textured work
-  bool tex_blocked = false;  // dbg_tex_blocked_o: its output refused
+  bool tex_blocked = false;  // dbg_tex_blocked_o: its output refused, or its input held for a credit
   int hiz_culled = 0;         // dbg_hiz_culled_o: tiles coarse raster culled (Hi-Z)
   bool hiz_accepted = false;  // dbg_hiz_accepted_o: the tile it sent was accepted
 };
