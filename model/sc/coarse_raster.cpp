@@ -83,7 +83,8 @@ void CoarseRaster::walk_tiled(const SetupItem& in) {
         ++c.tiles_visited;
         const TileClass cls = classify_tile(t, fp, frac_bits_);
         if (cls != TileClass::Rejected && interlock_) hiz_interlock_wait(walk, fp, cycles_done);
-        if (mem_) mem_->begin(now());  // the tile's entry reads from now (timing/hiz_memory_port.h)
+        // The tile's entry reads at its test's cycle (timing/hiz_memory_port.h).
+        if (mem_) mem_->begin(now() + walk.next_window() - 1 - cycles_done);
         const HizDecision hiz = cls != TileClass::Rejected && hiz_ ? hiz_->test(t, fp, cls) : HizDecision::Draw;
         const bool culled = hiz == HizDecision::Culled;
         hiz_stall();  // the test's entries
@@ -94,15 +95,21 @@ void CoarseRaster::walk_tiled(const SetupItem& in) {
         }
         ++(cls == TileClass::Accepted ? c.tiles_accepted : c.tiles_partial);
         if (culled) continue;  // counted by its class, as the reference's walk does
-        if (hiz_) {
+        std::shared_ptr<std::vector<HizSpillWrite>> writes;
+        if (flush_) {  // the flush: the ROP hands it to the engine (sc/hiz_flush.h)
+          writes = std::make_shared<std::vector<HizSpillWrite>>();
+          mem_->defer(true);
+          hiz_->apply(t, fp, cls, writes.get());
+          mem_->defer(false);
+          if (writes->empty()) writes.reset();
+        } else if (hiz_) {
           hiz_->apply(t, fp, cls);
-          hiz_stall();
         }
         attribute_to(fp.x0, fp.y0);  // the walk up to this tile, rejected tiles included
         busy(leave_at - cycles_done);
         cycles_done = leave_at;
         if (interlock_) interlock_->sent(fp);
-        write(out_, TileItem{nullptr, TileWork{in.work, fp, cls, false, hiz == HizDecision::Accepted}});
+        write(out_, TileItem{nullptr, TileWork{in.work, fp, cls, false, hiz == HizDecision::Accepted, std::move(writes)}});
       }
     }
     // The rest of the walk (rejected tiles after the last written one): the last tile's.
@@ -117,10 +124,13 @@ void CoarseRaster::walk_tiled(const SetupItem& in) {
 // Hi-Z's interlock: the tile's test in walk cycle w is at cycle now() + w - 1 - done (the
 // walk's cycles since its last sent tile not yet charged); when a tile sent earlier on its
 // blocks ends later (cycle e), the walk holds the tile and its window starts at it in
-// cycle e: walk cycle e - now() + 1 + done (docs/depth-culling.md "The interlock").
+// cycle e: walk cycle e - now() + 1 + done (docs/depth-culling.md "The interlock"). A
+// test that reads spilled entries also waits for the flush engine to be idle (rast_hiz_spill's
+// busy_o, sc/hiz_flush.h).
 void CoarseRaster::hiz_interlock_wait(TiledWalk& walk, const PixelRect& fp, uint64_t done) {
   const uint64_t test_at = now() + walk.next_window() - 1 - done;
-  const uint64_t free = interlock_->free_at(fp, now());
+  uint64_t free = interlock_->free_at(fp, now());
+  if (flush_ && hiz_->table.spills(fp)) free = flush_->idle_from(std::max(free, test_at));
   if (free > test_at) walk.restart(free - now() + 1 + done);
 }
 

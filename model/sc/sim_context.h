@@ -26,6 +26,7 @@ using CommandPtr = LocalPtr<const Command>;
 inline CommandPtr borrow_command(const Command& c) { return CommandPtr(nullptr, &c); }
 
 class HizInterlock;  // sc/hiz_interlock.h
+class HizFlush;      // sc/hiz_flush.h
 
 struct SimContext {
   // One core clock cycle is one simulated nanosecond; clock.core_mhz only converts cycle
@@ -69,6 +70,9 @@ struct SimContext {
   // Hi-Z's interlock (coarse raster's, with a table): fine raster and the ROP record the
   // ends of the tiles and state items it sent. Null without.
   HizInterlock* hiz_interlock = nullptr;
+  // Hi-Z's flush engine (memory.model = dram with spilled blocks, sc/hiz_flush.h): the ROP
+  // hands it each drawn tile's writes to spilled blocks. Null without.
+  HizFlush* hiz_flush = nullptr;
   // Sees command fetch start each transaction (a command, or triangle k of a primitive
   // command) at `cycle`, in program order (the sampled level's unit boundaries).
   std::function<void(const Command& cmd, size_t triangle, uint64_t cycle)> on_fetch;
