@@ -22,6 +22,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <deque>
+#include <utility>
 #include <vector>
 
 #include <systemc>
@@ -53,9 +54,15 @@ class HizFlush : public sc_core::sc_module {
   uint64_t idle_from(uint64_t t) {
     for (;;) {
       wait_until(t);
-      while (working_ || (!q_.empty() && q_.front().p < t)) sc_core::wait(done_);
-      if (free_ <= t) return t;
-      t = free_;
+      while (!q_.empty() && q_.front().p < t) sc_core::wait(done_);  // the front: the one under way
+      // SystemC time may be past t (coarse raster blocked on its output): the engine's
+      // state at t is its busy spans', not its latest.
+      while (!busy_.empty() && busy_.front().second <= t) busy_.pop_front();  // t only grows
+      uint64_t u = t;
+      for (const auto& [from, to] : busy_)
+        if (from <= u && u < to) u = to;  // in order: a later span may hold the new u
+      if (u == t) return t;
+      t = u;
     }
   }
 
@@ -72,7 +79,6 @@ class HizFlush : public sc_core::sc_module {
   void run() {
     for (;;) {
       while (q_.empty()) sc_core::wait(pushed_);
-      working_ = true;
       const Bundle& b = q_.front();
       uint64_t s = std::max(free_, b.p + 1);
       for (int32_t block : b.blocks) {
@@ -89,8 +95,9 @@ class HizFlush : public sc_core::sc_module {
         ++s;  // the pop; busy_o low the cycle after
       }
       free_ = s;
+      if (!busy_.empty() && b.p + 1 <= busy_.back().second) busy_.back().second = std::max(busy_.back().second, s);
+      else busy_.emplace_back(b.p + 1, s);
       q_.pop_front();
-      working_ = false;
       done_.notify(sc_core::SC_ZERO_TIME);
     }
   }
@@ -99,7 +106,7 @@ class HizFlush : public sc_core::sc_module {
   std::deque<Bundle> q_;
   std::vector<int32_t> slots_;  // the tile's blocks read, in first-write order
   uint64_t free_ = 0;           // the engine's next free cycle
-  bool working_ = false;        // a bundle taken, its requests under way
+  std::deque<std::pair<uint64_t, uint64_t>> busy_;  // [p + 1, free) of each bundle, merged, in order
   sc_core::sc_event pushed_, done_;
 };
 
