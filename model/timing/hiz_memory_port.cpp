@@ -11,8 +11,8 @@ void HizMemoryPort::attach(HizTable& table) {
 }
 
 void HizMemoryPort::access(uint64_t address, uint64_t bytes, bool write) {
-  if (defer_) return;  // the flush: flush_tile makes it
-  if (write) {  // not made by a test; kept for a table used without flush_tile
+  if (defer_) return;  // the flush: the engine makes it (sc/hiz_flush.h)
+  if (write) {  // a flush not deferred (no engine): posted at the step's cycle
     mem_.post_write(MemClient::Hiz, address, bytes, start_);
     report_.bytes_written += bytes;
     ++report_.writes;

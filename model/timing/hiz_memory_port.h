@@ -48,7 +48,7 @@ class HizMemoryPort {
   // Waits for the test's reads: its stall, max_k c_k - t0 (0 without a read).
   uint64_t wait();
   // While on, the table's accesses are not issued (HizTracker::apply's flush, which
-  // flush_tile makes at the ROP's time instead).
+  // the engine, sc/hiz_flush.h, makes at its own cycles instead).
   void defer(bool on) { defer_ = on; }
   // The flush engine's requests (sc/hiz_flush.h, docs/depth-culling.md "Spilled
   // table"): block i's entry read issued at core cycle r, returning the cycle the engine
