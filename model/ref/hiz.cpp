@@ -186,14 +186,20 @@ HizDecision HizTracker::test_lagged(const SetupTriangle& t, const PixelRect& fp,
 
 // The depth writes the ROP will make for this tile, applied to the copy and the table
 // now, then the tile's blocks flushed (the reference's order: walk order, one sample).
-void HizTracker::apply(const SetupTriangle& t, const PixelRect& fp, TileClass cls, std::vector<HizWrite>* writes) {
+void HizTracker::apply(const SetupTriangle& t, const PixelRect& fp, TileClass cls, std::vector<HizWrite>* writes,
+                       std::vector<HizSpillWrite>* spilled) {
   const int F = st_.coord_format.frac_bits;
+  const int log2b = std::countr_zero(unsigned(st_.hiz_block)), nx = (st_.fb_width + st_.hiz_block - 1) / st_.hiz_block;
+  uint32_t k = 0;  // the covered pixel's index in the tile (the ROP's fragment order)
   const auto pixel = [&](int px, int py, uint32_t) {
     const uint32_t z = interpolate_plane(t, px, py, F).z;
+    const uint32_t frag = k++;
     if (!depth_test(st_.depth_func, z, std::as_const(depth_).depth_at(px, py, 0)) || !st_.depth_write) return;
     depth_.set_depth(px, py, 0, z);
     table.write(px, py, z);
     if (writes) writes->push_back({px, py, z});
+    const int block = (py >> log2b) * nx + (px >> log2b);
+    if (spilled && table.spilled(block)) spilled->push_back({frag, block});
   };
   if (cls == TileClass::Accepted) fine_raster_accepted(fp, pixel);
   else fine_raster_partial(t, fp, F, pixel);

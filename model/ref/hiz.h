@@ -61,6 +61,14 @@ DepthRange tile_depth_range(const SetupTriangle& t, const PixelRect& fp, int fra
 // or accepted (every fragment passes it: the ROP need not read the stored depth).
 enum class HizDecision { Draw, Culled, Accepted };
 
+// A drawn tile's depth write to a spilled block (HizTracker::apply, for the timed model's
+// flush, timing/hiz_memory_port.h): the written pixel's index among the tile's covered
+// pixels in row-major order (the fragment's index in the ROP's batch) and the block.
+struct HizSpillWrite {
+  uint32_t fragment = 0;
+  int32_t block = 0;
+};
+
 // The counts of the Hi-Z unit (stats keys tiles_culled_hiz, tiles_accepted_hiz,
 // fragments_culled_hiz, memory.clients.hiz.*).
 struct HizStats {
@@ -83,6 +91,13 @@ class HizTable {
   int entry_bytes() const { return entry_bytes_; }
   int64_t blocks() const { return int64_t(nx_) * ny_; }
   int64_t onchip_blocks() const { return onchip_; }
+  // Block i (row-major) is past the on-chip part; its entry's byte address (spilled only).
+  bool spilled(int64_t i) const { return i >= onchip_; }
+  uint64_t entry_address(int64_t i) const { return dram_base + uint64_t(i - onchip_) * uint64_t(entry_bytes_); }
+  // fp overlaps a spilled block (its last block, the largest index, is one).
+  bool spills(const PixelRect& fp) const {
+    return spilled(index((fp.x1 - 1) >> log2B_, (fp.y1 - 1) >> log2B_));
+  }
 
   // The decision for fragments of depth range r over footprint fp under `func`; counts
   // the entry reads of spilled blocks. Draw for a function Hi-Z does not handle, and in
@@ -119,7 +134,6 @@ class HizTable {
   };
   int index(int bx, int by) const { return by * nx_ + bx; }
   int full_count(int bx, int by) const;  // the block's on-screen pixels
-  bool spilled(int i) const { return i >= onchip_; }
 
   HizMode mode_;
   int B_, log2B_, nx_, ny_, width_, height_, depth_bits_, entry_bytes_;
@@ -154,8 +168,10 @@ class HizTracker {
   // so stale holds every write to them), else the tile is drawn.
   HizDecision test_lagged(const SetupTriangle& t, const PixelRect& fp, TileClass cls, HizTable& stale, bool idle);
   // A drawn tile's depth writes, then its blocks flushed; each write also appended to
-  // `writes` when given (a lagged table applies them when the ROP has).
-  void apply(const SetupTriangle& t, const PixelRect& fp, TileClass cls, std::vector<HizWrite>* writes = nullptr);
+  // `writes` when given (a lagged table applies them when the ROP has), and its writes to
+  // spilled blocks to `spilled` when given, in order (the flush engine's, sc/hiz_flush.h).
+  void apply(const SetupTriangle& t, const PixelRect& fp, TileClass cls, std::vector<HizWrite>* writes = nullptr,
+             std::vector<HizSpillWrite>* spilled = nullptr);
   // A state command: a depth clear resets the depth and the table.
   void state(const Command& cmd);
   // The value a depth clear command sets (D bits), none for any other command.

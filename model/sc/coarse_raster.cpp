@@ -86,10 +86,15 @@ void CoarseRaster::walk_tiled(const SetupItem& in) {
         const PixelRect fp = tile_footprint(box, tile_size_, tx, ty);
         ++c.tiles_visited;
         const TileClass cls = classify_tile(t, fp, frac_bits_);
-        // depth.hiz_sync = lagged: the test is against the lagged table.
+        // depth.hiz_sync = lagged: the test is against the lagged table, the walk held only
+        // for a state item in flight; else the interlock's hold (and the flush engine's).
         const bool lagged = lag_ && cls != TileClass::Rejected;
-        if (cls != TileClass::Rejected && interlock_ && !lagged) hiz_interlock_wait(walk, fp, cycles_done);
-        if (mem_) mem_->begin(now());  // the tile's entry reads from now (timing/hiz_memory_port.h)
+        if (cls != TileClass::Rejected && interlock_) {
+          if (lagged) lag_state_wait(walk, cycles_done);
+          else hiz_interlock_wait(walk, fp, cycles_done);
+        }
+        // The tile's entry reads at its test's cycle (timing/hiz_memory_port.h).
+        if (mem_) mem_->begin(now() + walk.next_window() - 1 - cycles_done);
         HizDecision hiz = HizDecision::Draw;
         if (lagged) hiz = hiz_lagged(t, walk, fp, cls, cycles_done);
         else if (cls != TileClass::Rejected && hiz_) hiz = hiz_->test(t, fp, cls);
@@ -103,10 +108,16 @@ void CoarseRaster::walk_tiled(const SetupItem& in) {
         }
         ++(cls == TileClass::Accepted ? c.tiles_accepted : c.tiles_partial);
         if (culled) continue;  // counted by its class, as the reference's walk does
-        std::vector<HizWrite> writes;
-        if (hiz_) {
+        std::vector<HizWrite> writes;  // for the lagged table
+        std::shared_ptr<std::vector<HizSpillWrite>> spilled;
+        if (flush_) {  // the flush: the ROP hands it to the engine (sc/hiz_flush.h)
+          spilled = std::make_shared<std::vector<HizSpillWrite>>();
+          mem_->defer(true);
+          hiz_->apply(t, fp, cls, lag_ ? &writes : nullptr, spilled.get());
+          mem_->defer(false);
+          if (spilled->empty()) spilled.reset();
+        } else if (hiz_) {
           hiz_->apply(t, fp, cls, lag_ ? &writes : nullptr);
-          hiz_stall();
         }
         attribute_to(fp.x0, fp.y0);  // the walk up to this tile, rejected tiles included
         busy(leave_at - cycles_done);
@@ -115,7 +126,7 @@ void CoarseRaster::walk_tiled(const SetupItem& in) {
           const uint64_t entry = interlock_->sent(fp);
           if (!writes.empty()) lag_pending_.push_back({entry, std::move(writes), std::nullopt});
         }
-        write(out_, TileItem{nullptr, TileWork{in.work, fp, cls, false, hiz == HizDecision::Accepted}});
+        write(out_, TileItem{nullptr, TileWork{in.work, fp, cls, false, hiz == HizDecision::Accepted, std::move(spilled)}});
       }
     }
     // The rest of the walk (rejected tiles after the last written one): the last tile's.
@@ -130,10 +141,13 @@ void CoarseRaster::walk_tiled(const SetupItem& in) {
 // Hi-Z's interlock: the tile's test in walk cycle w is at cycle now() + w - 1 - done (the
 // walk's cycles since its last sent tile not yet charged); when a tile sent earlier on its
 // blocks ends later (cycle e), the walk holds the tile and its window starts at it in
-// cycle e: walk cycle e - now() + 1 + done (docs/depth-culling.md "The interlock").
+// cycle e: walk cycle e - now() + 1 + done (docs/depth-culling.md "The interlock"). A
+// test that reads spilled entries also waits for the flush engine to be idle (rast_hiz_spill's
+// busy_o, sc/hiz_flush.h).
 void CoarseRaster::hiz_interlock_wait(TiledWalk& walk, const PixelRect& fp, uint64_t done) {
   const uint64_t test_at = now() + walk.next_window() - 1 - done;
-  const uint64_t free = interlock_->free_at(fp, now());
+  uint64_t free = interlock_->free_at(fp, now());
+  if (flush_ && hiz_->table.spills(fp)) free = flush_->idle_from(std::max(free, test_at));
   if (free > test_at) walk.restart(free - now() + 1 + done);
 }
 
@@ -141,15 +155,18 @@ void CoarseRaster::hiz_interlock_wait(TiledWalk& walk, const PixelRect& fp, uint
 // cycle w at t_test = now() + w - 1 - done, as under the interlock, but not held for its
 // blocks: against the table as the ROP has written it by t_test (every update whose
 // entry ended by then), accepted only when no entry in flight at t_test touches its
-// blocks. A state item in flight (a depth clear) holds it to the item's end.
+// blocks. A state item in flight (a depth clear) holds it to the item's end
+// (lag_state_wait, before the test's entry reads begin). Its spilled entries are read
+// without waiting for the flush engine: memory holds what the ROP has written back.
+void CoarseRaster::lag_state_wait(TiledWalk& walk, uint64_t done) {
+  const uint64_t test_at = now() + walk.next_window() - 1 - done;
+  const uint64_t state_free = interlock_->state_free_at();
+  if (state_free > test_at) walk.restart(state_free - now() + 1 + done);
+}
+
 HizDecision CoarseRaster::hiz_lagged(const SetupTriangle& t, TiledWalk& walk, const PixelRect& fp, TileClass cls,
                                      uint64_t done) {
-  uint64_t test_at = now() + walk.next_window() - 1 - done;
-  const uint64_t state_free = interlock_->state_free_at();
-  if (state_free > test_at) {
-    walk.restart(state_free - now() + 1 + done);
-    test_at = state_free;
-  }
+  const uint64_t test_at = now() + walk.next_window() - 1 - done;
   const bool idle = !interlock_->busy_at(fp, now(), test_at);
   lag_absorb(test_at);
   return hiz_->test_lagged(t, fp, cls, *lag_, idle || ctx_.hiz_lag_accept_busy);

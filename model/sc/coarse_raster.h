@@ -17,8 +17,10 @@
 //   have at this tile (each surviving tile's fragments' depths applied here, in walk
 //   order, as the ROP will), a zero-lag Hi-Z, so its decisions and counts equal the
 //   reference's and its cycles are those of an ideally synchronised table. With
-//   memory.model = "dram" the spilled entries' reads stall the walk until they arrive and
-//   the write-backs are posted (timing/hiz_memory_port.h): busy the stall too.
+//   memory.model = "dram" a test's spilled entries' reads stall the walk until they arrive
+//   (busy the stall too), and a test that reads spilled entries waits for the flush
+//   engine to be idle; a drawn tile's flush is timed by the ROP as rast_hiz_spill's
+//   engine makes it (sc/hiz_flush.h).
 //   The interlock (sc/hiz_interlock.h, as rast_top's): a tile is tested only once every
 //   earlier tile on its blocks has left the ROP; until then the walk holds it, and its
 //   window restarts at it in the cycle the last of them ends (TiledWalk::restart).
@@ -49,6 +51,7 @@
 #include "ref/study/coverage_check.h"
 #include "ref/traverse.h"
 #include "sc/binning.h"
+#include "sc/hiz_flush.h"
 #include "sc/hiz_interlock.h"
 #include "sc/tri_setup.h"
 #include "timing/hiz_memory_port.h"
@@ -61,6 +64,9 @@ struct TileWork {
   TileClass cls = TileClass::Partial;  // Accepted or Partial
   bool span = false;  // scanline: a span (one row, every pixel covered, no tests)
   bool hiz_accepted = false;  // Hi-Z accepted it (minmax): every fragment passes, the ROP reads no depth
+  // Its depth writes to spilled Hi-Z blocks (memory.model = dram), for the ROP to time
+  // their flush (timing/hiz_memory_port.h); null when none.
+  std::shared_ptr<const std::vector<HizSpillWrite>> hiz_writes;
 };
 using TileItem = Item<TileWork>;
 
@@ -94,6 +100,13 @@ class CoarseRaster : public Stage {
     if (!hiz_) return;
     mem_ = std::make_unique<HizMemoryPort>(mem);
     mem_->attach(hiz_->table);
+    // The flush engine, where blocks spill and the ROP's order is the walk's (not binned):
+    // its requests and the others' enter the DRAM in time order (sc/hiz_flush.h).
+    if (hiz_->table.onchip_blocks() < hiz_->table.blocks() && interlock_) {
+      flush_ = std::make_unique<HizFlush>("hiz_flush", ctx_, *mem_);
+      ctx_.hiz_flush = flush_.get();
+      ctx_.memory_time_order = true;
+    }
   }
   const HizMemoryPort* memory_port() const { return mem_.get(); }
   // The Hi-Z unit's counts into ctx.render.hiz (call once, after the simulation).
@@ -116,6 +129,7 @@ class CoarseRaster : public Stage {
   void walk_tiled(const SetupItem& in);
   void hiz_stall();
   void hiz_interlock_wait(TiledWalk& walk, const PixelRect& fp, uint64_t done);
+  void lag_state_wait(TiledWalk& walk, uint64_t done);
   HizDecision hiz_lagged(const SetupTriangle& t, TiledWalk& walk, const PixelRect& fp, TileClass cls, uint64_t done);
   void lag_absorb(uint64_t at);
   void walk_hierarchical(const SetupItem& in);
@@ -140,6 +154,7 @@ class CoarseRaster : public Stage {
   };
   std::unique_ptr<HizTable> lag_;
   std::deque<LagUpdate> lag_pending_;
+  std::unique_ptr<HizFlush> flush_;  // with spilled blocks and a memory (attach_memory), else null
   // pipeline.mode = binned (sc/binning.h): each triangle's box clipped to the bin of the
   // last begin marker (the reference's draw(tri, walk)); the triangle itself, its full
   // box, goes on to fine raster and interpolation.

@@ -19,6 +19,7 @@ void FineRaster::body() {
     batch->runs.clear();  // keeps its capacity
     batch->pixels = 0;
     batch->hiz_accepted = tile.hiz_accepted;
+    batch->hiz_writes = tile.hiz_writes;
     const int samples = tile.tri->samples;
     uint64_t cost = 0;
     if (tile.span) {  // one sample (the config rejects scanline with raster.samples > 1)

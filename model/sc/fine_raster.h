@@ -34,6 +34,7 @@ struct PixelBatch {
   std::vector<PixelRun> runs;  // pixels of one tile with a covered sample, row-major
   uint64_t pixels = 0;         // sum of the runs' lengths
   bool hiz_accepted = false;   // its tile's (TileWork::hiz_accepted)
+  std::shared_ptr<const std::vector<HizSpillWrite>> hiz_writes;  // its tile's (TileWork::hiz_writes)
   // Appends pixels x0 .. x1 - 1 of row y of mask m, after every pixel added so far
   // (row-major): it extends the last run when it continues it with the same mask.
   void add(int y, int x0, int x1, uint32_t m) {

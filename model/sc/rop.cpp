@@ -2,11 +2,13 @@
 #include "sc/rop.h"
 
 #include <algorithm>
+#include <optional>
 #include <span>
 #include <string>
 
 #include "ref/pipeline.h"
 #include "ref/rop.h"
+#include "sc/hiz_flush.h"
 #include "sc/hiz_interlock.h"
 #include "sc/model_error.h"
 #include "timing/memory_timing.h"
@@ -17,6 +19,23 @@ namespace {
 
 struct RopBatchCounts {
   uint64_t accesses = 0, passed = 0, samples_passed = 0;
+};
+
+// Hi-Z's flush (sc/hiz_flush.h): at each group's response p, the tile's depth writes to
+// spilled blocks that group decided (fragment k in group k / group) go to the engine, and
+// at the last the batch's end.
+struct HizBundles {
+  HizFlush& flush;
+  const std::vector<HizSpillWrite>& w;
+  uint64_t group;
+  size_t next = 0;  // the first write not handed over
+  uint64_t g = 0;   // the group responding
+  void response(uint64_t p, bool last) {
+    const size_t b = next;
+    while (next < w.size() && (last || w[next].fragment / group <= g)) ++next;
+    if (next > b || last) flush.bundle(p, w.data() + b, next - b, last);
+    ++g;
+  }
 };
 
 // Fragment k of the batch at the ROP's depth port: tested and written (rop_write), or,
@@ -37,13 +56,16 @@ bool rop_fragment(Framebuffer& fb, const FragmentBatch& batch, size_t k, DepthFu
 // memory_timing.h, memory_group_response: `group_accesses` accesses a group, a
 // fragment's accesses made by the group of its first one), the first group issued at core
 // cycle `start`; returns the cycle the last group's response comes (`start`: no access).
-// `func`: the batch's depth function (always in a tile Hi-Z accepted).
+// `func`: the batch's depth function (always in a tile Hi-Z accepted). `hiz`, if given,
+// sees each group's response (its depth writes decided then).
 uint64_t rop_write_groups(Framebuffer& fb, const FragmentBatch& batch, DepthFunc func, bool depth_write,
-                          RopMemoryPort& port, uint64_t group_accesses, uint64_t start, RopBatchCounts& n) {
+                          RopMemoryPort& port, uint64_t group_accesses, uint64_t start, RopBatchCounts& n,
+                          HizBundles* hiz) {
   uint64_t issue = start, group_end = group_accesses;
   port.begin(issue);
   const auto respond = [&] {  // the current group's response; the next group issues then
     issue = memory_group_response(issue, port.end());
+    if (hiz) hiz->response(issue, false);
     port.begin(issue);
     group_end += group_accesses;
   };
@@ -54,15 +76,18 @@ uint64_t rop_write_groups(Framebuffer& fb, const FragmentBatch& batch, DepthFunc
     n.accesses += TimingParams::rop_accesses(f.mask, fb.samples);
     while (n.accesses > group_end) respond();  // f's later accesses fill further groups
   }
-  return n.accesses ? memory_group_response(issue, port.end()) : start;
+  if (!n.accesses) return start;
+  issue = memory_group_response(issue, port.end());
+  if (hiz) hiz->response(issue, true);
+  return issue;
 }
 
 // rop_write_groups for a one-sample batch (every fragment one access), a run at a time:
 // rop_write_run makes the same accesses as rop_write on each fragment in turn, with the
 // storage tile looked up once a run; a run is cut where a group ends.
 uint64_t rop_write_group_runs(Framebuffer& fb, const FragmentBatch& batch, DepthFunc func, bool depth_write,
-                              RopMemoryPort& port,
-                              uint64_t group_accesses, uint64_t start, RopBatchCounts& n) {
+                              RopMemoryPort& port, uint64_t group_accesses, uint64_t start, RopBatchCounts& n,
+                              HizBundles* hiz) {
   uint64_t issue = start, in_group = 0;
   port.begin(issue);
   const Fragment* f = batch.fragments().data();
@@ -71,6 +96,7 @@ uint64_t rop_write_group_runs(Framebuffer& fb, const FragmentBatch& batch, Depth
     for (int x = r.x0; x < r.x1;) {
       if (in_group == group_accesses) {  // the next fragment opens the next group
         issue = memory_group_response(issue, port.end());
+        if (hiz) hiz->response(issue, false);
         port.begin(issue);
         in_group = 0;
       }
@@ -84,7 +110,10 @@ uint64_t rop_write_group_runs(Framebuffer& fb, const FragmentBatch& batch, Depth
     }
     f += r.x1 - r.x0;
   }
-  return n.accesses ? memory_group_response(issue, port.end()) : start;
+  if (!n.accesses) return start;
+  issue = memory_group_response(issue, port.end());
+  if (hiz) hiz->response(issue, true);
+  return issue;
 }
 
 }  // namespace
@@ -192,9 +221,13 @@ void Rop::body() {
     const bool runs = batch.one_per_pixel() && fb_.samples == 1 && batch.culled_count == 0;
     if (mem_) {
       RopBatchCounts n;
-      cycles = (runs
-                    ? rop_write_group_runs(fb_, batch, func, st_.depth_write, *mem_, p_.rop_pixels_per_cycle, now(), n)
-                    : rop_write_groups(fb_, batch, func, st_.depth_write, *mem_, p_.rop_pixels_per_cycle, now(), n)) -
+      const uint64_t G = p_.rop_pixels_per_cycle;
+      // Hi-Z's spilled blocks this tile writes: their flush from its groups' responses.
+      std::optional<HizBundles> hiz;
+      if (ctx_.hiz_flush && batch.pixels->hiz_writes) hiz.emplace(HizBundles{*ctx_.hiz_flush, *batch.pixels->hiz_writes, G});
+      HizBundles* h = hiz ? &*hiz : nullptr;
+      cycles = (runs ? rop_write_group_runs(fb_, batch, func, st_.depth_write, *mem_, G, now(), n, h)
+                     : rop_write_groups(fb_, batch, func, st_.depth_write, *mem_, G, now(), n, h)) -
                now();
       accesses = n.accesses;
       passed = n.passed;

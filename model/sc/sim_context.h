@@ -26,6 +26,7 @@ using CommandPtr = LocalPtr<const Command>;
 inline CommandPtr borrow_command(const Command& c) { return CommandPtr(nullptr, &c); }
 
 class HizInterlock;  // sc/hiz_interlock.h
+class HizFlush;      // sc/hiz_flush.h
 
 struct SimContext {
   // One core clock cycle is one simulated nanosecond; clock.core_mhz only converts cycle
@@ -77,6 +78,9 @@ struct SimContext {
   // sc/interpolate.h), on pixels: the ROP records the ends of the batches and state items
   // it was sent. Null without.
   HizInterlock* early_interlock = nullptr;
+  // Hi-Z's flush engine (memory.model = dram with spilled blocks, sc/hiz_flush.h): the ROP
+  // hands it each drawn tile's writes to spilled blocks. Null without.
+  HizFlush* hiz_flush = nullptr;
   // Sees command fetch start each transaction (a command, or triangle k of a primitive
   // command) at `cycle`, in program order (the sampled level's unit boundaries).
   std::function<void(const Command& cmd, size_t triangle, uint64_t cycle)> on_fetch;
