@@ -138,11 +138,11 @@ struct ModuleInfo {
 
 // Modules Yosys keeps as blackboxes (`(* blackbox *)`), SRAM macros whose bits the caller
 // counts as storage (area_memory.h): an instance adds no gate. The ROP cache's data array
-// (also the texture cache's copies) and the tile buffer's arrays, by their base name
-// (a derived "$paramod$<hash>\\rast_tile_buffer_data" too).
+// (also the texture cache's copies), the tile buffer's arrays and the fragment FIFO's ring
+// of beats, by their base name (a derived "$paramod$<hash>\\rast_tile_buffer_data" too).
 bool is_storage_blackbox(const std::string& type) {
   const std::string base = base_name(type);
-  return base == "rast_rop_cache_data" || base == "rast_tile_buffer_data";
+  return base == "rast_rop_cache_data" || base == "rast_tile_buffer_data" || base == "rast_fragment_fifo_data";
 }
 
 // One module's entry of `stat -json [-tech cmos]`: its gates ($_*) as its own counts, the
