@@ -715,20 +715,20 @@ module rast_top #(
   assign w_end = beat_push && (r_push.marker || r_push.last);
   // A ring of FragBeats beats (rast_fifo's timing without its latency countdown, whose
   // loop over every entry Verilator cannot schedule at this depth): push and pop in one
-  // cycle when full, an entry visible the cycle after its push.
+  // cycle when full, an entry visible the cycle after its push. The beats are
+  // rast_fragment_fifo_data (one read and one write port), a storage array to `rastsim
+  // area` (row fragment_fifo.beats, FragBeats x BeatW bits); pointers and count are here.
   localparam int BeatPtrW = $clog2(FragBeats);      // derived
   localparam int BeatCntW = $clog2(FragBeats + 1);  // derived
-  logic [BeatW-1:0]    beat_mem_q [FragBeats];
   logic [BeatPtrW-1:0] beat_rd_q, beat_wr_q;
   logic [BeatCntW-1:0] beat_count_q;
   assign r_fifo_empty = beat_count_q == '0;
   assign r_fifo_valid = !r_fifo_empty;
-  assign r_in = beat_mem_q[beat_rd_q];
   assign r_fifo_room = beat_count_q != BeatCntW'(FragBeats) || r_take;
   assign beat_push = flush_q ? r_fifo_room : pk_push && pk_take;
-  always_ff @(posedge clk_i) begin
-    if (beat_push) beat_mem_q[beat_wr_q] <= r_push;
-  end
+  rast_fragment_fifo_data #(.Depth(FragBeats), .Width(BeatW)) u_frag_beats (
+    .clk_i, .rd_addr_i(beat_rd_q), .rd_data_o(r_in), .wr_en_i(beat_push), .wr_addr_i(beat_wr_q), .wr_data_i(r_push)
+  );
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       beat_rd_q <= '0;

@@ -35,7 +35,7 @@ namespace rastsim {
 namespace {
 
 // Bump when the method changes (script, JSON layout): old cache entries no longer match.
-constexpr const char* kMethodVersion = "rastsim-area-1";
+constexpr const char* kMethodVersion = "rastsim-area-2";  // 2: keys hash a module's own sources (area_sources_key)
 
 // The Yosys script of one run (kRead, then kSynth). @DIR@ is the run's directory
 // (sources, rast_params.vh), @WORK@ where this process writes (the run's directory, or a
@@ -89,6 +89,137 @@ std::string replace_all(std::string s, const std::string& from, const std::strin
   return s;
 }
 
+// An RTL source without its comments (line and block), for the instance scan below.
+std::string without_comments(std::string_view text) {
+  std::string out;
+  for (size_t i = 0; i < text.size(); ++i) {
+    const bool line = text.compare(i, 2, "//") == 0, block = text.compare(i, 2, "/*") == 0;
+    if (!line && !block) {
+      out += text[i];
+      continue;
+    }
+    const size_t end = line ? text.find('\n', i) : text.find("*/", i + 2);
+    if (end == std::string_view::npos) break;
+    i = line ? end - 1 : end + 1;  // a line comment keeps its newline
+  }
+  return out;
+}
+
+// The instantiations in `text` (comments removed) of the modules in `modules`: (module,
+// its parameter overrides "#(...)" with the blanks dropped, "" without any), one a site.
+std::vector<std::pair<std::string, std::string>> instance_sites(const std::string& text,
+                                                                const std::set<std::string>& modules) {
+  static const std::regex site(R"(\b([a-z_][a-z0-9_]*)\s*(#\s*\()?)");
+  static const std::regex instance_name(R"(^\s*[a-z_][a-z0-9_]*\s*\()");  // "u_fifo (": an instance
+  std::vector<std::pair<std::string, std::string>> out;
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), site); it != std::sregex_iterator(); ++it) {
+    if (!modules.count((*it)[1].str())) continue;
+    size_t pos = size_t(it->position(0) + it->length(0));
+    std::string params;
+    if ((*it)[2].matched)  // the balanced parentheses of the parameter list
+      for (int depth = 1; pos < text.size() && depth > 0; ++pos) {
+        depth += text[pos] == '(' ? 1 : text[pos] == ')' ? -1 : 0;
+        if (depth > 0 && !std::isspace(static_cast<unsigned char>(text[pos]))) params += text[pos];
+      }
+    if (std::regex_search(text.begin() + std::ptrdiff_t(pos), text.end(), instance_name,
+                          std::regex_constants::match_continuous))
+      out.emplace_back((*it)[1].str(), params);
+  }
+  return out;
+}
+
+// `text` with its string literals emptied ("..." -> ""), so a name in a message is no use.
+std::string without_strings(const std::string& text) {
+  std::string out;
+  bool in = false;
+  for (size_t i = 0; i < text.size(); ++i) {
+    if (in && text[i] == '\\') {
+      ++i;  // an escaped character
+      continue;
+    }
+    if (text[i] == '"') in = !in;
+    if (!in || text[i] == '"') out += text[i];
+  }
+  return out;
+}
+
+// The files a module's synthesis reads (area_module_files): a graph of the sources by the
+// names they declare (module, package, interface) and the names they use.
+struct SourceGraph {
+  std::map<std::string, size_t> declared;       // module/package/interface name -> source index
+  std::vector<std::set<size_t>> uses;           // source -> the sources it instantiates, imports, includes
+
+  explicit SourceGraph(const std::vector<RtlSource>& sources) : uses(sources.size()) {
+    static const std::regex decl(R"(\b(module|package|interface)\s+(?:automatic\s+|static\s+)?([A-Za-z_][A-Za-z0-9_$]*))");
+    static const std::regex pkg(R"(\b([A-Za-z_][A-Za-z0-9_]*)\s*::)");
+    static const std::regex inc(R"re(`include\s+"([^"]+)")re");
+    std::vector<std::string> code, bare;  // without comments; and without strings
+    std::map<std::string, size_t> by_file;
+    for (size_t k = 0; k < sources.size(); ++k) {
+      code.push_back(without_comments(sources[k].text));
+      bare.push_back(without_strings(code[k]));
+      by_file[std::string(sources[k].name)] = k;
+      for (auto it = std::sregex_iterator(bare[k].begin(), bare[k].end(), decl); it != std::sregex_iterator(); ++it)
+        declared.emplace((*it)[2].str(), k);
+    }
+    std::set<std::string> names;
+    for (const auto& [name, k] : declared) names.insert(name);
+    for (size_t k = 0; k < sources.size(); ++k) {
+      const auto use = [&](const std::string& name) {
+        if (auto d = declared.find(name); d != declared.end() && d->second != k) uses[k].insert(d->second);
+      };
+      for (const auto& [module, params] : instance_sites(bare[k], names)) use(module);
+      for (auto it = std::sregex_iterator(bare[k].begin(), bare[k].end(), pkg); it != std::sregex_iterator(); ++it)
+        use((*it)[1].str());
+      // `include of another source (rast_params.vh is generated: keyed by its text apart).
+      for (auto it = std::sregex_iterator(code[k].begin(), code[k].end(), inc); it != std::sregex_iterator(); ++it)
+        if (auto f = by_file.find((*it)[1].str()); f != by_file.end() && f->second != k) uses[k].insert(f->second);
+    }
+  }
+
+  // The indices of `module`'s file and every file it reaches.
+  std::set<size_t> closure(const std::string& module) const {
+    const auto d = declared.find(module);
+    if (d == declared.end()) throw std::runtime_error("area: no RTL source declares module " + module);
+    std::set<size_t> seen{d->second};
+    for (std::vector<size_t> todo{d->second}; !todo.empty();) {
+      const size_t k = todo.back();
+      todo.pop_back();
+      for (size_t u : uses[k])
+        if (seen.insert(u).second) todo.push_back(u);
+    }
+    return seen;
+  }
+};
+
+// The embedded sources' graph, built once.
+const SourceGraph& embedded_graph() {
+  static const SourceGraph g(rtl_sources());
+  return g;
+}
+
+std::string sources_key(const SourceGraph& g, const std::vector<RtlSource>& sources, const std::string& module) {
+  Fnv64 h;
+  for (size_t k : g.closure(module)) h.add(sources[k].name), h.add(sources[k].text);  // in name order (sorted sources)
+  return h.hex();
+}
+
+}  // namespace
+
+std::vector<std::string> area_module_files(const std::string& module, const std::vector<RtlSource>& sources) {
+  const SourceGraph g(sources);
+  std::vector<std::string> out;
+  for (size_t k : g.closure(module)) out.emplace_back(sources[k].name);
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+std::string area_sources_key(const std::string& module, const std::vector<RtlSource>& sources) {
+  return sources_key(SourceGraph(sources), sources, module);
+}
+
+namespace {
+
 // Modules synthesised without synth's `share` pass (SAT-based resource sharing of
 // mutually exclusive $mul, $shl, ... cells; docs/area.md "Method"): on the default config
 // Yosys 0.23 had sat in `share` for more than 20 minutes on the interpolator and on
@@ -138,11 +269,11 @@ struct ModuleInfo {
 
 // Modules Yosys keeps as blackboxes (`(* blackbox *)`), SRAM macros whose bits the caller
 // counts as storage (area_memory.h): an instance adds no gate. The ROP cache's data array
-// (also the texture cache's copies) and the tile buffer's arrays, by their base name
-// (a derived "$paramod$<hash>\\rast_tile_buffer_data" too).
+// (also the texture cache's copies), the tile buffer's arrays and the fragment FIFO's ring
+// of beats, by their base name (a derived "$paramod$<hash>\\rast_tile_buffer_data" too).
 bool is_storage_blackbox(const std::string& type) {
   const std::string base = base_name(type);
-  return base == "rast_rop_cache_data" || base == "rast_tile_buffer_data";
+  return base == "rast_rop_cache_data" || base == "rast_tile_buffer_data" || base == "rast_fragment_fifo_data";
 }
 
 // One module's entry of `stat -json [-tech cmos]`: its gates ($_*) as its own counts, the
@@ -422,12 +553,14 @@ void write_cache(const fs::path& file, const nlohmann::json& j) {
   if (!os || ec) fs::remove(tmp, ec);
 }
 
-// What every cache key holds: the method, Yosys, the RTL sources.
-Fnv64 base_key(const std::string& yosys_version) {
+// What every cache key holds: the method, Yosys, and the RTL text `module`'s synthesis
+// reads (area_sources_key: its file and those it reaches), so an edit elsewhere keeps
+// the entry.
+Fnv64 base_key(const std::string& yosys_version, const std::string& module) {
   Fnv64 h;
   h.add(kMethodVersion);
   h.add(yosys_version);
-  for (const auto& s : rtl_sources()) h.add(s.name), h.add(s.text);
+  h.add(sources_key(embedded_graph(), rtl_sources(), module));
   return h;
 }
 
@@ -509,7 +642,7 @@ class SplitSynthesis {
   }
 
   fs::path hierarchy_file() const {
-    Fnv64 ek = base_key(yosys_ver_);
+    Fnv64 ek = base_key(yosys_ver_, root_);
     ek.add("elaborate");
     ek.add(kRead);
     ek.add(kElaborate);
@@ -549,7 +682,7 @@ class SplitSynthesis {
   }
 
   fs::path module_file(const std::string& id) const {
-    Fnv64 h = base_key(yosys_ver_);
+    Fnv64 h = base_key(yosys_ver_, base_name(id));
     h.add("module");
     h.add(kRead);
     h.add(kElaborate);
@@ -649,45 +782,6 @@ class SplitSynthesis {
   std::vector<size_t> todo_;  // indices of the modules to synthesise
   std::atomic<size_t> done_{0};
 };
-
-// An RTL source without its comments (line and block), for the instance scan below.
-std::string without_comments(std::string_view text) {
-  std::string out;
-  for (size_t i = 0; i < text.size(); ++i) {
-    const bool line = text.compare(i, 2, "//") == 0, block = text.compare(i, 2, "/*") == 0;
-    if (!line && !block) {
-      out += text[i];
-      continue;
-    }
-    const size_t end = line ? text.find('\n', i) : text.find("*/", i + 2);
-    if (end == std::string_view::npos) break;
-    i = line ? end - 1 : end + 1;  // a line comment keeps its newline
-  }
-  return out;
-}
-
-// The instantiations in `text` (comments removed) of the modules in `modules`: (module,
-// its parameter overrides "#(...)" with the blanks dropped, "" without any), one a site.
-std::vector<std::pair<std::string, std::string>> instance_sites(const std::string& text,
-                                                                const std::set<std::string>& modules) {
-  static const std::regex site(R"(\b([a-z_][a-z0-9_]*)\s*(#\s*\()?)");
-  static const std::regex instance_name(R"(^\s*[a-z_][a-z0-9_]*\s*\()");  // "u_fifo (": an instance
-  std::vector<std::pair<std::string, std::string>> out;
-  for (auto it = std::sregex_iterator(text.begin(), text.end(), site); it != std::sregex_iterator(); ++it) {
-    if (!modules.count((*it)[1].str())) continue;
-    size_t pos = size_t(it->position(0) + it->length(0));
-    std::string params;
-    if ((*it)[2].matched)  // the balanced parentheses of the parameter list
-      for (int depth = 1; pos < text.size() && depth > 0; ++pos) {
-        depth += text[pos] == '(' ? 1 : text[pos] == ')' ? -1 : 0;
-        if (depth > 0 && !std::isspace(static_cast<unsigned char>(text[pos]))) params += text[pos];
-      }
-    if (std::regex_search(text.begin() + std::ptrdiff_t(pos), text.end(), instance_name,
-                          std::regex_constants::match_continuous))
-      out.emplace_back((*it)[1].str(), params);
-  }
-  return out;
-}
 
 // Hierarchies synthesised apart from rast_top, each its own root: the 2D engine and the
 // front end's binary32 units (docs/rtl.md, "Binary32 units of the front end"), with no
@@ -790,7 +884,7 @@ std::string chparam_args(const std::vector<std::pair<std::string, int>>& params)
 // A part in one Yosys process, or from its cache entry (named `key`).
 AreaReport synth_whole_part(const std::string& yosys, const std::string& yosys_ver, const std::string& params_vh,
                             const Part& part, const fs::path& dir, const AreaOptions& o, std::string& key) {
-  Fnv64 h = base_key(yosys_ver);
+  Fnv64 h = base_key(yosys_ver, part.root);
   h.add(std::string(kRead) + "@RETOP@" + whole_synth_script(part.stage));
   h.add(part.root);
   h.add(part.stage);
@@ -829,7 +923,7 @@ AreaReport synth_whole_part(const std::string& yosys, const std::string& yosys_v
 AreaReport synth_split_part(const std::string& yosys, const std::string& yosys_ver, const std::string& params_vh,
                             const Part& part, const fs::path& dir, const AreaOptions& o, std::string& key) {
   AreaReport got = SplitSynthesis(yosys, yosys_ver, params_vh, part.root, dir, o).run();
-  Fnv64 h = base_key(yosys_ver);
+  Fnv64 h = base_key(yosys_ver, part.root);
   h.add("split");
   h.add(params_vh);
   key = h.hex();

@@ -13,11 +13,12 @@
 //   in its own Yosys process with its submodules as blackboxes (at most two at once), and
 //   the own gates x instance counts are summed up the hierarchy here: no process holds
 //   the whole pipeline (one did not fit in 14.5 GB for the default config).
-// - Cache: one JSON a Yosys run (a module of rast_top, rast_engine2d, or the one --top module), named
-//   by a hash of everything that decides it (Yosys version, the script, the embedded RTL
-//   sources, the parameter header when the run uses it, the top), in area_cache_dir(): a
-//   second call with the same RTL parameters reads it back at once, and rast_engine2d (no
-//   config parameter) is synthesised once for every config.
+// - Cache: one JSON a Yosys run (a module of rast_top, rast_engine2d, or the one --top
+//   module), named by a hash of everything that decides it (Yosys version, the script,
+//   the embedded RTL files that module reads (area_sources_key: an edit to a file it does
+//   not reach keeps the entry), the parameter header when the run uses it, the top), in
+//   area_cache_dir(): a second call with the same RTL parameters reads it back at once,
+//   and rast_engine2d (no config parameter) is synthesised once for every config.
 // - The RTL sources are compiled into the binary (rtl_sources.h), so no run reads the
 //   source tree.
 #pragma once
@@ -31,6 +32,7 @@
 
 #include "rtlsim/area_memory.h"
 #include "rtlsim/rtl_params.h"
+#include "rtlsim/rtl_sources.h"
 
 namespace rastsim {
 
@@ -99,6 +101,18 @@ AreaReport synthesize_area(const RtlParams& p, const AreaOptions& o = {});
 // and how it was made (top, yosys, key, synth_seconds, from_cache, parameters).
 nlohmann::json area_to_json(const AreaReport& r);
 AreaReport area_from_json(const nlohmann::json& j);
+
+// The RTL files a module's synthesis reads, sorted by name: the file declaring it
+// (module, package or interface) and, transitively, the files of the modules it
+// instantiates, the packages it names (`pkg::`) and the files it `include`s (among
+// `sources`; the generated rast_params.vh is keyed by its text apart). Throws when no
+// source declares `module`.
+std::vector<std::string> area_module_files(const std::string& module,
+                                           const std::vector<RtlSource>& sources = rtl_sources());
+// The hash (hex) of those files' names and texts: the sources' part of every area cache
+// key of `module` (a split run's module entry, the elaborated hierarchy and a one-process
+// run by their root), so editing a file it does not reach keeps its entries.
+std::string area_sources_key(const std::string& module, const std::vector<RtlSource>& sources = rtl_sources());
 
 // Turns Yosys' `stat -json -tech cmos` of a hierarchical design into per-module totals
 // (each module with its submodules); `root` is the base name of the synthesised top.

@@ -94,8 +94,21 @@ std::vector<StorageArray> tile_buffer_storage(const ArchParams& arch) {
   return out;
 }
 
+StorageArray fragment_fifo_storage(const RtlParams& p) {
+  // rast_top.sv's localparams Lanes, TileBeats, FragBeats and its beat_t.
+  const uint64_t lanes = uint64_t(p.interp_fragments_per_cycle);
+  const uint64_t fewest = p.interp_perspective != 0 ? uint64_t(p.interp_persp_lanes) : lanes;
+  const uint64_t tile_beats = ((uint64_t{1} << (2 * p.tile_log2_max)) + fewest - 1) / fewest;
+  const uint64_t depth = (uint64_t(p.fragment_fifo_entries) + 3) * tile_beats;
+  const uint64_t width = 2 + lanes * (1 + 2 * uint64_t(p.pixel_w) + uint64_t(p.depth_w) + 24 + uint64_t(p.max_samples));
+  StorageArray a{"fragment_fifo.beats", depth * width, false, 0};
+  a.transistors = storage_transistors(a.bits, a.sram);
+  return a;
+}
+
 std::vector<StorageArray> rast_top_storage(const ArchParams& arch) {
-  std::vector<StorageArray> out = texture_cache_data_storage(arch);
+  std::vector<StorageArray> out{fragment_fifo_storage(rtl_params(arch))};
+  for (StorageArray& a : texture_cache_data_storage(arch)) out.push_back(std::move(a));
   for (StorageArray& a : tile_buffer_storage(arch)) out.push_back(std::move(a));
   return out;
 }

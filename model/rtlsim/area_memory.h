@@ -30,6 +30,7 @@ namespace rastsim {
 
 struct AreaReport;
 struct ArchParams;
+struct RtlParams;
 
 // The SRAM cell: six transistors a bit (the 6T cell; Weste and Harris, "CMOS VLSI Design",
 // 4th ed., section 12.2.1).
@@ -75,9 +76,16 @@ std::vector<StorageArray> texture_cache_data_storage(const ArchParams& arch);
 // bits, and "tile_buffer.depth", TileBufferSamples x (raster.depth_bits + 1) bits (a
 // word and its valid bit a sample); none in immediate mode (no tile buffer).
 std::vector<StorageArray> tile_buffer_storage(const ArchParams& arch);
-// What rast_top holds as blackboxes: the texture cache's data copies (rast_top's
-// g_tex_cache) and the tile buffer's arrays (g_bins), counted for `--top rast_top` and
-// the whole design.
+// The fragment FIFO's ring of beats (rtl/rast_fragment_fifo_data.sv in rast_top):
+// "fragment_fifo.beats", FragBeats x BeatW bits with rast_top's derived parameters:
+// FragBeats = (FragmentFifoEntries + 3) x TileBeats, TileBeats = ceil(4^TileLog2Max / the
+// fewest lanes a beat: InterpPerspLanes when perspective is built, else Lanes), BeatW =
+// 2 (marker, last) + Lanes x (1 lane bit + 2 PixelW + DepthW + 24 colour + MaxSamples),
+// Lanes = InterpFragmentsPerCycle. Every config has one.
+StorageArray fragment_fifo_storage(const RtlParams& p);
+// What rast_top holds as blackboxes: the fragment FIFO's beats, the texture cache's data
+// copies (rast_top's g_tex_cache) and the tile buffer's arrays (g_bins), counted for
+// `--top rast_top` and the whole design.
 std::vector<StorageArray> rast_top_storage(const ArchParams& arch);
 // The whole design's counted arrays (`rastsim area`, `rastsim sweep --area`): the memory
 // system's (memory_storage), then rast_top's (rast_top_storage).

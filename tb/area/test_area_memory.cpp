@@ -10,6 +10,7 @@
 #include "common.h"
 #include "rtlsim/area.h"
 #include "rtlsim/area_memory.h"
+#include "rtlsim/rtl_params.h"
 
 namespace rastsim {
 namespace {
@@ -118,10 +119,49 @@ TEST(AreaMemory, TileBufferArrays) {
   app::ConfigOptions c;
   c.sets = {"pipeline.mode=binned"};
   const std::vector<StorageArray> top = rast_top_storage(app::resolve_arch(c));
-  ASSERT_EQ(top.size(), 6u);  // the default texture cache's 4 copies, then the tile buffer
-  EXPECT_EQ(top[3].name, "texture_cache.copy3.data");
-  EXPECT_EQ(top[4].name, "tile_buffer.color");
-  EXPECT_EQ(top[5].name, "tile_buffer.depth");
+  ASSERT_EQ(top.size(), 7u);  // the fragment FIFO, the default texture cache's 4 copies, the tile buffer
+  EXPECT_EQ(top[0].name, "fragment_fifo.beats");
+  EXPECT_EQ(top[4].name, "texture_cache.copy3.data");
+  EXPECT_EQ(top[5].name, "tile_buffer.color");
+  EXPECT_EQ(top[6].name, "tile_buffer.depth");
+}
+
+// The fragment FIFO's ring of beats (rtl/rast_fragment_fifo_data.sv in rast_top, a blackbox
+// to Yosys): FragBeats x BeatW bits, by hand from rast_top.sv's localparams. PixelW is 14
+// in every config (the schema's largest display side, 16,384 - 1).
+// - The default: Lanes = interp.fragments_per_cycle = 4, perspective built with 4 recip
+//   lanes: TileBeats = 16 x 16 / 4 = 64; FragmentFifoEntries = fifo.fragment_depth 4 +
+//   interp.latency_cycles 6 + the reciprocal's 2 + 2 x 2 = 16, FragBeats = (16 + 3) x 64 =
+//   1,216. A beat: marker and last (2) + 4 lanes x (lane bit 1 + x, y 28 + depth 24 +
+//   colour 24 + MaxSamples 16 = 93) = 374 bits. 1,216 x 374 = 454,784 bits, SRAM: 6 x
+//   454,784 = 2,728,704 + 10 % (272,870) = 3,001,574.
+// - Affine, 2 lanes, 8 x 8 tiles, fragment_depth 2, latency 3, 16-bit depth, 4 samples:
+//   TileBeats 64 / 2 = 32; entries 2 + 3 = 5, FragBeats 8 x 32 = 256; a beat 2 + 2 x (1 +
+//   28 + 16 + 24 + 4 = 73) = 148 bits; 37,888 bits: 227,328 + 22,732 = 250,060.
+// - The default with recip.lanes = 2: a perspective beat holds 2 fragments, TileBeats 256 /
+//   2 = 128, FragBeats 19 x 128 = 2,432; 2,432 x 374 = 909,568 bits: 5,457,408 + 545,740
+//   = 6,003,148.
+// It is rast_top's first row, before the texture cache's copies.
+TEST(AreaMemory, FragmentFifoBeats) {
+  const auto row = [](const std::vector<std::string>& sets) {
+    app::ConfigOptions c;
+    c.config_path = std::string(RASTSIM_SOURCE_DIR) + "/configs/default.toml";
+    c.sets = sets;
+    const StorageArray a = fragment_fifo_storage(rtl_params(app::resolve_arch(c)));
+    return std::map<std::string, StorageArray>{{a.name, a}};
+  };
+  expect_array(row({}), "fragment_fifo.beats", 454784, true, 3001574);
+  expect_array(row({"interp.perspective=false", "interp.fragments_per_cycle=2", "raster.tile_size=8",
+                    "fifo.fragment_depth=2", "interp.latency_cycles=3", "raster.depth_bits=16",
+                    "raster.max_samples=4", "raster.samples=4"}),
+               "fragment_fifo.beats", 37888, true, 250060);
+  expect_array(row({"recip.lanes=2"}), "fragment_fifo.beats", 909568, true, 6003148);
+  app::ConfigOptions c;
+  c.config_path = std::string(RASTSIM_SOURCE_DIR) + "/configs/default.toml";
+  const std::vector<StorageArray> top = rast_top_storage(app::resolve_arch(c));
+  ASSERT_FALSE(top.empty());
+  EXPECT_EQ(top[0].name, "fragment_fifo.beats");
+  EXPECT_EQ(top[0].bits, 454784u);
 }
 
 // The rows reach the report's total and its JSON, in order, and come back from it.

@@ -84,23 +84,27 @@ TEST(AreaTextureParams, Cache) {
 
 // rast_top holds the texture cache (g_tex_cache) with its data copies as blackboxes: `--top
 // rast_top` and the whole design count them (4 x 131,072 bits at the default, 865,075
-// transistors each: 131,072 x 6 x 1.1, rounded down), the whole design after the memory
-// system's arrays; no cache, no rows.
+// transistors each: 131,072 x 6 x 1.1, rounded down) after the fragment FIFO's beats
+// (AreaMemory.FragmentFifoBeats), the whole design after the memory system's arrays; no
+// cache, no cache rows.
 TEST(AreaTextureParams, RastTopCountsTheCacheData) {
   const ArchParams d = texture_arch({"memory.model=dram"});
   const std::vector<StorageArray> top = rast_top_storage(d);
-  ASSERT_EQ(top.size(), 4u);
+  ASSERT_EQ(top.size(), 5u);
+  EXPECT_EQ(top[0].name, "fragment_fifo.beats");
   for (size_t k = 0; k < 4; ++k) {
-    EXPECT_EQ(top[k].name, "texture_cache.copy" + std::to_string(k) + ".data");
-    EXPECT_EQ(top[k].transistors, 865075u);
+    EXPECT_EQ(top[k + 1].name, "texture_cache.copy" + std::to_string(k) + ".data");
+    EXPECT_EQ(top[k + 1].transistors, 865075u);
   }
   const std::vector<StorageArray> mem = memory_storage(d), all = design_storage(d);
   ASSERT_FALSE(mem.empty());
-  ASSERT_EQ(all.size(), mem.size() + 4);
+  ASSERT_EQ(all.size(), mem.size() + 5);
   for (size_t k = 0; k < mem.size(); ++k) EXPECT_EQ(all[k].name, mem[k].name);
   EXPECT_EQ(all.back().name, "texture_cache.copy3.data");
-  EXPECT_TRUE(rast_top_storage(texture_arch({"texture.cache_bytes=0"})).empty());
-  EXPECT_EQ(design_storage(texture_arch({"texture.cache_bytes=0", "memory.model=dram"})).size(), mem.size());
+  const std::vector<StorageArray> none = rast_top_storage(texture_arch({"texture.cache_bytes=0"}));
+  ASSERT_EQ(none.size(), 1u);
+  EXPECT_EQ(none[0].name, "fragment_fifo.beats");
+  EXPECT_EQ(design_storage(texture_arch({"texture.cache_bytes=0", "memory.model=dram"})).size(), mem.size() + 1);
 }
 
 // The combine synthesised (a second or two: six 8 x 8 multipliers). Its flip-flops by
