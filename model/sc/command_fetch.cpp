@@ -29,7 +29,8 @@ void CommandFetch::fetch(const CommandPtr& p) {
   visit_command(cmd, Overloaded{
       state_commands(state),
       [&](const CmdPrimitives& prims) {
-        if (prims.texture.enabled()) ctx_.memory_time_order = true;  // before its first fill (sc/sim_context.h)
+        if (prims.texture.enabled())  // before its first fill (sc/sim_context.h)
+          ctx_.memory_time_order = ctx_.wake_writers_at_free_slot = true;
         if (prims.clip_space()) {
           // Whole to the geometry front end, then its marker (the job first: sc/front_end.h).
           mark(0);

@@ -24,7 +24,8 @@
 //
 // Wake-ups: a writer suspended on a full FIFO resumes once its reader has emptied it,
 // not at the first free slot (unless in lock-step, where every transfer must happen at
-// its own SystemC time). Which process runs when never changes a timestamp (they come
+// its own SystemC time, or with memory requests in time order, where a writer woken late
+// would make its requests after SystemC time passed their cycles; sc/sim_context.h). Which process runs when never changes a timestamp (they come
 // from the two stages' cycle counts and the slots' freed cycles only), so this changes
 // no result; it lets a writer refill the whole FIFO in one go instead of a slot at a
 // time, which on small triangles woke every stage above the busiest one once per few
@@ -57,11 +58,12 @@ struct Tx {
 template <class P>
 class Link : public sc_core::sc_module {
  public:
-  // tracing: update the occupancy signal; lockstep: wake a waiting writer at the first
-  // free slot (see above).
-  Link(sc_core::sc_module_name name, int depth, bool tracing, bool lockstep)
+  // tracing: update the occupancy signal; wake_at_free_slot: wake a waiting writer at the
+  // first free slot (see above; read at each wake, as it may be set during the run:
+  // SimContext::wake_writers_at_free_slot).
+  Link(sc_core::sc_module_name name, int depth, bool tracing, const bool& wake_at_free_slot)
       : sc_module(name), depth_(depth), slots_(size_t(depth)), freed_(size_t(depth), 0),
-        occupancy_("occupancy", 0), tracing_(tracing), wake_when_empty_(!lockstep) {
+        occupancy_("occupancy", 0), tracing_(tracing), wake_at_free_slot_(wake_at_free_slot) {
     if (depth < 1) throw ModelError(std::string(this->name()) + ": FIFO depth " + std::to_string(depth) + " < 1");
   }
 
@@ -101,7 +103,7 @@ class Link : public sc_core::sc_module {
     left = std::max(at, t.entered);
     freed_[slot] = left;
     ++reads_;
-    if (writer_waiting_ && (writes_ == reads_ || !wake_when_empty_)) {
+    if (writer_waiting_ && (writes_ == reads_ || wake_at_free_slot_)) {
       writer_waiting_ = false;
       read_event_.notify();
     }
@@ -132,7 +134,7 @@ class Link : public sc_core::sc_module {
   bool reader_waiting_ = false, writer_waiting_ = false;
   sc_core::sc_signal<int, sc_core::SC_UNCHECKED_WRITERS> occupancy_;  // both stages write it, the same count: the last write of a delta stands
   bool tracing_;
-  bool wake_when_empty_;  // a waiting writer resumes when the FIFO is empty (not lock-step)
+  const bool& wake_at_free_slot_;  // else a waiting writer resumes when the FIFO is empty
   uint64_t writes_ = 0, reads_ = 0;
   CounterTrack* counter_ = nullptr;
 };

@@ -166,8 +166,12 @@ void Rop::command(const CommandPtr& cmd) {
     return;
   }
   // `clear_bytes`: bytes a pixel the command writes over the whole buffer (0: no clear).
-  const auto state = [&](uint64_t clear_bytes) {
+  // A clear's writes enter the memory at the command's first cycle, before its busy: in
+  // lock-step the busy waits for SystemC time to pass, and a request made after that
+  // would enter behind the other clients' later ones (sc/sim_context.h, memory_time_order).
+  const auto state = [&](uint64_t clear_bytes, std::optional<MemClient> cleared = std::nullopt) {
     apply_state_command(*cmd, st_, fb_, functional_memory());
+    if (mem_ && cleared) mem_->cleared(*cleared);
     ctx_.framebuffer_bytes += fb_pixels * clear_bytes;
     attribute_to_no_tile();
     busy(p_.rop_state_cycles(clear_bytes != 0, fb_pixels));
@@ -175,14 +179,8 @@ void Rop::command(const CommandPtr& cmd) {
   visit_command(*cmd, Overloaded{
       [&](const CmdViewport&) { state(0); },
       [&](const CmdScissor&) { state(0); },
-      [&](const CmdClear&) {
-        state(4);
-        if (mem_) mem_->cleared(MemClient::RopColor);
-      },
-      [&](const CmdClearDepth&) {
-        state(depth_bytes_);
-        if (mem_) mem_->cleared(MemClient::RopDepth);
-      },
+      [&](const CmdClear&) { state(4, MemClient::RopColor); },
+      [&](const CmdClearDepth&) { state(depth_bytes_, MemClient::RopDepth); },
       [&](const CmdPrimitives&) {
         throw ModelError("ROP: a primitives command as a state item (fetch sends its triangles)");
       },

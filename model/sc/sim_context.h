@@ -46,6 +46,11 @@ struct SimContext {
   // (docs/memory.md, "Arbitration"). Set by command fetch at the first textured draw:
   // an untextured run has one such client at a time and runs ahead as before.
   bool memory_time_order = false;
+  // Links wake a writer waiting on a full FIFO at the first free slot, not once it is
+  // empty (sc/link.h): in lock-step, and with memory_time_order in an immediate-mode run,
+  // where a writer woken late would make its memory requests after SystemC time passed
+  // their cycles, out of time order (a decoupled run then disagreed with a lock-step one).
+  bool wake_writers_at_free_slot = false;
 
   // Random stall injection (tests): before each FIFO write, with this probability, the
   // writer waits 1..stall_max_cycles extra cycles. Seeded; never changes the image.

@@ -12,7 +12,7 @@ namespace rastsim {
 
 void MemorySystem::enqueue(MemClient c, uint64_t address, uint64_t bytes, bool write, uint64_t cycle) {
   // Every other client's requests of earlier cycles first (set_arrival_wait).
-  if (arrival_wait_ && c != MemClient::Scanout) arrival_wait_(cycle);
+  if (arrival_wait_ && c != MemClient::Scanout) arrival_wait_(cycle, c);
   // No request arrives before the DRAM's own time: one that would (a client behind the
   // others) arrives when the DRAM can still decide on it.
   cycle = std::max(cycle, floor_);

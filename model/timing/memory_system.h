@@ -111,10 +111,11 @@ class MemorySystem {
 
   // The clients' common clock (the SystemC model's; docs/memory.md, "Arbitration"): from
   // now on each request (the self-timed client's excepted) first calls `f(cycle)`, which
-  // returns once every other client has made its requests of cycles before `cycle`
+  // returns once every other client has made its requests of cycles before `cycle` (of
+  // client `c`)
   // (SystemC: waits for SystemC time to reach it), so requests of decoupled clients enter
   // in time order. Empty (the default): requests enter in the order they are made.
-  void set_arrival_wait(std::function<void(uint64_t cycle)> f) { arrival_wait_ = std::move(f); }
+  void set_arrival_wait(std::function<void(uint64_t cycle, MemClient c)> f) { arrival_wait_ = std::move(f); }
 
   // Writes every request from now on to *out in DRAMsim3's format (timing/dram_trace.h).
   void record_trace(std::ostream* out) { trace_ = out; }
@@ -138,7 +139,7 @@ class MemorySystem {
   uint64_t outstanding_reads_ = 0, next_tag_ = 0, last_completion_ = 0;
   std::optional<uint64_t> last_read_;
   std::ostream* trace_ = nullptr;
-  std::function<void(uint64_t)> arrival_wait_;  // set_arrival_wait
+  std::function<void(uint64_t, MemClient)> arrival_wait_;  // set_arrival_wait
 };
 
 // dram_row_hit_rate, dram_bandwidth_utilisation, memory.dram.* and, per client,
