@@ -25,14 +25,15 @@
 // Wake-ups: a writer suspended on a full FIFO resumes once its reader has emptied it,
 // not at the first free slot (unless in lock-step, where every transfer must happen at
 // its own SystemC time, or with memory requests in time order, where a writer woken late
-// would make its requests after SystemC time passed their cycles; sc/sim_context.h). Which process runs when never changes a timestamp (they come
-// from the two stages' cycle counts and the slots' freed cycles only), so this changes
-// no result; it lets a writer refill the whole FIFO in one go instead of a slot at a
-// time, which on small triangles woke every stage above the busiest one once per few
-// tiles (a quarter of the process switches on the mesh scene). It cannot deadlock: a
-// reader stops short of emptying its input only while its own output is full, which
-// the stages below drain (the ROP, at the bottom, reads its FIFO until empty); the 2D
-// engine's inputs were written before the markers the ROP waits on (sc/command_fetch.h).
+// would make its requests after SystemC time passed their cycles; sc/sim_context.h).
+// Otherwise which process runs when never changes a timestamp (they come from the two
+// stages' cycle counts and the slots' freed cycles only), so this changes no result; it
+// lets a writer refill the whole FIFO in one go instead of a slot at a time, which on
+// small triangles woke every stage above the busiest one once per few tiles (a quarter
+// of the process switches on the mesh scene). It cannot deadlock: a reader stops short
+// of emptying its input only while its own output is full, which the stages below drain
+// (the ROP, at the bottom, reads its FIFO until empty); the 2D engine's inputs were
+// written before the markers the ROP waits on (sc/command_fetch.h).
 #pragma once
 
 #include <algorithm>
