@@ -56,6 +56,10 @@
 #include "fidelity/sampled.h"
 #include "ref/scene.h"
 
+namespace rastsim::sc {
+struct SimOptions;
+}
+
 namespace rastsim::fidelity {
 
 struct FramePlan {
@@ -77,7 +81,12 @@ FramePlan plan_frames(const std::vector<FrameWork>& work, double fraction, uint6
 struct FrameSampledResult {
   double cycles = 0, ci_low = 0, ci_high = 0, confidence = kDefaultConfidence;
   double fraction = 0;
+  FrameBoundary boundary = FrameBoundary::Fetch;  // where the frames' y were measured (frames.h)
   size_t frames_total = 0, frames_simulated = 0, clusters = 0;
+  // Every frame's x (FramePlan::x, cycles) and stratum key (-1: certain): the plan, so the
+  // estimator can be replayed on a full run's frames[].cycles (docs/results.md).
+  std::vector<double> frame_x;
+  std::vector<int> frame_stratum;
   std::vector<size_t> simulated;  // the frames simulated in detail
   std::vector<double> y;          // their measured cycles, in the same order
   // Their DRAM backlog (MemorySystem::backlog_cycles) at their first fetch and at the
@@ -112,16 +121,30 @@ FrameSampledResult simulate_frame_sampled(const Scene& scene, const ArchParams& 
                                           double confidence = kDefaultConfidence,
                                           size_t snapshot_budget = kWarmSnapshotBudget);
 
-// A frame's cycles (frames[].cycles) run from command fetch starting its first command
-// to its starting the next frame's (the last frame: to the end of the run), so they sum
-// to the run's cycles. on_fetch for a run of `scene` (the scene object the run reads):
-// records into `starts` the cycle command fetch started each command (by index), the
-// first time.
+// A frame's cycles (frames[].cycles) run from its start to the next frame's (the last
+// frame: to the end of the run), so they sum to the run's cycles; frame 0 starts with the
+// run, the others where FrameBoundary says (frames.h). on_fetch for a run of `scene`
+// (the scene object the run reads): records into `starts` the cycle command fetch started
+// each command (by index), the first time.
 std::function<void(const Command&, size_t, uint64_t)> record_command_starts(const Scene& scene,
                                                                            std::vector<uint64_t>& starts);
 // Each span's cycles from the recorded starts: [start of its first command, start of the
 // first command after it), the last to `end_cycle`.
 std::vector<uint64_t> span_cycles(const std::vector<FrameSpan>& spans, const std::vector<uint64_t>& starts,
+                                  uint64_t end_cycle);
+
+// Both starts of each command of a run's scene (by index; UINT64_MAX: none): command
+// fetch starting it, and the ROP taking it (state items only, SimOptions::on_rop_state).
+struct CommandStarts {
+  std::vector<uint64_t> fetch, rop;
+  // Where frame `first` (its first command's index) starts: its fetch when it is the
+  // run's first frame (`run_first`) or under FrameBoundary::Fetch, else the ROP's take.
+  uint64_t at(size_t first, FrameBoundary b, bool run_first) const;
+};
+// Sets o.on_fetch and o.on_rop_state to fill `s` (which, with `scene`, must outlive the run).
+void record_command_starts(const Scene& scene, CommandStarts& s, sc::SimOptions& o);
+// span_cycles with the spans' starts by `b` (the first span: its fetch).
+std::vector<uint64_t> span_cycles(const std::vector<FrameSpan>& spans, const CommandStarts& starts, FrameBoundary b,
                                   uint64_t end_cycle);
 
 }  // namespace rastsim::fidelity
