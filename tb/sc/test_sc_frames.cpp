@@ -270,6 +270,38 @@ TEST(ScFrames, RepresentativesAllocatedByHand) {
   EXPECT_EQ(b, 4u);
 }
 
+TEST(ScFrames, StratumSplitByReadShareByHand) {
+  // Frames 1..20 one stratum (busy 10 in stage 3), frames 0 and 21 certain; frames 11..20
+  // also read 10 cycles' worth of DRAM: x = 10 (share 0) and 20 (share 0.5). F = 0.25 of
+  // M = 20: n = 5 >= 4, so the stratum splits at the median share: lower {1..10} X = 100,
+  // upper {11..20} X = 200; T = max(5, 2 x 2) = 5: 2 each, the 1 left by x (1/3, 2/3):
+  // the upper half's larger remainder: lower 2, upper 3. Unsplit, 5 clusters of 4 by x
+  // give the lower frames 3 (frames 1-4, 5-8, and 9-12, mean x 15, a tie won by frame 9).
+  std::vector<fidelity::FrameWork> work(22);
+  for (size_t k = 0; k < 22; ++k) {
+    work[k].busy[3] = 10;
+    if (k >= 11 && k <= 20) work[k].dram_read_cycles = 10;
+  }
+  const fidelity::FramePlan p = fidelity::plan_frames(work, 0.25);
+  size_t lower = 0, upper = 0;
+  for (size_t k = 1; k <= 20; ++k) (k <= 10 ? lower : upper) += p.chosen[k];
+  EXPECT_EQ(lower, 2u);
+  EXPECT_EQ(upper, 3u);
+  EXPECT_NE(p.stratum[1], p.stratum[11]);
+  EXPECT_EQ(p.stratum[1], p.stratum[10]);
+  // No read share varies (memory.model = fixed): one stratum, clusters by x alone.
+  for (auto& w : work) w.dram_read_cycles = 0;
+  for (size_t k = 11; k <= 20; ++k) work[k].busy[3] = 20;
+  const fidelity::FramePlan q = fidelity::plan_frames(work, 0.25);
+  lower = upper = 0;
+  for (size_t k = 1; k <= 20; ++k) (k <= 10 ? lower : upper) += q.chosen[k];
+  EXPECT_EQ(lower, 3u);
+  EXPECT_EQ(q.stratum[1], q.stratum[11]);
+  // 3 representatives (F = 0.15): no split.
+  const fidelity::FramePlan r = fidelity::plan_frames(work, 0.15);
+  EXPECT_EQ(r.stratum[1], r.stratum[11]);
+}
+
 TEST(ScFrames, FrameSampledIntervalCoversTheFullRun) {
   const Config cfg = make_config({"raster.depth_func=less"});
   const ArchParams arch = arch_of(cfg);
