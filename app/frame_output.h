@@ -65,14 +65,17 @@ struct CosimFrames {
 };
 
 // `rastsim simulate`'s multi-frame parts (app/simulate_frames.cpp). What a full run
-// records of its frames: the cycle each frame after the first starts (command fetch
-// starting its first command) and, with memory.model = "dram", the DRAM's backlog then
-// (MemorySystem::backlog_cycles, cycles).
+// records of its frames: the cycle each frame after the first starts, at command fetch
+// (`cycles`: fetch starting its first command) and at the ROP (`rop`: the ROP taking it,
+// when it is a state item; fidelity::FrameBoundary says which frames[].cycles use) and,
+// with memory.model = "dram", the DRAM's backlog at the fetch (MemorySystem::
+// backlog_cycles, cycles).
 struct FrameStarts {
-  std::vector<uint64_t> cycles, backlog;
+  std::vector<uint64_t> cycles, rop, backlog;
   const MemorySystem* memory = nullptr;  // the run's (SimOptions::on_memory_system)
 };
-// Sets sim's on_fetch and on_memory_system to fill `f`, which must outlive the run.
+// Sets sim's on_fetch, on_rop_state and on_memory_system to fill `f`, which must outlive
+// the run.
 void record_frame_starts(sc::SimOptions& sim, FrameStarts& f);
 // frames[] of a full run from those starts (nothing for one frame): the reference
 // model's counts, the cycles, the DRAM backlog at the frame's start, the analytic walk's

@@ -22,6 +22,9 @@ void record_frame_starts(sc::SimOptions& sim, FrameStarts& f) {
     f.cycles.push_back(cycle);
     if (f.memory) f.backlog.push_back(f.memory->backlog_cycles(cycle));
   };
+  sim.on_rop_state = [&f](const Command& cmd, uint64_t cycle) {
+    if (cmd.frame_line > 0) f.rop.push_back(cycle);
+  };
 }
 
 void add_frames_of_run(nlohmann::json& j, const SimulateOptions& o, const ArchParams& arch, const FrameStarts& f,
@@ -35,9 +38,18 @@ void add_frames_of_run(nlohmann::json& j, const SimulateOptions& o, const ArchPa
   if (out.frames.size() != starts.size() + 1 || work.size() != out.frames.size())
     throw std::logic_error("simulate: the run fetched " + std::to_string(starts.size() + 1) + " frames, the scene has " +
                            std::to_string(out.frames.size()));
+  // Each frame's cycles from its start to the next's (fidelity::FrameBoundary), and at
+  // command fetch (cycles_fetch): either sums to the run's cycles.
+  const fidelity::FrameBoundary b = fidelity::frame_boundary(scene, fidelity::frame_spans(scene.commands), arch);
+  if (b == fidelity::FrameBoundary::Rop && f.rop.size() != starts.size())
+    throw std::logic_error("simulate: the ROP took " + std::to_string(f.rop.size()) + " frames' first commands of " +
+                           std::to_string(starts.size()));
+  const std::vector<uint64_t>& at = b == fidelity::FrameBoundary::Rop ? f.rop : starts;
+  j["frame_boundary"] = fidelity::frame_boundary_name(b);
   for (size_t k = 0; k < out.frames.size(); ++k) {
-    const uint64_t from = k == 0 ? 0 : starts[k - 1], to = k < starts.size() ? starts[k] : end_cycle;
+    const uint64_t from = k == 0 ? 0 : at[k - 1], to = k < at.size() ? at[k] : end_cycle;
     out.frames[k]["cycles"] = to - from;
+    out.frames[k]["cycles_fetch"] = (k < starts.size() ? starts[k] : end_cycle) - (k == 0 ? 0 : starts[k - 1]);
     if (f.memory) out.frames[k]["dram_backlog_cycles"] = k == 0 ? 0 : f.backlog[k - 1];
     fidelity::add_frame_work(out.frames[k], work[k]);
   }
@@ -51,14 +63,17 @@ sc::SimResult run_range(const Scene& scene, const ArchParams& arch, const FrameO
                         uint64_t seed, double stall_probability, std::vector<uint64_t>& cycles) {
   const std::vector<fidelity::FrameSpan> spans = fidelity::frame_spans(scene.commands);
   const fidelity::FrameSlice slice = fidelity::slice_frames(scene, spans, out.range);
-  std::vector<uint64_t> starts;
+  fidelity::CommandStarts starts;
   sc::SimOptions sim;
   sim.stall_seed = seed;
   sim.stall_probability = stall_probability;
-  sim.on_fetch = fidelity::record_command_starts(slice.scene, starts);
+  fidelity::record_command_starts(slice.scene, starts, sim);
   if (out.range.first > 0) sim.initial_fb = &before;
   sc::SimResult r = sc::simulate_scene(slice.scene, arch, sim);
-  cycles = slice_cycles(slice, starts, r.cycles);
+  // The range's frames as the full run's frames[] (its first from its fetch).
+  std::vector<fidelity::FrameSpan> timed = fidelity::frame_spans(slice.scene.commands);
+  if (slice.prefix > 0) timed.erase(timed.begin());  // the carried viewport and scissor: not a frame
+  cycles = fidelity::span_cycles(timed, starts, fidelity::frame_boundary(scene, spans, arch), r.cycles);
   return r;
 }
 
@@ -94,6 +109,8 @@ void run_simulate_frames(const SimulateOptions& o, const ArchParams& arch) {
   j["cycles_run"] = r.cycles;  // with the carried state commands before the range
   j["cycles"] = total;
   j["fidelity_level"] = "systemc";
+  j["frame_boundary"] = fidelity::frame_boundary_name(
+      fidelity::frame_boundary(scene, fidelity::frame_spans(scene.commands), arch));
   out.add_to(j);
   j["config"] = arch.config.source_name();
   j["scene"] = o.scene_path;

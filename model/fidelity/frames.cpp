@@ -22,6 +22,15 @@ std::vector<FrameSpan> frame_spans(const std::vector<Command>& commands) {
   return spans;
 }
 
+FrameBoundary frame_boundary(const Scene& scene, const std::vector<FrameSpan>& spans, const ArchParams& arch) {
+  if (arch.raster.bin.mode != PipelineMode::Immediate) return FrameBoundary::Fetch;
+  for (size_t k = 1; k < spans.size(); ++k)
+    if (std::holds_alternative<CmdPrimitives>(scene.commands[spans[k].begin].body)) return FrameBoundary::Fetch;
+  return FrameBoundary::Rop;
+}
+
+const char* frame_boundary_name(FrameBoundary b) { return b == FrameBoundary::Rop ? "rop" : "fetch"; }
+
 namespace {
 
 // A frame number of --frames: decimal digits only.

@@ -38,6 +38,25 @@ struct FrameSpan {
 };
 std::vector<FrameSpan> frame_spans(const std::vector<Command>& commands);
 
+// Where a frame's cycles are measured (frames[].cycles, frame sampling's y; the stats'
+// frame_boundary). Frame k (> 0) starts, and frame k - 1 ends, at
+// - Rop: the cycle the ROP takes frame k's first command, a state item there (a clear,
+//   viewport, scissor or 2D command: they travel down the triangle path in program
+//   order, after every fragment of the frames before): the end of frame k - 1's work at
+//   the pipeline's last stage. Used when every frame after the first starts with such a
+//   command and pipeline.mode is immediate (the generated and imported sequences: each
+//   frame starts with its clear).
+// - Fetch: the cycle command fetch starts frame k's first command (any other scene).
+// Either way frame 0 starts at the run's start and the last frame ends at the run's end,
+// so the frames' cycles sum to the run's. At the ROP a frame's cycles are where its work
+// is done: on glmark2's texture scene (12 triangles a frame, each about 40,000 cycles of
+// the texture stage) command fetch runs W triangles, 4 frames, ahead, so fetch to fetch
+// a frame's cycles were its predecessor's drain with the FIFOs full, and the frames in
+// the pipeline's fill took 48 cycles each (docs/results.md).
+enum class FrameBoundary { Fetch, Rop };
+FrameBoundary frame_boundary(const Scene& scene, const std::vector<FrameSpan>& spans, const ArchParams& arch);
+const char* frame_boundary_name(FrameBoundary b);  // "fetch", "rop"
+
 // `--frames A:B`: frames A..B-1, numbered from 0 (B excluded, as a Python slice); "A:" runs
 // to the last frame, "A" alone is frame A. Throws std::runtime_error naming the text.
 struct FrameRange {

@@ -234,6 +234,7 @@ void configure(SimContext& ctx, const SimOptions& opts, const RasterState& arch)
   ctx.stall_probability = opts.stall_probability;
   ctx.on_fragment = opts.on_fragment;
   ctx.on_fetch = opts.on_fetch;
+  ctx.on_rop_state = opts.on_rop_state;
   ctx.on_hiz = opts.on_hiz;
   ctx.hiz_lag_accept_busy = opts.hiz_lag_accept_busy;
   count_multisample_footprint(arch, ctx.render);

@@ -44,6 +44,9 @@ struct SimOptions {
   // Command fetch starting each transaction: a command, or triangle k of a primitive
   // command, with the cycle (SimContext::on_fetch; the sampled level's unit boundaries).
   std::function<void(const Command& cmd, size_t triangle, uint64_t cycle)> on_fetch;
+  // The ROP taking each state item of the scene, with the cycle (SimContext::on_rop_state;
+  // frame sampling's frame boundaries, model/fidelity/frames.h FrameBoundary::Rop).
+  std::function<void(const Command& cmd, uint64_t cycle)> on_rop_state;
   // Trace-event JSON of every stage's state and FIFO's occupancy ("" = none; sc/timeline.h),
   // quantized to fit timeline_max_events events (250,000: about 10-17 MB, docs/timeline.md).
   std::string timeline_path;

@@ -200,6 +200,7 @@ void Rop::body() {
       // Hi-Z's interlock (sc/hiz_interlock.h): a state item ends as the ROP takes it, in its
       // first cycle (a depth clear sets the table then; its writes follow, in order).
       const uint64_t taken = now() + 1;
+      if (ctx_.on_rop_state && !bins_ && !ctx_.is_end_of_frame(in.state)) ctx_.on_rop_state(*in.state, now());
       command(in.state);
       if (ctx_.hiz_interlock) ctx_.hiz_interlock->rop_end(taken);
       // Early Z's (sc/interpolate.h): the early test reads the depth surface, so a depth

@@ -89,6 +89,10 @@ struct SimContext {
   // Sees command fetch start each transaction (a command, or triangle k of a primitive
   // command) at `cycle`, in program order (the sampled level's unit boundaries).
   std::function<void(const Command& cmd, size_t triangle, uint64_t cycle)> on_fetch;
+  // Sees the ROP take each state item of the scene (a clear, viewport, scissor or 2D
+  // command's marker; not the end-of-frame marker, nor a binned run's) at `cycle`, its
+  // first cycle, in program order (frame sampling's frame boundaries at the ROP).
+  std::function<void(const Command& cmd, uint64_t cycle)> on_rop_state;
 
   std::exception_ptr error;  // first exception raised in any stage (null when none)
 

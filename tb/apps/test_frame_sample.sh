@@ -11,6 +11,9 @@
 #   - its 95 % interval covers the full run's cycles, and its estimate is within 5 %;
 #   - each frame it measured (frames_simulated_cycles) is within 10 % of that frame's
 #     frames[].cycles in the full run (the scene's last frame left out: it holds the run's end);
+#   - both measured each frame at the ROP (frame_boundary "rop": every glmark2 frame starts
+#     with its clear), and the full run's frames[].cycles_fetch (at command fetch) sum to
+#     its cycles as well;
 # and that the same checks refuse a full run of 1.3x the cycles (they can fail).
 # glmark2 animates by wall time, so every capture differs a little: the bounds are wide
 # enough for that and narrow enough to catch a broken estimator.
@@ -62,6 +65,10 @@ err = (fs["cycles"] - full["cycles"]) / full["cycles"]
 print(f"full {full['cycles']} cycles, {len(ys)} frames; frame-sampled {fs['cycles']} ({100 * err:+.2f} %), "
       f"[{fs['cycles_ci_low']:.0f}, {fs['cycles_ci_high']:.0f}], {fs['frames_simulated']} frames simulated "
       f"{fs['frames_simulated_list']}")
+if not full.get("frame_boundary") == fs.get("frame_boundary") == "rop":
+    bad.append(f"frame boundaries: full run {full.get('frame_boundary')}, frame-sampled {fs.get('frame_boundary')}")
+if sum(f["cycles_fetch"] for f in full["frames"]) != full["cycles"]:
+    bad.append("the full run's frames[].cycles_fetch do not sum to its cycles")
 for b in bad:
     print("FAIL:", b)
 # The checks must fail on a wrong full run: 1.3x the cycles, every frame scaled alike.

@@ -105,6 +105,69 @@ TEST(ScFrames, PerFrameCountsAndCyclesSumToTheWholeRun) {
   EXPECT_EQ(total, j["cycles"].get<uint64_t>());
 }
 
+// `frames` frames of a full-screen quad (two triangles) over a 96 x 64 viewport, each
+// frame first clearing: ROP-bound frames of few triangles, so command fetch runs the
+// FIFOs' entries (dozens of frames) ahead of the ROP.
+Scene quad_frames(int frames) {
+  Scene s;
+  s.source = "quads";
+  const auto v = [](double x, double y, double z) {
+    SceneVertex p;
+    p.x = Q64::from_double(x);
+    p.y = Q64::from_double(y);
+    p.z = z;
+    return p;
+  };
+  for (int k = 0; k < frames; ++k) {
+    s.commands.push_back({CmdClear{uint8_t(k), 0, 0}, {s.source, 3 * k + 1}, k > 0 ? 3 * k + 1 : 0});
+    s.commands.push_back({CmdClearDepth{1.0}, {s.source, 3 * k + 2}});
+    CmdPrimitives q;
+    const double z = 0.1 + 0.01 * k;
+    q.vertices = {v(0, 0, z), v(96, 0, z), v(0, 64, z), v(96, 0, z), v(96, 64, z), v(0, 64, z)};
+    s.commands.push_back({std::move(q), {s.source, 3 * k + 3}});
+  }
+  return s;
+}
+
+// Frame boundaries at the ROP (fidelity::FrameBoundary::Rop: each frame starts with a
+// clear): the frames' cycles sum to the run's, and each frame after the first holds at
+// least its own ROP work (the analytic walk's ROP busy, equal to the SystemC ROP's), since
+// the ROP takes the frame's clear before any of its fragments and the next frame's clear
+// after the last. At command fetch the same frames fail that: fetch runs ahead of the ROP
+// and the frames in the pipeline's fill take a few cycles each (glmark2's texture scene).
+TEST(ScFrames, FrameCyclesAtTheRopHoldTheirRopWork) {
+  const Config cfg = make_config({"raster.depth_func=less"});
+  const ArchParams arch = arch_of(cfg);
+  const Scene scene = quad_frames(12);
+  const auto spans = fidelity::frame_spans(scene.commands);
+  ASSERT_EQ(spans.size(), 12u);
+  EXPECT_EQ(fidelity::frame_boundary(scene, spans, arch), fidelity::FrameBoundary::Rop);
+  const nlohmann::json j = run_isolated([&] {
+    fidelity::CommandStarts starts;
+    sc::SimOptions o;
+    fidelity::record_command_starts(scene, starts, o);
+    const sc::SimResult r = sc::simulate_scene(scene, arch, o);
+    return nlohmann::json{{"cycles", r.cycles},
+                          {"rop", fidelity::span_cycles(spans, starts, fidelity::FrameBoundary::Rop, r.cycles)},
+                          {"fetch", fidelity::span_cycles(spans, starts, fidelity::FrameBoundary::Fetch, r.cycles)}};
+  });
+  ASSERT_FALSE(j.contains("error")) << j;
+  const std::vector<fidelity::FrameWork> work = fidelity::frame_work(scene, arch);
+  const size_t rop = stage_index(StageId::Rop);
+  for (const std::string b : {"rop", "fetch"}) {
+    const auto c = j[b].get<std::vector<uint64_t>>();
+    ASSERT_EQ(c.size(), 12u);
+    uint64_t total = 0, short_of_work = 0;
+    for (size_t k = 0; k < c.size(); ++k) {
+      total += c[k];
+      short_of_work += k > 0 && c[k] < work[k].busy[rop];
+    }
+    EXPECT_EQ(total, j["cycles"].get<uint64_t>()) << b;
+    if (b == "rop") EXPECT_EQ(short_of_work, 0u) << j[b];
+    else EXPECT_GT(short_of_work, 0u) << j[b];  // the test can tell the two apart
+  }
+}
+
 // The timed run of frames [a, b) from the reference model's replay of the frames before.
 nlohmann::json range_run(const Scene& scene, const ArchParams& arch, size_t a, size_t b) {
   return run_isolated([&] {
@@ -207,6 +270,38 @@ TEST(ScFrames, RepresentativesAllocatedByHand) {
   EXPECT_EQ(b, 4u);
 }
 
+TEST(ScFrames, StratumSplitByReadShareByHand) {
+  // Frames 1..20 one stratum (busy 10 in stage 3), frames 0 and 21 certain; frames 11..20
+  // also read 10 cycles' worth of DRAM: x = 10 (share 0) and 20 (share 0.5). F = 0.25 of
+  // M = 20: n = 5 >= 4, so the stratum splits at the median share: lower {1..10} X = 100,
+  // upper {11..20} X = 200; T = max(5, 2 x 2) = 5: 2 each, the 1 left by x (1/3, 2/3):
+  // the upper half's larger remainder: lower 2, upper 3. Unsplit, 5 clusters of 4 by x
+  // give the lower frames 3 (frames 1-4, 5-8, and 9-12, mean x 15, a tie won by frame 9).
+  std::vector<fidelity::FrameWork> work(22);
+  for (size_t k = 0; k < 22; ++k) {
+    work[k].busy[3] = 10;
+    if (k >= 11 && k <= 20) work[k].dram_read_cycles = 10;
+  }
+  const fidelity::FramePlan p = fidelity::plan_frames(work, 0.25);
+  size_t lower = 0, upper = 0;
+  for (size_t k = 1; k <= 20; ++k) (k <= 10 ? lower : upper) += p.chosen[k];
+  EXPECT_EQ(lower, 2u);
+  EXPECT_EQ(upper, 3u);
+  EXPECT_NE(p.stratum[1], p.stratum[11]);
+  EXPECT_EQ(p.stratum[1], p.stratum[10]);
+  // No read share varies (memory.model = fixed): one stratum, clusters by x alone.
+  for (auto& w : work) w.dram_read_cycles = 0;
+  for (size_t k = 11; k <= 20; ++k) work[k].busy[3] = 20;
+  const fidelity::FramePlan q = fidelity::plan_frames(work, 0.25);
+  lower = upper = 0;
+  for (size_t k = 1; k <= 20; ++k) (k <= 10 ? lower : upper) += q.chosen[k];
+  EXPECT_EQ(lower, 3u);
+  EXPECT_EQ(q.stratum[1], q.stratum[11]);
+  // 3 representatives (F = 0.15): no split.
+  const fidelity::FramePlan r = fidelity::plan_frames(work, 0.15);
+  EXPECT_EQ(r.stratum[1], r.stratum[11]);
+}
+
 TEST(ScFrames, FrameSampledIntervalCoversTheFullRun) {
   const Config cfg = make_config({"raster.depth_func=less"});
   const ArchParams arch = arch_of(cfg);
@@ -242,12 +337,15 @@ TEST(ScFrames, FrameSampledFramesMatchTheFullRunUnderDram) {
                                   "memory.fb_layout=tiled"});
   const ArchParams arch = arch_of(cfg);
   const Scene scene = frames_scene(16, 21, true);
+  const auto spans = fidelity::frame_spans(scene.commands);
+  const fidelity::FrameBoundary b = fidelity::frame_boundary(scene, spans, arch);
+  EXPECT_EQ(b, fidelity::FrameBoundary::Rop);  // each frame starts with its viewport
   const nlohmann::json full = run_isolated([&] {
-    std::vector<uint64_t> starts;
+    fidelity::CommandStarts starts;
     sc::SimOptions o;
-    o.on_fetch = fidelity::record_command_starts(scene, starts);
+    fidelity::record_command_starts(scene, starts, o);
     const sc::SimResult r = sc::simulate_scene(scene, arch, o);
-    return nlohmann::json{{"frames", fidelity::span_cycles(fidelity::frame_spans(scene.commands), starts, r.cycles)}};
+    return nlohmann::json{{"frames", fidelity::span_cycles(spans, starts, b, r.cycles)}};
   });
   const nlohmann::json s = run_isolated([&] { return fidelity::simulate_frame_sampled(scene, arch, 0.1).to_json(); });
   ASSERT_FALSE(s.contains("error") || full.contains("error")) << s << full;
