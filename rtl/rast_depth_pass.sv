@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: Apache-2.0
 // rast_depth_pass: the depth test of model/ref/rop.h depth_test, one comparison: pass_o
 // when depth z passes func against the stored depth (func: raster.depth_func as ref
-// DepthFunc, 0 never .. 7 always). Used by the early test (rast_early_z); rast_rop's
-// depth_pass function is the same table (docs/depth-culling.md "Early Z in the RTL").
+// DepthFunc, 0 never .. 7 always). The one copy of the table: the early test (rast_early_z,
+// docs/depth-culling.md "Early Z in the RTL") and the ROP's test of each response word
+// (rast_rop) instantiate it.
 `default_nettype none
 
 module rast_depth_pass #(
