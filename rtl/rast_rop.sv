@@ -212,20 +212,6 @@ module rast_rop #(
     word_offset = ((AddrW'(pixel) << slog2) + AddrW'(s)) << 2;
   endfunction
 
-  function automatic logic depth_pass(input logic [2:0] func, input logic [DepthW-1:0] z,
-                                      input logic [DepthW-1:0] stored);
-    case (func)
-      3'd0: depth_pass = 1'b0;              // never
-      3'd1: depth_pass = z < stored;        // less
-      3'd2: depth_pass = z <= stored;       // lequal
-      3'd3: depth_pass = z == stored;       // equal
-      3'd4: depth_pass = z > stored;        // greater
-      3'd5: depth_pass = z >= stored;       // gequal
-      3'd6: depth_pass = z != stored;       // notequal
-      default: depth_pass = 1'b1;           // always
-    endcase
-  endfunction
-
   // Covered samples of a mask: a fragment's accesses when its mask is not full.
   function automatic logic [CapW:0] covered(input logic [MaxSamples-1:0] m);
     covered = '0;
@@ -293,6 +279,22 @@ module rast_rop #(
   end
 
   // ---- The response: depth test, the group's write ----
+  // Each word of the response against its access's depth: rast_depth_pass, the early
+  // test's table too (one copy). A group of a batch tested with always passes every word.
+  logic [2:0] resp_func;                  // ref DepthFunc of the group in flight
+  logic [P*MaxSamples-1:0] resp_word_pass;  // lane k word i at [k MaxSamples + i]
+  assign resp_func = q_always_q ? 3'd7 : depth_func_q;
+  for (genvar k = 0; k < P; k++) begin : g_resp_lane
+    for (genvar i = 0; i < MaxSamples; i++) begin : g_word
+      /* verilator lint_off UNUSEDSIGNAL */  // the bits above DepthW: the stored depth is the low DepthW
+      logic [31:0] word;
+      /* verilator lint_on UNUSEDSIGNAL */
+      assign word = rd_rdata_i[(k*MaxSamples + i)*32 +: 32];
+      rast_depth_pass #(.DepthW(DepthW)) u_pass (
+        .func_i(resp_func), .z_i(q_acc_q[k*AccW + AccZ +: DepthW]),
+        .stored_i(word[DepthW-1:0]), .pass_o(resp_word_pass[k*MaxSamples + i]));
+    end
+  end
   wreq_t resp_w;
   logic  resp_any;
   always_comb begin
@@ -317,8 +319,7 @@ module rast_rop #(
       // Per word into narrow variables, then one store a lane into the wide request
       // (Verilator stores into a wide vector a field at a time).
       for (int i = 0; i < MaxSamples; i++) begin
-        pass[i] = q_lanes_q[k] && LenW'(i) < len &&
-                  depth_pass(q_always_q ? 3'd7 : depth_func_q, a[AccZ +: DepthW], rd_rdata_i[(k*MaxSamples + i)*32 +: DepthW]);
+        pass[i] = q_lanes_q[k] && LenW'(i) < len && resp_word_pass[k*MaxSamples + i];
         cbe[i*4 +: 4] = pass[i] ? 4'hf : 4'h0;
         zbe[i*4 +: 4] = pass[i] && depth_write_q ? DepthBe : 4'h0;
       end

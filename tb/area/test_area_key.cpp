@@ -82,7 +82,8 @@ TEST(AreaKey, UnrelatedEditKeepsTheKeyChildEditChangesIt) {
 
 // The shipped RTL: rast_texture_cache does not reach rast_hiz.sv, so an edit there keeps
 // its key; rast_top reaches both (through rast_top_hiz and rast_texture_stage's cache),
-// and an edit to the fragment FIFO's array changes rast_top's key only.
+// and an edit to the fragment FIFO's array changes rast_top's key only. The ROP reaches
+// the depth test it instantiates (rast_depth_pass, the early test's too).
 TEST(AreaKey, ShippedRtlHizEditKeepsTheTextureCacheKey) {
   Sources s;
   for (const RtlSource& r : rtl_sources()) s.add(std::string(r.name), std::string(r.text));
@@ -90,8 +91,9 @@ TEST(AreaKey, ShippedRtlHizEditKeepsTheTextureCacheKey) {
   EXPECT_EQ(std::count(tex.begin(), tex.end(), "rast_hiz.sv"), 0);
   const std::vector<std::string> top = area_module_files("rast_top", s.list);
   for (const char* f : {"rast_top.sv", "rast_hiz.sv", "rast_texture_cache.sv", "rast_fragment_fifo_data.sv",
-                        "rast_fifo.sv", "rast_rop.sv"})
+                        "rast_fifo.sv", "rast_rop.sv", "rast_depth_pass.sv"})
     EXPECT_EQ(std::count(top.begin(), top.end(), f), 1) << f;
+  EXPECT_EQ(area_module_files("rast_rop", s.list), (std::vector<std::string>{"rast_depth_pass.sv", "rast_rop.sv"}));
   EXPECT_EQ(std::count(top.begin(), top.end(), "rast_engine2d.sv"), 0);
   const auto with_comment = [&](const std::string& file) {
     std::string text;
@@ -105,6 +107,9 @@ TEST(AreaKey, ShippedRtlHizEditKeepsTheTextureCacheKey) {
   const Sources ring = with_comment("rast_fragment_fifo_data.sv");
   EXPECT_NE(area_sources_key("rast_top", ring.list), area_sources_key("rast_top", s.list));
   EXPECT_EQ(area_sources_key("rast_interpolate", ring.list), area_sources_key("rast_interpolate", s.list));
+  const Sources test = with_comment("rast_depth_pass.sv");
+  EXPECT_NE(area_sources_key("rast_rop", test.list), area_sources_key("rast_rop", s.list));
+  EXPECT_EQ(area_sources_key("rast_fine_raster", test.list), area_sources_key("rast_fine_raster", s.list));
   // The embedded sources by default.
   EXPECT_EQ(area_sources_key("rast_top"), area_sources_key("rast_top", s.list));
 }
