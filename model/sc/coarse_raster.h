@@ -105,7 +105,7 @@ class CoarseRaster : public Stage {
     if (hiz_->table.onchip_blocks() < hiz_->table.blocks() && interlock_) {
       flush_ = std::make_unique<HizFlush>("hiz_flush", ctx_, *mem_);
       ctx_.hiz_flush = flush_.get();
-      ctx_.memory_time_order = true;
+      ctx_.memory_time_order = ctx_.wake_writers_at_free_slot = true;
     }
   }
   const HizMemoryPort* memory_port() const { return mem_.get(); }

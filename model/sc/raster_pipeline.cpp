@@ -229,7 +229,6 @@ struct Recorders {
 void configure(SimContext& ctx, const SimOptions& opts, const RasterState& arch) {
   ctx.tracing = !opts.vcd_path.empty();
   ctx.lockstep = ctx.tracing || !opts.timeline_path.empty() || opts.lockstep;
-  ctx.wake_writers_at_free_slot = ctx.lockstep;
   ctx.stall_seed = opts.stall_seed;
   ctx.stall_probability = opts.stall_probability;
   ctx.on_fragment = opts.on_fragment;
@@ -241,7 +240,10 @@ void configure(SimContext& ctx, const SimOptions& opts, const RasterState& arch)
   // Binned mode has two memory clients in different processes, the binner (parameter
   // buffer) and the ROP (tile loads and stores): their requests enter in time order
   // (docs/binning.md, "Timed model").
+  // A writer woken late (sc/link.h) would make its requests out of time order: the binner
+  // blocked on its output would issue its next bin's prefetch after SystemC time passed it.
   ctx.memory_time_order = arch.bin.mode == PipelineMode::Binned;
+  ctx.wake_writers_at_free_slot = ctx.lockstep || ctx.memory_time_order;
 }
 
 // The run ends with the last stage's last step: the latest stage time (in lock-step,
