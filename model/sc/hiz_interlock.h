@@ -58,8 +58,8 @@ class HizInterlock {
     for (uint64_t i = base_; i < base_ + q_.size(); ++i)
       if (at(i).end == kOpen) return end(at(i), t);
   }
-  // The first cycle from which fp's blocks have nothing in flight; entries that ended by
-  // `now` (coarse raster's time, which only grows) are forgotten.
+  // The first cycle from which fp's blocks have nothing in flight; entries that ended
+  // before `now` (the caller's time, which only grows) are forgotten.
   uint64_t free_at(const PixelRect& fp, uint64_t now) {
     forget(now);
     const Blocks b = blocks_of(fp);
@@ -126,9 +126,12 @@ class HizInterlock {
   static bool touches(const Entry& e, const Blocks& b) {
     return e.all || !(e.b.x1 < b.x0 || e.b.x0 > b.x1 || e.b.y1 < b.y0 || e.b.y0 > b.y1);
   }
-  // Entries that ended by `now` (coarse raster's time, which only grows) are forgotten.
+  // Entries that ended before `now` (the caller's time, which only grows) are forgotten,
+  // only from the front. One that ends at `now` is kept: early Z's batch enters the cycle
+  // after its end (free_at + 1), and whether the ROP had recorded it when the caller asks
+  // depends on which process SystemC ran first (a decoupled and a lock-step run differed).
   void forget(uint64_t now) {
-    while (!q_.empty() && q_.front().end <= now && base_ < fine_) {
+    while (!q_.empty() && q_.front().end < now && base_ < fine_) {
       q_.pop_front();
       ++base_;
     }
