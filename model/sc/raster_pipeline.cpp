@@ -308,12 +308,14 @@ void attach_memory_clients(MemorySystem& memory, RasterPipeline& top, BinnerStag
   // At equal cycles the ROP's requests enter before the texture stage's: the texture's
   // wait one delta more, after the processes SystemC time woke (which process runs first
   // otherwise differs between a decoupled and a lock-step run; the RTL cosims agree with
-  // this order: textured_mip_cosim dram 29,104 cycles against the RTL's 29,105).
+  // this order: textured_mip_cosim dram 29,104 cycles against the RTL's 29,105). Binned,
+  // the binner's enter before the ROP's tile loads and stores, as the RTL testbench makes
+  // them in a cycle (tb_binning: the binner's steps, then the ROP's bin command).
   memory.set_arrival_wait([&ctx](uint64_t cycle, MemClient c) {
     if (!ctx.memory_time_order) return;
     const uint64_t now = ctx.to_cycles(sc_core::sc_time_stamp());
     if (cycle > now) sc_core::wait(double(cycle - now) * ctx.cycle);
-    if (c == MemClient::Texture && cycle >= now) sc_core::wait(sc_core::SC_ZERO_TIME);
+    if ((c == MemClient::Texture || c == MemClient::TileStore) && cycle >= now) sc_core::wait(sc_core::SC_ZERO_TIME);
   });
 }
 
