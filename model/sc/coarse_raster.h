@@ -109,6 +109,8 @@ class CoarseRaster : public Stage {
     }
   }
   const HizMemoryPort* memory_port() const { return mem_.get(); }
+  // After the run: the Hi-Z flush engine's idle cycle (sc/hiz_flush.h), 0 without one.
+  uint64_t hiz_flush_end() const { return flush_ ? flush_->end() : 0; }
   // The Hi-Z unit's counts into ctx.render.hiz (call once, after the simulation).
   void finish_hiz() {
     if (!hiz_) return;
