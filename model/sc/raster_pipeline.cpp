@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdlib>
+#include <utility>
+#include <vector>
 
 #include <systemc>
 
@@ -327,12 +329,21 @@ void attach_memory_clients(MemorySystem& memory, RasterPipeline& top, BinnerStag
     top.texture.attach_memory(memory);
     top.coarse_raster.attach_memory(memory);
   }
-  memory.set_arrival_wait([&ctx](uint64_t cycle, MemClient c) {
+  // A process waits its rank once a cycle: its further requests of the cycle follow at
+  // once, before a higher rank's (ranked each, the ROP's second request of a cycle went
+  // after the texture stage's first).
+  using Ranked = std::vector<std::pair<const sc_core::sc_object*, uint64_t>>;  // process, cycle
+  memory.set_arrival_wait([&ctx, ranked = Ranked{}](uint64_t cycle, MemClient c) mutable {
     if (!ctx.memory_time_order) return;
     const uint64_t now = ctx.to_cycles(sc_core::sc_time_stamp());
     if (cycle > now) sc_core::wait(double(cycle - now) * ctx.cycle);
-    if (cycle >= now)
-      for (int k = equal_cycle_rank(c); k > 0; --k) sc_core::wait(sc_core::SC_ZERO_TIME);
+    if (cycle < now) return;
+    const sc_core::sc_object* p = sc_core::sc_get_current_process_handle().get_process_object();
+    auto it = std::find_if(ranked.begin(), ranked.end(), [p](const auto& r) { return r.first == p; });
+    if (it == ranked.end()) it = ranked.insert(ranked.end(), {p, cycle + 1});
+    if (it->second == cycle) return;
+    it->second = cycle;
+    for (int k = equal_cycle_rank(c); k > 0; --k) sc_core::wait(sc_core::SC_ZERO_TIME);
   });
 }
 
