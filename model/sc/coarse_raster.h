@@ -105,10 +105,12 @@ class CoarseRaster : public Stage {
     if (hiz_->table.onchip_blocks() < hiz_->table.blocks() && interlock_) {
       flush_ = std::make_unique<HizFlush>("hiz_flush", ctx_, *mem_);
       ctx_.hiz_flush = flush_.get();
-      ctx_.memory_time_order = true;
+      ctx_.memory_time_order = ctx_.wake_writers_at_free_slot = true;
     }
   }
   const HizMemoryPort* memory_port() const { return mem_.get(); }
+  // After the run: the Hi-Z flush engine's idle cycle (sc/hiz_flush.h), 0 without one.
+  uint64_t hiz_flush_end() const { return flush_ ? flush_->end() : 0; }
   // The Hi-Z unit's counts into ctx.render.hiz (call once, after the simulation).
   void finish_hiz() {
     if (!hiz_) return;

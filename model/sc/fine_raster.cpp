@@ -36,10 +36,11 @@ void FineRaster::body() {
       c.count_tests(tests, samples);
       cost = p_.fine_partial_cycles(tests, samples);
     }
+    // Hi-Z's interlock: a tile with no covered pixel ends here, at its busy's end, recorded
+    // before it (sc/hiz_interlock.h: an end is known by SystemC time end - 1).
+    if (ctx_.hiz_interlock) ctx_.hiz_interlock->fine(batch->pixels == 0, now() + cost);
     attribute_to(tile.footprint.x0, tile.footprint.y0);
     busy(cost);
-    // Hi-Z's interlock: a tile with no covered pixel ends here (sc/hiz_interlock.h).
-    if (ctx_.hiz_interlock) ctx_.hiz_interlock->fine(batch->pixels == 0, now());
     if (batch->pixels != 0) write(out_, PixelItem{nullptr, std::move(batch)});
   }
 }

@@ -48,6 +48,9 @@ class HizFlush : public sc_core::sc_module {
     q_.push_back(std::move(b));
     pushed_.notify(sc_core::SC_ZERO_TIME);
   }
+  // After the run: the cycle the engine went idle after its last bundle (0: none). The
+  // run ends no earlier (rast_top's idle_o waits for rast_hiz_spill's busy_o).
+  uint64_t end() const { return free_; }
   // Coarse raster: the first cycle >= t at which the engine is idle. Waits (SystemC time)
   // until t, when every bundle decided before t has been handed over (the stages run at
   // or ahead of SystemC time), and for the engine to take them.
@@ -76,6 +79,13 @@ class HizFlush : public sc_core::sc_module {
     const uint64_t now = ctx_.to_cycles(sc_core::sc_time_stamp());
     if (t > now) sc_core::wait(double(t - now) * ctx_.cycle);
   }
+  // Before a request at cycle s: SystemC time s, one delta after the processes it woke, so
+  // coarse raster's test reads of cycle s enter first (rast_hiz_spill's port serves the
+  // tests while they run, else the engine).
+  void after_tests(uint64_t s) {
+    wait_until(s);
+    sc_core::wait(sc_core::SC_ZERO_TIME);
+  }
   void run() {
     for (;;) {
       while (q_.empty()) sc_core::wait(pushed_);
@@ -87,10 +97,14 @@ class HizFlush : public sc_core::sc_module {
           continue;
         }
         slots_.push_back(block);
+        after_tests(s);
         s = port_.flush_read(block, s) + 1;  // applied in d, the next write at d + 1
       }
       if (b.end) {
-        for (int32_t block : slots_) port_.write_back(block, s++);
+        for (int32_t block : slots_) {
+          after_tests(s);
+          port_.write_back(block, s++);
+        }
         slots_.clear();
         ++s;  // the pop; busy_o low the cycle after
       }
@@ -99,6 +113,9 @@ class HizFlush : public sc_core::sc_module {
       else busy_.emplace_back(b.p + 1, s);
       q_.pop_front();
       done_.notify(sc_core::SC_ZERO_TIME);
+      // SystemC time follows the engine to its idle cycle, as the requests' arrival waits
+      // took it to theirs (a lock-step run ends at the latest of the stages' and this).
+      wait_until(free_);
     }
   }
   SimContext& ctx_;

@@ -58,8 +58,8 @@ class HizInterlock {
     for (uint64_t i = base_; i < base_ + q_.size(); ++i)
       if (at(i).end == kOpen) return end(at(i), t);
   }
-  // The first cycle from which fp's blocks have nothing in flight; entries that ended by
-  // `now` (coarse raster's time, which only grows) are forgotten.
+  // The first cycle from which fp's blocks have nothing in flight; entries that ended
+  // before `now` (the caller's time, which only grows) are forgotten.
   uint64_t free_at(const PixelRect& fp, uint64_t now) {
     forget(now);
     const Blocks b = blocks_of(fp);
@@ -80,20 +80,19 @@ class HizInterlock {
       if (touches(q_[i], b) && !ended_by(base_ + i, t)) return true;
     return false;
   }
-  // Whether entry i ended by cycle t. Decoupled, its end is waited for. In lock step
-  // SystemC time must not pass coarse raster's own (its next write is at t + 1 at the
-  // earliest), and an end e is recorded by SystemC time e (the ROP's at its busy's end,
-  // e - 1; fine raster's at e): not recorded when SystemC time reaches t + 1, it is later.
+  // Whether entry i ended by cycle t, decided by SystemC time t: every end e is recorded by
+  // SystemC time e - 1 (the ROP's after its busy, at e - 1; fine raster's drop before its
+  // busy), the stages being at or ahead of SystemC time, decoupled or in lock-step. Not
+  // recorded when SystemC time reaches t, it is later. Coarse raster, at or before t,
+  // waits no later than t, so the test's spilled reads at t still enter the DRAM in time
+  // order (waiting for the end itself, a decoupled run made them late and differed from a
+  // lock-step one, which waited to t + 1).
   bool ended_by(uint64_t i, uint64_t t) {
     if (i < base_) return true;  // forgotten: ended by coarse raster's time
     while (at(i).end == kOpen) {
-      if (!ctx_.lockstep) {
-        sc_core::wait(ended_);
-        continue;
-      }
       const uint64_t sc_now = ctx_.to_cycles(sc_core::sc_time_stamp());
-      if (sc_now > t) return false;
-      sc_core::wait(double(t + 1 - sc_now) * ctx_.cycle, ended_);
+      if (sc_now >= t) return false;
+      sc_core::wait(double(t - sc_now) * ctx_.cycle, ended_);
     }
     return at(i).end <= t;
   }
@@ -126,9 +125,12 @@ class HizInterlock {
   static bool touches(const Entry& e, const Blocks& b) {
     return e.all || !(e.b.x1 < b.x0 || e.b.x0 > b.x1 || e.b.y1 < b.y0 || e.b.y0 > b.y1);
   }
-  // Entries that ended by `now` (coarse raster's time, which only grows) are forgotten.
+  // Entries that ended before `now` (the caller's time, which only grows) are forgotten,
+  // only from the front. One that ends at `now` is kept: early Z's batch enters the cycle
+  // after its end (free_at + 1), and whether the ROP had recorded it when the caller asks
+  // depends on which process SystemC ran first (a decoupled and a lock-step run differed).
   void forget(uint64_t now) {
-    while (!q_.empty() && q_.front().end <= now && base_ < fine_) {
+    while (!q_.empty() && q_.front().end < now && base_ < fine_) {
       q_.pop_front();
       ++base_;
     }

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdlib>
+#include <utility>
+#include <vector>
 
 #include <systemc>
 
@@ -229,7 +231,6 @@ struct Recorders {
 void configure(SimContext& ctx, const SimOptions& opts, const RasterState& arch) {
   ctx.tracing = !opts.vcd_path.empty();
   ctx.lockstep = ctx.tracing || !opts.timeline_path.empty() || opts.lockstep;
-  ctx.wake_writers_at_free_slot = ctx.lockstep;
   ctx.stall_seed = opts.stall_seed;
   ctx.stall_probability = opts.stall_probability;
   ctx.on_fragment = opts.on_fragment;
@@ -242,13 +243,17 @@ void configure(SimContext& ctx, const SimOptions& opts, const RasterState& arch)
   // Binned mode has two memory clients in different processes, the binner (parameter
   // buffer) and the ROP (tile loads and stores): their requests enter in time order
   // (docs/binning.md, "Timed model").
+  // A writer woken late (sc/link.h) would make its requests out of time order: the binner
+  // blocked on its output would issue its next bin's prefetch after SystemC time passed it.
   ctx.memory_time_order = arch.bin.mode == PipelineMode::Binned;
+  ctx.wake_writers_at_free_slot = ctx.lockstep || ctx.memory_time_order;
 }
 
-// The run ends with the last stage's last step: the latest stage time (in lock-step,
-// where SystemC time followed the stages, also SystemC's; sc/stage.h).
+// The run ends with the last stage's last step, or the Hi-Z flush engine's idle cycle if
+// later: the latest of their times (in lock-step, where SystemC time followed them, also
+// SystemC's; sc/stage.h).
 uint64_t end_cycle(RasterPipeline& top, const SimContext& ctx) {
-  uint64_t end = 0;
+  uint64_t end = top.coarse_raster.hiz_flush_end();
   for (Stage* s : top.stages()) end = std::max(end, s->now());
   if (ctx.lockstep && end != ctx.to_cycles(sc_core::sc_time_stamp()))
     throw ModelError("simulate: the stages end at cycle " + std::to_string(end) + " but SystemC at cycle " +
@@ -288,6 +293,27 @@ void collect_binner(BinnerStage& b, Link<SetupItem>& fifo, SimResult& r) {
                      " transactions left behind (pipeline deadlock)");
 }
 
+// Requests of one cycle enter the DRAM in this order, each rank one SystemC delta after
+// the one before, from the processes SystemC time woke (which process runs first
+// otherwise differs between a decoupled and a lock-step run): 0 the Hi-Z tests' reads and
+// the binner's, 1 the Hi-Z flush engine's (its own delta, sc/hiz_flush.h), 2 the ROP's
+// (tile loads and stores binned), 3 the texture stage's. The RTL testbench's order within
+// a cycle: rast_hiz_spill's port serves the tests before the engine, the testbench the
+// Hi-Z port and the binner before the ROP; the texture after the ROP as the cosims agree
+// (textured_mip_cosim dram 29,104 cycles against the RTL's 29,105).
+int equal_cycle_rank(MemClient c) {
+  switch (c) {
+    case MemClient::Texture: return 3;
+    case MemClient::RopColor:
+    case MemClient::RopDepth:
+    case MemClient::TileStore: return 2;
+    case MemClient::Hiz:
+    case MemClient::Binning:
+    case MemClient::Scanout: return 0;
+  }
+  return 0;
+}
+
 // The clients of the shared memory system (memory.model = "dram"), after the scan-out's
 // fetch (its requests at cycle 0 go first): in binned mode the binner's binning and
 // tile_store clients (no ROP, 2D, texture or Hi-Z client), else the ROP (its first request
@@ -304,15 +330,21 @@ void attach_memory_clients(MemorySystem& memory, RasterPipeline& top, BinnerStag
     top.texture.attach_memory(memory);
     top.coarse_raster.attach_memory(memory);
   }
-  // At equal cycles the ROP's requests enter before the texture stage's: the texture's
-  // wait one delta more, after the processes SystemC time woke (which process runs first
-  // otherwise differs between a decoupled and a lock-step run; the RTL cosims agree with
-  // this order: textured_mip_cosim dram 29,104 cycles against the RTL's 29,105).
-  memory.set_arrival_wait([&ctx](uint64_t cycle, MemClient c) {
+  // A process waits its rank once a cycle: its further requests of the cycle follow at
+  // once, before a higher rank's (ranked each, the ROP's second request of a cycle went
+  // after the texture stage's first).
+  using Ranked = std::vector<std::pair<const sc_core::sc_object*, uint64_t>>;  // process, cycle
+  memory.set_arrival_wait([&ctx, ranked = Ranked{}](uint64_t cycle, MemClient c) mutable {
     if (!ctx.memory_time_order) return;
     const uint64_t now = ctx.to_cycles(sc_core::sc_time_stamp());
     if (cycle > now) sc_core::wait(double(cycle - now) * ctx.cycle);
-    if (c == MemClient::Texture && cycle >= now) sc_core::wait(sc_core::SC_ZERO_TIME);
+    if (cycle < now) return;
+    const sc_core::sc_object* p = sc_core::sc_get_current_process_handle().get_process_object();
+    auto it = std::find_if(ranked.begin(), ranked.end(), [p](const auto& r) { return r.first == p; });
+    if (it == ranked.end()) it = ranked.insert(ranked.end(), {p, cycle + 1});
+    if (it->second == cycle) return;
+    it->second = cycle;
+    for (int k = equal_cycle_rank(c); k > 0; --k) sc_core::wait(sc_core::SC_ZERO_TIME);
   });
 }
 

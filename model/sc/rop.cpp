@@ -198,11 +198,13 @@ void Rop::body() {
     const FragmentItem in = read(in_);
     if (in.state) {
       // Hi-Z's interlock (sc/hiz_interlock.h): a state item ends as the ROP takes it, in its
-      // first cycle (a depth clear sets the table then; its writes follow, in order).
+      // first cycle (a depth clear sets the table then; its writes follow, in order),
+      // recorded before its busy: in lock-step the busy waits for SystemC time to pass, and
+      // coarse raster, woken by a later record, would go on behind SystemC time.
       const uint64_t taken = now() + 1;
       if (ctx_.on_rop_state && !bins_ && !ctx_.is_end_of_frame(in.state)) ctx_.on_rop_state(*in.state, now());
-      command(in.state);
       if (ctx_.hiz_interlock) ctx_.hiz_interlock->rop_end(taken);
+      command(in.state);
       // Early Z's (sc/interpolate.h): the early test reads the depth surface, so a depth
       // clear ends at its last write (the end of its busy), anything else at its take.
       if (ctx_.early_interlock)

@@ -43,13 +43,15 @@ struct SimContext {
   // (the ROP, the texture stage, the 2D engine, the Hi-Z table) make each DRAM request
   // only once SystemC time has reached its cycle (MemorySystem::set_arrival_wait), so
   // their requests enter the DRAM in time order, as a memory controller sees them
-  // (docs/memory.md, "Arbitration"). Set by command fetch at the first textured draw:
-  // an untextured run has one such client at a time and runs ahead as before.
+  // (docs/memory.md, "Arbitration"). Set by command fetch at the first textured draw, in
+  // binned mode (the binner and the ROP) and by coarse raster with a spilled Hi-Z table's
+  // flush engine: other runs have one such client at a time and run ahead as before.
   bool memory_time_order = false;
   // Links wake a writer waiting on a full FIFO at the first free slot, not once it is
-  // empty (sc/link.h): in lock-step, and with memory_time_order in an immediate-mode run,
-  // where a writer woken late would make its memory requests after SystemC time passed
-  // their cycles, out of time order (a decoupled run then disagreed with a lock-step one).
+  // empty (sc/link.h): in lock-step, and wherever memory_time_order is set (textured,
+  // binned, a spilled Hi-Z table's flush), where a writer woken late would make its memory
+  // requests after SystemC time passed their cycles, out of time order (a decoupled run
+  // then disagreed with a lock-step one).
   bool wake_writers_at_free_slot = false;
 
   // Random stall injection (tests): before each FIFO write, with this probability, the
