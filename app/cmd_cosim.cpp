@@ -136,7 +136,7 @@ void print_rtl_run(const rtlsim::CosimResult& r, const rtlsim::CosimOptions& co,
   if (r.hiz) out << ", Hi-Z: " << r.tiles_culled_hiz << " tiles culled, " << r.tiles_accepted_hiz << " accepted";
   if (r.hiz_lagged)
     out << " (lagged: " << r.hiz_lagged_tiles_drawn << " tiles the reference culled drawn, "
-        << r.hiz_lagged_fragments_drawn << " fragments, none written)";
+        << r.hiz_lagged_fragments_drawn << " fragments)";
   if (r.depth_early) out << ", early Z: " << r.fragments_culled_early << " fragments culled";
   if (r.hiz && r.hiz_dram_bytes_read + r.hiz_dram_bytes_written > 0)
     out << ", spilled entries " << r.hiz_dram_bytes_read << " bytes read, " << r.hiz_dram_bytes_written << " written";

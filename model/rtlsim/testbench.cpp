@@ -542,7 +542,7 @@ void Testbench::depth_write_check(int x, int y, uint32_t v, uint64_t t) {
   mismatch("cycle " + std::to_string(t) + ": the ROP wrote depth " + std::to_string(v & mask) + " at (" +
            std::to_string(x) + ", " + std::to_string(y) + "), the reference's next write there is " +
            (q.empty() ? std::string("none") : std::to_string(q.front())) +
-           (setup_.hiz_lagged ? " (a fragment of a tile the reference's Hi-Z culled passed?)" : ""));
+           (setup_.hiz_lagged ? " (lagged: a tile drawn or accepted against a stale bound?)" : ""));
 }
 // A clear's fill write: word 0's value and enables over the burst. The clear's writes
 // cover its surface in address order; its last one applies the clear to the whole
