@@ -134,6 +134,9 @@ void print_rtl_run(const rtlsim::CosimResult& r, const rtlsim::CosimOptions& co,
             << r.mismatches << " mismatches";
   if (r.commands_2d) out << ", " << r.commands_2d << " 2D commands (" << r.pixels_2d << " pixels)";
   if (r.hiz) out << ", Hi-Z: " << r.tiles_culled_hiz << " tiles culled, " << r.tiles_accepted_hiz << " accepted";
+  if (r.hiz_lagged)
+    out << " (lagged: " << r.hiz_lagged_tiles_drawn << " tiles the reference culled drawn, "
+        << r.hiz_lagged_fragments_drawn << " fragments)";
   if (r.depth_early) out << ", early Z: " << r.fragments_culled_early << " fragments culled";
   if (r.hiz && r.hiz_dram_bytes_read + r.hiz_dram_bytes_written > 0)
     out << ", spilled entries " << r.hiz_dram_bytes_read << " bytes read, " << r.hiz_dram_bytes_written << " written";
@@ -179,6 +182,14 @@ void compare_with_model(const Scene& scene, const ArchParams& arch, const CosimC
   }
   out << "cosim: cycles_rtl " << r.cycles_rtl << ", cycles_model " << m.cycles << ", error "
             << std::round(err * 10000) / 100 << " %\n";
+  if (r.hiz) {  // the SystemC model's Hi-Z decisions beside the RTL's (lagged: each its own timing's)
+    const uint64_t culled = m.render.hiz.tiles_culled, accepted = m.render.hiz.tiles_accepted;
+    j["tiles_culled_hiz_model"] = culled;
+    j["tiles_accepted_hiz_model"] = accepted;
+    out << "cosim: Hi-Z tiles culled / accepted: RTL " << r.tiles_culled_hiz << " / " << r.tiles_accepted_hiz
+        << ", SystemC " << culled << " / " << accepted
+        << (culled == r.tiles_culled_hiz && accepted == r.tiles_accepted_hiz ? " (equal)" : " (differ)") << "\n";
+  }
   report_stages(rtlsim::compare_stages(rtlsim::stage_records(m.stages), r.stages), c.trace_diff_dir, j, out);
   if (!c.run.mem_trace_path.empty()) report_mem_traces(c.trace_diff_dir, j, out);
 }

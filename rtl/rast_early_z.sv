@@ -83,14 +83,14 @@ module rast_early_z #(
   logic [4*PixelW-1:0] fp;  // {y1, x1, y0, x0}, half-open
   assign fp = {ty + size, tx + size, ty, tx};
   logic wait_q, room;
-  logic [2:0] unused_inflight;  // the interlock's Hi-Z accepts and emptiness: not used here
+  logic [3:0] unused_inflight;  // the interlock's Hi-Z accepts, emptiness and markers: not used here
   wire unused = ^unused_inflight;
   assign q_wait_o = on && q_valid_i && ((!q_marker_i && wait_q) || !room);
   rast_hiz_inflight #(.PixelW(PixelW), .BlockLog2(0), .Depth(InflightDepth), .Queries(1)) u_inflight (
     .clk_i, .rst_ni, .push_i(on && q_take_i), .push_all_i(q_marker_i), .push_fp_i(fp), .push_accept_i(1'b0),
     .room_o(room), .fine_valid_i(1'b0), .fine_drop_i(1'b0), .rop_end_i(on && rop_end_i),
     .rop_marker_i(on && rop_marker_i), .rop_accept_o(unused_inflight[0]), .rop_accept_next_o(unused_inflight[1]),
-    .q_fp_i(fp), .wait_o(wait_q), .empty_o(unused_inflight[2]));
+    .q_fp_i(fp), .wait_o(wait_q), .marker_o(unused_inflight[3]), .empty_o(unused_inflight[2]));
 endmodule
 
 `default_nettype wire

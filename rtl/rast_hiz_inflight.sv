@@ -14,7 +14,9 @@
 //   marker taken): the ROP ends the oldest entry not yet ended, since it takes batches in
 //   order and fine raster drops a tile before the ROP sees any later one.
 // - Queries (combinational): wait_o[n] when an entry not ended overlaps query n's blocks.
-//   An entry pushed or ended in a cycle counts from the next.
+//   An entry pushed or ended in a cycle counts from the next. marker_o: a marker's entry
+//   is not ended (depth.hiz_sync = lagged holds the walk only for it: a depth clear moves
+//   the bounds the unsafe way; docs/depth-culling.md "Lagged").
 // - rop_accept_o: the Hi-Z accept of the oldest entry not ended (the batch whose group is
 //   at the ROP's response: one group in flight, never two batches' in one group);
 //   rop_accept_next_o the next one's (a batch whose first group the ROP issues in the
@@ -44,6 +46,7 @@ module rast_hiz_inflight #(
   output      logic                        rop_accept_next_o, // the next entry not ended's accept
   input  wire logic [Queries*4*PixelW-1:0] q_fp_i,        // query n's footprint at [n*4*PixelW +: 4*PixelW]
   output      logic [Queries-1:0]          wait_o,        // query n's blocks have an entry not ended
+  output      logic                        marker_o,      // a marker's entry is not ended
   output      logic                        empty_o        // no entry
 );
   localparam int PtrW = $clog2(Depth);      // derived
@@ -112,6 +115,12 @@ module rast_hiz_inflight #(
                            blk_q[i][3*BlkW +: BlkW] < q[BlkW +: BlkW] || blk_q[i][BlkW +: BlkW] > q[3*BlkW +: BlkW])))
           wait_o[n] = 1'b1;
     end
+  end
+
+  always_comb begin
+    marker_o = 1'b0;
+    for (int i = 0; i < Depth; i++)
+      if (live[i] && !ended_q[i] && all_q[i]) marker_o = 1'b1;
   end
 
   logic [PtrW-1:0] tail;

@@ -933,7 +933,8 @@ module rast_top #(
       .CoordW(CoordW), .CoordFrac(CoordFrac), .CoefW(CoefW), .EdgeW(EdgeW), .AreaW(AreaW), .DepthW(DepthW),
       .PixelW(PixelW), .BlockLog2(HizBlockLog2), .MinMax(HizMode == 2 ? 1 : 0), .Blocks(HizBlocks),
       .TileLog2Max(TileLog2Max), .WriteLanes(RopPixelsPerCycle), .Lanes(KLanes), .SampleLog2W(SampleLog2W),
-      .InflightDepth(InflightDepth), .SpillBlocks(HizSpillBlocks), .EntryBytesLog2(HizEntryBytesLog2)
+      .InflightDepth(InflightDepth), .SpillBlocks(HizSpillBlocks), .EntryBytesLog2(HizEntryBytesLog2),
+      .Lagged(HizLagged)
     ) u_hiz (
       .clk_i, .rst_ni, .fb_width_i, .fb_height_i, .depth_func_i, .samples_log2_i(samples_log2_q),
       .tri_a_i(c_in.edges.a), .tri_b_i(c_in.edges.b), .tri_c_i(c_in.edges.c), .tri_area2_i(c_in.area2),

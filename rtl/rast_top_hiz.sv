@@ -9,6 +9,13 @@
 //   the ROP) touches those blocks, so the table may still change under the test; coarse
 //   raster then holds that lane (rast_coarse_raster). So every test sees exactly the
 //   writes of every earlier tile, as HizTracker's zero-lag table (model/ref/hiz.h).
+// - Lagged (depth.hiz_sync = lagged, docs/depth-culling.md "Lagged"): no hold for blocks.
+//   Lane j is tested against the table as the ROP has written it by this cycle (the same
+//   table, updated as the ROP writes); its cull stands (a stale bound only culls less),
+//   its accept only when no entry in flight touches its blocks (the interlock's wait,
+//   asked without waiting: a stale zmin would accept over nearer depths); every lane
+//   waits only while a marker is in flight (a depth clear moves bounds the unsafe way).
+//   So the decisions are a subset of HizTracker's, as SystemC's hiz_lagged.
 // - The table applies only where the reference's would (hiz_applies): one sample and a
 //   depth function the mode tests (less, lequal; minmax also greater, gequal). Otherwise
 //   every answer is low and nothing waits: the run is the Hi-Z-off one.
@@ -39,6 +46,7 @@ module rast_top_hiz #(
   parameter int Lanes         = 1,    // walk lanes (coarse.tiles_per_cycle)
   parameter int SampleLog2W   = 3,    // samples_log2_i bits
   parameter int InflightDepth = 64,   // interlock entries (a power of two)
+  parameter int Lagged        = 0,    // depth.hiz_sync = lagged (no spilled entries: cosim refuses both)
   parameter int SpillBlocks   = 0,    // the display's blocks past Blocks (0: none, no spill unit)
   parameter int EntryBytesLog2 = 4,   // log2 of an entry's bytes (ref hiz_entry_bytes)
   parameter int AddrW         = 40    // byte address bits of the spilled entries
@@ -126,10 +134,12 @@ module rast_top_hiz #(
       .bound_min_i(t_min[j*DepthW +: DepthW]), .bound_max_i(t_max[j*DepthW +: DepthW]), .handled_o(handled_j),
       .cull_o(cull), .accept_o(accept));
     assign lane_cull_o[j] = on && handled_j && cull;
-    assign lane_accept_o[j] = on && handled_j && accept;
+    // Lagged: an accept against blocks a tile in flight still writes is not made.
+    assign lane_accept_o[j] = on && handled_j && accept && !(Lagged != 0 && wait_q[j]);
   end
 
   logic [Lanes-1:0] wait_q;
+  logic marker_q;  // a marker in flight (lagged: the walk's only hold)
   /* verilator lint_off UNUSEDSIGNAL */
   logic empty;
   /* verilator lint_on UNUSEDSIGNAL */
@@ -137,7 +147,7 @@ module rast_top_hiz #(
     .clk_i, .rst_ni, .push_i(on && push_i), .push_all_i(push_marker_i), .push_fp_i, .push_accept_i, .room_o,
     .fine_valid_i(on && fine_valid_i), .fine_drop_i, .rop_end_i(on && rop_end_i), .rop_marker_i(on && rop_marker_i), .rop_accept_o(rop_always_o),
     .rop_accept_next_o(rop_always_next_o),
-    .q_fp_i(lane_fp_i), .wait_o(wait_q), .empty_o(empty));
+    .q_fp_i(lane_fp_i), .wait_o(wait_q), .marker_o(marker_q), .empty_o(empty));
   // ---- The spilled entries ----
   logic [Lanes-1:0] spill_wait;  // lane j waits for its spilled entries
   if (SpillBlocks > 0) begin : g_spill
@@ -181,7 +191,7 @@ module rast_top_hiz #(
     assign {mem_req_valid_o, mem_req_write_o, mem_req_flush_o, mem_req_addr_o, mem_req_data_o, error_o} = '0;
     wire unused_spill = ^{lane_keep_i, culled_i, base_i, mem_req_ready_i, mem_rsp_valid_i, mem_rsp_data_i};
   end
-  assign lane_wait_o = on ? wait_q | spill_wait : '0;
+  assign lane_wait_o = !on ? '0 : Lagged != 0 ? {Lanes{marker_q}} | spill_wait : wait_q | spill_wait;
 endmodule
 
 `default_nettype wire

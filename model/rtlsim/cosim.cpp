@@ -119,6 +119,10 @@ nlohmann::json CosimResult::to_json(const CosimOptions& opts) const {
     j["tiles_accepted_hiz"] = tiles_accepted_hiz;
     j["hiz_dram_bytes_read"] = hiz_dram_bytes_read;
     j["hiz_dram_bytes_written"] = hiz_dram_bytes_written;
+    if (hiz_lagged) {
+      j["hiz_lagged_tiles_drawn"] = hiz_lagged_tiles_drawn;
+      j["hiz_lagged_fragments_drawn"] = hiz_lagged_fragments_drawn;
+    }
   }
   if (depth_early) j["fragments_culled_early"] = fragments_culled_early;  // render --stats' key
   if (memory.enabled) {  // render's memory keys, then the DRAM's (simulate --stats' names)

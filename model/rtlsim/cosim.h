@@ -126,6 +126,10 @@ struct CosimResult {
   // tiles_culled_hiz, tiles_accepted_hiz; a difference from the reference's is a mismatch).
   bool hiz = false;
   uint64_t tiles_culled_hiz = 0, tiles_accepted_hiz = 0;
+  // depth.hiz_sync = lagged: the tiles the reference culled that the RTL drew (its table
+  // lagging the ROP) and their fragments (each checked to write no depth).
+  bool hiz_lagged = false;
+  uint64_t hiz_lagged_tiles_drawn = 0, hiz_lagged_fragments_drawn = 0;
   // Its spilled entries' bytes through the hiz port (render's hiz_dram_bytes_read,
   // hiz_dram_bytes_written; tb_hiz.h: unlike the reference's, a mismatch).
   uint64_t hiz_dram_bytes_read = 0, hiz_dram_bytes_written = 0;
@@ -160,7 +164,8 @@ NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(CosimResult, rtl_config, rtl_mod
                                                 mismatches, first_mismatch, triangles, markers, commands_2d, pixels_2d,
                                                 crc_rtl, crc_ref, samples, rop_accesses, resolve_cycles, helper_pixels,
                                                 texel_fetches, texture_cache_hits, texture_cache_misses, hiz,
-                                                tiles_culled_hiz, tiles_accepted_hiz, hiz_dram_bytes_read,
+                                                tiles_culled_hiz, tiles_accepted_hiz, hiz_lagged, hiz_lagged_tiles_drawn,
+                                                hiz_lagged_fragments_drawn, hiz_dram_bytes_read,
                                                 hiz_dram_bytes_written, depth_early, fragments_culled_early, memory, dram,
                                                 wall_seconds, stages, command_starts, command_mismatches)
 

@@ -4,6 +4,7 @@
 // (rtl_runner_main.cpp, its own process).
 #include "rtlsim/cosim_setup.h"
 
+#include <algorithm>
 #include <bit>
 #include <charconv>
 #include <memory>
@@ -51,6 +52,7 @@ class StreamBuilder {
     state_.tile_size = tile_size;
     if (hiz_applies(state_)) {
       hiz_.emplace(state_);
+      s.hiz_lagged = state_.hiz_sync == HizSync::Lagged;
       // Its spilled entries' accesses, in order (tb_hiz.h checks the RTL's against them).
       hiz_->table.on_access = [this](uint64_t address, uint64_t, bool write) { hiz_access(address, write); };
     }
@@ -119,19 +121,37 @@ class StreamBuilder {
     if (hiz_read_) setup_.hiz_test_reads.push_back(*hiz_read_);
     hiz_read_ = address;
   }
-  // traverse_triangle's tile filter: the tracker's test, then the drawn tile's writes.
+  // depth.hiz_sync = lagged: the culled tile being walked (its fragments expected, flagged:
+  // Expected::hiz_tile), -1 none; the culled tiles so far.
+  int64_t culled_tile_ = -1;
+  int64_t culled_tiles_ = 0;
+  size_t culled_first_ = 0;  // its first expected fragment
+  std::vector<HizWrite> writes_;  // a drawn tile's depth writes
+  // traverse_triangle's tile filter: the tracker's test, then the drawn tile's writes (the
+  // ROP's, each pixel's checked in order by the testbench). Lagged, a culled tile is
+  // walked too, its fragments flagged as ones the RTL may draw.
   struct HizWalk {
-    HizTracker* h;
+    StreamBuilder* b;
     const SetupTriangle& t;
     bool operator()(const PixelRect& fp, TileClass cls) {
-      if (!h) return true;
-      if (h->test(t, fp, cls) == HizDecision::Culled) return false;
-      h->apply(t, fp, cls);
+      if (!b->hiz_) return true;
+      if (b->hiz_->test(t, fp, cls) == HizDecision::Culled) {
+        if (!b->setup_.hiz_lagged) return false;
+        b->culled_tile_ = b->culled_tiles_++;
+        b->culled_first_ = b->setup_.expected.size();
+        return true;
+      }
+      b->writes_.clear();
+      b->hiz_->apply(t, fp, cls, &b->writes_);
+      for (const HizWrite& w : b->writes_) b->setup_.depth_writes.push_back({w.x, w.y, w.z});
       return true;
     }
-    void done() {}
+    void done() {
+      if (b->culled_tile_ >= 0 && b->setup_.expected.size() == b->culled_first_) ++b->setup_.hiz_culled_empty;
+      b->culled_tile_ = -1;
+    }
   };
-  HizWalk hiz_walk(const SetupTriangle& t) { return HizWalk{hiz_ ? &*hiz_ : nullptr, t}; }
+  HizWalk hiz_walk(const SetupTriangle& t) { return HizWalk{this, t}; }
   std::unique_ptr<BinProgram> bins_;  // pipeline.mode = binned: the binner's program (tb_binning.h)
 };
 
@@ -301,7 +321,8 @@ void StreamBuilder::triangle(const Command& cmd, const CmdPrimitives& prims, siz
   const int F = state_.coord_format.frac_bits;
   if (!prims.texture.enabled()) {
     traverse_triangle(t, tile_size_, F, counters_, [&](int px, int py, uint32_t m) {
-      shade_pixel(t, px, py, m, F, [&](const Fragment& f) { setup_.expected.push_back(Expected{f, it.tri}); });
+      shade_pixel(t, px, py, m, F,
+                  [&](const Fragment& f) { setup_.expected.push_back(Expected{f, it.tri, false, culled_tile_}); });
     }, hiz_walk(t));
     return;
   }
@@ -313,7 +334,7 @@ void StreamBuilder::triangle(const Command& cmd, const CmdPrimitives& prims, siz
     quads_.add_covered(1);
     const QuadDerivatives& d = quads_.derivatives(t, px, py, F);
     shade_pixel(t, px, py, m, F, [&](const Fragment& f) {
-      setup_.expected.push_back(Expected{tex_->shade(f, d, prims.texture, tex_frac), it.tri});
+      setup_.expected.push_back(Expected{tex_->shade(f, d, prims.texture, tex_frac), it.tri, false, culled_tile_});
     });
   }, hiz_walk(t));
   setup_.helper_pixels += quads_.helper_pixels();
@@ -411,11 +432,17 @@ RtlParams cosim_wanted_params(const ArchParams& arch, const CosimOptions& opts) 
                         " Hi-Z blocks, and the RTL keeps at least one entry on chip: co-simulate with "
                         "depth.hiz_bytes >= " + std::to_string(hiz_entry_bytes(st.hiz_mode, st.hiz_block, st.depth_bits)) +
                         " (render and simulate spill the whole table; docs/depth-culling.md)");
+    // depth.hiz_sync = lagged (rast_top_hiz's Lagged) is built for the table on chip only:
+    // rast_hiz_spill reads memory as its engine has written it back, its reads waiting
+    // under the interlock, while the SystemC rule tests what the ROP has written.
+    if (st.hiz_sync == HizSync::Lagged && onchip < blocks)
+      throw ConfigError(cfg.origin("depth.hiz_sync") + ": depth.hiz_sync = lagged with spilled Hi-Z entries (" +
+                        cfg.origin("depth.hiz_bytes") + ": depth.hiz_bytes = " + std::to_string(st.hiz_bytes) +
+                        " holds " + std::to_string(onchip) + " of the display's " + std::to_string(blocks) +
+                        " blocks) has no RTL yet (rast_hiz_spill's reads wait under the interlock): co-simulate "
+                        "with the table on chip or depth.hiz_sync = interlock (simulate runs both; "
+                        "docs/depth-culling.md)");
   }
-  if (hiz && st.hiz_sync == HizSync::Lagged)
-    throw ConfigError(cfg.origin("depth.hiz_sync") + ": depth.hiz_sync = lagged has no RTL yet (rast_top's walk "
-                      "holds a tile under the interlock): co-simulate with depth.hiz_sync = interlock (simulate "
-                      "runs the lagged table; docs/depth-culling.md)");
   if (st.depth_early && (hiz || st.bin.mode == PipelineMode::Binned))
     throw ConfigError(cfg.origin("depth.early") + ": depth.early = true co-simulates without " +
                       (hiz ? "an applied depth.hiz (the RTL's early test does not take Hi-Z's accepts yet)"
@@ -498,7 +525,9 @@ void cosim_setup(const Scene& scene, const ArchParams& arch, const CosimOptions&
   s.texture = s.arch.texture;
 
   s.scanout = scanout_params_if_display(arch);
-  r.fragments_expected = s.expected.size();
+  // Lagged: the reference's own fragments (the culled tiles' the RTL may draw are not).
+  r.fragments_expected = uint64_t(std::count_if(s.expected.begin(), s.expected.end(),
+                                                [](const Expected& e) { return e.hiz_tile < 0; }));
   for (const TbItem& it : s.items)
     (it.kind == TbItem::Marker ? r.markers : r.triangles) += it.kind == TbItem::Marker || it.kind == TbItem::Triangle;
   r.commands_2d = s.work2d.size();

@@ -92,6 +92,7 @@ constexpr ParamField<RtlParams> kFields[] = {
     {"HizBlocks", &RtlParams::hiz_blocks, "Hi-Z entries on chip: depth.hiz_bytes / entry bytes, at most the display's"},
     {"HizSpillBlocks", &RtlParams::hiz_spill_blocks, "the display's Hi-Z blocks past HizBlocks, in memory (client hiz)"},
     {"HizEntryBytesLog2", &RtlParams::hiz_entry_bytes_log2, "log2 of a Hi-Z entry's bytes (hiz_entry_bytes)"},
+    {"HizLagged", &RtlParams::hiz_lagged, "depth.hiz_sync: 0 interlock, 1 lagged (rast_top_hiz's walk holds only for a marker)"},
     {"DepthEarly", &RtlParams::depth_early, "depth.early: 1 builds the early depth test (rtl/rast_early_z.sv)"},
     {"TileBufferSamples", &RtlParams::tile_buffer_samples,
      "pipeline.mode = binned: bin.tile_buffer_bytes / (4 + depth bytes) samples; 0: immediate (no tile buffer)"},
@@ -366,6 +367,7 @@ static void set_hiz_params(const RasterState& st, RtlParams& p) {
                            ((st.fb_height + st.hiz_block - 1) / st.hiz_block);
     p.hiz_spill_blocks = int(blocks - hiz_blocks);
     p.hiz_entry_bytes_log2 = std::countr_zero(unsigned(hiz_entry_bytes(st.hiz_mode, st.hiz_block, st.depth_bits)));
+    p.hiz_lagged = st.hiz_sync == HizSync::Lagged ? 1 : 0;
   }
 }
 
@@ -461,6 +463,7 @@ void rtl_params_without_hiz(RtlParams& p) {
   p.hiz_blocks = 1;
   p.hiz_spill_blocks = 0;
   p.hiz_entry_bytes_log2 = 3;
+  p.hiz_lagged = 0;
 }
 
 std::string rtl_params_verilog(const RtlParams& p, const std::string& source) {

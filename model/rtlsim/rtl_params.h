@@ -78,6 +78,8 @@ struct RtlParams {
   // The display's blocks past those (rtl/rast_hiz_spill.sv, in memory: 0 none, no spill
   // unit built) and log2 of an entry's bytes (hiz_entry_bytes).
   int hiz_spill_blocks = 0, hiz_entry_bytes_log2 = 0;
+  // depth.hiz_sync = lagged: 1 (rast_top_hiz's Lagged; 0 the interlock, and without a table).
+  int hiz_lagged = 0;
   // depth.early: 1 builds rtl/rast_early_z.sv in rast_top (0: none).
   int depth_early = 0;
   // pipeline.mode = binned (rtl/rast_tile_buffer.sv): the tile buffer's samples (0: no

@@ -148,6 +148,11 @@ class Testbench {
     }
     for (size_t i = 0; i < setup.items.size(); ++i)
       if (!setup.items[i].from_front_end && !setup.items[i].fed) fetched_.push_back(i);
+    if (setup.hiz && !setup.binned) {  // each pixel's expected depth writes, in order
+      depth_writes_.resize(size_t(fb_.width) * size_t(fb_.height));
+      for (const TbDepthWrite& w : setup.depth_writes)
+        depth_writes_[size_t(w.y) * size_t(fb_.width) + size_t(w.x)].push_back(w.z);
+    }
     if (setup.binned)
       binner_ = std::make_unique<TbBinner>(
           setup, dram_ ? &dram_->system() : nullptr, [this](const std::string& m) { mismatch(m); },
@@ -203,6 +208,9 @@ class Testbench {
   // Checks.
   void mismatch(const std::string& what);
   void compare(const Fragment& f, bool culled);
+  void skip_hiz_culled(const Fragment& f);
+  void depth_write_check(int x, int y, uint32_t v, uint64_t t);
+  void hiz_count_check();
   void early_serve();  // depth.early: the early test's depth read, answered in its cycle
   bool done() const { return resolve_left_ == 0 && done_but_rop(); }
   bool done_but_rop() const;
@@ -227,6 +235,10 @@ class Testbench {
   uint64_t resolve_left_ = 0;             // the resolve pass's ROP cycles left
   uint64_t last_busy_ = 0;                // last cycle any stage worked
   size_t next_expected_ = 0;
+  // Hi-Z (immediate mode): each pixel's depth writes the reference's ROP makes, in order,
+  // popped as the RTL's ROP makes them (index y W + x; empty: not checked).
+  std::vector<std::deque<uint32_t>> depth_writes_;
+  int64_t hiz_tile_drawn_ = -1;           // lagged: the reference-culled tile the RTL is drawing
   // The memory behind the ROP's port: the framebuffer (docs/rtl.md "ROP" for the layout).
   Framebuffer fb_;                        // the memory: the ROP's writes and clears, 2D writes
   const uint32_t depth_base_;             // the depth surface's byte address (colour at 0)
@@ -322,11 +334,9 @@ void Testbench::run() {
   if (result_.helper_pixels != setup_.helper_pixels)
     mismatch("helper pixels: the RTL dropped " + std::to_string(result_.helper_pixels) + ", the reference counts " +
              std::to_string(setup_.helper_pixels));
-  if (result_.tiles_culled_hiz != setup_.tiles_culled_hiz || result_.tiles_accepted_hiz != setup_.tiles_accepted_hiz)
-    mismatch("Hi-Z: the RTL culled " + std::to_string(result_.tiles_culled_hiz) + " tiles and accepted " +
-             std::to_string(result_.tiles_accepted_hiz) + ", the reference " + std::to_string(setup_.tiles_culled_hiz) +
-             " and " + std::to_string(setup_.tiles_accepted_hiz));
+  hiz_count_check();
   result_.hiz = setup_.hiz;
+  result_.hiz_lagged = setup_.hiz_lagged;
   result_.depth_early = setup_.depth_early;
   if (result_.fragments_culled_early != setup_.fragments_culled_early)
     mismatch("early Z: the RTL culled " + std::to_string(result_.fragments_culled_early) + " fragments, the reference " +
@@ -513,8 +523,26 @@ void Testbench::rop_write_word(uint32_t addr, uint32_t data, uint32_t be, uint64
   uint32_t v = rop_read_word(addr, t);
   for (int b = 0; b < 4; ++b)
     if ((be >> b) & 1) v = (v & ~(0xffu << (8 * b))) | (data & (0xffu << (8 * b)));
-  if (depth) fb_.set_depth(x, y, s, v);
-  else std::memcpy(fb_.sample(x, y, s), &v, 4);
+  if (depth) {
+    if (!depth_writes_.empty()) depth_write_check(x, y, v, t);
+    fb_.set_depth(x, y, s, v);
+  } else {
+    std::memcpy(fb_.sample(x, y, s), &v, 4);
+  }
+}
+// Hi-Z: the ROP's depth write v at (x, y) must be the reference's next write there (a
+// fragment of a tile the reference culled, drawn by the lagged table, must fail its test).
+void Testbench::depth_write_check(int x, int y, uint32_t v, uint64_t t) {
+  std::deque<uint32_t>& q = depth_writes_[size_t(y) * size_t(fb_.width) + size_t(x)];
+  const uint32_t mask = setup_.arch.depth_bits >= 32 ? ~0u : (1u << setup_.arch.depth_bits) - 1;
+  if (!q.empty() && q.front() == (v & mask)) {
+    q.pop_front();
+    return;
+  }
+  mismatch("cycle " + std::to_string(t) + ": the ROP wrote depth " + std::to_string(v & mask) + " at (" +
+           std::to_string(x) + ", " + std::to_string(y) + "), the reference's next write there is " +
+           (q.empty() ? std::string("none") : std::to_string(q.front())) +
+           (setup_.hiz_lagged ? " (lagged: a tile drawn or accepted against a stale bound?)" : ""));
 }
 // A clear's fill write: word 0's value and enables over the burst. The clear's writes
 // cover its surface in address order; its last one applies the clear to the whole
@@ -1008,11 +1036,13 @@ void Testbench::early_serve() {
 }
 void Testbench::compare(const Fragment& f, bool culled) {
   ++result_.fragments_compared;
+  if (setup_.hiz_lagged) skip_hiz_culled(f);
   if (next_expected_ >= setup_.expected.size()) {
     mismatch("extra fragment from the RTL: " + fragment_trace_line(f));
     return;
   }
   const Expected& e = setup_.expected[next_expected_++];
+  if (e.hiz_tile >= 0) ++result_.hiz_lagged_fragments_drawn;
   if (e.culled != culled) {
     ++result_.command_mismatches[setup_.tri_command[size_t(e.tri)]];
     mismatch("fragment #" + std::to_string(next_expected_ - 1) + " of " + setup_.tri_names[e.tri] + ": pixel (" +
@@ -1027,6 +1057,40 @@ void Testbench::compare(const Fragment& f, bool culled) {
              std::to_string(f.mask));
   }
 }
+// depth.hiz_sync = lagged: the fragments of a tile the reference's Hi-Z culled are the
+// RTL's to draw or not (its table lags the ROP). A tile whose first fragment is not f was
+// culled by the RTL too (its run skipped); one whose first fragment is f is drawn, and the
+// rest of it must follow. A tile the RTL culls and the reference does not leaves its
+// fragments missing: a mismatch.
+void Testbench::skip_hiz_culled(const Fragment& f) {
+  const std::vector<Expected>& ex = setup_.expected;
+  while (next_expected_ < ex.size()) {
+    const int64_t tile = ex[next_expected_].hiz_tile;
+    if (tile < 0 || tile == hiz_tile_drawn_) return;
+    if (ex[next_expected_].f == f) {
+      hiz_tile_drawn_ = tile;
+      ++result_.hiz_lagged_tiles_drawn;
+      return;
+    }
+    while (next_expected_ < ex.size() && ex[next_expected_].hiz_tile == tile) ++next_expected_;
+  }
+}
+// Hi-Z's tile counts against the reference's. Lagged: the RTL culls a subset of its culls
+// (each drawn one counted, but a culled tile without a covered pixel has no fragment to
+// show it: hiz_culled_empty of them) and accepts at most its accepts.
+void Testbench::hiz_count_check() {
+  const uint64_t culled = result_.tiles_culled_hiz, accepted = result_.tiles_accepted_hiz;
+  const uint64_t drawn = result_.hiz_lagged_tiles_drawn;
+  const bool ok = setup_.hiz_lagged ? culled + drawn <= setup_.tiles_culled_hiz &&
+                                          culled + drawn + setup_.hiz_culled_empty >= setup_.tiles_culled_hiz &&
+                                          accepted <= setup_.tiles_accepted_hiz
+                                    : culled == setup_.tiles_culled_hiz && accepted == setup_.tiles_accepted_hiz;
+  if (!ok)
+    mismatch("Hi-Z: the RTL culled " + std::to_string(culled) + " tiles (" + std::to_string(drawn) +
+             " of the reference's culled drawn) and accepted " + std::to_string(accepted) + ", the reference " +
+             std::to_string(setup_.tiles_culled_hiz) + " and " + std::to_string(setup_.tiles_accepted_hiz) +
+             (setup_.hiz_lagged ? " (lagged: culls and accepts a subset of them)" : ""));
+}
 // Nothing left anywhere but the resolve pass: scene fetched, FIFOs and stages empty, the
 // RTL idle (its idle_o covers the interpolator's pipeline, the fragment FIFO and the ROP)
 // with no beat out, no read in flight, every command taken.
@@ -1038,11 +1102,21 @@ bool Testbench::done_but_rop() const {
          !rop_wait_2d_ && !rop_2d_done_ && (!binner_ || binner_->done());
 }
 void Testbench::end_of_run_check() {
+  // Lagged: the reference-culled tiles after the RTL's last fragment were culled by it too.
+  while (next_expected_ < setup_.expected.size() && setup_.expected[next_expected_].hiz_tile >= 0 &&
+         setup_.expected[next_expected_].hiz_tile != hiz_tile_drawn_)
+    ++next_expected_;
   if (next_expected_ < setup_.expected.size())
     mismatch(std::to_string(setup_.expected.size() - next_expected_) + " fragments missing from the RTL, first: #" +
              std::to_string(next_expected_) + " of " + setup_.tri_names[setup_.expected[next_expected_].tri] +
              ": '" + fragment_trace_line(setup_.expected[next_expected_].f) + "'");
   if (!markers_in_flight_.empty()) mismatch(std::to_string(markers_in_flight_.size()) + " markers lost in the RTL");
+  for (size_t i = 0; i < depth_writes_.size(); ++i)
+    if (!depth_writes_[i].empty()) {
+      mismatch("depth writes of the reference missing from the RTL's ROP, first at (" +
+               std::to_string(i % size_t(fb_.width)) + ", " + std::to_string(i / size_t(fb_.width)) + ")");
+      break;
+    }
   framebuffer_check();
 }
 // The whole picture: the memory's framebuffer (the ROP's writes and clears, the 2D
@@ -1053,6 +1127,8 @@ void Testbench::framebuffer_check() {
   result_.samples = setup_.samples;
   result_.crc_rtl = resolved.color_crc32();
   result_.crc_ref = setup_.reference.color_crc32();
+  // Hi-Z (immediate mode): the depth buffer too (a table that lags the ROP must not change it).
+  if (!depth_writes_.empty() && !fb_.same_depth(setup_.reference)) mismatch("the depth buffer differs from the reference's");
   for (int y = 0; y < resolved.height && result_.crc_rtl != result_.crc_ref; ++y)
     for (int x = 0; x < resolved.width; ++x)
       if (std::memcmp(resolved.pixel(x, y), setup_.reference.pixel(x, y), 3) != 0) {

@@ -94,6 +94,15 @@ struct Expected {
   Fragment f;
   int tri = 0;
   bool culled = false;  // depth.early: the reference culls it early (render_scene's kept stream lacks it)
+  // depth.hiz_sync = lagged: >= 0, the index of the reference's Hi-Z culled tile it belongs
+  // to (its fragments consecutive). The RTL's lagged table may draw that tile (all of its
+  // fragments, each failing its depth test at the ROP) or cull it; -1: always expected.
+  int64_t hiz_tile = -1;
+};
+// A depth write the reference's ROP makes (HizTracker's, in order): pixel and value.
+struct TbDepthWrite {
+  int x = 0, y = 0;
+  uint32_t z = 0;
 };
 
 struct TbSetup {
@@ -137,6 +146,13 @@ struct TbSetup {
   uint64_t tiles_culled_hiz = 0, tiles_accepted_hiz = 0;
   std::vector<uint64_t> hiz_test_reads, hiz_flush_reads, hiz_writes;
   uint64_t hiz_entry_bytes = 0, hiz_base = 0, hiz_bytes_read = 0, hiz_bytes_written = 0;
+  // Every depth write of the reference's ROP in order (with Hi-Z: each pixel's writes are
+  // checked against the RTL ROP's, so a culled tile's fragment it draws must write none).
+  // depth.hiz_sync = lagged: the expected stream holds the culled tiles' fragments too
+  // (Expected::hiz_tile), hiz_culled_empty of those tiles having none.
+  bool hiz_lagged = false;
+  std::vector<TbDepthWrite> depth_writes;
+  uint64_t hiz_culled_empty = 0;
   // depth.early (rtl/rast_early_z.sv): the reference's fragments_culled_early (the expected
   // stream holds every fragment, each flagged as the reference decides).
   bool depth_early = false;

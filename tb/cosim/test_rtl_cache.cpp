@@ -109,9 +109,11 @@ TEST(RtlOnDemand, ConfigTheRtlCannotRunNamesTheKey) {
 
 // Depth culling the RTL lacks is refused by its key (the SystemC model would cull what the
 // RTL draws, so the cycles would compare two machines): a Hi-Z table with no entry on chip
-// (rast_top_hiz keeps at least one; the rest go through the hiz port) and early Z with an
-// applied Hi-Z (rast_early_z does not take Hi-Z's accepts). Hi-Z that does not apply
-// (depth.func always) is the Hi-Z-off run and runs on the shipped model.
+// (rast_top_hiz keeps at least one; the rest go through the hiz port), early Z with an
+// applied Hi-Z (rast_early_z does not take Hi-Z's accepts), and depth.hiz_sync = lagged
+// with spilled entries (rast_top_hiz's Lagged is built for the table on chip: the lagged
+// ctests, cosim.hiz.lagged.*). Hi-Z that does not apply (depth.func always) is the
+// Hi-Z-off run and runs on the shipped model.
 TEST(RtlOnDemand, DepthCullingTheRtlLacksNamesTheKey) {
   for (const char* mode : {"max", "minmax"}) {
     const std::string m = cosim_error({std::string("depth.hiz=") + mode, "depth.hiz_bytes=0"});
@@ -123,8 +125,12 @@ TEST(RtlOnDemand, DepthCullingTheRtlLacksNamesTheKey) {
   EXPECT_NE(e.find("--set depth.early=true: depth.early = true co-simulates without an applied depth.hiz"),
             std::string::npos) << e;
   EXPECT_EQ(cosim_error({"depth.hiz=max", "raster.depth_func=always"}), "(no error)");
-  const std::string l = cosim_error({"depth.hiz=max", "raster.depth_func=less", "depth.hiz_sync=lagged"});
-  EXPECT_NE(l.find("--set depth.hiz_sync=lagged: depth.hiz_sync = lagged has no RTL yet"), std::string::npos) << l;
+  const std::string l =
+      cosim_error({"depth.hiz=max", "raster.depth_func=less", "depth.hiz_sync=lagged", "depth.hiz_bytes=16"});
+  EXPECT_NE(l.find("--set depth.hiz_sync=lagged: depth.hiz_sync = lagged with spilled Hi-Z entries (--set "
+                   "depth.hiz_bytes=16: depth.hiz_bytes = 16 holds 1 of the display"),
+            std::string::npos) << l;
+  EXPECT_NE(l.find("has no RTL yet"), std::string::npos) << l;
   // Where Hi-Z does not apply the key changes nothing, and the run goes on.
   EXPECT_EQ(cosim_error({"depth.hiz=max", "raster.depth_func=always", "depth.hiz_sync=lagged"}), "(no error)");
 }
