@@ -48,13 +48,13 @@
 //   fragment is not sampled; a beat without a kept lane costs its one cycle, as a beat of
 //   helper pixels). It keeps its place: the order queue (OqDepth entries, one a kept
 //   fragment loaded or a beat without one) holds, in the reference's order, the culled
-//   lanes before a kept fragment (pre), the kept fragment (its data and colour from the
-//   ring after combine) and the culled lanes after the beat's last kept one (post), or a
-//   beat's culled lanes alone; the culled lanes leave as a beat of their own (their
-//   interpolated colour: the ROP's late test fails them, their depth reads are the
-//   reference's early reads), out_culled_o set. The tile's last output carries `last`: a
-//   group not yet known to be the tile's last is held at the queue's head until an
-//   entry follows it or the tile's last beat flags it. Early = 0 builds no queue.
+//   lanes of the beat before a kept fragment (pre), the kept fragment (its colour from the
+//   combine) and the culled lanes after the beat's last kept one (post), or a beat's
+//   culled lanes alone; an entry leaves as one beat, its lanes in their places (the culled
+//   ones as interpolated, out_culled_o set: the ROP's late test fails them, their depth
+//   reads are the reference's early reads). The tile's last output carries `last`: an
+//   entry with culled lanes not yet known to be the tile's last waits at the queue's head
+//   until an entry follows it or the tile's last beat flags it. Early = 0 builds no queue.
 `default_nettype none
 
 module rast_texture_stage #(
@@ -563,47 +563,43 @@ module rast_texture_stage #(
   assign fo_take = flt_valid && (discard || cmb_in_ready);
 
   // ---- Combine ----
-  // The order queue's head (below): the combine's output leaves in its kept phase.
+  // The order queue's head (below): the combine's output leaves with its entry.
   typedef struct packed {
-    logic [Lanes-1:0]            pre, post;
-    logic                        kept, last;  // last: post ends the tile
+    logic [Lanes-1:0]            pre, post;  // culled lanes before and after the kept one
+    logic [Lanes-1:0]            kl;         // the kept lane (one-hot; 0: culled lanes alone)
+    logic                        last;       // post ends the tile
     logic [Lanes*PixelW-1:0]     x, y;
     logic [Lanes*DepthW-1:0]     z;
     logic [Lanes*24-1:0]         rgb;
     logic [Lanes*TexW-1:0]       s, t;
     logic [Lanes*MaxSamples-1:0] smask;
   } oq_t;
-  oq_t  oq_h;                      // the head entry
-  logic oq_valid, oq_final, ph_pre, ph_kept, ph_post, oq_take;
-  logic [1:0] phase_q;             // the head's next phase: 0 pre, 1 kept, 2 post
-  logic oq_empty;
+  oq_t  oq_h;     // the head entry
+  logic oq_valid, oq_final, oq_go, oq_empty, k_ready;
   logic        cmb_valid;
   logic [23:0] cmb_color;
   rast_texture_combine u_combine (
     .clk_i, .rst_ni, .in_valid_i(flt_valid && !discard), .in_ready_o(cmb_in_ready), .tex_i(flt_color),
-    .color_i(cmb_e.rgb), .env_i(cmb_e.env), .out_valid_o(cmb_valid), .out_ready_i(out_ready_i && ph_kept),
+    .color_i(cmb_e.rgb), .env_i(cmb_e.env), .out_valid_o(cmb_valid), .out_ready_i(out_ready_i && k_ready),
     .color_o(cmb_color));
-  assign out_take = cmb_valid && out_ready_i && ph_kept;
+  assign out_take = cmb_valid && out_ready_i && k_ready;
 
-  // ---- Order queue (Early): an entry a kept fragment loaded (its culled lanes before it,
-  // pre, and after it, post) or a beat popped with culled lanes and no kept one (post
-  // alone), in the serialiser's order, which is the reference's. The head leaves as its
-  // phases: pre (a beat of the culled lanes), the kept fragment (the combine's output),
-  // post; post waits until the entry is known not to end its tile unflagged (oq_final: it
+  // ---- Order queue (Early): an entry a kept fragment loaded (with the culled lanes of its
+  // beat before it, pre, and, where no kept lane follows in the beat, after it, post) or a
+  // beat popped with culled lanes and no kept one (post alone), in the serialiser's order,
+  // which is the reference's. The head leaves as one beat, its lanes in their places: the
+  // culled ones as interpolated, the kept one with the combine's colour, so a culled lane
+  // costs no output cycle of its own (the SystemC stage's culled fragments cost none). An
+  // entry with post waits until it is known not to end its tile unflagged (oq_final: it
   // carries last, or another entry follows it; the tile's last beat flags the newest entry,
-  // still queued, where no culled lane of that beat and no open fragment takes the
-  // flag). Without Early every head is a kept fragment: the ring's order alone. ----
-  assign ph_pre = oq_valid && oq_h.pre != '0 && phase_q == 2'd0;
-  assign ph_kept = oq_valid && !ph_pre && oq_h.kept && phase_q != 2'd2;
-  assign ph_post = oq_valid && !ph_pre && !ph_kept;
-  // The head's last phase taken (post, or a kept fragment without post).
-  assign oq_take = out_ready_i && ((ph_kept && cmb_valid && oq_h.post == '0) || (ph_post && oq_final));
+  // still queued, where no culled lane of that beat and no open fragment takes the flag).
+  // Without Early every head is a kept fragment: the ring's order alone. ----
   if (Early != 0) begin : g_order
     localparam int OqPtrW = $clog2(OqDepth);  // derived
     oq_t               oq_q [OqDepth];
     logic [OqPtrW-1:0] oq_rd_q, oq_wr_q;
     logic [OqPtrW:0]   oq_count_q;
-    logic              oq_push, oq_flag, open_q2;
+    logic              oq_push, oq_flag, oq_take, open_q2;
     oq_t               oq_in;
     assign oq_push = load || (pop && rem == '0 && grp != '0);
     // The tile's last beat popped with nothing of its own to flag: the newest entry's post.
@@ -611,7 +607,7 @@ module rast_texture_stage #(
     always_comb begin
       oq_in.pre = load ? pre : '0;
       oq_in.post = load ? post : grp;
-      oq_in.kept = load;
+      oq_in.kl = load ? Lanes'(1) << c : '0;
       oq_in.last = h.last && (load ? !more && post != '0 : 1'b1);
       oq_in.x = h.x;
       oq_in.y = h.y;
@@ -626,6 +622,9 @@ module rast_texture_stage #(
     assign oq_empty = !oq_valid;
     assign oq_h = oq_q[oq_rd_q];
     assign oq_final = oq_h.last || oq_count_q > (OqPtrW + 1)'(1);
+    assign oq_go = oq_valid && (oq_h.post == '0 || oq_final);  // the head may leave (with its fragment)
+    assign k_ready = oq_go && oq_h.kl != '0;
+    assign oq_take = oq_valid && out_valid_o && out_ready_i;  // the head's beat taken (not a pass-through)
     assign oq_open = open_q2;
     always_ff @(posedge clk_i or negedge rst_ni) begin
       if (!rst_ni) begin
@@ -633,7 +632,6 @@ module rast_texture_stage #(
         oq_wr_q <= '0;
         oq_count_q <= '0;
         open_q2 <= 1'b0;
-        phase_q <= '0;
       end else begin
         if (oq_push) oq_wr_q <= oq_wr_q + 1'b1;
         if (oq_take) oq_rd_q <= oq_rd_q + 1'b1;
@@ -641,9 +639,6 @@ module rast_texture_stage #(
         // The newest entry's post is open: it may end its tile, not yet flagged.
         if (oq_push) open_q2 <= oq_in.post != '0 && !oq_in.last;
         else if (oq_flag || (pop && h.last)) open_q2 <= 1'b0;
-        if (oq_take) phase_q <= '0;
-        else if (out_ready_i && ph_pre) phase_q <= 2'd1;
-        else if (out_ready_i && ph_kept && cmb_valid) phase_q <= 2'd2;
       end
     end
     always_ff @(posedge clk_i) begin
@@ -653,40 +648,40 @@ module rast_texture_stage #(
   end else begin : g_no_order
     assign oq_room = 1'b1;
     assign oq_open = 1'b0;
-    assign oq_valid = cmb_valid;
+    assign oq_valid = 1'b0;
     assign oq_empty = 1'b1;
     assign oq_final = 1'b1;
-    assign phase_q = 2'd1;
-    always_comb begin
-      oq_h = '0;
-      oq_h.kept = 1'b1;
-    end
-    wire unused_order = &{1'b0, pre, post, oq_take};
+    assign oq_go = 1'b0;
+    assign k_ready = 1'b1;
+    assign oq_h = '0;
+    wire unused_order = &{1'b0, pre, post, oq_h, oq_final, oq_go};
   end
 
-  // ---- Out: a textured fragment on lane 0, a culled group (Early), or the beat passed
-  // through ----
+  // ---- Out: a textured fragment on lane 0, an order queue entry's beat (Early), or the
+  // beat passed through ----
   logic pass;
   assign pipe_empty = fifo_empty && !pend_valid_q && count == '0 && !fill_q && oq_empty;
   assign pass = in_valid_i && (in_marker_i || !in_tex_on_i) && pipe_empty;
   assign in_ready_o = accept || (pass && out_ready_i);
   always_comb begin
     out_culled_o = '0;
-    if (ph_pre || ph_post) begin
-      out_valid_o  = ph_pre || oq_final;
+    if (Early != 0 && oq_valid) begin
+      out_valid_o  = oq_go && (oq_h.kl == '0 || cmb_valid);
       out_marker_o = 1'b0;
-      out_last_o   = ph_post && oq_h.last;
-      out_lanes_o  = ph_pre ? oq_h.pre : oq_h.post;
-      out_culled_o = out_lanes_o;
+      out_last_o   = oq_h.post != '0 ? oq_h.last : out_e.last;
+      out_lanes_o  = oq_h.pre | oq_h.kl | oq_h.post;
+      out_culled_o = oq_h.pre | oq_h.post;
       out_x_o      = oq_h.x;
       out_y_o      = oq_h.y;
       out_z_o      = oq_h.z;
       out_rgb_o    = oq_h.rgb;
+      for (int j = 0; j < Lanes; j++)
+        if (oq_h.kl[j]) out_rgb_o[j*24 +: 24] = cmb_color;
       out_s_o      = oq_h.s;
       out_t_o      = oq_h.t;
       out_smask_o  = oq_h.smask;
-    end else if (ph_kept) begin
-      out_valid_o  = cmb_valid;
+    end else if (cmb_valid) begin
+      out_valid_o  = 1'b1;
       out_marker_o = 1'b0;
       out_last_o   = out_e.last;
       out_lanes_o  = Lanes'(1);
