@@ -1,17 +1,19 @@
 // SPDX-License-Identifier: Apache-2.0
 // rast_early_z: the early depth test (depth.early; docs/depth-culling.md "Early Z in the
-// RTL"), in rast_top: the test between the texture stage's output and the fragment FIFO,
-// on the depth the interpolator computed for the ROP (the same wires: one formula, ref's),
-// and its interlock at the interpolator's input.
+// RTL"), in rast_top: the test between the interpolator's output and the texture stage
+// (which textures no culled lane), on the depth the interpolator computed for the ROP (the
+// same wires: one formula, ref's), and its interlock at the interpolator's input.
 //
 // - Each fragment of a beat is tested against the depth stored at its samples (rd_*: the
 //   lanes' pixels out, every sample's stored depth back in the same cycle, from the
 //   depth surface as the ROP's writes left it). A fragment failing at every covered
-//   sample (one sample: sample 0; else its mask) is culled: out_culled_o. It still goes
-//   to the ROP, which makes its depth reads in their place in the stream (the reference's
-//   early_depth_cull reads) and, its late test failing on the same stored depth, writes
-//   nothing; it is not a shaded fragment (fragments_culled_early). The beat passes on in
-//   its cycle (this unit holds no beat).
+//   sample (one sample: sample 0; else its mask) is culled: out_culled_o. A helper pixel
+//   (a textured quad's lane with sample mask 0) is neither read nor culled. A culled
+//   fragment is not textured (rast_texture_stage) and still goes to the ROP, which makes
+//   its depth reads in their place in the stream (the reference's early_depth_cull reads)
+//   and, its late test failing on the same stored depth, writes nothing; it is not a
+//   shaded fragment (fragments_culled_early). The beat passes on in its cycle (this unit
+//   holds no beat; the texture stage latches the flags with the beat it takes).
 // - The interlock: a tile at the pixel FIFO's head (q_*) enters the interpolator only once
 //   no tile that entered before it on the same pixels (and no marker: a depth clear) is
 //   still in flight to the ROP's end (q_wait_o), so when its fragments reach the test the
@@ -46,7 +48,7 @@ module rast_early_z #(
   input  wire logic [2*PixelW-1:0]                q_tile_i,       // {y, x} of the tile's corner
   output      logic                               q_wait_o,       // hold it: its pixels are in flight
   input  wire logic                               q_take_i,       // taken (never while q_wait_o)
-  // The beats out of the texture stage (observed; they pass on unchanged).
+  // The interpolator's beats offered to the texture stage (observed; they pass on unchanged).
   input  wire logic                               in_valid_i,     // a beat or marker
   input  wire logic                               in_marker_i,
   input  wire logic [Lanes-1:0]                   in_lanes_i,
@@ -63,6 +65,7 @@ module rast_early_z #(
 
   // ---- The lanes' test ----
   logic [MaxSamples-1:0] full_mask;
+  logic [Lanes-1:0]      has;  // lanes holding a fragment
   assign full_mask = MaxSamples'(((MaxSamples + 1)'(1) << (1 << samples_log2_i)) - 1'b1);
   for (genvar j = 0; j < Lanes; j++) begin : g_lane
     logic [MaxSamples-1:0] pass, covered;
@@ -72,9 +75,10 @@ module rast_early_z #(
         .stored_i(rd_depth_i[(j*MaxSamples + s)*DepthW +: DepthW]), .pass_o(pass[s]));
     end
     assign covered = samples_log2_i == '0 ? MaxSamples'(1) : in_mask_i[j*MaxSamples +: MaxSamples] & full_mask;
-    assign out_culled_o[j] = on && in_lanes_i[j] && !in_marker_i && (pass & covered) == '0;
+    assign has[j] = in_lanes_i[j] && in_mask_i[j*MaxSamples +: MaxSamples] != '0;  // not a helper pixel
+    assign out_culled_o[j] = on && has[j] && !in_marker_i && (pass & covered) == '0;
   end
-  assign rd_lanes_o = in_valid_i && !in_marker_i && on ? in_lanes_i : '0;
+  assign rd_lanes_o = in_valid_i && !in_marker_i && on ? has : '0;
 
   // ---- The interlock ----
   logic [PixelW-1:0] tx, ty, size;

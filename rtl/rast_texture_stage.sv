@@ -40,6 +40,21 @@
 // - In flight: at most Depth fragments between the serialiser and the output (a ring of
 //   their data, read in order at the level sequencer, the request, the filter's input,
 //   the filter's output and the output).
+// - Early Z (Early = 1, depth.early; docs/depth-culling.md "Early Z in the RTL"): in_culled_i
+//   flags the lanes rast_early_z culled (the test between the interpolator and this stage).
+//   A culled lane is covered (its quad's derivatives are still written) but not a
+//   fragment of the serialiser: it takes no serialiser cycle, no LOD, no level sample, no
+//   texel fetch, no filter or combine work (the rule of model/sc/texture.cpp: a culled
+//   fragment is not sampled; a beat without a kept lane costs its one cycle, as a beat of
+//   helper pixels). It keeps its place: the order queue (OqDepth entries, one a kept
+//   fragment loaded or a beat without one) holds, in the reference's order, the culled
+//   lanes of the beat before a kept fragment (pre), the kept fragment (its colour from the
+//   combine) and the culled lanes after the beat's last kept one (post), or a beat's
+//   culled lanes alone; an entry leaves as one beat, its lanes in their places (the culled
+//   ones as interpolated, out_culled_o set: the ROP's late test fails them, their depth
+//   reads are the reference's early reads). The tile's last output carries `last`: an
+//   entry with culled lanes not yet known to be the tile's last waits at the queue's head
+//   until an entry follows it or the tile's last beat flags it. Early = 0 builds no queue.
 `default_nettype none
 
 module rast_texture_stage #(
@@ -56,6 +71,7 @@ module rast_texture_stage #(
   parameter int TileLog2Max = 4,   // largest tile: 2^TileLog2Max pixels square
   parameter int LevelW      = 4,   // a mip level index
   parameter int BiasW       = 14,  // texlod_bias in s.8, signed
+  parameter int Early       = 0,   // depth.early: 1 builds the culled lanes' order queue
   localparam int HelpW = $clog2(Lanes + 1)  // derived: helper count bits
 ) (
   input  wire logic                        clk_i,
@@ -75,6 +91,7 @@ module rast_texture_stage #(
   input  wire logic [Lanes*TexW-1:0]       in_s_i,
   input  wire logic [Lanes*TexW-1:0]       in_t_i,
   input  wire logic [Lanes*MaxSamples-1:0] in_smask_i,    // 0: a helper pixel
+  input  wire logic [Lanes-1:0]            in_culled_i,   // lane j culled early (Early; a covered lane)
   // The tile's texture state (the triangle's), with every non-marker beat.
   input  wire logic                        in_tex_on_i,   // a texture bound
   input  wire logic                        in_bilinear_i, // texfilter bilinear (else nearest, or trilinear)
@@ -100,6 +117,7 @@ module rast_texture_stage #(
   output      logic [Lanes*TexW-1:0]       out_s_o,
   output      logic [Lanes*TexW-1:0]       out_t_o,
   output      logic [Lanes*MaxSamples-1:0] out_smask_o,
+  output      logic [Lanes-1:0]            out_culled_o,  // lane j culled early (passed through, or a culled group)
   // The texel fetch port (docs/texture.md "RTL": the texture cache's interface).
   output      logic                        tex_req_valid_o,
   input  wire logic                        tex_req_ready_i,
@@ -125,6 +143,9 @@ module rast_texture_stage #(
   localparam int QW = QCols > 1 ? $clog2(QCols) : 1;  // derived: a quad column's index
   localparam int RpBeats = (4 * QCols + Lanes - 1) / Lanes;  // derived: beats of a full row pair
   localparam int BeatDepth = RpBeats + 2;  // derived: the beat FIFO
+  // derived: the order queue (Early): a tile's beats (QCols row pairs of RpBeats), the
+  // ring's fragments and pend, to a power of two; never full behind the open fragment.
+  localparam int OqDepth = 1 << $clog2(QCols * RpBeats + Depth + 4);
   localparam int CntW = TileLog2Max + 3;   // derived: covered fragments of a bank, 0 .. 2 TileMax
   localparam int DW = TexW + 1;            // derived: a derivative (difference of two coordinates)
   localparam int LevelsMax = SizeW;        // derived: levels of a 2^(SizeW-1) side
@@ -151,6 +172,7 @@ module rast_texture_stage #(
     logic [Lanes*24-1:0]         rgb;
     logic [Lanes*TexW-1:0]       s, t;
     logic [Lanes*MaxSamples-1:0] smask;
+    logic [Lanes-1:0]            cul;    // culled early (Early)
   } beat_t;
   // A fragment in flight.
   typedef struct packed {
@@ -177,8 +199,8 @@ module rast_texture_stage #(
   logic             tex_in, new_rp, bank_in, tap_ok, accept, fifo_room, fifo_valid, fifo_empty, pop;
   logic             open_q, bank_q;          // a tile open at the tap; the bank of its row pair
   logic [PixelW-2:0] rp_q;                    // that row pair (y >> 1)
-  logic [CntW-1:0]  cnt_q [2];               // covered fragments taken into a bank, not yet serialised
-  logic [Lanes-1:0] cov_in;
+  logic [CntW-1:0]  cnt_q [2];               // kept fragments taken into a bank, not yet serialised
+  logic [Lanes-1:0] cov_in, kept_in;         // covered lanes; those not culled early
   // The quad table, entry {bank, quad column}.
   logic [TexW-1:0]  tl_s_q [2*QCols], tl_t_q [2*QCols], tr_s_q [2*QCols], tr_t_q [2*QCols];
   logic [TexW-1:0]  bl_s_q [2*QCols], bl_t_q [2*QCols];
@@ -191,7 +213,10 @@ module rast_texture_stage #(
   assign tap_ok = !new_rp || cnt_q[!bank_q] == '0;
   assign accept = tex_in && fifo_room && tap_ok;
   always_comb begin
-    for (int j = 0; j < Lanes; j++) cov_in[j] = in_lanes_i[j] && in_smask_i[j*MaxSamples +: MaxSamples] != '0;
+    for (int j = 0; j < Lanes; j++) begin
+      cov_in[j] = in_lanes_i[j] && in_smask_i[j*MaxSamples +: MaxSamples] != '0;
+      kept_in[j] = cov_in[j] && !(Early != 0 && in_culled_i[j]);
+    end
     helpers_o = '0;
     if (accept)
       for (int j = 0; j < Lanes; j++) helpers_o = helpers_o + HelpW'(in_lanes_i[j] && !cov_in[j]);
@@ -207,6 +232,7 @@ module rast_texture_stage #(
     b_in.s = in_s_i;
     b_in.t = in_t_i;
     b_in.smask = in_smask_i;
+    b_in.cul = Early != 0 ? in_culled_i : '0;
     b_in.st.bilinear = in_bilinear_i;
     b_in.st.trilinear = in_trilinear_i;
     b_in.st.wrap_s = in_wrap_s_i;
@@ -222,28 +248,39 @@ module rast_texture_stage #(
     .clk_i, .rst_ni, .in_valid_i(accept), .in_ready_o(fifo_room), .in_data_i(b_in),
     .out_valid_o(fifo_valid), .out_ready_i(pop), .out_data_o(h), .empty_o(fifo_empty));
 
-  // The serialiser's view of the head beat.
+  // The serialiser's view of the head beat: rem, its kept (covered, not culled) lanes at
+  // or after pos_q; c the first, more another after it. The culled lanes at or after
+  // pos_q: before c (pre), after c when no kept lane follows (post), or all of them when
+  // no kept lane is left (grp); each goes to the order queue with c's load or the beat's
+  // pop (Early).
   logic             pend_valid_q, load, push, tail, pipe_accept;
   pend_t            pend_q, lane_pend;
-  logic [Lanes-1:0] cov, rem;
+  logic [Lanes-1:0] rem, pre, post, grp;
   logic [PosW-1:0]  pos_q;
-  logic [LaneW-1:0] c;      // the next covered lane at or after pos_q
-  logic             more;   // a covered lane after c
+  logic [LaneW-1:0] c;      // the next kept lane at or after pos_q
+  logic             more;   // a kept lane after c
   logic [QW-1:0]    qc;     // c's quad column
   logic             ready_c;  // c's quad's derivatives known
   always_comb begin
     logic found;
+    logic [Lanes-1:0] cov, cul;
     found = 1'b0;
     c = '0;
     more = 1'b0;
     for (int j = 0; j < Lanes; j++) begin
-      cov[j] = h.lanes[j] && h.smask[j*MaxSamples +: MaxSamples] != '0;
-      rem[j] = cov[j] && PosW'(j) >= pos_q;
+      cov[j] = h.lanes[j] && h.smask[j*MaxSamples +: MaxSamples] != '0 && PosW'(j) >= pos_q;
+      cul[j] = cov[j] && h.cul[j];
+      rem[j] = cov[j] && !h.cul[j];
       if (rem[j] && found) more = 1'b1;
       if (rem[j] && !found) begin
         found = 1'b1;
         c = LaneW'(j);
       end
+    end
+    for (int j = 0; j < Lanes; j++) begin
+      pre[j] = cul[j] && found && LaneW'(j) < c;
+      post[j] = cul[j] && found && !more && LaneW'(j) > c;
+      grp[j] = cul[j] && !found;
     end
   end
   function automatic logic [QW-1:0] qcol(input logic [PixelW-1:0] x);
@@ -252,7 +289,7 @@ module rast_texture_stage #(
   assign qc = qcol(h.x[c*PixelW +: PixelW]);
   assign ready_c = blv_q[h.bank][qc];
   always_comb begin
-    lane_pend.f.last      = !more && h.last;
+    lane_pend.f.last      = !more && post == '0 && h.last;
     lane_pend.f.x         = h.x[c*PixelW +: PixelW];
     lane_pend.f.y         = h.y[c*PixelW +: PixelW];
     lane_pend.f.z         = h.z[c*DepthW +: DepthW];
@@ -275,14 +312,20 @@ module rast_texture_stage #(
     lane_pend.dsdy = DW'($signed(bl_s_q[{h.bank, qc}])) - DW'($signed(tl_s_q[{h.bank, qc}]));
     lane_pend.dtdy = DW'($signed(bl_t_q[{h.bank, qc}])) - DW'($signed(tl_t_q[{h.bank, qc}]));
   end
-  // load: a covered lane (its quad ready) into pend (pushing the one held), flagged last
-  // when it is the tile's last; push: pend into the LOD unit and the ring (a flagged one at
-  // once; else with the next load, or flagged now where the tile's last beat has no
-  // covered lane left).
-  assign tail = fifo_valid && rem == '0 && h.last && pend_valid_q && !pend_q.f.last;
-  assign load = fifo_valid && rem != '0 && ready_c && (!pend_valid_q || pipe_accept);
+  // load: a kept lane (its quad ready) into pend (pushing the one held), flagged last
+  // when it is the tile's last output; push: pend into the LOD unit and the ring (a
+  // flagged one at once; else with the next load, or now where the tile's last beat has no
+  // kept lane left: flagged last unless culled lanes follow it). The order queue (Early)
+  // takes an entry with each load and with the pop of a beat whose culled lanes are left
+  // (grp); oq_room (1 without Early) holds both.
+  logic oq_room, oq_open, pend_open, grp_ok;
+  assign pend_open = pend_valid_q && !pend_q.f.last;
+  assign grp_ok = grp == '0 || oq_room;
+  assign tail = fifo_valid && rem == '0 && h.last && pend_open && grp_ok;
+  assign load = fifo_valid && rem != '0 && ready_c && (!pend_valid_q || pipe_accept) && oq_room;
   assign push = pend_valid_q && pipe_accept && (load || pend_q.f.last || tail);
-  assign pop  = fifo_valid && ((rem != '0 && !more && load) || (rem == '0 && !h.last) || (tail && push));
+  assign pop  = fifo_valid && ((rem != '0 && !more && load) || (rem == '0 && !h.last && grp_ok) ||
+                               (rem == '0 && h.last && grp_ok && (!pend_open || push)));
 
   // Tap and serialiser state.
   always_ff @(posedge clk_i or negedge rst_ni) begin
@@ -310,7 +353,7 @@ module rast_texture_stage #(
         logic [CntW-1:0] n;
         n = cnt_q[b];
         if (accept && bank_in == 1'(b))
-          for (int j = 0; j < Lanes; j++) n = n + CntW'(cov_in[j]);
+          for (int j = 0; j < Lanes; j++) n = n + CntW'(kept_in[j]);
         if (load && h.bank == 1'(b)) n = n - 1'b1;
         cnt_q[b] <= n;
       end
@@ -423,7 +466,7 @@ module rast_texture_stage #(
   frag_t pushed;
   always_comb begin
     pushed = pend_q.f;
-    pushed.last = pend_q.f.last || tail;
+    pushed.last = pend_q.f.last || (tail && grp == '0 && !oq_open);  // else a culled group ends the tile
   end
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
@@ -520,21 +563,124 @@ module rast_texture_stage #(
   assign fo_take = flt_valid && (discard || cmb_in_ready);
 
   // ---- Combine ----
+  // The order queue's head (below): the combine's output leaves with its entry.
+  typedef struct packed {
+    logic [Lanes-1:0]            pre, post;  // culled lanes before and after the kept one
+    logic [Lanes-1:0]            kl;         // the kept lane (one-hot; 0: culled lanes alone)
+    logic                        last;       // post ends the tile
+    logic [Lanes*PixelW-1:0]     x, y;
+    logic [Lanes*DepthW-1:0]     z;
+    logic [Lanes*24-1:0]         rgb;
+    logic [Lanes*TexW-1:0]       s, t;
+    logic [Lanes*MaxSamples-1:0] smask;
+  } oq_t;
+  oq_t  oq_h;     // the head entry
+  logic oq_valid, oq_final, oq_go, oq_empty, k_ready;
   logic        cmb_valid;
   logic [23:0] cmb_color;
   rast_texture_combine u_combine (
     .clk_i, .rst_ni, .in_valid_i(flt_valid && !discard), .in_ready_o(cmb_in_ready), .tex_i(flt_color),
-    .color_i(cmb_e.rgb), .env_i(cmb_e.env), .out_valid_o(cmb_valid), .out_ready_i(out_ready_i),
+    .color_i(cmb_e.rgb), .env_i(cmb_e.env), .out_valid_o(cmb_valid), .out_ready_i(out_ready_i && k_ready),
     .color_o(cmb_color));
-  assign out_take = cmb_valid && out_ready_i;
+  assign out_take = cmb_valid && out_ready_i && k_ready;
 
-  // ---- Out: a textured fragment on lane 0, or the beat passed through ----
+  // ---- Order queue (Early): an entry a kept fragment loaded (with the culled lanes of its
+  // beat before it, pre, and, where no kept lane follows in the beat, after it, post) or a
+  // beat popped with culled lanes and no kept one (post alone), in the serialiser's order,
+  // which is the reference's. The head leaves as one beat, its lanes in their places: the
+  // culled ones as interpolated, the kept one with the combine's colour, so a culled lane
+  // costs no output cycle of its own (the SystemC stage's culled fragments cost none). An
+  // entry with post waits until it is known not to end its tile unflagged (oq_final: it
+  // carries last, or another entry follows it; the tile's last beat flags the newest entry,
+  // still queued, where no culled lane of that beat and no open fragment takes the flag).
+  // Without Early every head is a kept fragment: the ring's order alone. ----
+  if (Early != 0) begin : g_order
+    localparam int OqPtrW = $clog2(OqDepth);  // derived
+    oq_t               oq_q [OqDepth];
+    logic [OqPtrW-1:0] oq_rd_q, oq_wr_q;
+    logic [OqPtrW:0]   oq_count_q;
+    logic              oq_push, oq_flag, oq_take, open_q2;
+    oq_t               oq_in;
+    assign oq_push = load || (pop && rem == '0 && grp != '0);
+    // The tile's last beat popped with nothing of its own to flag: the newest entry's post.
+    assign oq_flag = pop && rem == '0 && h.last && grp == '0 && open_q2;
+    always_comb begin
+      oq_in.pre = load ? pre : '0;
+      oq_in.post = load ? post : grp;
+      oq_in.kl = load ? Lanes'(1) << c : '0;
+      oq_in.last = h.last && (load ? !more && post != '0 : 1'b1);
+      oq_in.x = h.x;
+      oq_in.y = h.y;
+      oq_in.z = h.z;
+      oq_in.rgb = h.rgb;
+      oq_in.s = h.s;
+      oq_in.t = h.t;
+      oq_in.smask = h.smask;
+    end
+    assign oq_room = oq_count_q != (OqPtrW + 1)'(OqDepth);
+    assign oq_valid = oq_count_q != '0;
+    assign oq_empty = !oq_valid;
+    assign oq_h = oq_q[oq_rd_q];
+    assign oq_final = oq_h.last || oq_count_q > (OqPtrW + 1)'(1);
+    assign oq_go = oq_valid && (oq_h.post == '0 || oq_final);  // the head may leave (with its fragment)
+    assign k_ready = oq_go && oq_h.kl != '0;
+    assign oq_take = oq_valid && out_valid_o && out_ready_i;  // the head's beat taken (not a pass-through)
+    assign oq_open = open_q2;
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni) begin
+        oq_rd_q <= '0;
+        oq_wr_q <= '0;
+        oq_count_q <= '0;
+        open_q2 <= 1'b0;
+      end else begin
+        if (oq_push) oq_wr_q <= oq_wr_q + 1'b1;
+        if (oq_take) oq_rd_q <= oq_rd_q + 1'b1;
+        oq_count_q <= oq_count_q + (OqPtrW + 1)'(oq_push) - (OqPtrW + 1)'(oq_take);
+        // The newest entry's post is open: it may end its tile, not yet flagged.
+        if (oq_push) open_q2 <= oq_in.post != '0 && !oq_in.last;
+        else if (oq_flag || (pop && h.last)) open_q2 <= 1'b0;
+      end
+    end
+    always_ff @(posedge clk_i) begin
+      if (oq_push) oq_q[oq_wr_q] <= oq_in;
+      if (oq_flag) oq_q[oq_wr_q - 1'b1].last <= 1'b1;
+    end
+  end else begin : g_no_order
+    assign oq_room = 1'b1;
+    assign oq_open = 1'b0;
+    assign oq_valid = 1'b0;
+    assign oq_empty = 1'b1;
+    assign oq_final = 1'b1;
+    assign oq_go = 1'b0;
+    assign k_ready = 1'b1;
+    assign oq_h = '0;
+    wire unused_order = &{1'b0, pre, post, oq_h, oq_final, oq_go};
+  end
+
+  // ---- Out: a textured fragment on lane 0, an order queue entry's beat (Early), or the
+  // beat passed through ----
   logic pass;
-  assign pipe_empty = fifo_empty && !pend_valid_q && count == '0 && !fill_q;
+  assign pipe_empty = fifo_empty && !pend_valid_q && count == '0 && !fill_q && oq_empty;
   assign pass = in_valid_i && (in_marker_i || !in_tex_on_i) && pipe_empty;
   assign in_ready_o = accept || (pass && out_ready_i);
   always_comb begin
-    if (cmb_valid) begin
+    out_culled_o = '0;
+    if (Early != 0 && oq_valid) begin
+      out_valid_o  = oq_go && (oq_h.kl == '0 || cmb_valid);
+      out_marker_o = 1'b0;
+      out_last_o   = oq_h.post != '0 ? oq_h.last : out_e.last;
+      out_lanes_o  = oq_h.pre | oq_h.kl | oq_h.post;
+      out_culled_o = oq_h.pre | oq_h.post;
+      out_x_o      = oq_h.x;
+      out_y_o      = oq_h.y;
+      out_z_o      = oq_h.z;
+      out_rgb_o    = oq_h.rgb;
+      for (int j = 0; j < Lanes; j++)
+        if (oq_h.kl[j]) out_rgb_o[j*24 +: 24] = cmb_color;
+      out_s_o      = oq_h.s;
+      out_t_o      = oq_h.t;
+      out_smask_o  = oq_h.smask;
+    end else if (cmb_valid) begin
       out_valid_o  = 1'b1;
       out_marker_o = 1'b0;
       out_last_o   = out_e.last;
@@ -548,6 +694,7 @@ module rast_texture_stage #(
       out_smask_o  = (Lanes*MaxSamples)'(out_e.smask);
     end else begin
       out_valid_o  = pass;
+      out_culled_o = Early != 0 ? in_culled_i : '0;
       out_marker_o = in_marker_i;
       out_last_o   = in_last_i;
       out_lanes_o  = in_lanes_i;

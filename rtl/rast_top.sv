@@ -3,7 +3,7 @@
 //
 //   triangle FIFO -> rast_tri_setup -> setup FIFO (latency) -> rast_coarse_raster
 //     -> tile FIFO -> rast_fine_raster -> pixel FIFO -> rast_interpolate
-//     -> rast_texture_stage (textured tiles) -> fragment FIFO
+//     -> [rast_early_z: depth.early] -> rast_texture_stage (textured tiles) -> fragment FIFO
 //        | texel fetch port -> rast_texture_cache -> line fill port (tex_mem_*)
 //     -> rast_rop -> memory request/response port
 //
@@ -126,11 +126,14 @@ module rast_top #(
   output      logic [InterpFragmentsPerCycle*TexW-1:0]   frag_t_o,    // lane j t
   output      logic [InterpFragmentsPerCycle*MaxSamples-1:0] frag_mask_o,  // lane j sample mask (bit s: sample s)
   // Early Z (DepthEarly; rtl/rast_early_z.sv): lane j of the beat culled early (still sent
-  // to the ROP for its depth reads), and the early test's depth read: the lanes whose
-  // pixels (frag_x_o, frag_y_o) are read, every sample's stored depth back in the same
-  // cycle (lane j sample s at [(j MaxSamples + s) DepthW +: DepthW]). 0 without.
+  // to the ROP for its depth reads, never textured), and the early test's depth read on the
+  // interpolator's beat into the texture stage: the lanes whose pixels (ez_rd_x_o,
+  // ez_rd_y_o) are read, every sample's stored depth back in the same cycle (lane j sample
+  // s at [(j MaxSamples + s) DepthW +: DepthW]). 0 without.
   output      logic [InterpFragmentsPerCycle-1:0]    frag_culled_o,
   output      logic [InterpFragmentsPerCycle-1:0]    ez_rd_lanes_o,
+  output      logic [InterpFragmentsPerCycle*PixelW-1:0] ez_rd_x_o,   // lane j x
+  output      logic [InterpFragmentsPerCycle*PixelW-1:0] ez_rd_y_o,   // lane j y
   input  wire logic [InterpFragmentsPerCycle*MaxSamples*DepthW-1:0] ez_rd_depth_i,
   // The ROP's commands, one a marker in stream order (rast_rop's cmd_*).
   input  wire logic                                  cmd_valid_i,     // a command
@@ -558,9 +561,11 @@ module rast_top #(
     .out_last_o(i_last), .out_lanes_o(i_lanes), .out_x_o(i_x), .out_y_o(i_y),
     .out_z_o(i_z), .out_rgb_o(i_rgb), .out_s_o(i_s), .out_t_o(i_t), .out_smask_o(i_smask), .busy_o(p_busy));
 
-  // ---- Texture stage (textured tiles; the rest passes through) ----
+  // ---- Texture stage (textured tiles; the rest passes through; with DepthEarly the lanes
+  // the early test culled, ez_culled, are not textured and keep their place) ----
   logic x_busy;
-  logic x_valid, x_ready;  // its output (seen by the early test, DepthEarly), into the fragment FIFO
+  logic x_valid, x_ready;  // its output, into the fragment FIFO
+  logic [Lanes-1:0] ez_culled;  // the early test's culls on the beat offered (below, "Early Z")
   logic                 tex_req_valid, tex_req_ready, tex_rsp_valid, tex_rsp_ready;
   logic [4*TexAddrW-1:0] tex_req_addr;
   logic [2:0]           tex_req_count;
@@ -572,11 +577,12 @@ module rast_top #(
   rast_texture_stage #(
     .Lanes(Lanes), .PixelW(PixelW), .DepthW(DepthW), .MaxSamples(MaxSamples), .TexW(TexW), .TexFrac(TexFrac),
     .WeightBits(TexWeightBits), .SizeW(TexSizeW), .AddrW(TexAddrW), .TileLog2Max(TileLog2Max),
-    .LevelW(TexLevelW), .BiasW(TexBiasW)
+    .LevelW(TexLevelW), .BiasW(TexBiasW), .Early(DepthEarly)
   ) u_texture (
     .clk_i, .rst_ni, .format_i(tex_format_q), .layout_i(tex_layout_q),
     .in_valid_i(i_valid && !x_hold), .in_ready_o(x_in_ready), .in_marker_i(i_marker), .in_last_i(i_last), .in_lanes_i(i_lanes),
     .in_x_i(i_x), .in_y_i(i_y), .in_z_i(i_z), .in_rgb_i(i_rgb), .in_s_i(i_s), .in_t_i(i_t), .in_smask_i(i_smask),
+    .in_culled_i(ez_culled),
     .in_tex_on_i(ts_head.on), .in_bilinear_i(ts_head.bilinear), .in_trilinear_i(ts_head.trilinear),
     .in_wrap_s_i(ts_head.wrap_s),
     .in_wrap_t_i(ts_head.wrap_t), .in_env_i(ts_head.env), .in_width_i(ts_head.width), .in_height_i(ts_head.height),
@@ -584,6 +590,7 @@ module rast_top #(
     .out_valid_o(x_valid), .out_ready_i(x_ready), .out_marker_o(frag_marker_o),
     .out_last_o(frag_last_o), .out_lanes_o(frag_lanes_o), .out_x_o(frag_x_o), .out_y_o(frag_y_o),
     .out_z_o(frag_z_o), .out_rgb_o(frag_rgb_o), .out_s_o(frag_s_o), .out_t_o(frag_t_o), .out_smask_o(frag_mask_o),
+    .out_culled_o(frag_culled_o),
     .tex_req_valid_o(tex_req_valid), .tex_req_ready_i(tex_req_ready), .tex_req_addr_o(tex_req_addr),
     .tex_req_count_o(tex_req_count), .tex_req_format_o(tex_req_format), .tex_rsp_valid_i(tex_rsp_valid),
     .tex_rsp_ready_o(tex_rsp_ready), .tex_rsp_texels_i(tex_rsp_texels), .helpers_o(tex_helpers_o), .busy_o(x_busy));
@@ -888,7 +895,8 @@ module rast_top #(
     .hiz_clear_o(rop_hiz_clear));
 
   // ---- Early Z (DepthEarly; rtl/rast_early_z.sv, docs/depth-culling.md "Early Z in the
-  // RTL"): the texture stage's beats tested against the stored depth; a tile at the pixel
+  // RTL"): the interpolator's beats tested against the stored depth as the texture stage
+  // is offered them (its culled lanes are not textured); a tile at the pixel
   // FIFO's head held (ez_wait) while a tile on its pixels or a marker is in flight to the
   // ROP's end. A depth clear's marker ends at its last fill write (rop_done after its
   // take), a pass at its take. ----
@@ -911,12 +919,16 @@ module rast_top #(
       .clk_i, .rst_ni, .tile_log2_i(tile_log2_q), .samples_log2_i(samples_log2_q), .depth_func_i,
       .q_valid_i(p_fifo_valid), .q_marker_i(p_fifo_data.marker), .q_tile_i(p_fifo_data.tile), .q_wait_o(ez_wait),
       .q_take_i(p_fifo_valid && p_fifo_ready),
-      .in_valid_i(x_valid), .in_marker_i(frag_marker_o), .in_lanes_i(frag_lanes_o), .in_z_i(frag_z_o),
-      .in_mask_i(frag_mask_o), .out_culled_o(frag_culled_o), .rd_lanes_o(ez_rd_lanes_o), .rd_depth_i(ez_rd_depth_i),
+      .in_valid_i(i_valid && !x_hold), .in_marker_i(i_marker), .in_lanes_i(i_lanes), .in_z_i(i_z),
+      .in_mask_i(i_smask), .out_culled_o(ez_culled), .rd_lanes_o(ez_rd_lanes_o), .rd_depth_i(ez_rd_depth_i),
       .rop_end_i(rop_hiz_end), .rop_marker_i((rop_hiz_marker && !rop_hiz_clear) || (clr_q && rop_done)));
+    assign ez_rd_x_o = i_x;
+    assign ez_rd_y_o = i_y;
   end else begin : g_no_early
+    assign ez_rd_x_o = '0;
+    assign ez_rd_y_o = '0;
     assign ez_wait = 1'b0;
-    assign frag_culled_o = '0;
+    assign ez_culled = '0;
     assign ez_rd_lanes_o = '0;
     wire unused_early = ^ez_rd_depth_i;
   end

@@ -148,6 +148,7 @@ class VerilatedRast final : public RastPorts {
   bool fragment_lane_valid(int lane) const override { return port_bits(top_->frag_lanes_o, lane, 1) & 1; }
   bool fragment_lane_culled(int lane) const override { return port_bits(top_->frag_culled_o, lane, 1) & 1; }
   uint32_t early_read_lanes() const override { return early_read_lanes_of(*top_); }
+  std::pair<int, int> early_read_pixel(int j) const override { return early_read_pixel_of(*top_, j, params_.pixel_w); }
   void drive_early_depth(const std::vector<uint32_t>& w) override { drive_early_depth_of(*top_, params_.depth_w, w); }
   Fragment fragment_lane(int j) const override {
     Fragment f;

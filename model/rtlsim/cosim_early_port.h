@@ -1,10 +1,11 @@
 // SPDX-License-Identifier: Apache-2.0
 // The port adapter's early-Z ports (cosim_driver.h): rast_top's frag_culled_o and the
-// early test's depth read (ez_rd_lanes_o, ez_rd_depth_i; rtl/rast_early_z.sv), on a
-// verilated rast_top of any config (tied off without DepthEarly).
+// early test's depth read (ez_rd_lanes_o, ez_rd_x_o, ez_rd_y_o, ez_rd_depth_i;
+// rtl/rast_early_z.sv), on a verilated rast_top of any config (tied off without DepthEarly).
 #pragma once
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "rtlsim/cosim_hiz_port.h"  // cosim_tile_port.h, port_bits.h, testbench.h
@@ -15,6 +16,12 @@ namespace rastsim::rtlsim {
 template <class V>
 uint32_t early_read_lanes_of(const V& top) {
   return uint32_t(top.ez_rd_lanes_o);
+}
+
+// Lane j's pixel {x, y} (pixel_w bits each).
+template <class V>
+std::pair<int, int> early_read_pixel_of(const V& top, int j, int pixel_w) {
+  return {int(port_bits(top.ez_rd_x_o, j * pixel_w, pixel_w)), int(port_bits(top.ez_rd_y_o, j * pixel_w, pixel_w))};
 }
 
 // Their samples' stored depth, DepthW bits each (lane j sample s at word j MaxSamples + s),

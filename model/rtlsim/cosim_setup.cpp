@@ -70,6 +70,10 @@ class StreamBuilder {
                        });
   }
   void end_of_frame();
+  // depth.early: the reference's kept fragments (render_scene's sink, in the walk's order),
+  // against which each fragment the walk makes is marked culled or kept (early_culled).
+  void early_kept(const std::vector<Fragment>* kept) { kept_ = kept; }
+  size_t early_kept_matched() const { return kept_pos_; }
   // The reference's Hi-Z counts (HizTracker's) into the setup.
   void finish_hiz() {
     setup_.hiz = hiz_.has_value();
@@ -152,6 +156,18 @@ class StreamBuilder {
     }
   };
   HizWalk hiz_walk(const SetupTriangle& t) { return HizWalk{this, t}; }
+  // depth.early: f (out of interpolation) is one the reference culled early when it is not
+  // the next of its kept stream (a subsequence of the walk's fragments, in order).
+  const std::vector<Fragment>* kept_ = nullptr;
+  size_t kept_pos_ = 0;
+  bool early_culled(const Fragment& f) {
+    if (!kept_) return false;
+    if (kept_pos_ < kept_->size() && (*kept_)[kept_pos_] == f) {
+      ++kept_pos_;
+      return false;
+    }
+    return true;
+  }
   std::unique_ptr<BinProgram> bins_;  // pipeline.mode = binned: the binner's program (tb_binning.h)
 };
 
@@ -322,19 +338,23 @@ void StreamBuilder::triangle(const Command& cmd, const CmdPrimitives& prims, siz
   if (!prims.texture.enabled()) {
     traverse_triangle(t, tile_size_, F, counters_, [&](int px, int py, uint32_t m) {
       shade_pixel(t, px, py, m, F,
-                  [&](const Fragment& f) { setup_.expected.push_back(Expected{f, it.tri, false, culled_tile_}); });
+                  [&](const Fragment& f) { setup_.expected.push_back(Expected{f, it.tri, early_culled(f), culled_tile_}); });
     }, hiz_walk(t));
     return;
   }
   // Textured (ref/pipeline.cpp draw_textured): each fragment through the texture unit with
-  // its quad's derivatives; the quads' pixels not covered are helper pixels.
+  // its quad's derivatives; the quads' pixels not covered are helper pixels. A fragment the
+  // reference culled early is not textured (its fetches are not the reference's): expected
+  // as interpolated.
   quads_.clear();
   const int tex_frac = state_.texcoord_format.frac_bits;
   traverse_triangle(t, tile_size_, F, counters_, [&](int px, int py, uint32_t m) {
     quads_.add_covered(1);
     const QuadDerivatives& d = quads_.derivatives(t, px, py, F);
     shade_pixel(t, px, py, m, F, [&](const Fragment& f) {
-      setup_.expected.push_back(Expected{tex_->shade(f, d, prims.texture, tex_frac), it.tri, false, culled_tile_});
+      const bool culled = early_culled(f);
+      setup_.expected.push_back(
+          Expected{culled ? f : tex_->shade(f, d, prims.texture, tex_frac), it.tri, culled, culled_tile_});
     });
   }, hiz_walk(t));
   setup_.helper_pixels += quads_.helper_pixels();
@@ -361,8 +381,11 @@ void StreamBuilder::end_of_frame() {
   setup_.items.push_back(m);
 }
 
-void build(const Scene& scene, const ArchParams& arch, int tile_size, TbSetup& s) {
+// kept (depth.early): the reference's kept fragments; returns how many of them the walk's
+// fragments matched, in order (all of them, or the early marks are not the reference's).
+size_t build(const Scene& scene, const ArchParams& arch, int tile_size, TbSetup& s, const std::vector<Fragment>* kept) {
   StreamBuilder b(arch, tile_size, s, scene.commands.data());
+  b.early_kept(kept);
   for (size_t i = 0; i < scene.commands.size(); ++i) {
     const size_t first = s.items.size();
     b.add(scene.commands[i]);
@@ -371,6 +394,7 @@ void build(const Scene& scene, const ArchParams& arch, int tile_size, TbSetup& s
   s.commands = scene.commands.size();
   b.end_of_frame();
   b.finish_hiz();
+  return b.early_kept_matched();
 }
 
 // pipeline.mode = binned on the RTL (rtl/rast_tile_buffer.sv, docs/rtl.md "Tile buffer"):
@@ -417,7 +441,7 @@ RtlParams cosim_wanted_params(const ArchParams& arch, const CosimOptions& opts) 
   // Depth culling (docs/depth-culling.md "RTL"): rast_top holds Hi-Z's table, its first
   // entries on chip and the rest through the hiz port (rtl/rast_top_hiz.sv,
   // rast_hiz_spill.sv), at least one on chip. Early Z (rtl/rast_early_z.sv) co-simulates
-  // alone, untextured (the textured check is cosim_setup's, on the scene), immediate mode.
+  // alone (textured or not), immediate mode.
   // Hi-Z that does not apply to this state (hiz_applies: e.g. multisampling) leaves the run
   // exactly the Hi-Z-off one (the shipped models, no table built).
   const bool hiz = hiz_applies(st);
@@ -456,29 +480,14 @@ RtlParams cosim_wanted_params(const ArchParams& arch, const CosimOptions& opts) 
   return wanted;
 }
 
-// depth.early: the expected stream holds every fragment the walk makes; those missing from
-// the reference's kept stream (render_scene's sink, the same order) are its early culls.
-// Refused: textured scenes (the texture stage, ahead of the early test, would sample the
-// culled fragments) and a run from earlier frames (the early test needs the whole scene).
-static void mark_early_culled(const ArchParams& arch, const CosimOptions& opts, const RenderStats& ref,
-                              const std::vector<Fragment>& kept, TbSetup& s) {
-  const std::string key = arch.config.origin("depth.early") + ": depth.early = true";
-  if (opts.initial_fb) throw ConfigError(key + " co-simulates whole scenes only (--frames from the first frame)");
-  for (const TbItem& it : s.items)
-    if (it.tex_on)
-      throw ConfigError(key + " co-simulates untextured scenes only (" + s.tri_names[size_t(it.tri)] +
-                        " is textured: the RTL's early test sits after the texture stage, which would sample "
-                        "the fragments it culls; render and simulate run it; docs/depth-culling.md)");
-  size_t k = 0;
-  for (Expected& e : s.expected) {
-    const bool keep = k < kept.size() && kept[k] == e.f;
-    e.culled = !keep;
-    k += keep ? 1 : 0;
-  }
-  if (k != kept.size())
-    throw std::logic_error("cosim_setup: the reference's kept fragments are not a subsequence of the walk's");
-  s.depth_early = true;
-  s.fragments_culled_early = ref.fragments_culled_early;
+// depth.early: the expected stream holds every fragment the walk makes, those missing from
+// the reference's kept stream (render_scene's sink, the same order) marked as its early
+// culls, textured or not (build: a culled one is not textured, as the RTL's texture stage
+// skips it). Refused: a run from earlier frames (the early test needs the whole scene).
+static void check_early(const ArchParams& arch, const CosimOptions& opts) {
+  if (opts.initial_fb)
+    throw ConfigError(arch.config.origin("depth.early") +
+                      ": depth.early = true co-simulates whole scenes only (--frames from the first frame)");
 }
 
 void cosim_setup(const Scene& scene, const ArchParams& arch, const CosimOptions& opts, const RtlParams& model, TbSetup& s,
@@ -515,13 +524,21 @@ void cosim_setup(const Scene& scene, const ArchParams& arch, const CosimOptions&
   RenderStats ref_stats;
   std::vector<Fragment> kept;  // depth.early: the reference's fragments out of its early test
   FragmentSink sink;
-  if (st.depth_early) sink = [&kept](const Fragment& f) { kept.push_back(f); };
+  if (st.depth_early) {
+    check_early(arch, opts);
+    sink = [&kept](const Fragment& f) { kept.push_back(f); };
+  }
   s.reference = opts.reference_fb && !st.depth_early ? *opts.reference_fb : render_scene(scene, s.arch, ref_stats, sink);
   s.memory = arch.memory;
   s.dram = arch.dram;
   s.binned = st.bin.mode == PipelineMode::Binned;
-  build(scene, arch, tile, s);
-  if (st.depth_early) mark_early_culled(arch, opts, ref_stats, kept, s);
+  const size_t matched = build(scene, arch, tile, s, st.depth_early ? &kept : nullptr);
+  if (st.depth_early) {
+    if (matched != kept.size())
+      throw std::logic_error("cosim_setup: the reference's kept fragments are not a subsequence of the walk's");
+    s.depth_early = true;
+    s.fragments_culled_early = ref_stats.fragments_culled_early;
+  }
   s.texture = s.arch.texture;
 
   s.scanout = scanout_params_if_display(arch);

@@ -1028,9 +1028,9 @@ void Testbench::early_serve() {
   std::vector<uint32_t> words(size_t(setup_.params.interp_fragments_per_cycle * ms), 0);
   for (int j = 0; j < setup_.params.interp_fragments_per_cycle; ++j) {
     if (!((lanes >> j) & 1)) continue;
-    const Fragment f = ports_.fragment_lane(j);
-    if (f.x >= fb_.width || f.y >= fb_.height) continue;  // the fragment check reports it
-    for (int smp = 0; smp < fb_.samples; ++smp) words[size_t(j * ms + smp)] = fb_.depth_at(f.x, f.y, smp);
+    const auto [x, y] = ports_.early_read_pixel(j);
+    if (x >= fb_.width || y >= fb_.height) continue;  // the fragment check reports it
+    for (int smp = 0; smp < fb_.samples; ++smp) words[size_t(j * ms + smp)] = fb_.depth_at(x, y, smp);
   }
   ports_.drive_early_depth(words);
 }

@@ -13,6 +13,7 @@
 #include <unordered_map>
 #include <string>
 #include <vector>
+#include <utility>
 
 #include "config/timing_params.h"
 #include "display/scanout_fetch.h"
@@ -187,10 +188,12 @@ class RastPorts {
   virtual FragmentBeat fragment_beat() const = 0;
   virtual bool fragment_lane_valid(int lane) const = 0;  // frag_lanes_o bit
   virtual bool fragment_lane_culled(int lane) const = 0;  // frag_culled_o bit (early Z)
-  // The early test's depth read (ez_rd_*): the lanes read (ez_rd_lanes_o, their pixels
-  // those of the fragment port); their samples' stored depth (lane j sample s at
-  // words[j MaxSamples + s]) driven on ez_rd_depth_i and rast_top evaluated again.
+  // The early test's depth read (ez_rd_*): the lanes read (ez_rd_lanes_o) and lane j's
+  // pixel (ez_rd_x_o, ez_rd_y_o: the interpolator's beat into the texture stage); their
+  // samples' stored depth (lane j sample s at words[j MaxSamples + s]) driven on
+  // ez_rd_depth_i and rast_top evaluated again.
   virtual uint32_t early_read_lanes() const = 0;
+  virtual std::pair<int, int> early_read_pixel(int lane) const = 0;
   virtual void drive_early_depth(const std::vector<uint32_t>& words) = 0;
   // Lane `lane` of the fragment port (x, y, z, colour, sample mask; samples left 1).
   virtual Fragment fragment_lane(int lane) const = 0;

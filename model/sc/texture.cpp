@@ -68,7 +68,10 @@ LocalPtr<const FragmentBatch> Texture::shade(const FragmentBatch& batch, TimingP
     *o++ = unit_->shade(f, d, tri.texture, tex_frac);
     fetch_.slot += unit_->stats().level_samples - samples_before;  // 1, or 2 where trilinear blends two levels
   }
-  trailing_empty_ = empty_beats(prev_beat_ + 1, covered_.size());
+  // The beats after the last kept fragment: a batch early Z culled whole adds all of its
+  // own to those the serialiser still has to pass (each a cycle, as rast_texture_stage).
+  trailing_empty_ =
+      batch.kept() == 0 ? trailing_empty_ + covered_.size() : empty_beats(prev_beat_ + 1, covered_.size());
   out->count = batch.count;
   if (batch.culled_count != 0) {
     out->culled.assign(batch.culled.begin(), batch.culled.begin() + std::ptrdiff_t(batch.count));
