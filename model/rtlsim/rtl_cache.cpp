@@ -90,7 +90,7 @@ std::string project_cmake(const RtlBuildInfo& b) {
          "target_include_directories(rast_runner PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})\n"
          "# The embedded testbench headers (project_path) before the build tree's include paths.\n"
          "target_include_directories(rast_runner BEFORE PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/include)\n"
-         "# As rastsim_verilated (rast_verilate.cmake: -g0, RASTSIM_VERILATED_OPT).\n"
+         "# As rastsim_verilated (rast_verilate.cmake: -g0), at RASTSIM_ONDEMAND_OPT (else RASTSIM_VERILATED_OPT).\n"
          "target_compile_options(rast_runner PRIVATE ${RAST_VERILATED_CXX_OPTIONS})\n"
          "target_link_libraries(rast_runner PRIVATE rastsim_rtl_bench rastsim_scene ZLIB::ZLIB)\n";
 }

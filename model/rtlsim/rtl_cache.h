@@ -47,7 +47,7 @@ struct RtlBuildInfo {
   std::string cmake, generator, make_program;      // to configure and build the project
   std::string cxx_compiler, cxx_compiler_id, cxx_launcher, build_type;
   std::string verilator_dir, verilator_version;
-  std::string verilated_opt;      // RASTSIM_VERILATED_OPT: the generated code's -O level, as rastsim_verilated's
+  std::string verilated_opt;      // RASTSIM_ONDEMAND_OPT, else RASTSIM_VERILATED_OPT: the generated code's -O level
   std::string link_file;          // the exported libraries and their imported dependencies (CMake)
   std::vector<std::string> libs;  // the static libraries the runner links (hashed into the key)
 };
