@@ -575,6 +575,9 @@ module rast_texture_stage #(
     logic [Lanes*MaxSamples-1:0] smask;
   } oq_t;
   oq_t  oq_h;     // the head entry
+  // The entry loaded this cycle. Here, not in g_order: Yosys 0.23 cannot resolve the members
+  // of a struct declared in a generate block (`rastsim area` with depth.early failed on it).
+  oq_t  oq_in;
   logic oq_valid, oq_final, oq_go, oq_empty, k_ready;
   logic        cmb_valid;
   logic [23:0] cmb_color;
@@ -600,7 +603,7 @@ module rast_texture_stage #(
     logic [OqPtrW-1:0] oq_rd_q, oq_wr_q;
     logic [OqPtrW:0]   oq_count_q;
     logic              oq_push, oq_flag, oq_take, open_q2;
-    oq_t               oq_in;
+    logic [OqDepth-1:0] oq_last_q;  // each entry's last flag, apart from oq_q: oq_flag sets it late
     assign oq_push = load || (pop && rem == '0 && grp != '0);
     // The tile's last beat popped with nothing of its own to flag: the newest entry's post.
     assign oq_flag = pop && rem == '0 && h.last && grp == '0 && open_q2;
@@ -620,7 +623,10 @@ module rast_texture_stage #(
     assign oq_room = oq_count_q != (OqPtrW + 1)'(OqDepth);
     assign oq_valid = oq_count_q != '0;
     assign oq_empty = !oq_valid;
-    assign oq_h = oq_q[oq_rd_q];
+    always_comb begin
+      oq_h = oq_q[oq_rd_q];
+      oq_h.last = oq_last_q[oq_rd_q];
+    end
     assign oq_final = oq_h.last || oq_count_q > (OqPtrW + 1)'(1);
     assign oq_go = oq_valid && (oq_h.post == '0 || oq_final);  // the head may leave (with its fragment)
     assign k_ready = oq_go && oq_h.kl != '0;
@@ -643,7 +649,8 @@ module rast_texture_stage #(
     end
     always_ff @(posedge clk_i) begin
       if (oq_push) oq_q[oq_wr_q] <= oq_in;
-      if (oq_flag) oq_q[oq_wr_q - 1'b1].last <= 1'b1;
+      if (oq_push) oq_last_q[oq_wr_q] <= oq_in.last;
+      if (oq_flag) oq_last_q[oq_wr_q - 1'b1] <= 1'b1;
     end
   end else begin : g_no_order
     assign oq_room = 1'b1;
@@ -654,7 +661,8 @@ module rast_texture_stage #(
     assign oq_go = 1'b0;
     assign k_ready = 1'b1;
     assign oq_h = '0;
-    wire unused_order = &{1'b0, pre, post, oq_h, oq_final, oq_go};
+    assign oq_in = '0;
+    wire unused_order = &{1'b0, pre, post, oq_h, oq_in, oq_final, oq_go};
   end
 
   // ---- Out: a textured fragment on lane 0, an order queue entry's beat (Early), or the
